@@ -1,0 +1,24 @@
+// pathlab: one executable, subcommands wired to the core. Every error becomes one line and exit 1.
+#include "app/render_command.h"
+
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"pathlab: a bidirectional path tracer for studying the path integral formulation of light transport"};
+  app.require_subcommand(1);
+  pathlab::app::RenderOptions render;
+  pathlab::app::addRenderCommand(app, render);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (app.got_subcommand("render")) return pathlab::app::runRender(render);
+  } catch (const std::exception& e) {
+    std::cerr << "pathlab: " << e.what() << "\n";
+    return 1;
+  }
+  return 1;
+}

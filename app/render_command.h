@@ -1,0 +1,27 @@
+// `pathlab render`: options, validation and the headless render loop.
+#pragma once
+
+#include "core/render/render_settings.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace pathlab::app {
+
+struct RenderOptions {
+  std::string scene;
+  std::string output;
+  RenderSettings settings;
+  int spp = 0;          // 0: use the time limit (or the default of 64 if neither is given)
+  double seconds = 0.0;
+  int threads = 0;      // 0: every hardware thread
+  float exposure = 0.f;
+  bool force = false;
+};
+
+void addRenderCommand(CLI::App& app, RenderOptions& options);
+// Returns the process exit code. Errors are exceptions, reported by main.
+int runRender(const RenderOptions& options);
+
+}  // namespace pathlab::app

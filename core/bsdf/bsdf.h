@@ -1,0 +1,82 @@
+// The glTF 2.0 metallic-roughness BSDF at one surface point: eval, sample and pdf in both
+// transport directions, each returning the forward and the reverse solid-angle density.
+//
+// Conventions (pbrt's, Veach 1997 ch. 5):
+//  - All directions are world space, unit length, pointing away from the surface.
+//  - `wo` points back along the subpath being traced (toward the camera on a camera subpath,
+//    toward the light on a light subpath); `wi` is the direction the subpath continues in.
+//  - TransportMode::Radiance evaluates f(wi -> wo) (light arrives along wi and leaves along wo);
+//    TransportMode::Importance evaluates the adjoint BSDF f*(wo -> wi), including Veach's
+//    correction for shading normals (1997, eq. 5.19) and without the 1/eta^2 radiance scaling
+//    of refraction (sec. 5.2), so light tracing and path tracing agree.
+//  - `f` excludes the cosine; the integrator multiplies by |dot(wi, ns)|.
+//  - pdfFwdW is the density of sampling wi given wo, pdfRevW that of sampling wo given wi, both in
+//    solid angle and both including the probability of choosing the lobe.
+#pragma once
+
+#include "core/math/frame.h"
+#include "core/math/types.h"
+
+#include <optional>
+
+namespace pathlab {
+
+enum class TransportMode { Radiance, Importance };
+
+// glTF metallic-roughness parameters after texture lookup, at one point (Khronos glTF 2.0 spec,
+// appendix B, with KHR_materials_ior, _specular and _transmission).
+struct MaterialPoint {
+  Spectrum baseColor{0.8f};
+  float metallic = 0.f;
+  float roughness = 0.5f;        // perceptual; GGX alpha = roughness^2
+  float ior = 1.5f;
+  float specularFactor = 1.f;     // KHR_materials_specular: 0 gives a pure Lambertian dielectric
+  Spectrum specularColor{1.f};
+  float transmission = 0.f;       // KHR_materials_transmission
+  bool thinWalled = false;        // reserved: glTF transmission without volume is thin; we model solids
+};
+
+// Below this GGX alpha a lobe is an exact delta (mirror / smooth glass), flagged as such.
+inline constexpr float kDeltaAlpha = 1e-3f;
+
+struct BsdfEval {
+  Spectrum f{0.f};
+  float pdfFwdW = 0.f;
+  float pdfRevW = 0.f;
+};
+
+struct BsdfSample {
+  Spectrum f{0.f};        // for a delta lobe: the weight such that f * |cos| / pdfFwdW is the throughput
+  Vec3 wi{0.f};
+  float pdfFwdW = 0.f;    // for a delta lobe: the discrete probability of choosing it
+  float pdfRevW = 0.f;
+  bool isDelta = false;
+  bool isTransmission = false;
+};
+
+class Bsdf {
+ public:
+  // ns: shading normal (interpolated); ng: geometric normal. Neither need face the viewer.
+  Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material);
+
+  // Non-delta part only; zero for delta-only materials.
+  BsdfEval eval(const Vec3& wo, const Vec3& wi, TransportMode mode) const;
+  // u: a 2D sample for the direction; uLobe: a 1D sample choosing the lobe.
+  std::optional<BsdfSample> sample(const Vec3& wo, Vec2 u, float uLobe, TransportMode mode) const;
+  // Forward density of the non-delta part (pdfFwdW of eval).
+  float pdf(const Vec3& wo, const Vec3& wi, TransportMode mode) const;
+
+  bool hasNonDelta() const { return hasNonDelta_; }
+  bool isDeltaOnly() const { return !hasNonDelta_; }
+  const Frame& shadingFrame() const { return frame_; }
+  const Vec3& geometricNormal() const { return ng_; }
+
+ private:
+  Frame frame_;
+  Vec3 ng_;
+  MaterialPoint m_;
+  float alpha_ = 0.f;
+  bool hasNonDelta_ = true;
+};
+
+}  // namespace pathlab

@@ -1,0 +1,153 @@
+// Pinhole and thin-lens camera: ray generation, importance We and its densities (see camera.h).
+#include "core/camera/camera.h"
+
+#include "core/sampling/warp.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace pathlab {
+
+Camera::Camera(const CameraDesc& desc, int width, int height, const LensOptions& lens)
+    : width_(width), height_(height) {
+  if (width <= 0 || height <= 0)
+    throw std::invalid_argument("camera '" + desc.name + "': image size must be positive, got " +
+                                std::to_string(width) + "x" + std::to_string(height));
+  // Keep only rotation and translation: a glTF camera node may carry scale or shear, which would
+  // otherwise leak into ray directions and the lens.
+  const Mat4& m = desc.cameraToWorld;
+  origin_ = Vec3(m[3]);
+  forward_ = glm::normalize(-Vec3(m[2]));
+  Vec3 right = glm::cross(forward_, Vec3(m[1]));
+  right = glm::dot(right, right) > 0.f ? glm::normalize(right) : Frame(-forward_).s;
+  const Vec3 up = glm::cross(right, forward_);
+  cameraToWorld_ = Mat4(Vec4(right, 0.f), Vec4(up, 0.f), Vec4(-forward_, 0.f), Vec4(origin_, 1.f));
+  worldToCamera_ = glm::inverse(cameraToWorld_);
+
+  // The film aspect is the image's; the vertical field of view is the file's.
+  const float yfov = glm::clamp(desc.yfov, 1e-4f, kPi - 1e-4f);
+  tanHalfY_ = std::tan(0.5f * yfov);
+  tanHalfX_ = tanHalfY_ * static_cast<float>(width) / static_cast<float>(height);
+  filmArea_ = 4.f * tanHalfX_ * tanHalfY_;
+  lensRadius_ = std::max(lens.apertureRadius, 0.f);
+  focusDistance_ = std::max(lens.focusDistance, 1e-4f);
+}
+
+float Camera::lensArea() const { return isPinhole() ? 1.f : kPi * lensRadius_ * lensRadius_; }
+
+Vec2 Camera::rasterToFilm(Vec2 pRaster) const {
+  return {(2.f * pRaster.x / static_cast<float>(width_) - 1.f) * tanHalfX_,
+          (1.f - 2.f * pRaster.y / static_cast<float>(height_)) * tanHalfY_};
+}
+
+Vec2 Camera::filmToRaster(Vec2 pFilm) const {
+  return {0.5f * (pFilm.x / tanHalfX_ + 1.f) * static_cast<float>(width_),
+          0.5f * (1.f - pFilm.y / tanHalfY_) * static_cast<float>(height_)};
+}
+
+bool Camera::onFilm(Vec2 pRaster) const {
+  // Half-open, so that a splat's pixel index floor(pRaster) is always inside the image.
+  return pRaster.x >= 0.f && pRaster.y >= 0.f && pRaster.x < static_cast<float>(width_) &&
+         pRaster.y < static_cast<float>(height_);
+}
+
+std::optional<Vec2> Camera::rasterOfCameraRay(const Vec3& oCam, const Vec3& dCam) const {
+  const float cosTheta = -dCam.z;
+  if (!(cosTheta > 0.f)) return std::nullopt;
+  Vec2 pFilm;
+  if (isPinhole()) {
+    pFilm = Vec2(dCam) / cosTheta;
+  } else {
+    // Every ray through a point of the focal plane maps to where the lens centre sees it.
+    const float t = (focusDistance_ + oCam.z) / cosTheta;
+    if (!(t > 0.f)) return std::nullopt;
+    pFilm = Vec2(oCam + t * dCam) / focusDistance_;
+  }
+  const Vec2 pRaster = filmToRaster(pFilm);
+  if (!onFilm(pRaster)) return std::nullopt;
+  return pRaster;
+}
+
+Ray Camera::generateRay(Vec2 pRaster, Vec2 uLens) const {
+  const Vec3 pFilm(rasterToFilm(pRaster), -1.f);
+  Vec3 pLens(0.f), d;
+  if (isPinhole()) {
+    d = glm::normalize(pFilm);
+  } else {
+    pLens = Vec3(lensRadius_ * sampleUniformDiskConcentric(uLens), 0.f);
+    d = glm::normalize(pFilm * focusDistance_ - pLens);
+  }
+  Ray ray;
+  ray.o = Vec3(cameraToWorld_ * Vec4(pLens, 1.f));
+  ray.d = glm::normalize(Mat3(cameraToWorld_) * d);
+  return ray;
+}
+
+Spectrum Camera::We(const Ray& ray, Vec2* pRaster) const {
+  // ray.o is taken to lie on the lens (the origin for a pinhole), as every camera vertex does.
+  const Vec3 dCam = glm::normalize(Mat3(worldToCamera_) * ray.d);
+  const Vec3 oCam = isPinhole() ? Vec3(0.f) : Vec3(worldToCamera_ * Vec4(ray.o, 1.f));
+  const std::optional<Vec2> raster = rasterOfCameraRay(oCam, dCam);
+  if (!raster) return Spectrum(0.f);
+  if (pRaster) *pRaster = *raster;
+  const float cos2 = dCam.z * dCam.z;
+  // pbrt-v3 eq. 16.3: normalised so that the integral over film and lens of We cos is one.
+  return Spectrum(1.f / (filmArea_ * lensArea() * cos2 * cos2));
+}
+
+CameraPdf Camera::pdfWe(const Ray& ray) const {
+  const Vec3 dCam = glm::normalize(Mat3(worldToCamera_) * ray.d);
+  const Vec3 oCam = isPinhole() ? Vec3(0.f) : Vec3(worldToCamera_ * Vec4(ray.o, 1.f));
+  if (!rasterOfCameraRay(oCam, dCam)) return {};
+  const float cosTheta = -dCam.z;
+  // Uniform on the film plane at distance 1 (area A_film), converted to solid angle:
+  // dA = dw / cos^3 (distance 1/cos, foreshortening cos).
+  return {1.f / lensArea(), 1.f / (filmArea_ * cosTheta * cosTheta * cosTheta)};
+}
+
+std::optional<CameraWiSample> Camera::sampleWi(const Vec3& ref, Vec2 uLens) const {
+  Vec3 pLensCam(0.f);
+  if (!isPinhole()) pLensCam = Vec3(lensRadius_ * sampleUniformDiskConcentric(uLens), 0.f);
+  const Vec3 pLens = Vec3(cameraToWorld_ * Vec4(pLensCam, 1.f));
+  const Vec3 toLens = pLens - ref;
+  const float dist2 = glm::dot(toLens, toLens);
+  if (!(dist2 > 0.f)) return std::nullopt;
+  CameraWiSample s;
+  s.dist = std::sqrt(dist2);
+  s.wi = toLens / s.dist;
+  s.pLens = pLens;
+  s.We = We(Ray{pLens, -s.wi}, &s.pRaster);
+  if (isBlack(s.We)) return std::nullopt;
+  const float cosTheta = glm::dot(-s.wi, forward_);
+  // Lens area density to solid angle at ref (pbrt-v3 PerspectiveCamera::Sample_Wi); a pinhole
+  // counts as a lens of area 1, so We / pdfW = We cos / dist^2 there.
+  s.pdfW = dist2 / (cosTheta * lensArea());
+  if (!std::isfinite(s.pdfW) || !(s.pdfW > 0.f)) return std::nullopt;
+  return s;
+}
+
+std::optional<Vec2> Camera::rasterPosition(const Vec3& p) const {
+  const Vec3 pCam = Vec3(worldToCamera_ * Vec4(p, 1.f));
+  const float depth = -pCam.z;
+  if (!(depth > 0.f)) return std::nullopt;
+  const Vec2 pRaster = filmToRaster(Vec2(pCam) / depth);
+  if (!onFilm(pRaster)) return std::nullopt;
+  return pRaster;
+}
+
+CameraDesc frameBounds(const Vec3& boundsMin, const Vec3& boundsMax, float yfov) {
+  const Vec3 center = 0.5f * (boundsMin + boundsMax);
+  float radius = 0.5f * glm::length(boundsMax - boundsMin);
+  if (!(radius > 0.f) || !std::isfinite(radius)) radius = 1.f;
+  // The sphere is tangent to the view cone at distance radius / sin(yfov / 2); 10% margin.
+  const float distance = radius / std::sin(0.5f * yfov) * 1.1f;
+  CameraDesc desc;
+  desc.cameraToWorld = Mat4(1.f);
+  desc.cameraToWorld[3] = Vec4(center + Vec3(0.f, 0.f, distance), 1.f);
+  desc.yfov = yfov;
+  desc.name = "frameBounds";
+  return desc;
+}
+
+}  // namespace pathlab

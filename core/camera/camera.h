@@ -1,0 +1,84 @@
+// The camera as a sensor: a pinhole or a thin lens. Generates rays for film positions and, for
+// light tracing, evaluates importance We and the densities of a given ray.
+//
+// Normalisation (pbrt-v3 sec. 16.1.1): We integrates to one over the film and the lens, so
+//   We(p, w) = 1 / (A_film * A_lens * cos^4 theta),
+// with A_film the area of the film rectangle at distance 1 from the lens and A_lens the lens area
+// (1 for a pinhole, which is a delta in position). With a box filter, the value of pixel j is the
+// mean radiance over its footprint; a light-tracing contribution splatted at raster position q
+// therefore adds (number of pixels / number of light subpaths) x contribution to q's pixel.
+#pragma once
+
+#include "core/math/frame.h"
+#include "core/scene/ray.h"
+#include "core/scene/scene_desc.h"
+
+#include <optional>
+
+namespace pathlab {
+
+struct LensOptions {
+  float apertureRadius = 0.f;  // 0: pinhole
+  float focusDistance = 1.f;   // distance along the view axis of the plane in focus
+  bool operator==(const LensOptions&) const = default;
+};
+
+struct CameraWiSample {
+  Spectrum We{0.f};   // importance arriving at the reference point from the lens point
+  Vec3 wi{0.f};       // from the reference point toward the lens point
+  Vec3 pLens{0.f};
+  Vec2 pRaster{0.f};  // where the contribution lands on the film, in pixels
+  float dist = 0.f;
+  // Solid angle at the reference point: dist^2 / (cos theta * A_lens). A pinhole is a delta in
+  // position and counts as a lens of area 1 (pbrt-v3), so We / pdfW = We cos theta / dist^2.
+  float pdfW = 0.f;
+};
+
+struct CameraPdf {
+  float pdfPosA = 0.f;  // lens area density (1 for a pinhole)
+  float pdfDirW = 0.f;  // solid-angle density of the direction given the lens point
+};
+
+class Camera {
+ public:
+  Camera() = default;
+  Camera(const CameraDesc& desc, int width, int height, const LensOptions& lens = {});
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool isPinhole() const { return lensRadius_ == 0.f; }
+  Vec3 position() const { return origin_; }
+  Vec3 forward() const { return forward_; }
+
+  // pRaster in pixels: (0,0) top-left of the image, (width,height) bottom-right.
+  Ray generateRay(Vec2 pRaster, Vec2 uLens) const;
+  // Importance of a ray leaving the lens at ray.o along ray.d; raster position through *pRaster.
+  Spectrum We(const Ray& ray, Vec2* pRaster = nullptr) const;
+  CameraPdf pdfWe(const Ray& ray) const;
+  // Camera vertex for t = 1: a lens point seen from `ref`, with the importance it receives.
+  std::optional<CameraWiSample> sampleWi(const Vec3& ref, Vec2 uLens) const;
+  // Raster position of a world point through the lens centre (nullopt if behind or off film).
+  std::optional<Vec2> rasterPosition(const Vec3& p) const;
+
+ private:
+  Mat4 cameraToWorld_{1.f}, worldToCamera_{1.f};
+  Vec3 origin_{0.f}, forward_{0.f, 0.f, -1.f};
+  int width_ = 1, height_ = 1;
+  float tanHalfY_ = 0.5f, tanHalfX_ = 0.5f;  // film half-extent at distance 1
+  float filmArea_ = 1.f;                    // A_film at distance 1
+  float lensRadius_ = 0.f, focusDistance_ = 1.f;
+
+  float lensArea() const;  // A_lens: pi r^2, or 1 for the pinhole's delta
+  // Film plane at distance 1 (camera space x, y) <-> raster pixels.
+  Vec2 filmToRaster(Vec2 pFilm) const;
+  Vec2 rasterToFilm(Vec2 pRaster) const;
+  bool onFilm(Vec2 pRaster) const;
+  // Where a camera-space ray from the lens plane lands on the film, through the focal plane.
+  std::optional<Vec2> rasterOfCameraRay(const Vec3& oCam, const Vec3& dCam) const;
+};
+
+// Frame the scene's bounds when the file has no camera: look along -z at the centre from far
+// enough that the bounding sphere fits the vertical field of view.
+CameraDesc frameBounds(const Vec3& boundsMin, const Vec3& boundsMax, float yfov = 0.6911f);
+
+}  // namespace pathlab

@@ -1,0 +1,49 @@
+// Film accumulation and read-out.
+#include "core/film/film.h"
+
+namespace pathlab {
+
+Film::Film(int width, int height)
+    : width_(width), height_(height), cameraSum_(pixelCount(), DVec3(0.0)), splatSum_(3 * pixelCount(), 0.0) {}
+
+bool Film::addSample(int x, int y, const Spectrum& L) {
+  if (!isValidContribution(L)) return false;
+  cameraSum_[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)] += DVec3(L);
+  return true;
+}
+
+bool Film::splat(Vec2 pRaster, const Spectrum& v) {
+  if (!isValidContribution(v)) return false;
+  const int x = static_cast<int>(std::floor(pRaster.x)), y = static_cast<int>(std::floor(pRaster.y));
+  if (x < 0 || y < 0 || x >= width_ || y >= height_) return true;  // off the film: no pixel measures it
+  const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x));
+  for (int c = 0; c < 3; ++c) std::atomic_ref<double>(splatSum_[i + static_cast<size_t>(c)]).fetch_add(v[c], std::memory_order_relaxed);
+  return true;
+}
+
+void Film::finishPass(uint64_t samplesPerPixel, uint64_t lightSubpaths) {
+  samplesPerPixel_ += samplesPerPixel;
+  lightSubpaths_ += lightSubpaths;
+}
+
+void Film::clear() {
+  std::fill(cameraSum_.begin(), cameraSum_.end(), DVec3(0.0));
+  std::fill(splatSum_.begin(), splatSum_.end(), 0.0);
+  samplesPerPixel_ = 0;
+  lightSubpaths_ = 0;
+}
+
+Image Film::readout() const {
+  Image img{width_, height_, std::vector<float>(3 * pixelCount(), 0.f)};
+  const double cameraScale = samplesPerPixel_ ? 1.0 / static_cast<double>(samplesPerPixel_) : 0.0;
+  const double splatScale =
+      lightSubpaths_ ? static_cast<double>(pixelCount()) / static_cast<double>(lightSubpaths_) : 0.0;
+  for (size_t p = 0; p < pixelCount(); ++p)
+    for (int c = 0; c < 3; ++c) {
+      const size_t i = 3 * p + static_cast<size_t>(c);
+      img.rgb[i] = static_cast<float>(cameraSum_[p][c] * cameraScale + splatSum_[i] * splatScale);
+    }
+  return img;
+}
+
+}  // namespace pathlab

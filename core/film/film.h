@@ -1,0 +1,55 @@
+// The film: box-filtered accumulation in double precision of camera-sample estimates (each pixel
+// owned by one thread during a pass) and, separately, of light-tracing splats (atomic adds at
+// arbitrary raster positions). The two are combined only at read-out.
+#pragma once
+
+#include "core/math/types.h"
+
+#include <atomic>
+#include <cstdint>
+#include <vector>
+
+namespace pathlab {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // row-major, top row first, 3 floats a pixel
+  Vec3 at(int x, int y) const {
+    const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+class Film {
+ public:
+  Film(int width, int height);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  size_t pixelCount() const { return static_cast<size_t>(width_) * static_cast<size_t>(height_); }
+
+  // The film's door: returns false (and stores nothing) for NaN, Inf or negative values, which
+  // the caller counts as discarded samples.
+  bool addSample(int x, int y, const Spectrum& L);
+  bool splat(Vec2 pRaster, const Spectrum& v);
+
+  // Called once per completed pass: how many camera samples each pixel received and how many
+  // light subpaths were traced in that pass (they set the splat normalisation, camera.h).
+  void finishPass(uint64_t samplesPerPixel, uint64_t lightSubpaths);
+  void clear();
+
+  uint64_t samplesPerPixel() const { return samplesPerPixel_; }
+  uint64_t lightSubpaths() const { return lightSubpaths_; }
+
+  // pixel = cameraSum / spp + splatSum * pixelCount / lightSubpaths.
+  Image readout() const;
+
+ private:
+  int width_, height_;
+  std::vector<DVec3> cameraSum_;
+  std::vector<double> splatSum_;  // 3 doubles a pixel, updated with std::atomic_ref
+  uint64_t samplesPerPixel_ = 0;
+  uint64_t lightSubpaths_ = 0;
+};
+
+}  // namespace pathlab

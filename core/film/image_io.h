@@ -1,0 +1,31 @@
+// Reading and writing images: .exr (32-bit float), .pfm (float) and .png (tone mapped, sRGB).
+#pragma once
+
+#include "core/film/film.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace pathlab {
+
+class ImageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class ImageFormat { Exr, Pfm, Png };
+
+// From the file extension (case-insensitive); throws ImageError naming the path otherwise.
+ImageFormat imageFormatOf(const std::string& path);
+
+// Writes atomically (a temporary file beside the target, then rename), so an interrupted write
+// never leaves a half-written image in place of a good one. Float formats store the linear
+// radiance; `exposure` (stops) applies to PNG only, which is clamped and sRGB-encoded.
+void writeImage(const std::string& path, const Image& image, float exposure = 0.f);
+
+Image readImage(const std::string& path);  // .exr or .pfm
+
+// The 8-bit sRGB bytes a PNG gets, RGB row-major top-first.
+std::vector<unsigned char> toneMapSrgb8(const Image& image, float exposure);
+
+}  // namespace pathlab

@@ -1,0 +1,29 @@
+// LightSet: power-proportional light selection and the emissive-triangle map.
+#include "core/lights/light_set.h"
+
+#include <cmath>
+
+namespace pathlab {
+
+LightSet::LightSet(std::vector<Light> lights, std::vector<std::vector<int>> triangleLight)
+    : lights_(std::move(lights)), triangleLight_(std::move(triangleLight)) {
+  std::vector<double> weights;
+  weights.reserve(lights_.size());
+  for (const Light& l : lights_) {
+    const double w = luminance(l.power());
+    // A light with zero (or non-finite) power is never chosen.
+    weights.push_back(std::isfinite(w) && w > 0.0 ? w : 0.0);
+  }
+  distribution_ = Distribution1D(weights);
+}
+
+int LightSet::sample(float u, float* pmf, float* uRemapped) const {
+  if (lights_.empty() || !(distribution_.total() > 0.0)) {
+    if (pmf) *pmf = 0.f;
+    if (uRemapped) *uRemapped = 0.f;
+    return -1;
+  }
+  return static_cast<int>(distribution_.sample(u, pmf, uRemapped));
+}
+
+}  // namespace pathlab

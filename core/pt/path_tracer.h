@@ -1,0 +1,28 @@
+// The unidirectional path tracer: next-event estimation and BSDF sampling combined with the power
+// heuristic (Veach 1997, sec. 9.2.4). Independent of the bidirectional core by design: it is the
+// reference the BPT is tested against and the baseline users compare with.
+#pragma once
+
+#include "core/bsdf/bsdf.h"
+#include "core/math/rng.h"
+#include "core/metrics/counters.h"
+#include "core/render/render_settings.h"
+#include "core/scene/scene.h"
+
+namespace pathlab {
+
+class PathTracer {
+ public:
+  PathTracer(const Scene& scene, const RenderSettings& settings);
+  // Radiance arriving along a camera ray (the estimate of one camera sample, unfiltered).
+  Spectrum Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) const;
+
+ private:
+  Spectrum sampleDirect(const SurfaceHit& hit, const Bsdf& bsdf, const Vec3& wo, Pcg32& rng,
+                        Counters& counters) const;
+  const Scene& scene_;
+  int maxLength_;
+  bool russianRoulette_;
+};
+
+}  // namespace pathlab

@@ -1,0 +1,30 @@
+// Everything that changes the estimate. The viewer edits a copy; a difference from the active
+// settings (defaulted operator==) starts a new generation of the film.
+#pragma once
+
+#include "core/camera/camera.h"
+
+#include <cstdint>
+#include <string>
+
+namespace pathlab {
+
+enum class IntegratorKind { Pt };
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  int maxLength = 10;            // maximum path length in edges (a visible emitter is 1)
+  bool russianRoulette = true;   // starts at kRussianRouletteStart edges
+  uint64_t seed = 0;
+  IntegratorKind integrator = IntegratorKind::Pt;
+  LensOptions lens;
+
+  bool operator==(const RenderSettings&) const = default;
+};
+
+inline constexpr int kRussianRouletteStart = 3;
+
+const char* integratorName(IntegratorKind kind);
+
+}  // namespace pathlab

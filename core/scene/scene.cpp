@@ -1,0 +1,201 @@
+// Scene construction (lights, bounds, camera fallback) and ray queries through Embree 3.
+#include "core/scene/scene.h"
+
+#include "core/camera/camera.h"
+#include "core/scene/gltf_loader.h"
+
+#include <embree3/rtcore.h>
+
+#include <limits>
+
+namespace pathlab {
+
+struct Scene::EmbreeState {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  ~EmbreeState() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+namespace {
+
+// Embree reports errors through a C callback: remember the message, throw after the call returns.
+void embreeError(void* userPtr, RTCError code, const char* message) {
+  if (code != RTC_ERROR_NONE && message) *static_cast<std::string*>(userPtr) = message;
+}
+
+RTCScene buildBvh(RTCDevice device, const std::vector<TriangleMesh>& meshes) {
+  RTCScene scene = rtcNewScene(device);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    const TriangleMesh& mesh = meshes[m];
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+      for (int c = 0; c < 3; ++c) v[3 * i + c] = mesh.positions[i][c];
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
+    std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene, geom, static_cast<unsigned>(m));
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(scene);
+  return scene;
+}
+
+}  // namespace
+
+Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<EmbreeState>()) {
+  // Bounds of everything that can emit or be hit.
+  boundsMin_ = Vec3(std::numeric_limits<float>::max());
+  boundsMax_ = Vec3(-std::numeric_limits<float>::max());
+  for (const TriangleMesh& mesh : desc_.meshes)
+    for (const Vec3& p : mesh.positions) {
+      boundsMin_ = glm::min(boundsMin_, p);
+      boundsMax_ = glm::max(boundsMax_, p);
+    }
+  for (const PunctualLightDesc& l : desc_.punctualLights)
+    if (l.type != PunctualLightType::Directional) {
+      boundsMin_ = glm::min(boundsMin_, l.position);
+      boundsMax_ = glm::max(boundsMax_, l.position);
+    }
+  if (boundsMin_.x > boundsMax_.x) throw SceneError(desc_.path + ": the scene has no geometry and no light");
+  bounds_.center = 0.5f * (boundsMin_ + boundsMax_);
+  bounds_.radius = glm::max(0.5f * glm::length(boundsMax_ - boundsMin_), 1e-6f);
+
+  // Area lights: one per emissive triangle (glTF emissive materials), then punctual lights.
+  std::vector<Light> lights;
+  std::vector<std::vector<int>> triangleLight(desc_.meshes.size());
+  for (size_t m = 0; m < desc_.meshes.size(); ++m) {
+    const TriangleMesh& mesh = desc_.meshes[m];
+    const Material& mat = desc_.materials.at(static_cast<size_t>(mesh.material));
+    if (!mat.isEmissive()) continue;
+    const Texture* tex = mat.emissiveTexture.valid()
+                             ? &desc_.textures.at(static_cast<size_t>(mat.emissiveTexture.texture))
+                             : nullptr;
+    const Spectrum emission = mat.emissiveFactor * mat.emissiveStrength;
+    triangleLight[m].assign(mesh.triangleCount(), -1);
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
+      const Vec2 uv0 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i0];
+      const Vec2 uv1 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i1];
+      const Vec2 uv2 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i2];
+      triangleLight[m][t] = static_cast<int>(lights.size());
+      lights.push_back(Light::area(mesh.positions[i0], mesh.positions[i1], mesh.positions[i2], uv0,
+                                   uv1, uv2, emission, tex, mat.doubleSided));
+    }
+  }
+  for (const PunctualLightDesc& l : desc_.punctualLights) {
+    const Spectrum value = l.color * l.intensity;
+    switch (l.type) {
+      case PunctualLightType::Point: lights.push_back(Light::point(l.position, value)); break;
+      case PunctualLightType::Spot:
+        lights.push_back(Light::spot(l.position, l.direction, value, l.innerConeAngle, l.outerConeAngle));
+        break;
+      case PunctualLightType::Directional:
+        lights.push_back(Light::directional(l.direction, value, bounds_));
+        break;
+    }
+  }
+  bool anyPower = false;
+  for (const Light& l : lights) anyPower = anyPower || luminance(l.power()) > 0.f;
+  if (!anyPower) throw SceneError(desc_.path + ": the scene has no light source (no emissive material and no KHR_lights_punctual light)");
+  lights_ = LightSet(std::move(lights), std::move(triangleLight));
+
+  camera_ = desc_.camera ? *desc_.camera : frameBounds(boundsMin_, boundsMax_);
+
+  embree_->device = rtcNewDevice(nullptr);
+  if (!embree_->device) throw SceneError(desc_.path + ": could not create the Embree device");
+  std::string embreeMessage;
+  rtcSetDeviceErrorFunction(embree_->device, embreeError, &embreeMessage);
+  embree_->scene = buildBvh(embree_->device, desc_.meshes);
+  rtcSetDeviceErrorFunction(embree_->device, nullptr, nullptr);
+  if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE)
+    throw SceneError(desc_.path + ": Embree could not build the scene: " + embreeMessage);
+}
+
+Scene::~Scene() = default;
+
+size_t Scene::triangleCount() const {
+  size_t n = 0;
+  for (const TriangleMesh& m : desc_.meshes) n += m.triangleCount();
+  return n;
+}
+
+std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = ray.o.x;
+  rh.ray.org_y = ray.o.y;
+  rh.ray.org_z = ray.o.z;
+  rh.ray.dir_x = ray.d.x;
+  rh.ray.dir_y = ray.d.y;
+  rh.ray.dir_z = ray.d.z;
+  rh.ray.tnear = 0.f;
+  rh.ray.tfar = ray.tMax;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(embree_->scene, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+
+  const TriangleMesh& mesh = desc_.meshes[rh.hit.geomID];
+  const uint32_t* tri = &mesh.indices[3 * rh.hit.primID];
+  const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.f - b1 - b2;
+  const Vec3 &p0 = mesh.positions[tri[0]], &p1 = mesh.positions[tri[1]], &p2 = mesh.positions[tri[2]];
+
+  SurfaceHit hit;
+  hit.t = rh.ray.tfar;
+  // Barycentric interpolation is more accurate than o + t d (pbrt-v4 sec. 6.8).
+  hit.p = b0 * p0 + b1 * p1 + b2 * p2;
+  hit.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  hit.ns = hit.ng;
+  if (!mesh.normals.empty()) {
+    const Vec3 ns = b0 * mesh.normals[tri[0]] + b1 * mesh.normals[tri[1]] + b2 * mesh.normals[tri[2]];
+    const float len = glm::length(ns);
+    if (len > 1e-8f && std::isfinite(len)) hit.ns = glm::dot(ns, hit.ng) < 0.f ? -ns / len : ns / len;
+  }
+  if (!mesh.uvs.empty()) hit.uv = b0 * mesh.uvs[tri[0]] + b1 * mesh.uvs[tri[1]] + b2 * mesh.uvs[tri[2]];
+  hit.meshId = rh.hit.geomID;
+  hit.primId = rh.hit.primID;
+  hit.material = mesh.material;
+  hit.light = lights_.lightOfTriangle(hit.meshId, hit.primId);
+  return hit;
+}
+
+namespace {
+bool occluded(RTCScene scene, const Vec3& o, const Vec3& d, float tfar) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r{};
+  r.org_x = o.x;
+  r.org_y = o.y;
+  r.org_z = o.z;
+  r.dir_x = d.x;
+  r.dir_y = d.y;
+  r.dir_z = d.z;
+  r.tnear = 0.f;
+  r.tfar = tfar;
+  r.mask = 0xFFFFFFFFu;
+  rtcOccluded1(scene, &context, &r);
+  return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
+}
+}  // namespace
+
+bool Scene::visible(const Vec3& a, const Vec3& na, const Vec3& b, const Vec3& nb) const {
+  const Vec3 oa = na == Vec3(0.f) ? a : offsetRayOrigin(a, na, b - a);
+  const Vec3 ob = nb == Vec3(0.f) ? b : offsetRayOrigin(b, nb, a - b);
+  // Shorten at the far end too: rtcOccluded1 makes no promise about hits exactly at tfar.
+  return !occluded(embree_->scene, oa, ob - oa, 1.f - 1e-4f);
+}
+
+bool Scene::visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& dir) const {
+  return !occluded(embree_->scene, offsetRayOrigin(p, n, dir), dir, std::numeric_limits<float>::infinity());
+}
+
+}  // namespace pathlab

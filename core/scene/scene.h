@@ -1,0 +1,53 @@
+// The immutable scene a render reads: world-space meshes in an Embree BVH, materials, textures,
+// lights and the camera description. Built once from a SceneDesc; safe to share across threads.
+#pragma once
+
+#include "core/lights/light_set.h"
+#include "core/scene/ray.h"
+#include "core/scene/scene_desc.h"
+
+#include <memory>
+#include <optional>
+
+namespace pathlab {
+
+class Scene {
+ public:
+  // Throws SceneError (naming desc.path) if the scene cannot be rendered: no triangles and no
+  // punctual light, or no emitter at all.
+  explicit Scene(SceneDesc desc);
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  std::optional<SurfaceHit> intersect(const Ray& ray) const;
+  // True when nothing blocks the open segment between two points. Normals (may be zero for
+  // points not on a surface) select the side each end is offset toward (Wächter-Binder offsets).
+  bool visible(const Vec3& a, const Vec3& na, const Vec3& b, const Vec3& nb) const;
+  // True when nothing blocks the ray from a surface point toward infinity (directional lights).
+  bool visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& dir) const;
+
+  const std::vector<TriangleMesh>& meshes() const { return desc_.meshes; }
+  const std::vector<Material>& materials() const { return desc_.materials; }
+  const std::vector<Texture>& textures() const { return desc_.textures; }
+  const Material& material(int i) const { return desc_.materials[static_cast<size_t>(i)]; }
+  const LightSet& lights() const { return lights_; }
+  const CameraDesc& cameraDesc() const { return camera_; }
+  const SceneBounds& bounds() const { return bounds_; }
+  Vec3 boundsMin() const { return boundsMin_; }
+  Vec3 boundsMax() const { return boundsMax_; }
+  const std::string& path() const { return desc_.path; }
+  const std::vector<std::string>& warnings() const { return desc_.warnings; }
+  size_t triangleCount() const;
+
+ private:
+  SceneDesc desc_;
+  LightSet lights_;
+  CameraDesc camera_;
+  SceneBounds bounds_;
+  Vec3 boundsMin_{0.f}, boundsMax_{0.f};
+  struct EmbreeState;
+  std::unique_ptr<EmbreeState> embree_;
+};
+
+}  // namespace pathlab

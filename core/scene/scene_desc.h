@@ -1,0 +1,57 @@
+// The plain, renderer-independent description of a scene: what the glTF loader produces and
+// Scene::build consumes. World-space triangles, materials, textures, punctual lights, camera.
+#pragma once
+
+#include "core/scene/material.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pathlab {
+
+struct TriangleMesh {
+  std::string name;
+  std::vector<Vec3> positions;   // world space
+  std::vector<Vec3> normals;     // world space, unit; same count as positions (generated if absent)
+  std::vector<Vec2> uvs;         // empty or same count as positions
+  std::vector<uint32_t> indices; // 3 per triangle
+  int material = 0;
+
+  size_t triangleCount() const { return indices.size() / 3; }
+};
+
+enum class PunctualLightType { Point, Spot, Directional };
+
+// KHR_lights_punctual, in world space. Point and spot `intensity` is radiant intensity
+// (W/sr in pathlab's units); directional `intensity` is irradiance (W/m^2) on a surface facing it.
+struct PunctualLightDesc {
+  std::string name;
+  PunctualLightType type = PunctualLightType::Point;
+  Spectrum color{1.f};
+  float intensity = 1.f;
+  Vec3 position{0.f};
+  Vec3 direction{0.f, 0.f, -1.f};  // direction the light travels (the node's -z)
+  float innerConeAngle = 0.f;
+  float outerConeAngle = kPi / 4.f;
+};
+
+// glTF perspective camera, camera-to-world with the camera looking down its -z, +y up.
+struct CameraDesc {
+  Mat4 cameraToWorld{1.f};
+  float yfov = 0.6911f;           // radians
+  std::optional<float> aspectRatio;
+  std::string name;
+};
+
+struct SceneDesc {
+  std::string path;               // for messages
+  std::vector<TriangleMesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<PunctualLightDesc> punctualLights;
+  std::optional<CameraDesc> camera;  // none: Scene frames the bounds
+  std::vector<std::string> warnings;
+};
+
+}  // namespace pathlab

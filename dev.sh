@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# pathlab set-up on Debian 12, idempotent and quick when nothing changed:
+#   ./dev.sh run    install missing packages, build, render the default scene
+#   ./dev.sh test   install missing packages, build, run the whole test suite
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(g++ make cmake pkg-config python3
+  libembree-dev libtbb-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
+  libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev)
+BUILD_DIR=${PATHLAB_BUILD_DIR:-build}
+
+install_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return
+  echo "dev.sh: installing ${missing[*]}" >&2
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  [ -f "$BUILD_DIR/CMakeCache.txt" ] || cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release
+  cmake --build "$BUILD_DIR" -j "$(nproc)"
+}
+
+case "${1:-}" in
+  run)
+    install_packages
+    build
+    mkdir -p out
+    "$BUILD_DIR/app/pathlab" render assets/cornell-box.gltf -o out/cornell-box.png --spp 64 --force
+    echo "dev.sh: wrote out/cornell-box.png" >&2
+    ;;
+  test)
+    install_packages
+    build
+    ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)"
+    ;;
+  *)
+    echo "usage: ./dev.sh run | ./dev.sh test" >&2
+    exit 2
+    ;;
+esac
