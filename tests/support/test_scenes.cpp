@@ -1,0 +1,50 @@
+// Builders for in-code test scenes.
+#include "tests/support/test_scenes.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace pathlab::test {
+
+Material lambertian(float rho, Spectrum emission) {
+  Material m;
+  m.name = "lambertian";
+  m.baseColorFactor = Vec4(rho, rho, rho, 1.f);
+  m.metallicFactor = 0.f;
+  m.roughnessFactor = 1.f;
+  m.specularFactor = 0.f;
+  m.emissiveFactor = emission;
+  return m;
+}
+
+TriangleMesh quad(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, int material) {
+  TriangleMesh mesh;
+  mesh.name = "quad";
+  mesh.positions = {p0, p1, p2, p3};
+  const Vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  mesh.normals = {n, n, n, n};
+  mesh.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  mesh.material = material;
+  return mesh;
+}
+
+std::vector<TriangleMesh> inwardBox(float h, int material) {
+  // Corners; each face listed counter-clockwise as seen from inside the box.
+  const Vec3 c[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h},
+                     {-h, -h, h},  {h, -h, h},  {h, h, h},  {-h, h, h}};
+  return {quad(c[0], c[1], c[2], c[3], material),   // z = -h, normal +z
+          quad(c[5], c[4], c[7], c[6], material),   // z = +h, normal -z
+          quad(c[4], c[0], c[3], c[7], material),   // x = -h, normal +x
+          quad(c[1], c[5], c[6], c[2], material),   // x = +h, normal -x
+          quad(c[4], c[5], c[1], c[0], material),   // y = -h, normal +y
+          quad(c[3], c[2], c[6], c[7], material)};  // y = +h, normal -y
+}
+
+CameraDesc lookAt(const Vec3& eye, const Vec3& target, const Vec3& up, float yfov) {
+  CameraDesc desc;
+  desc.cameraToWorld = glm::inverse(glm::lookAt(eye, target, up));
+  desc.yfov = yfov;
+  return desc;
+}
+
+}  // namespace pathlab::test
