@@ -7,6 +7,8 @@
 int main(int argc, char** argv) {
   CLI::App app{"pathlab: a bidirectional path tracer for studying the path integral formulation of light transport"};
   app.require_subcommand(1);
+  // One line per error, as for every other failure (CLI11's default adds a second line).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return "pathlab: " + std::string(e.what()) + "\n"; });
   pathlab::app::RenderOptions render;
   pathlab::app::addRenderCommand(app, render);
   try {

@@ -17,6 +17,7 @@
 #include "core/math/frame.h"
 #include "core/math/types.h"
 
+#include <array>
 #include <optional>
 
 namespace pathlab {
@@ -72,11 +73,35 @@ class Bsdf {
   const Vec3& geometricNormal() const { return ng_; }
 
  private:
+  enum Lobe { kMetal, kSpecular, kDiffuse, kTransmission, kLobeCount };
+  using LobeProbabilities = std::array<float, kLobeCount>;
+
+  // Selection probabilities of all lobes (delta ones included) for a direction at cosTheta to the
+  // shading normal, on the side whose relative index is etap.
+  LobeProbabilities lobeProbabilities(float cosTheta, float etap) const;
+  // Reflectance of the transmission lobe's interface: the exact dielectric Fresnel scaled by
+  // specularFactor, and 1 under total internal reflection.
+  float transmissionFresnel(float cosTheta, float etap) const;
+  float transmissionTransmittance(float cosThetaI, float cosThetaT, float etap) const;
+  // The non-delta lobes in the shading frame flipped so that o.z > 0 (etap: index on i's side
+  // over index on o's side).
+  Spectrum evalLocal(const Vec3& o, const Vec3& i, float etap, TransportMode mode) const;
+  float pdfLocal(const Vec3& o, const Vec3& i, float etap) const;
+  float pdfWorld(const Vec3& wo, const Vec3& wi) const;
+  float shadingCorrection(const Vec3& wo, const Vec3& wi, TransportMode mode) const;
+
   Frame frame_;
   Vec3 ng_;
   MaterialPoint m_;
   float alpha_ = 0.f;
   bool hasNonDelta_ = true;
+  float weight_[kLobeCount] = {};   // lobe weights from metallic and transmission
+  bool active_[kLobeCount] = {};    // the lobe can be non-zero somewhere
+  bool reflectionDelta_ = false;    // metal and specular layer are mirrors
+  bool transmissionDelta_ = false;  // the transmission lobe is smooth glass
+  Spectrum f0Dielectric_{0.f};
+  float f90Dielectric_ = 0.f;
+  float f0DielectricMax_ = 0.f;
 };
 
 }  // namespace pathlab

@@ -32,7 +32,11 @@ class Warnings {
 
 // Replaces line breaks and tabs by single spaces and trims: SceneError messages are one line.
 std::string oneLine(const std::string& text);
-std::string quoted(const std::string& name);  // "'name'" or "" if empty, for messages
+std::string quoted(const std::string& name);  // " 'name'", or "" for an unnamed object
+
+// Reads and parses `path` (.gltf or .glb, told apart by the magic bytes); tinygltf's warnings are
+// added to `warnings`. Throws LoadError for a missing, unreadable, truncated or invalid file.
+tinygltf::Model parseFile(const std::string& path, Warnings& warnings);
 
 // ---- accessors (gltf_accessors.cpp) ----------------------------------------------------------
 // Every read is bounds-checked against the buffer before any byte is touched; violations throw

@@ -1,0 +1,176 @@
+// Reading a .gltf / .glb file through tinygltf, with the GLB layout checked first, and the small
+// message helpers the loader's files share.
+#include "core/scene/gltf_internal.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <new>
+
+namespace pathlab::gltf {
+
+void Warnings::add(const std::string& message) {
+  std::string line = oneLine(message);
+  if (seen_.insert(line).second) list_.push_back(std::move(line));
+}
+
+namespace {
+
+// Length of the well-formed UTF-8 sequence starting at s[i], or 0.
+size_t utf8Length(const std::string& s, size_t i) {
+  const auto byte = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char b = byte(i);
+  const size_t n = b >= 0xF0 && b <= 0xF4 ? 4 : b >= 0xE0 ? 3 : b >= 0xC2 && b < 0xE0 ? 2 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (size_t k = 1; k < n; ++k) {
+    if ((byte(i + k) & 0xC0) != 0x80) return 0;
+  }
+  return n;
+}
+
+}  // namespace
+
+std::string oneLine(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (size_t i = 0; i < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x20 || c == ' ' || c == 0x7F) {
+      // Line breaks, tabs and other control characters (tinygltf quotes raw input bytes).
+      if (!out.empty() && out.back() != ' ') out.push_back(' ');
+      ++i;
+    } else if (c < 0x80) {
+      out.push_back(char(c));
+      ++i;
+    } else if (const size_t n = utf8Length(text, i); n > 0) {
+      out.append(text, i, n);  // names may be UTF-8
+      i += n;
+    } else {
+      out.push_back('?');
+      ++i;
+    }
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+std::string quoted(const std::string& name) { return name.empty() ? "" : " '" + name + "'"; }
+
+namespace {
+
+std::vector<unsigned char> readFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) throw LoadError("file not found");
+  if (fs::is_directory(status)) throw LoadError("is a directory, not a glTF file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw LoadError(std::string("cannot open file (") + std::strerror(errno) + ")");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw LoadError("cannot read file");
+  if (uint64_t(size) > std::numeric_limits<uint32_t>::max()) {
+    throw LoadError("file is larger than 4 GiB (the glTF binary limit)");
+  }
+  in.seekg(0, std::ios::beg);
+  std::vector<unsigned char> bytes(static_cast<size_t>(size));
+  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) {
+    throw LoadError("cannot read file");
+  }
+  return bytes;
+}
+
+uint32_t readU32(const std::vector<unsigned char>& bytes, size_t offset) {
+  return uint32_t(bytes[offset]) | uint32_t(bytes[offset + 1]) << 8 |
+         uint32_t(bytes[offset + 2]) << 16 | uint32_t(bytes[offset + 3]) << 24;
+}
+
+// glTF 2.0 spec, sec. 4.4 (GLB file format), checked before tinygltf so a truncated file gets a
+// precise message. Returns the length the header declares.
+uint32_t checkGlbLayout(const std::vector<unsigned char>& bytes) {
+  const size_t size = bytes.size();
+  if (size < 12) throw LoadError("truncated binary glTF: " + std::to_string(size) + " bytes, the header needs 12");
+  if (const uint32_t version = readU32(bytes, 4); version != 2) {
+    throw LoadError("binary glTF version " + std::to_string(version) + " is not supported");
+  }
+  const uint32_t length = readU32(bytes, 8);
+  if (length > size) {
+    throw LoadError("truncated binary glTF: the header declares " + std::to_string(length) +
+                    " bytes, the file has " + std::to_string(size));
+  }
+  if (length < 20) throw LoadError("truncated binary glTF: no JSON chunk");
+  const uint64_t jsonLength = readU32(bytes, 12);
+  if (readU32(bytes, 16) != 0x4E4F534Au) throw LoadError("binary glTF: the first chunk is not JSON");
+  const uint64_t jsonEnd = 20 + jsonLength;
+  if (jsonEnd > length) {
+    throw LoadError("truncated binary glTF: the JSON chunk (" + std::to_string(jsonLength) +
+                    " bytes) extends past the end of the file");
+  }
+  if (jsonEnd < length) {
+    if (jsonEnd + 8 > length) throw LoadError("truncated binary glTF: incomplete BIN chunk header");
+    const uint64_t binLength = readU32(bytes, size_t(jsonEnd));
+    if (jsonEnd + 8 + binLength > length) {
+      throw LoadError("truncated binary glTF: the BIN chunk (" + std::to_string(binLength) +
+                      " bytes) extends past the end of the file");
+    }
+  }
+  return length;
+}
+
+}  // namespace
+
+tinygltf::Model parseFile(const std::string& path, Warnings& warnings) {
+  const std::vector<unsigned char> bytes = readFile(path);
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (!binary && extension == ".glb") throw LoadError("not a binary glTF file (bad magic bytes)");
+  if (bytes.empty()) throw LoadError("empty file");
+
+  tinygltf::Model model;
+  tinygltf::TinyGLTF context;
+  context.SetImageLoader(&loadImageChecked, &model);
+  std::string err, warn;
+  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  bool ok = false;
+  try {
+    if (binary) {
+      const uint32_t length = checkGlbLayout(bytes);
+      ok = context.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, baseDir);
+    } else {
+      ok = context.LoadASCIIFromString(&model, &err, &warn,
+                                       reinterpret_cast<const char*>(bytes.data()),
+                                       unsigned(bytes.size()), baseDir);
+    }
+  } catch (const LoadError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    // tinygltf 2.7 can throw from inside (e.g. vector::at on a zero-length GLB buffer).
+    throw LoadError(std::string("cannot load glTF: ") + e.what());
+  }
+  if (!ok) {
+    std::string reason = oneLine(err);
+    throw LoadError("cannot load glTF: " + (reason.empty() ? std::string("tinygltf failed") : reason));
+  }
+  // tinygltf reports some non-fatal problems in err while succeeding.
+  for (const std::string* text : {&err, &warn}) {
+    size_t begin = 0;
+    while (begin < text->size()) {
+      size_t end = text->find('\n', begin);
+      if (end == std::string::npos) end = text->size();
+      std::string line = oneLine(text->substr(begin, end - begin));
+      if (!line.empty()) warnings.add("tinygltf: " + line);
+      begin = end + 1;
+    }
+  }
+  return model;
+}
+
+}  // namespace pathlab::gltf

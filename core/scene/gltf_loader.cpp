@@ -1,0 +1,377 @@
+// glTF 2.0 -> SceneDesc: extension policy, the node hierarchy of the default scene (meshes,
+// KHR_lights_punctual lights, camera) and the whole-scene checks.
+#include "core/scene/gltf_loader.h"
+
+#include "core/scene/gltf_internal.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <map>
+#include <new>
+#include <set>
+
+namespace pathlab {
+namespace gltf {
+
+namespace {
+
+// Extensions whose every feature pathlab renders (KHR_mesh_quantization: the accessor reader
+// converts any component type). Their textures where they have any are warned about in place.
+const std::set<std::string> kSupportedExtensions = {
+    "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_materials_ior",
+    "KHR_materials_specular",     "KHR_materials_transmission",      "KHR_mesh_quantization"};
+
+void checkExtensions(const tinygltf::Model& model, Warnings& warnings) {
+  std::string unsupported;
+  for (const std::string& name : model.extensionsRequired) {
+    if (!kSupportedExtensions.count(name)) unsupported += (unsupported.empty() ? "" : ", ") + name;
+  }
+  if (!unsupported.empty()) throw LoadError("unsupported required extension " + unsupported);
+  for (const std::string& name : model.extensionsUsed) {
+    if (!kSupportedExtensions.count(name)) {
+      warnings.add("optional extension " + name + " is not supported; ignored");
+    }
+  }
+}
+
+std::string nodeLabel(const tinygltf::Model& model, int index) {
+  return "node " + std::to_string(index) + quoted(model.nodes[size_t(index)].name);
+}
+
+// glTF 2.0 spec, sec. 3.5.3: matrix, or T * R * S with R a unit quaternion (x, y, z, w).
+glm::dmat4 localTransform(const tinygltf::Model& model, int index) {
+  const tinygltf::Node& node = model.nodes[size_t(index)];
+  const std::string label = nodeLabel(model, index);
+  auto check = [&](const std::vector<double>& v, size_t size, const char* what) {
+    if (!v.empty() && v.size() != size) {
+      throw LoadError(label + ": " + what + " must have " + std::to_string(size) + " numbers");
+    }
+    for (double x : v) {
+      if (!std::isfinite(x)) throw LoadError(label + ": " + what + " is not finite");
+    }
+  };
+  check(node.matrix, 16, "matrix");
+  if (!node.matrix.empty()) {
+    glm::dmat4 m;
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[size_t(4 * c + r)];
+    }
+    return m;
+  }
+  check(node.translation, 3, "translation");
+  check(node.rotation, 4, "rotation");
+  check(node.scale, 3, "scale");
+  glm::dmat4 m(1.0);
+  if (!node.translation.empty()) {
+    m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+  }
+  if (!node.rotation.empty()) {
+    glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+    const double len = glm::length(q);
+    if (!(len > 1e-12)) throw LoadError(label + ": rotation is not a unit quaternion");
+    m = m * glm::mat4_cast(q / len);
+  }
+  if (!node.scale.empty()) {
+    m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+  }
+  return m;
+}
+
+// The camera frame without scale or shear: keep the view direction (-z) exactly, then the up
+// vector (+y) as close as possible, right-handed.
+Mat4 orthonormalCameraToWorld(const glm::dmat4& world, const std::string& label) {
+  const glm::dvec3 z = glm::normalize(glm::dvec3(world[2]));
+  glm::dvec3 y = glm::dvec3(world[1]);
+  y = glm::normalize(y - z * glm::dot(y, z));
+  const glm::dvec3 x = glm::cross(y, z);
+  glm::dmat4 m(glm::dvec4(x, 0.0), glm::dvec4(y, 0.0), glm::dvec4(z, 0.0), world[3]);
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) {
+      if (!std::isfinite(m[c][r])) throw LoadError(label + ": degenerate camera transform");
+    }
+  }
+  return Mat4(m);
+}
+
+class SceneBuilder {
+ public:
+  SceneBuilder(const tinygltf::Model& model, SceneDesc& desc, Warnings& warnings)
+      : model_(model), desc_(desc), warnings_(warnings) {}
+
+  void build();
+
+ private:
+  std::vector<int> rootNodes() const;
+  void visit(int index, const glm::dmat4& world);
+  void addMesh(int nodeIndex, const glm::dmat4& world);
+  void addCamera(int nodeIndex, const glm::dmat4& world);
+  void addLight(int nodeIndex, const glm::dmat4& world);
+  int defaultMaterial();
+
+  const tinygltf::Model& model_;
+  SceneDesc& desc_;
+  Warnings& warnings_;
+  std::map<std::pair<int, int>, LocalPrimitive> primitives_;  // decoded once per (mesh, primitive)
+  int defaultMaterial_ = -1;
+};
+
+std::vector<int> SceneBuilder::rootNodes() const {
+  if (model_.scenes.empty()) {
+    // No scenes: render every node that is no other node's child.
+    std::vector<char> isChild(model_.nodes.size(), 0);
+    for (const tinygltf::Node& node : model_.nodes) {
+      for (int c : node.children) {
+        if (c >= 0 && size_t(c) < isChild.size()) isChild[size_t(c)] = 1;
+      }
+    }
+    std::vector<int> roots;
+    for (size_t i = 0; i < model_.nodes.size(); ++i) {
+      if (!isChild[i]) roots.push_back(int(i));
+    }
+    return roots;
+  }
+  const int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+  if (size_t(scene) >= model_.scenes.size()) {
+    throw LoadError("default scene " + std::to_string(scene) + " does not exist");
+  }
+  return model_.scenes[size_t(scene)].nodes;
+}
+
+void SceneBuilder::build() {
+  struct Pending {
+    int node;
+    glm::dmat4 parent;
+  };
+  std::vector<Pending> stack;
+  const std::vector<int> roots = rootNodes();
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
+  // Explicit stack: a deep hierarchy must not overflow the call stack. Children are pushed in
+  // reverse so nodes are visited in document (pre-)order, which defines "the first camera".
+  std::vector<char> visited(model_.nodes.size(), 0);
+  while (!stack.empty()) {
+    const Pending item = stack.back();
+    stack.pop_back();
+    if (item.node < 0 || size_t(item.node) >= model_.nodes.size()) {
+      throw LoadError("the scene refers to node " + std::to_string(item.node) +
+                      ", which does not exist");
+    }
+    if (visited[size_t(item.node)]) {
+      // glTF 2.0 spec, sec. 3.5.1: the hierarchy is a set of disjoint strict trees.
+      throw LoadError(nodeLabel(model_, item.node) +
+                      " is reached twice (a cycle, a node with two parents, or a repeated root)");
+    }
+    visited[size_t(item.node)] = 1;
+    const glm::dmat4 world = item.parent * localTransform(model_, item.node);
+    visit(item.node, world);
+    const std::vector<int>& children = model_.nodes[size_t(item.node)].children;
+    for (auto it = children.rbegin(); it != children.rend(); ++it) {
+      if (*it < 0 || size_t(*it) >= model_.nodes.size()) {
+        throw LoadError(nodeLabel(model_, item.node) + ": child " + std::to_string(*it) +
+                        " does not exist");
+      }
+      stack.push_back({*it, world});
+    }
+  }
+}
+
+void SceneBuilder::visit(int index, const glm::dmat4& world) {
+  const tinygltf::Node& node = model_.nodes[size_t(index)];
+  if (node.mesh >= 0) addMesh(index, world);
+  if (node.camera >= 0) addCamera(index, world);
+  if (node.extensions.count("KHR_lights_punctual")) addLight(index, world);
+}
+
+int SceneBuilder::defaultMaterial() {
+  if (defaultMaterial_ < 0) {
+    Material m;  // glTF 2.0 spec, sec. 3.9.6: baseColor 1, metallic 1, roughness 1
+    m.name = "default";
+    desc_.materials.push_back(m);
+    defaultMaterial_ = int(desc_.materials.size()) - 1;
+  }
+  return defaultMaterial_;
+}
+
+void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
+  const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
+  if (size_t(node.mesh) >= model_.meshes.size()) {
+    throw LoadError(nodeLabel(model_, nodeIndex) + " refers to mesh " + std::to_string(node.mesh) +
+                    ", which does not exist");
+  }
+  if (node.skin >= 0) {
+    warnings_.add(nodeLabel(model_, nodeIndex) + ": skinning is not supported; bind pose used");
+  }
+  const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const tinygltf::Primitive& prim = mesh.primitives[p];
+    const std::string label = "mesh " + std::to_string(node.mesh) + quoted(mesh.name) +
+                              (mesh.primitives.size() > 1 ? " primitive " + std::to_string(p) : "");
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
+      static const char* const kModes[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP",
+                                           "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
+      const std::string mode = prim.mode >= 0 && prim.mode <= 6 ? kModes[prim.mode]
+                                                                : std::to_string(prim.mode);
+      warnings_.add(label + ": mode " + mode + " is not supported (triangles only); skipped");
+      continue;
+    }
+    if (!prim.targets.empty()) warnings_.add(label + ": morph targets are not supported; ignored");
+    int material;
+    if (prim.material < 0) {
+      material = defaultMaterial();
+    } else if (size_t(prim.material) < model_.materials.size()) {
+      material = prim.material;
+    } else {
+      throw LoadError(label + " refers to material " + std::to_string(prim.material) +
+                      ", which does not exist");
+    }
+    auto key = std::make_pair(node.mesh, int(p));
+    auto it = primitives_.find(key);
+    if (it == primitives_.end()) {
+      it = primitives_.emplace(key, decodePrimitive(model_, node.mesh, int(p), warnings_)).first;
+    }
+    const LocalPrimitive& local = it->second;
+    if (local.indices.empty()) continue;
+    TriangleMesh out;
+    out.name = local.name;
+    out.material = material;
+    const size_t dropped = instantiatePrimitive(local, world, out);
+    if (dropped > 0) {
+      warnings_.add(label + ": " + std::to_string(dropped) + " zero-area triangle" +
+                    (dropped > 1 ? "s" : "") + " dropped");
+    }
+    if (out.triangleCount() > 0) desc_.meshes.push_back(std::move(out));
+  }
+}
+
+void SceneBuilder::addCamera(int nodeIndex, const glm::dmat4& world) {
+  const int index = model_.nodes[size_t(nodeIndex)].camera;
+  if (size_t(index) >= model_.cameras.size()) {
+    throw LoadError(nodeLabel(model_, nodeIndex) + " refers to camera " + std::to_string(index) +
+                    ", which does not exist");
+  }
+  const tinygltf::Camera& camera = model_.cameras[size_t(index)];
+  const std::string label = "camera " + std::to_string(index) + quoted(camera.name);
+  if (camera.type != "perspective") {
+    warnings_.add(label + ": " + camera.type + " cameras are not supported; ignored");
+    return;
+  }
+  if (desc_.camera) return;  // the first perspective camera in document order wins
+  const double yfov = camera.perspective.yfov;
+  if (!(yfov > 0.0 && yfov < glm::pi<double>())) {
+    throw LoadError(label + ": yfov " + std::to_string(yfov) + " is not in (0, pi)");
+  }
+  CameraDesc c;
+  c.name = camera.name;
+  c.yfov = float(yfov);
+  const double aspect = camera.perspective.aspectRatio;
+  if (std::isfinite(aspect) && aspect > 0.0) c.aspectRatio = float(aspect);
+  c.cameraToWorld = orthonormalCameraToWorld(world, label);
+  desc_.camera = c;
+}
+
+// KHR_lights_punctual: the light sits at the node's origin and shines down the node's -z.
+void SceneBuilder::addLight(int nodeIndex, const glm::dmat4& world) {
+  const std::string nodeName = nodeLabel(model_, nodeIndex);
+  const tinygltf::Value& ext = model_.nodes[size_t(nodeIndex)].extensions.at("KHR_lights_punctual");
+  if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsNumber()) {
+    throw LoadError(nodeName + ": KHR_lights_punctual has no light index");
+  }
+  const double lightIndex = ext.Get("light").GetNumberAsDouble();
+  if (!(lightIndex >= 0.0 && lightIndex < double(model_.lights.size())) ||
+      lightIndex != std::floor(lightIndex)) {
+    throw LoadError(nodeName + " refers to light " + std::to_string(lightIndex) +
+                    ", which does not exist");
+  }
+  const tinygltf::Light& g = model_.lights[size_t(lightIndex)];
+  const std::string label = "light " + std::to_string(size_t(lightIndex)) + quoted(g.name);
+  PunctualLightDesc light;
+  light.name = !g.name.empty() ? g.name : label;
+  if (g.type == "point") {
+    light.type = PunctualLightType::Point;
+  } else if (g.type == "spot") {
+    light.type = PunctualLightType::Spot;
+  } else if (g.type == "directional") {
+    light.type = PunctualLightType::Directional;
+  } else {
+    warnings_.add(label + ": light type '" + g.type + "' is not supported; ignored");
+    return;
+  }
+  if (!g.color.empty()) {
+    if (g.color.size() != 3) throw LoadError(label + ": color must have 3 components");
+    light.color = Spectrum(float(g.color[0]), float(g.color[1]), float(g.color[2]));
+  }
+  light.intensity = float(g.intensity);
+  if (!isFinite(light.color) || !std::isfinite(light.intensity) || light.intensity < 0.f ||
+      light.color.r < 0.f || light.color.g < 0.f || light.color.b < 0.f) {
+    throw LoadError(label + ": color and intensity must be finite and non-negative");
+  }
+  // `range` is ignored: pathlab's lights follow the inverse-square law to infinity.
+  if (light.type == PunctualLightType::Spot) {
+    float inner = float(g.spot.innerConeAngle), outer = float(g.spot.outerConeAngle);
+    if (!(outer > 0.f && outer <= kPi / 2.f && inner >= 0.f && inner < outer)) {
+      warnings_.add(label + ": cone angles need 0 <= inner < outer <= pi/2; clamped");
+      outer = std::isfinite(outer) ? std::clamp(outer, 1e-4f, kPi / 2.f) : kPi / 4.f;
+      inner = std::isfinite(inner) ? std::clamp(inner, 0.f, outer * 0.999f) : 0.f;
+    }
+    light.innerConeAngle = inner;
+    light.outerConeAngle = outer;
+  }
+  light.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+  const glm::dvec3 direction = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+  const double len = glm::length(direction);
+  if (!isFinite(light.position) || !(len > 0.0) || !std::isfinite(len)) {
+    throw LoadError(nodeName + ": degenerate transform for " + label);
+  }
+  light.direction = Vec3(direction / len);
+  desc_.punctualLights.push_back(light);
+}
+
+// The loader's whole-scene check: a scene that emits nothing renders black whatever the estimator.
+void checkHasEmitter(const SceneDesc& desc) {
+  for (const PunctualLightDesc& light : desc.punctualLights) {
+    if (light.intensity > 0.f && maxComponent(light.color) > 0.f) return;
+  }
+  for (const TriangleMesh& mesh : desc.meshes) {
+    const Material& m = desc.materials[size_t(mesh.material)];
+    if (!m.isEmissive()) continue;
+    if (!m.emissiveTexture.valid() ||
+        maxComponent(Spectrum(desc.textures[size_t(m.emissiveTexture.texture)].average())) > 0.f) {
+      return;
+    }
+  }
+  throw LoadError("no light source (no triangle has an emissive material and no "
+                  "KHR_lights_punctual light is in the scene)");
+}
+
+SceneDesc load(const std::string& path) {
+  Warnings warnings;
+  const tinygltf::Model model = parseFile(path, warnings);
+  checkExtensions(model, warnings);
+  SceneDesc desc;
+  desc.path = path;
+  convertMaterials(model, desc, warnings);
+  SceneBuilder(model, desc, warnings).build();
+  checkHasEmitter(desc);
+  desc.warnings = warnings.take();
+  return desc;
+}
+
+}  // namespace
+}  // namespace gltf
+
+SceneDesc loadGltf(const std::string& path) {
+  try {
+    return gltf::load(path);
+  } catch (const gltf::LoadError& e) {
+    throw SceneError(gltf::oneLine(path + ": " + e.what()));
+  } catch (const std::bad_alloc&) {
+    throw SceneError(gltf::oneLine(path + ": out of memory while loading"));
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError(gltf::oneLine(path + ": " + e.what()));
+  }
+}
+
+}  // namespace pathlab

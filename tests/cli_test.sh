@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# End-to-end checks of `pathlab render` as a user meets it: renders of every bundled scene that
+# contain no NaN, and bad input that gives one line naming the problem and a non-zero exit.
+set -u
+PATHLAB=$1
+SRC=$2
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+passes=0
+
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+ok() { passes=$((passes + 1)); }
+
+# expect_error DESCRIPTION PATTERN ARGS...: non-zero exit, exactly one line on stderr matching PATTERN
+expect_error() {
+  local what=$1 pattern=$2
+  shift 2
+  "$PATHLAB" "$@" >"$TMP/out" 2>"$TMP/err" </dev/null
+  local code=$?
+  local lines
+  lines=$(grep -c . "$TMP/err")
+  if [ "$code" -eq 0 ]; then fail "$what: exit code 0"; return; fi
+  if [ "$code" -gt 128 ]; then fail "$what: crashed with code $code"; return; fi
+  if ! grep -qE "$pattern" "$TMP/err"; then fail "$what: stderr does not match '$pattern': $(cat "$TMP/err")"; return; fi
+  if [ "$lines" -ne 1 ]; then fail "$what: $lines lines on stderr: $(cat "$TMP/err")"; return; fi
+  ok
+}
+
+# Bad scenes: the message names the file.
+for f in "$SRC"/tests/scenes/bad/*.gltf "$SRC"/tests/scenes/bad/*.glb; do
+  [ -e "$f" ] || continue
+  case "$(basename "$f")" in degenerate.gltf) continue ;; esac
+  expect_error "bad scene $(basename "$f")" "$(basename "$f")" render "$f" -o "$TMP/x.pfm" --spp 1 --width 8 --height 8
+done
+expect_error "missing scene" "nope\.gltf" render "$TMP/nope.gltf" -o "$TMP/x.pfm"
+
+# Absurd options are refused before any work.
+BOX="$SRC/assets/cornell-box.gltf"
+expect_error "zero spp" "spp" render "$BOX" -o "$TMP/x.pfm" --spp 0
+expect_error "huge spp" "spp" render "$BOX" -o "$TMP/x.pfm" --spp 1000000000000
+expect_error "negative width" "width" render "$BOX" -o "$TMP/x.pfm" --width -5
+expect_error "huge image" "width|pixels" render "$BOX" -o "$TMP/x.pfm" --width 100000 --height 100000
+expect_error "too many pixels" "pixels" render "$BOX" -o "$TMP/x.pfm" --width 16384 --height 16384
+expect_error "unknown option" "--bogus" render "$BOX" -o "$TMP/x.pfm" --bogus
+expect_error "unknown integrator" "integrator" render "$BOX" -o "$TMP/x.pfm" --integrator magic
+expect_error "unknown extension" "\.bmp" render "$BOX" -o "$TMP/x.bmp" --spp 1
+expect_error "spp with time" "time|spp" render "$BOX" -o "$TMP/x.pfm" --spp 4 --time 1
+expect_error "zero max length" "max-length" render "$BOX" -o "$TMP/x.pfm" --max-length 0
+expect_error "missing directory" "no-such-dir" render "$BOX" -o "$TMP/no-such-dir/x.pfm" --spp 1 --width 8 --height 8
+
+# Nothing the user made is overwritten without asking.
+echo "precious" >"$TMP/keep.png"
+expect_error "existing output" "exists" render "$BOX" -o "$TMP/keep.png" --spp 1 --width 8 --height 8
+if [ "$(cat "$TMP/keep.png")" = "precious" ]; then ok; else fail "existing output was overwritten"; fi
+
+# Every bundled scene renders, in every format, without NaN or Inf pixels.
+for scene in "$SRC"/assets/*.gltf "$SRC"/tests/scenes/cornell-box.glb; do
+  name=$(basename "$scene")
+  if ! "$PATHLAB" render "$scene" -o "$TMP/$name.pfm" --spp 2 --width 48 --height 36 --seed 1 2>"$TMP/err"; then
+    fail "render $name: $(cat "$TMP/err")"; continue
+  fi
+  if ! grep -q "0 discarded" "$TMP/err"; then fail "render $name discarded samples: $(tail -1 "$TMP/err")"; continue; fi
+  if python3 - "$TMP/$name.pfm" <<'PY'
+import struct, sys, math
+data = open(sys.argv[1], 'rb').read()
+header = data.split(b'\n', 3)
+w, h = map(int, header[1].split())
+px = struct.unpack('<%df' % (3 * w * h), header[3][:12 * w * h])
+bad = sum(1 for v in px if not math.isfinite(v) or v < 0)
+lit = sum(1 for v in px if v > 0)
+sys.exit(0 if bad == 0 and lit > 0 else 1)
+PY
+  then ok; else fail "render $name has NaN, Inf, negative or no light"; fi
+done
+"$PATHLAB" render "$BOX" -o "$TMP/box.exr" --spp 1 --width 16 --height 16 2>/dev/null && [ -s "$TMP/box.exr" ] && ok || fail "exr output"
+"$PATHLAB" render "$BOX" -o "$TMP/box.png" --time 0.2 --width 16 --height 16 2>/dev/null && [ -s "$TMP/box.png" ] && ok || fail "png output with --time"
+"$PATHLAB" render --help | grep -q -- "--max-length" && ok || fail "render --help lacks --max-length"
+
+echo "cli: $passes passed, $failures failed"
+[ "$failures" -eq 0 ]
