@@ -29,6 +29,9 @@ constexpr int kDefaultSpp = 64;
 // Nothing the user made is overwritten without asking: ask on a terminal, refuse otherwise.
 void checkOutputWritable(const std::string& output, bool force) {
   imageFormatOf(output);  // fails early on an unknown extension
+  const std::filesystem::path dir = std::filesystem::path(output).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir))
+    throw std::runtime_error(output + ": the directory " + dir.string() + " does not exist");
   if (force || !std::filesystem::exists(output)) return;
   if (isatty(STDIN_FILENO)) {
     std::cerr << output << " exists. Overwrite? [y/N] " << std::flush;

@@ -22,7 +22,7 @@ expect_error() {
   lines=$(grep -c . "$TMP/err")
   if [ "$code" -eq 0 ]; then fail "$what: exit code 0"; return; fi
   if [ "$code" -gt 128 ]; then fail "$what: crashed with code $code"; return; fi
-  if ! grep -qE "$pattern" "$TMP/err"; then fail "$what: stderr does not match '$pattern': $(cat "$TMP/err")"; return; fi
+  if ! grep -qE -- "$pattern" "$TMP/err"; then fail "$what: stderr does not match '$pattern': $(cat "$TMP/err")"; return; fi
   if [ "$lines" -ne 1 ]; then fail "$what: $lines lines on stderr: $(cat "$TMP/err")"; return; fi
   ok
 }

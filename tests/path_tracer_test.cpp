@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace pathlab {
 namespace {
 
@@ -76,7 +78,11 @@ TEST_P(PathTracerFurnace, MatchesGeometricSeries) {
 INSTANTIATE_TEST_SUITE_P(Cases, PathTracerFurnace,
                          ::testing::Values(FurnaceCase{0.5f, 1, false}, FurnaceCase{0.5f, 2, false},
                                            FurnaceCase{0.5f, 5, false}, FurnaceCase{0.8f, 20, true},
-                                           FurnaceCase{0.8f, 20, false}, FurnaceCase{0.95f, 60, true}));
+                                           FurnaceCase{0.8f, 20, false}, FurnaceCase{0.95f, 60, true}),
+                         [](const auto& info) {
+                           return "rho" + std::to_string(static_cast<int>(info.param.rho * 100)) + "_K" +
+                                  std::to_string(info.param.maxLength) + (info.param.rr ? "_rr" : "");
+                         });
 
 // Form factor from a differential area to a parallel rectangle [0,a] x [0,b] at height h whose
 // corner lies straight above it (Howell's catalogue, C-11), extended as an odd function of a and
@@ -181,14 +187,21 @@ TEST_P(PathTracerPunctual, MatchesInverseSquareLaw) {
   // Direct lighting from a delta light has no variance beyond the pixel footprint: compare to the
   // closed form with the spread of that footprint as the tolerance.
   EXPECT_NEAR(m.mean, expected.mean, 1e-3 * expected.mean + 4 * m.standardError) << c.name;
-  if (c.type == PunctualLightType::Spot && c.lookAt.x > 1.f) EXPECT_EQ(m.mean, 0.0);
+  if (c.type == PunctualLightType::Spot && c.lookAt.x > 1.f) {
+    EXPECT_EQ(m.mean, 0.0);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Lights, PathTracerPunctual,
                          ::testing::Values(PunctualCase{PunctualLightType::Point, Vec3(0.4f, 0, 0.1f), "point"},
                                            PunctualCase{PunctualLightType::Spot, Vec3(0.2f, 0, 0.1f), "spot-inside"},
                                            PunctualCase{PunctualLightType::Spot, Vec3(1.5f, 0, 0.f), "spot-outside"},
-                                           PunctualCase{PunctualLightType::Directional, Vec3(0.f), "directional"}));
+                                           PunctualCase{PunctualLightType::Directional, Vec3(0.f), "directional"}),
+                         [](const auto& info) {
+                           std::string n = info.param.name;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
 
 }  // namespace
 }  // namespace pathlab
