@@ -262,6 +262,8 @@ TEST(BsdfReciprocity, GeneralizedReciprocityAndAdjoint) {
       if (c.tilted) continue;
       ASSERT_TRUE(near(fRad / (etaO * etaO), fRadSwapped / (etaI * etaI), 2e-4f))
           << c.name << " wo.z " << wo.z << " wi.z " << wi.z;
+      // Hence the adjoint differs from the radiance BSDF by (eta_i / eta_o)^2 (Veach, sec. 5.2).
+      ASSERT_TRUE(near(fImp, fRad * sqr(etaI / etaO), 2e-4f)) << c.name << " wo.z " << wo.z;
       if (!isBlack(fRad)) ++(wo.z * wi.z > 0.f ? nonZeroReflection : nonZeroTransmission);
     }
     if (!c.tilted) {

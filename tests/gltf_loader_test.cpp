@@ -763,5 +763,292 @@ TEST(GltfPerformance, AMillionTrianglesLoadInLinearTime) {
   EXPECT_LT(seconds, 60.0);
 }
 
+// ---- the generated scenes (assets/make_scenes.py; facts from assets/README.md) ----------------
+
+std::string sourcePath(const std::string& relative) {
+  return (fs::path(PATHLAB_SOURCE_DIR) / relative).string();
+}
+
+bool isFiniteVec(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Lit, framed, finite and internally consistent: what Scene::build relies on.
+void expectRenderable(const SceneDesc& d) {
+  EXPECT_TRUE(d.warnings.empty()) << ::testing::PrintToString(d.warnings);
+  EXPECT_TRUE(d.camera.has_value());
+  bool emitter = !d.punctualLights.empty();
+  for (const TriangleMesh& m : d.meshes) {
+    ASSERT_GE(m.material, 0);
+    ASSERT_LT(size_t(m.material), d.materials.size());
+    emitter |= d.materials[size_t(m.material)].isEmissive();
+    ASSERT_EQ(m.normals.size(), m.positions.size());
+    ASSERT_TRUE(m.uvs.empty() || m.uvs.size() == m.positions.size());
+    ASSERT_EQ(m.indices.size() % 3, 0u);
+    for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
+    for (const Vec3& p : m.positions) ASSERT_TRUE(isFiniteVec(p));
+    expectConsistentWinding(m);
+  }
+  EXPECT_TRUE(emitter);
+  for (const PunctualLightDesc& l : d.punctualLights) {
+    EXPECT_TRUE(isFiniteVec(l.position) && isFiniteVec(l.direction) && isFiniteVec(l.color));
+  }
+}
+
+TEST(GltfBundledScenes, EverySceneLoadsLitFramedAndFinite) {
+  for (const char* file : {"assets/cornell-box.gltf", "assets/veach-mis.gltf", "assets/bidir-lamp.gltf",
+                           "assets/caustic.gltf", "tests/scenes/furnace.gltf",
+                           "tests/scenes/square-light.gltf", "tests/scenes/punctual.gltf",
+                           "tests/scenes/hierarchy.gltf", "tests/scenes/textured.gltf",
+                           "tests/scenes/cornell-box.glb"}) {
+    SCOPED_TRACE(file);
+    expectRenderable(loadGltf(sourcePath(file)));
+  }
+}
+
+TEST(GltfBundledScenes, BinaryCornellBoxEqualsTheGltf) {
+  const SceneDesc text = loadGltf(sourcePath("assets/cornell-box.gltf"));
+  const SceneDesc binary = loadGltf(sourcePath("tests/scenes/cornell-box.glb"));
+  EXPECT_EQ(corners(binary), corners(text));
+  EXPECT_EQ(binary.materials.size(), text.materials.size());
+  ASSERT_TRUE(binary.camera && text.camera);
+  EXPECT_EQ(binary.camera->cameraToWorld, text.camera->cameraToWorld);
+}
+
+TEST(GltfBundledScenes, HierarchyFlattensToTheDocumentedBoundsAndTriangles) {
+  const SceneDesc d = loadGltf(sourcePath("tests/scenes/hierarchy.gltf"));
+  EXPECT_EQ(totalTriangles(d), 48u);
+  EXPECT_EQ(d.meshes.size(), 6u);
+  Vec3 lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+  int boxes = 0;
+  for (const TriangleMesh& m : d.meshes) {
+    boxes += m.name == "box";
+    for (uint32_t i : m.indices) {
+      lo = glm::min(lo, m.positions[i]);
+      hi = glm::max(hi, m.positions[i]);
+    }
+  }
+  expectNear(lo, {-2.5f, 0.f, -1.75f}, 1e-6f);
+  expectNear(hi, {2.f, 3.f, 1.25f}, 1e-6f);
+  EXPECT_EQ(boxes, 3);  // one mesh, three nodes
+  // The sign primitive has no NORMAL: generated flat normals, (0, 0, 1) in the world.
+  int signs = 0;
+  for (const TriangleMesh& m : d.meshes) {
+    if (m.indices.size() != 6 || m.name.find("wedgeAndSign") == std::string::npos) continue;
+    ++signs;
+    for (const Vec3& n : m.normals) expectNear(n, {0, 0, 1});
+  }
+  EXPECT_EQ(signs, 1);
+}
+
+TEST(GltfBundledScenes, TexturedDecodesTheDocumentedTexels) {
+  const SceneDesc d = loadGltf(sourcePath("tests/scenes/textured.gltf"));
+  const TriangleMesh* checker = nullptr;
+  for (const TriangleMesh& m : d.meshes) {
+    if (m.name == "checker") checker = &m;
+  }
+  ASSERT_NE(checker, nullptr);
+  const Material& m = d.materials[size_t(checker->material)];
+  ASSERT_TRUE(m.baseColorTexture.valid() && m.metallicRoughnessTexture.valid());
+  const Texture& base = d.textures[size_t(m.baseColorTexture.texture)];
+  EXPECT_EQ(base.width, 8);
+  EXPECT_EQ(base.height, 8);
+  EXPECT_TRUE(base.nearest);
+  EXPECT_EQ(base.wrapS, WrapMode::Repeat);
+  const float t = 1.f / 8.f;
+  const Vec3 marker(0, 1, 0), a(1, 0.2158605f, 0), b(0, 0.2158605f, 1);
+  // NEAREST: anywhere inside texel (0, 0) is the marker, never a blend; REPEAT: also at u + 1.
+  for (Vec2 uv : {Vec2(0.5f * t), Vec2(0.95f * t, 0.05f * t), Vec2(1.f + 0.5f * t, 0.5f * t)}) {
+    expectNear(evalMaterial(m, uv, d.textures).baseColor, marker, 1e-6f);
+  }
+  expectNear(evalMaterial(m, Vec2(1.5f * t, 0.5f * t), d.textures).baseColor, b, 1e-6f);
+  expectNear(evalMaterial(m, Vec2(1.5f * t, 1.5f * t), d.textures).baseColor, a, 1e-6f);
+  const MaterialPoint left = evalMaterial(m, Vec2(0.5f * t, 0.5f), d.textures);
+  const MaterialPoint right = evalMaterial(m, Vec2(6.5f * t, 0.5f), d.textures);
+  EXPECT_FLOAT_EQ(left.roughness, 1.f);
+  EXPECT_FLOAT_EQ(left.metallic, 0.f);
+  EXPECT_NEAR(right.roughness, 64.f / 255.f, 1e-6f);
+  EXPECT_FLOAT_EQ(right.metallic, 1.f);
+  // The top-left corner of the quad, (-1.1, 0.5, 0), has uv (0, 0).
+  for (size_t i = 0; i < checker->positions.size(); ++i) {
+    if (glm::distance(checker->positions[i], Vec3(-1.1f, 0.5f, 0.f)) < 1e-5f) {
+      EXPECT_EQ(checker->uvs[i], Vec2(0.f));
+    }
+  }
+  for (const TriangleMesh& g : d.meshes) {
+    if (g.name != "glow") continue;
+    const Material& glow = d.materials[size_t(g.material)];
+    expectNear(evalEmission(glow, Vec2(0.5f, 0.5f * t), d.textures), Vec3(4.f), 1e-5f);
+    expectNear(evalEmission(glow, Vec2(0.5f, 4.5f * t), d.textures), Vec3(0.863442f), 1e-5f);
+  }
+}
+
+TEST(GltfBundledScenes, PunctualLightsAndCameraAsDocumented) {
+  const SceneDesc d = loadGltf(sourcePath("tests/scenes/punctual.gltf"));
+  ASSERT_EQ(d.punctualLights.size(), 3u);
+  const PunctualLightDesc &point = d.punctualLights[0], &spot = d.punctualLights[1],
+                          &sun = d.punctualLights[2];
+  EXPECT_EQ(point.type, PunctualLightType::Point);
+  expectNear(point.position, {0, 1, 0});
+  EXPECT_FLOAT_EQ(point.intensity, 10.f);
+  EXPECT_EQ(spot.type, PunctualLightType::Spot);
+  expectNear(spot.position, {2, 1, 0});
+  expectNear(spot.direction, {0, -1, 0});
+  EXPECT_FLOAT_EQ(spot.innerConeAngle, 0.3f);
+  EXPECT_FLOAT_EQ(spot.outerConeAngle, 0.5f);
+  EXPECT_EQ(sun.type, PunctualLightType::Directional);
+  expectNear(sun.direction, glm::normalize(Vec3(0, -1, -1)));
+  ASSERT_TRUE(d.camera.has_value());
+  expectNear(Vec3(d.camera->cameraToWorld[3]), {1, 5, 0});
+  expectNear(-Vec3(d.camera->cameraToWorld[2]), {0, -1, 0});  // looks down
+  expectNear(Vec3(d.camera->cameraToWorld[1]), {0, 0, -1});   // image up = -z
+  EXPECT_NEAR(d.camera->yfov, 2.f * std::atan(0.5f), 1e-6f);
+}
+
+TEST(GltfBundledScenes, MalformedScenesFailWithTheirDocumentedProblem) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"truncated.gltf", "parse error"},
+      {"not-json.gltf", "parse error"},
+      {"buffer-too-short.gltf", "accessor 0 (POSITION of mesh 0 'floor') reads past the end of bufferView 0"},
+      {"nan-vertex.gltf", "accessor 3 (POSITION) has a non-finite vertex position"},
+      {"inf-vertex.gltf", "accessor 3 (POSITION) has a non-finite vertex position"},
+      {"no-emitter.gltf", "no light source"},
+      {"required-extension.gltf", "KHR_draco_mesh_compression"},
+      {"bad-index.gltf", "index 7"},
+      {"missing-buffer.gltf", "missing-buffer.bin"},
+      {"truncated.glb", "truncated binary glTF"},
+  };
+  for (const auto& [file, expected] : cases) {
+    SCOPED_TRACE(file);
+    const std::string message = loadError(sourcePath(std::string("tests/scenes/bad/") + file));
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+  const SceneDesc d = loadGltf(sourcePath("tests/scenes/bad/degenerate.gltf"));
+  EXPECT_TRUE(hasWarning(d, "2 zero-area triangles dropped")) << ::testing::PrintToString(d.warnings);
+  EXPECT_EQ(d.warnings.size(), 1u);
+  for (const TriangleMesh& m : d.meshes) {
+    if (m.name == "light") {
+      EXPECT_EQ(m.triangleCount(), 1u);
+    }
+  }
+}
+
+// ---- Texture ---------------------------------------------------------------------------------
+
+Texture makeTexture(int w, int h, std::vector<Vec4> texels, WrapMode wrap = WrapMode::Repeat) {
+  Texture t;
+  t.width = w;
+  t.height = h;
+  t.texels = std::move(texels);
+  t.wrapS = t.wrapT = wrap;
+  return t;
+}
+
+TEST(TextureSample, BilinearInterpolatesBetweenTexelCentres) {
+  const Texture t = makeTexture(2, 1, {Vec4(0.f), Vec4(1.f)}, WrapMode::ClampToEdge);
+  EXPECT_FLOAT_EQ(t.sample({0.25f, 0.5f}).r, 0.f);  // centre of texel 0
+  EXPECT_FLOAT_EQ(t.sample({0.5f, 0.5f}).r, 0.5f);
+  EXPECT_FLOAT_EQ(t.sample({0.625f, 0.5f}).r, 0.75f);
+  EXPECT_FLOAT_EQ(t.sample({0.75f, 0.5f}).r, 1.f);
+  EXPECT_FLOAT_EQ(t.sample({0.f, 0.5f}).r, 0.f);   // clamped edge
+  EXPECT_FLOAT_EQ(t.sample({-3.f, 0.5f}).r, 0.f);
+  EXPECT_FLOAT_EQ(t.sample({7.f, 0.5f}).r, 1.f);
+}
+
+TEST(TextureSample, WrapModesAtAndBeyondTheEdges) {
+  const Texture repeat = makeTexture(2, 1, {Vec4(0.f), Vec4(1.f)}, WrapMode::Repeat);
+  EXPECT_FLOAT_EQ(repeat.sample({0.f, 0.5f}).r, 0.5f);     // halfway between texel 1 and texel 0
+  EXPECT_FLOAT_EQ(repeat.sample({1.25f, 0.5f}).r, 0.f);
+  EXPECT_FLOAT_EQ(repeat.sample({-0.25f, 0.5f}).r, 1.f);
+  const Texture mirror = makeTexture(2, 1, {Vec4(0.f), Vec4(1.f)}, WrapMode::MirroredRepeat);
+  EXPECT_FLOAT_EQ(mirror.sample({1.25f, 0.5f}).r, 1.f);     // mirror image of u = 0.75
+  EXPECT_FLOAT_EQ(mirror.sample({1.75f, 0.5f}).r, 0.f);
+  EXPECT_FLOAT_EQ(mirror.sample({-0.25f, 0.5f}).r, 0.f);    // mirror image of u = 0.25
+  EXPECT_FLOAT_EQ(mirror.sample({1.f, 0.5f}).r, 1.f);       // the edge texel, repeated
+}
+
+TEST(TextureSample, NearestPicksTheTexelUnderTheCoordinate) {
+  Texture t = makeTexture(2, 2, {Vec4(0.f), Vec4(1.f), Vec4(2.f), Vec4(3.f)});
+  t.nearest = true;
+  EXPECT_FLOAT_EQ(t.sample({0.49f, 0.01f}).r, 0.f);
+  EXPECT_FLOAT_EQ(t.sample({0.51f, 0.01f}).r, 1.f);
+  EXPECT_FLOAT_EQ(t.sample({0.2f, 0.7f}).r, 2.f);   // row 1 is the lower half (v grows down)
+  EXPECT_FLOAT_EQ(t.sample({1.7f, -0.3f}).r, 3.f);  // repeat
+}
+
+TEST(TextureSample, HugeAndNonFiniteCoordinatesStayInBounds) {
+  const Texture t = makeTexture(3, 3, std::vector<Vec4>(9, Vec4(0.5f)));
+  for (WrapMode mode : {WrapMode::Repeat, WrapMode::ClampToEdge, WrapMode::MirroredRepeat}) {
+    Texture w = t;
+    w.wrapS = w.wrapT = mode;
+    for (float u : {1e30f, -1e30f, std::numeric_limits<float>::quiet_NaN(),
+                    std::numeric_limits<float>::infinity(), 3e9f}) {
+      EXPECT_FLOAT_EQ(w.sample({u, u}).r, 0.5f);
+    }
+  }
+  EXPECT_EQ(Texture{}.sample({0.5f, 0.5f}), Vec4(0.f));  // an empty texture is black
+}
+
+TEST(TextureSample, AverageIsTheMeanTexel) {
+  const Texture t = makeTexture(2, 2, {Vec4(0.f), Vec4(1.f), Vec4(2.f), Vec4(5.f)});
+  EXPECT_EQ(t.average(), Vec4(2.f));
+  EXPECT_EQ(Texture{}.average(), Vec4(0.f));
+}
+
+TEST(TextureSrgb, TransferFunctionsMatchIec61966AndInvertEachOther) {
+  EXPECT_FLOAT_EQ(srgbToLinear(0.f), 0.f);
+  EXPECT_FLOAT_EQ(srgbToLinear(1.f), 1.f);
+  EXPECT_NEAR(srgbToLinear(0.5f), 0.2140411f, 1e-6f);
+  EXPECT_NEAR(srgbToLinear(0.04045f), 0.04045f / 12.92f, 1e-7f);
+  EXPECT_NEAR(linearToSrgb(0.2140411f), 0.5f, 1e-6f);
+  for (int i = 0; i <= 255; ++i) {
+    const float v = float(i) / 255.f;
+    EXPECT_NEAR(linearToSrgb(srgbToLinear(v)), v, 2e-6f) << i;
+  }
+}
+
+// ---- Material --------------------------------------------------------------------------------
+
+TEST(MaterialEval, FactorsTimesTextureChannels) {
+  std::vector<Texture> textures = {
+      makeTexture(1, 1, {Vec4(0.5f, 0.25f, 1.f, 1.f)}),  // base colour (already linear)
+      makeTexture(1, 1, {Vec4(0.9f, 0.6f, 0.4f, 1.f)}),  // metallic-roughness: G, B
+      makeTexture(1, 1, {Vec4(0.5f, 1.f, 0.f, 1.f)}),    // emissive
+  };
+  Material m;
+  m.baseColorFactor = Vec4(0.5f, 1.f, 0.5f, 1.f);
+  m.baseColorTexture = TextureRef{0};
+  m.metallicFactor = 0.5f;
+  m.roughnessFactor = 0.5f;
+  m.metallicRoughnessTexture = TextureRef{1};
+  m.emissiveFactor = Spectrum(2.f, 1.f, 1.f);
+  m.emissiveStrength = 3.f;
+  m.emissiveTexture = TextureRef{2};
+  m.ior = 1.7f;
+  m.specularFactor = 0.25f;
+  m.specularColorFactor = Spectrum(1.f, 0.f, 0.5f);
+  m.transmissionFactor = 0.5f;
+  const MaterialPoint p = evalMaterial(m, Vec2(0.3f, 0.6f), textures);
+  expectNear(p.baseColor, {0.25f, 0.25f, 0.5f});
+  EXPECT_FLOAT_EQ(p.metallic, 0.5f * 0.4f);
+  EXPECT_FLOAT_EQ(p.roughness, 0.5f * 0.6f);
+  EXPECT_FLOAT_EQ(p.ior, 1.7f);
+  EXPECT_FLOAT_EQ(p.specularFactor, 0.25f);
+  expectNear(p.specularColor, {1.f, 0.f, 0.5f});
+  EXPECT_FLOAT_EQ(p.transmission, 0.5f);
+  expectNear(evalEmission(m, Vec2(0.3f, 0.6f), textures), {3.f, 3.f, 0.f});
+}
+
+TEST(MaterialEval, NoEmissionWithoutFactorAndStaleTexturesReadWhite) {
+  Material m;
+  EXPECT_EQ(evalEmission(m, Vec2(0.f), {}), Spectrum(0.f));
+  m.emissiveFactor = Spectrum(1.f);
+  m.emissiveStrength = 0.f;
+  EXPECT_EQ(evalEmission(m, Vec2(0.f), {}), Spectrum(0.f));
+  m.emissiveStrength = 2.f;
+  m.emissiveTexture = TextureRef{5};  // no such texture: neutral, never out of bounds
+  m.baseColorTexture = TextureRef{5};
+  EXPECT_EQ(evalEmission(m, Vec2(0.f), {}), Spectrum(2.f));
+  EXPECT_EQ(evalMaterial(m, Vec2(0.f), {}).baseColor, Spectrum(1.f));
+}
+
 }  // namespace
 }  // namespace pathlab

@@ -34,7 +34,6 @@ struct MaterialPoint {
   float specularFactor = 1.f;     // KHR_materials_specular: 0 gives a pure Lambertian dielectric
   Spectrum specularColor{1.f};
   float transmission = 0.f;       // KHR_materials_transmission
-  bool thinWalled = false;        // reserved: glTF transmission without volume is thin; we model solids
 };
 
 // Below this GGX alpha a lobe is an exact delta (mirror / smooth glass), flagged as such.

@@ -34,6 +34,24 @@ size_t utf8Length(const std::string& s, size_t i) {
 
 }  // namespace
 
+std::string elideDataUris(const std::string& text) {
+  static const std::string kMarker = ";base64,";
+  std::string out;
+  size_t from = 0;
+  for (size_t at; (at = text.find(kMarker, from)) != std::string::npos;) {
+    size_t end = at + kMarker.size();
+    while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) ||
+                                 text[end] == '+' || text[end] == '/' || text[end] == '=')) {
+      ++end;
+    }
+    out.append(text, from, at + kMarker.size() - from);
+    if (end - (at + kMarker.size()) > 0) out += "...";
+    from = end;
+  }
+  out.append(text, from, std::string::npos);
+  return out;
+}
+
 std::string oneLine(const std::string& text) {
   std::string out;
   out.reserve(text.size());
@@ -153,10 +171,11 @@ tinygltf::Model parseFile(const std::string& path, Warnings& warnings) {
     throw;
   } catch (const std::exception& e) {
     // tinygltf 2.7 can throw from inside (e.g. vector::at on a zero-length GLB buffer).
-    throw LoadError(std::string("cannot load glTF: ") + e.what());
+    throw LoadError(std::string("cannot load glTF: tinygltf failed on malformed input (") +
+                    e.what() + ")");
   }
   if (!ok) {
-    std::string reason = oneLine(err);
+    std::string reason = oneLine(elideDataUris(err));
     throw LoadError("cannot load glTF: " + (reason.empty() ? std::string("tinygltf failed") : reason));
   }
   // tinygltf reports some non-fatal problems in err while succeeding.
@@ -165,7 +184,7 @@ tinygltf::Model parseFile(const std::string& path, Warnings& warnings) {
     while (begin < text->size()) {
       size_t end = text->find('\n', begin);
       if (end == std::string::npos) end = text->size();
-      std::string line = oneLine(text->substr(begin, end - begin));
+      std::string line = oneLine(elideDataUris(text->substr(begin, end - begin)));
       if (!line.empty()) warnings.add("tinygltf: " + line);
       begin = end + 1;
     }

@@ -32,6 +32,9 @@ class Warnings {
 
 // Replaces line breaks and tabs by single spaces and trims: SceneError messages are one line.
 std::string oneLine(const std::string& text);
+// Shortens every base64 data URI in tinygltf's messages to its header: a message is one line,
+// not megabytes of an embedded buffer.
+std::string elideDataUris(const std::string& text);
 std::string quoted(const std::string& name);  // " 'name'", or "" for an unnamed object
 
 // Reads and parses `path` (.gltf or .glb, told apart by the magic bytes); tinygltf's warnings are

@@ -11,6 +11,7 @@
 #include <map>
 #include <new>
 #include <set>
+#include <sstream>
 
 namespace pathlab {
 namespace gltf {
@@ -280,8 +281,9 @@ void SceneBuilder::addLight(int nodeIndex, const glm::dmat4& world) {
   const double lightIndex = ext.Get("light").GetNumberAsDouble();
   if (!(lightIndex >= 0.0 && lightIndex < double(model_.lights.size())) ||
       lightIndex != std::floor(lightIndex)) {
-    throw LoadError(nodeName + " refers to light " + std::to_string(lightIndex) +
-                    ", which does not exist");
+    std::ostringstream index;
+    index << lightIndex;
+    throw LoadError(nodeName + " refers to light " + index.str() + ", which does not exist");
   }
   const tinygltf::Light& g = model_.lights[size_t(lightIndex)];
   const std::string label = "light " + std::to_string(size_t(lightIndex)) + quoted(g.name);

@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <queue>
 #include <utility>
 #include <vector>
@@ -214,6 +213,10 @@ Chi2Result chi2SphereTest(const std::function<std::optional<Vec3>(Pcg32&)>& samp
                           const std::function<double(const Vec3&)>& pdf, int thetaBins,
                           int phiBins, int sampleCount, uint64_t seed, double significance) {
   Chi2Result result;
+  if (thetaBins < 1 || phiBins < 1 || sampleCount < 1) {
+    result.message = "chi2SphereTest needs at least one bin and one sample";
+    return result;
+  }
   const int cellCount = thetaBins * phiBins;
   const double n = sampleCount;
   char buf[256];
