@@ -56,7 +56,8 @@ struct BsdfSample {
 
 class Bsdf {
  public:
-  // ns: shading normal (interpolated); ng: geometric normal. Neither need face the viewer.
+  // ns: shading normal (interpolated); ng: geometric normal. Neither need face the viewer. For
+  // transmission, ng points to the outside of the solid (ior is inside relative to outside).
   Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material);
 
   // Non-delta part only; zero for delta-only materials.
