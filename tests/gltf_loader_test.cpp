@@ -23,7 +23,8 @@ using namespace gltf_test;
 TEST(GltfTransform, TrsAndMatrixGiveTheSameWorldPositions) {
   // T (1,2,3) * R (90 degrees about +y: x -> -z, z -> x) * S (2): the same map both ways.
   const std::string trs = oneTriangle(
-      "trs.gltf", R"("translation":[1,2,3],"rotation":[0,0.70710678,0,0.70710678],"scale":[2,2,2])");
+      "trs.gltf",
+      R"("translation":[1,2,3],"rotation":[0,0.70710678,0,0.70710678],"scale":[2,2,2])");
   const std::string matrix =
       oneTriangle("matrix.gltf", R"("matrix":[0,0,-2,0, 0,2,0,0, 2,0,0,0, 1,2,3,1])");
   for (const std::string& path : {trs, matrix}) {
@@ -104,7 +105,8 @@ TEST(GltfScene, WithoutScenesEveryRootNodeIsLoadedOnce) {
   g.withScenes = false;
   const int mesh = g.mesh({TestGltf::primitive(g.vec3(kTriangle))});
   const int child = g.node(R"({"mesh":)" + str(mesh) + R"(,"translation":[0,0,5]})");
-  g.node(R"({"mesh":)" + str(mesh) + R"(,"translation":[100,0,0],"children":[)" + str(child) + "]}");
+  g.node(R"({"mesh":)" + str(mesh) + R"(,"translation":[100,0,0],"children":[)" + str(child) +
+         "]}");
   g.node(R"({"mesh":)" + str(mesh) + R"(,"translation":[200,0,0]})");
   const SceneDesc d = loadGltf(g.write("noscenes.gltf"));
   ASSERT_EQ(d.meshes.size(), 3u);
@@ -216,11 +218,26 @@ TEST(GltfGeometry, AnInstancedMeshGivesOneTriangleMeshPerPrimitiveInstance) {
   EXPECT_FLOAT_EQ(d.meshes[3].positions[0].z, 1.f);
 }
 
+TEST(GltfGeometry, PrimitivesSharingAVertexBufferKeepOnlyTheVerticesTheyUse) {
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}, {6, 0, 0}, {5, 1, 0}};
+  TestGltf g;
+  const int pos = g.vec3(p);
+  const int first = g.indices(std::vector<uint8_t>{0, 1, 2});
+  const int second = g.indices(std::vector<uint8_t>{3, 4, 5});
+  g.root(R"({"mesh":)" +
+         str(g.mesh({TestGltf::primitive(pos, first), TestGltf::primitive(pos, second)})) + "}");
+  const SceneDesc d = loadGltf(g.write("shared.gltf"));
+  ASSERT_EQ(d.meshes.size(), 2u);
+  ASSERT_EQ(d.meshes[1].positions.size(), 3u);
+  expectNear(d.meshes[1].positions[d.meshes[1].indices[0]], {5, 0, 0}, 0.f);
+}
+
 TEST(GltfGeometry, NonTrianglePrimitivesAreSkippedWithAWarning) {
   TestGltf g;
   const int pos = g.vec3(kTriangle);
   g.root(R"({"mesh":)" +
-         str(g.mesh({TestGltf::primitive(pos, -1, -1, -1, -1, 1), TestGltf::primitive(pos)})) + "}");
+         str(g.mesh({TestGltf::primitive(pos, -1, -1, -1, -1, 1), TestGltf::primitive(pos)})) +
+         "}");
   const SceneDesc d = loadGltf(g.write("lines.gltf"));
   EXPECT_EQ(d.meshes.size(), 1u);
   EXPECT_TRUE(hasWarning(d, "LINES")) << ::testing::PrintToString(d.warnings);
@@ -236,6 +253,7 @@ TEST(GltfGeometry, ZeroAreaTrianglesAreDroppedWithOneWarningPerMesh) {
   g.root(R"({"mesh":)" + str(mesh) + R"(,"translation":[5,0,0]})");
   const SceneDesc d = loadGltf(g.write("degenerate.gltf"));
   EXPECT_EQ(totalTriangles(d), 2u);
+  for (const TriangleMesh& m : d.meshes) EXPECT_EQ(m.positions.size(), 3u);  // vertex 3 dropped
   int count = 0;
   for (const std::string& w : d.warnings) count += w.find("zero-area") != std::string::npos;
   EXPECT_EQ(count, 1) << ::testing::PrintToString(d.warnings);
@@ -262,9 +280,10 @@ TEST(GltfGeometry, QuantizedPositionsAreAccepted) {
 // One triangle (with uvs) using material 0 of `g`; `g.arrays["materials"]` is filled by the caller.
 void addTexturedTriangle(TestGltf& g, int material = 0) {
   const std::vector<Vec2> uv = {{0, 0}, {1, 0}, {0, 1}};
-  g.root(R"({"mesh":)" +
-         str(g.mesh({TestGltf::primitive(g.vec3(kTriangle), -1, g.vec3(kUp), g.vec2(uv), material)})) +
-         "}");
+  g.root(
+      R"({"mesh":)" +
+      str(g.mesh({TestGltf::primitive(g.vec3(kTriangle), -1, g.vec3(kUp), g.vec2(uv), material)})) +
+      "}");
 }
 
 TEST(GltfMaterial, FactorsAndSupportedExtensions) {
@@ -322,8 +341,8 @@ TEST(GltfMaterial, UnsupportedPartsOfExtensionsWarn) {
                   "KHR_materials_transmission":{"transmissionFactor":1,"transmissionTexture":{"index":0}}}})");
   addTexturedTriangle(g);
   const SceneDesc d = loadGltf(g.write("unsupported-parts.gltf"));
-  for (const char* needle : {"KHR_materials_specular textures", "KHR_materials_transmission texture",
-                             "normalTexture", "BLEND"}) {
+  for (const char* needle : {"KHR_materials_specular textures",
+                             "KHR_materials_transmission texture", "normalTexture", "BLEND"}) {
     EXPECT_TRUE(hasWarning(d, needle)) << needle << ::testing::PrintToString(d.warnings);
   }
   EXPECT_FLOAT_EQ(d.materials[0].transmissionFactor, 1.f);
@@ -440,14 +459,19 @@ TEST(GltfLights, PunctualLightsTakePositionAndMinusZFromTheirNode) {
 
 TEST(GltfCamera, TheFirstPerspectiveCameraWithScaleRemoved) {
   TestGltf g;
-  g.add("cameras", R"({"type":"orthographic","orthographic":{"xmag":1,"ymag":1,"znear":0.1,"zfar":10}})");
-  g.add("cameras", R"({"name":"main","type":"perspective","perspective":{"yfov":0.8,"aspectRatio":1.5,"znear":0.1}})");
-  g.add("cameras", R"({"name":"later","type":"perspective","perspective":{"yfov":0.3,"znear":0.1}})");
+  g.add("cameras",
+        R"({"type":"orthographic","orthographic":{"xmag":1,"ymag":1,"znear":0.1,"zfar":10}})");
+  g.add(
+      "cameras",
+      R"({"name":"main","type":"perspective","perspective":{"yfov":0.8,"aspectRatio":1.5,"znear":0.1}})");
+  g.add("cameras",
+        R"({"name":"later","type":"perspective","perspective":{"yfov":0.3,"znear":0.1}})");
   g.root(R"({"camera":0})");
   const int later = g.node(R"({"camera":2})");
   // 90 degrees about +y (x -> -z, z -> x), non-uniform scale, translation.
   g.root(R"({"camera":1,"translation":[1,2,3],"rotation":[0,0.70710678,0,0.70710678],
-            "scale":[2,3,4],"children":[)" + str(later) + "]}");
+            "scale":[2,3,4],"children":[)" +
+         str(later) + "]}");
   const SceneDesc d = loadGltf(g.write("camera.gltf"));
   ASSERT_TRUE(d.camera.has_value());
   const CameraDesc& c = *d.camera;
@@ -491,7 +515,8 @@ TEST(GltfExtensions, RequiredUnsupportedIsAnErrorOptionalUnsupportedOneWarning) 
   EXPECT_NE(d.warnings[0].find("KHR_texture_transform"), std::string::npos);
 
   supported.members.push_back(R"("extensionsUsed":["KHR_materials_ior","KHR_lights_punctual"])");
-  supported.members.push_back(R"("extensionsRequired":["KHR_materials_ior","KHR_lights_punctual"])");
+  supported.members.push_back(
+      R"("extensionsRequired":["KHR_materials_ior","KHR_lights_punctual"])");
   EXPECT_TRUE(loadGltf(supported.write("supported.gltf")).warnings.empty());
 }
 
@@ -538,17 +563,26 @@ std::vector<BadCase> badCases() {
   std::vector<BadCase> cases;
   const std::string good = validScene().json();
   const std::string glb = validScene().glb();
-  const std::string bufferJson = R"("buffers":[{"byteLength":)" + std::to_string(validScene().bin.size());
+  const std::string bufferJson =
+      R"("buffers":[{"byteLength":)" + std::to_string(validScene().bin.size());
 
   cases.push_back({"empty.gltf", "", "empty file"});
-  cases.push_back({"not-json.gltf", std::string("\x89\x00\xfe\xffnot json\nat all", 20), "parse error"});
+  cases.push_back(
+      {"not-json.gltf", std::string("\x89\x00\xfe\xffnot json\nat all", 20), "parse error"});
   cases.push_back({"truncated.gltf", good.substr(0, good.size() / 2), "parse error"});
   cases.push_back({"array.gltf", "[1, 2, 3]", "cannot load glTF"});
+  // tinygltf would recurse once per level and overflow the stack.
+  cases.push_back({"deep.gltf",
+                   replaced(good, R"("asset":{"version":"2.0"})",
+                            R"("asset":{"version":"2.0"},"extras":)" + std::string(100000, '[') +
+                                std::string(100000, ']')),
+                   "nested deeper than"});
   cases.push_back({"no-asset.gltf", R"({"scenes":[]})", "cannot load glTF"});
   cases.push_back({"bad-magic.glb", "glTX" + glb.substr(4), "magic"});
   cases.push_back({"short-header.glb", glb.substr(0, 8), "truncated"});
   cases.push_back({"truncated-chunk.glb", glb.substr(0, glb.size() - 8), "truncated"});
-  cases.push_back({"bad-version.glb", replaced(glb, std::string("glTF\x02", 5), std::string("glTF\x01", 5)),
+  cases.push_back({"bad-version.glb",
+                   replaced(glb, std::string("glTF\x02", 5), std::string("glTF\x01", 5)),
                    "version 1"});
   {
     std::string longJson = glb;
@@ -557,28 +591,35 @@ std::vector<BadCase> badCases() {
     cases.push_back({"json-chunk-too-long.glb", longJson, "JSON chunk"});
   }
   // Accessor 0 (POSITION) claims 4 vertices in a 36-byte bufferView.
-  cases.push_back({"accessor-past-end.gltf",
-                   replaced(good, R"("componentType":5126,"count":3)", R"("componentType":5126,"count":4)"),
-                   "accessor 1 (POSITION of mesh 0 'tri') reads past the end of bufferView"});
-  cases.push_back({"view-past-buffer.gltf",
-                   replaced(good, R"("byteOffset":8,"byteLength":36)", R"("byteOffset":8,"byteLength":400)"),
-                   "reads past the end of buffer 0"});
-  cases.push_back({"short-data-uri.gltf", replaced(good, bufferJson, R"("buffers":[{"byteLength":4000)"),
+  cases.push_back(
+      {"accessor-past-end.gltf",
+       replaced(good, R"("componentType":5126,"count":3)", R"("componentType":5126,"count":4)"),
+       "accessor 1 (POSITION of mesh 0 'tri') reads past the end of bufferView"});
+  cases.push_back(
+      {"view-past-buffer.gltf",
+       replaced(good, R"("byteOffset":8,"byteLength":36)", R"("byteOffset":8,"byteLength":400)"),
+       "reads past the end of buffer 0"});
+  cases.push_back({"short-data-uri.gltf",
+                   replaced(good, bufferJson, R"("buffers":[{"byteLength":4000)"),
                    "cannot load glTF"});
   cases.push_back({"missing-accessor.gltf", replaced(good, R"("POSITION":1)", R"("POSITION":99)"),
                    "accessor 99, which does not exist"});
   cases.push_back({"vec2-positions.gltf",
-                   replaced(good, R"("count":3,"type":"VEC3")", R"("count":3,"type":"VEC2")"), "VEC3"});
+                   replaced(good, R"("count":3,"type":"VEC3")", R"("count":3,"type":"VEC2")"),
+                   "VEC3"});
   cases.push_back({"float-indices.gltf",
                    replaced(good, R"("componentType":5123)", R"("componentType":5122)"),
                    "UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT"});
-  cases.push_back({"sparse.gltf",
-                   replaced(good, R"("type":"VEC3","byteOffset":0})",
-                            R"("type":"VEC3","byteOffset":0,"sparse":{"count":1,"indices":{"bufferView":0,"componentType":5123},"values":{"bufferView":1}}})"),
-                   "sparse"});
-  cases.push_back({"missing-buffer.gltf",
-                   R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":12,"uri":"no-such-buffer.bin"}]})",
-                   "no-such-buffer.bin"});
+  cases.push_back(
+      {"sparse.gltf",
+       replaced(
+           good, R"("type":"VEC3","byteOffset":0})",
+           R"("type":"VEC3","byteOffset":0,"sparse":{"count":1,"indices":{"bufferView":0,"componentType":5123},"values":{"bufferView":1}}})"),
+       "sparse"});
+  cases.push_back(
+      {"missing-buffer.gltf",
+       R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":12,"uri":"no-such-buffer.bin"}]})",
+       "no-such-buffer.bin"});
   {
     TestGltf g = validScene();
     g.add("images", R"({"uri":"no-such-image.png"})");
@@ -599,14 +640,16 @@ std::vector<BadCase> badCases() {
     TestGltf g = validScene();
     g.add("bufferViews", R"({"buffer":0,"byteOffset":0,"byteLength":100000})");
     g.add("images", R"({"bufferView":3,"mimeType":"image/png"})");
-    cases.push_back({"image-view-past-buffer.gltf", g.json(), "image 0: bufferView 3 reads past the end"});
+    cases.push_back(
+        {"image-view-past-buffer.gltf", g.json(), "image 0: bufferView 3 reads past the end"});
   }
   {
     // Zero-length GLB buffer (tinygltf 2.7 throws std::out_of_range from vector::at).
     TestGltf g = validScene();
     std::string zero = g.glb();
     zero = replaced(zero, R"("buffers":[{"byteLength":)" + std::to_string(g.bin.size()) + "}",
-                    R"("buffers":[{"byteLength":0)" + std::string(std::to_string(g.bin.size()).size() - 1, ' ') + "}");
+                    R"("buffers":[{"byteLength":0)" +
+                        std::string(std::to_string(g.bin.size()).size() - 1, ' ') + "}");
     cases.push_back({"zero-buffer.glb", zero, "cannot load glTF"});
   }
   {
@@ -623,17 +666,20 @@ std::vector<BadCase> badCases() {
     std::vector<Vec3> nan = kTriangle, inf = kTriangle;
     nan[1].y = std::numeric_limits<float>::quiet_NaN();
     inf[2].x = -std::numeric_limits<float>::infinity();
-    for (const auto& [name, positions] : {std::pair{"nan-vertex.gltf", nan}, std::pair{"inf-vertex.gltf", inf}}) {
+    for (const auto& [name, positions] :
+         {std::pair{"nan-vertex.gltf", nan}, std::pair{"inf-vertex.gltf", inf}}) {
       TestGltf g;
       g.root(R"({"mesh":)" + str(g.mesh({TestGltf::primitive(g.vec3(positions))}, "broken")) + "}");
-      cases.push_back({name, g.json(), "mesh 0 'broken': accessor 0 (POSITION) has a non-finite vertex position"});
+      cases.push_back({name, g.json(),
+                       "mesh 0 'broken': accessor 0 (POSITION) has a non-finite vertex position"});
     }
   }
   {
     TestGltf g;
     const int idx = g.indices(std::vector<uint32_t>{0, 1, 3});
     g.root(R"({"mesh":)" + str(g.mesh({TestGltf::primitive(g.vec3(kTriangle), idx)})) + "}");
-    cases.push_back({"bad-index.gltf", g.json(), "index 3 (accessor 0, element 2) is out of range of the vertex count 3"});
+    cases.push_back({"bad-index.gltf", g.json(),
+                     "index 3 (accessor 0, element 2) is out of range of the vertex count 3"});
   }
   {
     TestGltf g = validScene();
@@ -673,6 +719,14 @@ TEST(GltfErrors, EveryMalformedInputIsAOneLineSceneErrorNamingTheProblem) {
   }
 }
 
+TEST(GltfErrors, ReasonablyDeepExtrasStillLoad) {
+  const std::string good = validScene().json();
+  const std::string deep = replaced(
+      good, R"("asset":{"version":"2.0"})",
+      R"("asset":{"version":"2.0"},"extras":)" + std::string(500, '[') + std::string(500, ']'));
+  EXPECT_EQ(loadGltf(writeFile("deep-ok.gltf", deep)).meshes.size(), 1u);
+}
+
 TEST(GltfErrors, MissingFileAndDirectory) {
   const std::string missing = (tempDir() / "does-not-exist.gltf").string();
   EXPECT_NE(loadError(missing).find("file not found"), std::string::npos);
@@ -683,7 +737,8 @@ TEST(GltfErrors, TruncatedAndCorruptedFilesNeverCrash) {
   // Every prefix length class and pseudo-random byte corruptions (fixed seed) of a textured
   // .gltf and a .glb: each either loads or throws SceneError, never anything else.
   TestGltf g = validScene();
-  g.add("images", R"({"uri":"data:image/png;base64,)" + base64(encodePng(2, 2, 3, 8, std::vector<uint16_t>(12, 200))) + "\"}");
+  g.add("images", R"({"uri":"data:image/png;base64,)" +
+                      base64(encodePng(2, 2, 3, 8, std::vector<uint16_t>(12, 200))) + "\"}");
   g.add("textures", R"({"source":0})");
   g.add("materials", R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}})");
   addTexturedTriangle(g);
@@ -726,7 +781,8 @@ TEST(GltfErrors, DegenerateTrianglesWarnButLoad) {
   g.root(R"({"mesh":)" + str(g.mesh({TestGltf::primitive(g.vec3(kTriangle), idx)}, "m")) + "}");
   const SceneDesc d = loadGltf(g.write("one-degenerate.gltf"));
   EXPECT_EQ(totalTriangles(d), 1u);
-  EXPECT_TRUE(hasWarning(d, "'m': 1 zero-area triangle dropped")) << ::testing::PrintToString(d.warnings);
+  EXPECT_TRUE(hasWarning(d, "'m': 1 zero-area triangle dropped"))
+      << ::testing::PrintToString(d.warnings);
 }
 
 // ---- performance -----------------------------------------------------------------------------
@@ -753,14 +809,18 @@ TEST(GltfPerformance, AMillionTrianglesLoadInLinearTime) {
   const int idx = g.indices(indices);
   g.root(R"({"mesh":)" + str(g.mesh({TestGltf::primitive(pos, idx)})) + "}");
   writeFile("million.bin", g.bin);
-  const std::string json = replaced(g.json(), "data:application/octet-stream;base64," + base64(g.bin), "million.bin");
+  const std::string json =
+      replaced(g.json(), "data:application/octet-stream;base64," + base64(g.bin), "million.bin");
   const std::string path = writeFile("million.gltf", json);
   const auto start = std::chrono::steady_clock::now();
   const SceneDesc d = loadGltf(path);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(totalTriangles(d), size_t(n) * size_t(n) * 2);
   std::printf("[ INFO     ] %zu triangles loaded in %.2f s\n", totalTriangles(d), seconds);
   EXPECT_LT(seconds, 60.0);
+  fs::remove(tempDir() / "million.bin");
+  fs::remove(path);
 }
 
 // ---- the generated scenes (assets/make_scenes.py; facts from assets/README.md) ----------------
@@ -769,7 +829,9 @@ std::string sourcePath(const std::string& relative) {
   return (fs::path(PATHLAB_SOURCE_DIR) / relative).string();
 }
 
-bool isFiniteVec(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool isFiniteVec(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // Lit, framed, finite and internally consistent: what Scene::build relies on.
 void expectRenderable(const SceneDesc& d) {
@@ -794,11 +856,11 @@ void expectRenderable(const SceneDesc& d) {
 }
 
 TEST(GltfBundledScenes, EverySceneLoadsLitFramedAndFinite) {
-  for (const char* file : {"assets/cornell-box.gltf", "assets/veach-mis.gltf", "assets/bidir-lamp.gltf",
-                           "assets/caustic.gltf", "tests/scenes/furnace.gltf",
-                           "tests/scenes/square-light.gltf", "tests/scenes/punctual.gltf",
-                           "tests/scenes/hierarchy.gltf", "tests/scenes/textured.gltf",
-                           "tests/scenes/cornell-box.glb"}) {
+  for (const char* file :
+       {"assets/cornell-box.gltf", "assets/veach-mis.gltf", "assets/bidir-lamp.gltf",
+        "assets/caustic.gltf", "tests/scenes/furnace.gltf", "tests/scenes/square-light.gltf",
+        "tests/scenes/punctual.gltf", "tests/scenes/hierarchy.gltf", "tests/scenes/textured.gltf",
+        "tests/scenes/cornell-box.glb"}) {
     SCOPED_TRACE(file);
     expectRenderable(loadGltf(sourcePath(file)));
   }
@@ -907,7 +969,8 @@ TEST(GltfBundledScenes, MalformedScenesFailWithTheirDocumentedProblem) {
   const std::pair<const char*, const char*> cases[] = {
       {"truncated.gltf", "parse error"},
       {"not-json.gltf", "parse error"},
-      {"buffer-too-short.gltf", "accessor 0 (POSITION of mesh 0 'floor') reads past the end of bufferView 0"},
+      {"buffer-too-short.gltf",
+       "accessor 0 (POSITION of mesh 0 'floor') reads past the end of bufferView 0"},
       {"nan-vertex.gltf", "accessor 3 (POSITION) has a non-finite vertex position"},
       {"inf-vertex.gltf", "accessor 3 (POSITION) has a non-finite vertex position"},
       {"no-emitter.gltf", "no light source"},
@@ -922,7 +985,8 @@ TEST(GltfBundledScenes, MalformedScenesFailWithTheirDocumentedProblem) {
     EXPECT_NE(message.find(expected), std::string::npos) << message;
   }
   const SceneDesc d = loadGltf(sourcePath("tests/scenes/bad/degenerate.gltf"));
-  EXPECT_TRUE(hasWarning(d, "2 zero-area triangles dropped")) << ::testing::PrintToString(d.warnings);
+  EXPECT_TRUE(hasWarning(d, "2 zero-area triangles dropped"))
+      << ::testing::PrintToString(d.warnings);
   EXPECT_EQ(d.warnings.size(), 1u);
   for (const TriangleMesh& m : d.meshes) {
     if (m.name == "light") {
@@ -948,21 +1012,21 @@ TEST(TextureSample, BilinearInterpolatesBetweenTexelCentres) {
   EXPECT_FLOAT_EQ(t.sample({0.5f, 0.5f}).r, 0.5f);
   EXPECT_FLOAT_EQ(t.sample({0.625f, 0.5f}).r, 0.75f);
   EXPECT_FLOAT_EQ(t.sample({0.75f, 0.5f}).r, 1.f);
-  EXPECT_FLOAT_EQ(t.sample({0.f, 0.5f}).r, 0.f);   // clamped edge
+  EXPECT_FLOAT_EQ(t.sample({0.f, 0.5f}).r, 0.f);  // clamped edge
   EXPECT_FLOAT_EQ(t.sample({-3.f, 0.5f}).r, 0.f);
   EXPECT_FLOAT_EQ(t.sample({7.f, 0.5f}).r, 1.f);
 }
 
 TEST(TextureSample, WrapModesAtAndBeyondTheEdges) {
   const Texture repeat = makeTexture(2, 1, {Vec4(0.f), Vec4(1.f)}, WrapMode::Repeat);
-  EXPECT_FLOAT_EQ(repeat.sample({0.f, 0.5f}).r, 0.5f);     // halfway between texel 1 and texel 0
+  EXPECT_FLOAT_EQ(repeat.sample({0.f, 0.5f}).r, 0.5f);  // halfway between texel 1 and texel 0
   EXPECT_FLOAT_EQ(repeat.sample({1.25f, 0.5f}).r, 0.f);
   EXPECT_FLOAT_EQ(repeat.sample({-0.25f, 0.5f}).r, 1.f);
   const Texture mirror = makeTexture(2, 1, {Vec4(0.f), Vec4(1.f)}, WrapMode::MirroredRepeat);
-  EXPECT_FLOAT_EQ(mirror.sample({1.25f, 0.5f}).r, 1.f);     // mirror image of u = 0.75
+  EXPECT_FLOAT_EQ(mirror.sample({1.25f, 0.5f}).r, 1.f);  // mirror image of u = 0.75
   EXPECT_FLOAT_EQ(mirror.sample({1.75f, 0.5f}).r, 0.f);
-  EXPECT_FLOAT_EQ(mirror.sample({-0.25f, 0.5f}).r, 0.f);    // mirror image of u = 0.25
-  EXPECT_FLOAT_EQ(mirror.sample({1.f, 0.5f}).r, 1.f);       // the edge texel, repeated
+  EXPECT_FLOAT_EQ(mirror.sample({-0.25f, 0.5f}).r, 0.f);  // mirror image of u = 0.25
+  EXPECT_FLOAT_EQ(mirror.sample({1.f, 0.5f}).r, 1.f);     // the edge texel, repeated
 }
 
 TEST(TextureSample, NearestPicksTheTexelUnderTheCoordinate) {

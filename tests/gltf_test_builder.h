@@ -41,7 +41,8 @@ inline std::string base64(const std::string& in) {
   std::string out;
   size_t i = 0;
   for (; i + 2 < in.size(); i += 3) {
-    uint32_t v = uint32_t(uint8_t(in[i])) << 16 | uint32_t(uint8_t(in[i + 1])) << 8 | uint8_t(in[i + 2]);
+    uint32_t v =
+        uint32_t(uint8_t(in[i])) << 16 | uint32_t(uint8_t(in[i + 1])) << 8 | uint8_t(in[i + 2]);
     for (int k = 3; k >= 0; --k) out += kChars[(v >> (6 * k)) & 63];
   }
   if (i + 1 == in.size()) {
@@ -73,7 +74,8 @@ inline void putU32be(std::string& s, uint32_t v) {
   for (int k = 3; k >= 0; --k) s += char((v >> (8 * k)) & 0xff);
 }
 
-inline std::string encodePng(int w, int h, int channels, int bits, const std::vector<uint16_t>& samples) {
+inline std::string encodePng(int w, int h, int channels, int bits,
+                             const std::vector<uint16_t>& samples) {
   std::string raw;
   for (int y = 0; y < h; ++y) {
     raw += char(0);
@@ -128,8 +130,8 @@ class TestGltf {
     while (bin.size() % 4) bin += '\0';
     const size_t offset = bin.size();
     bin.append(static_cast<const char*>(data), size);
-    std::string v = R"({"buffer":0,"byteOffset":)" + std::to_string(offset) +
-                    R"(,"byteLength":)" + std::to_string(size);
+    std::string v = R"({"buffer":0,"byteOffset":)" + std::to_string(offset) + R"(,"byteLength":)" +
+                    std::to_string(size);
     if (stride) v += R"(,"byteStride":)" + std::to_string(stride);
     return add("bufferViews", v + "}");
   }
@@ -309,7 +311,8 @@ inline void expectConsistentWinding(const TriangleMesh& m) {
   ASSERT_EQ(m.normals.size(), m.positions.size());
   for (size_t t = 0; t < m.triangleCount(); ++t) {
     const uint32_t* i = &m.indices[3 * t];
-    const Vec3 ng = glm::cross(m.positions[i[1]] - m.positions[i[0]], m.positions[i[2]] - m.positions[i[0]]);
+    const Vec3 ng =
+        glm::cross(m.positions[i[1]] - m.positions[i[0]], m.positions[i[2]] - m.positions[i[0]]);
     for (int k = 0; k < 3; ++k) {
       EXPECT_NEAR(glm::length(m.normals[i[k]]), 1.f, 1e-5f);
       EXPECT_GT(glm::dot(ng, m.normals[i[k]]), 0.f) << "triangle " << t;

@@ -26,7 +26,8 @@ std::string accessorName(int index, const std::string& what) {
 // before returning a pointer into the buffer (glTF 2.0 spec, sec. 3.6.2.4, data alignment).
 AccessorView viewAccessor(const tinygltf::Model& model, int index, const std::string& what) {
   if (index < 0 || size_t(index) >= model.accessors.size()) {
-    throw LoadError(what + " refers to accessor " + std::to_string(index) + ", which does not exist");
+    throw LoadError(what + " refers to accessor " + std::to_string(index) +
+                    ", which does not exist");
   }
   const tinygltf::Accessor& a = model.accessors[size_t(index)];
   const std::string name = accessorName(index, what);
@@ -68,9 +69,9 @@ AccessorView viewAccessor(const tinygltf::Model& model, int index, const std::st
   const size_t elementSize = size_t(componentSize) * size_t(components);
   view.stride = bv.byteStride != 0 ? bv.byteStride : elementSize;
   if (bv.byteStride != 0 && bv.byteStride < elementSize) {
-    throw LoadError(name + ": byteStride " + std::to_string(bv.byteStride) +
-                    " of bufferView " + std::to_string(a.bufferView) +
-                    " is smaller than one element (" + std::to_string(elementSize) + " bytes)");
+    throw LoadError(name + ": byteStride " + std::to_string(bv.byteStride) + " of bufferView " +
+                    std::to_string(a.bufferView) + " is smaller than one element (" +
+                    std::to_string(elementSize) + " bytes)");
   }
   if (a.count > 0) {
     // Last byte read: byteOffset + (count - 1) * stride + elementSize <= byteLength, rearranged
@@ -110,7 +111,8 @@ void readTyped(const AccessorView& view, int take, float* out) {
   for (size_t i = 0; i < view.count; ++i) {
     const unsigned char* element = view.data + i * view.stride;
     for (int c = 0; c < take; ++c) {
-      out[i * size_t(take) + size_t(c)] = toFloat<T>(element + size_t(c) * sizeof(T), view.normalized);
+      out[i * size_t(take) + size_t(c)] =
+          toFloat<T>(element + size_t(c) * sizeof(T), view.normalized);
     }
   }
 }

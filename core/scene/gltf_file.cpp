@@ -111,7 +111,10 @@ uint32_t readU32(const std::vector<unsigned char>& bytes, size_t offset) {
 // precise message. Returns the length the header declares.
 uint32_t checkGlbLayout(const std::vector<unsigned char>& bytes) {
   const size_t size = bytes.size();
-  if (size < 12) throw LoadError("truncated binary glTF: " + std::to_string(size) + " bytes, the header needs 12");
+  if (size < 12) {
+    throw LoadError("truncated binary glTF: " + std::to_string(size) +
+                    " bytes, the header needs 12");
+  }
   if (const uint32_t version = readU32(bytes, 4); version != 2) {
     throw LoadError("binary glTF version " + std::to_string(version) + " is not supported");
   }
@@ -122,7 +125,8 @@ uint32_t checkGlbLayout(const std::vector<unsigned char>& bytes) {
   }
   if (length < 20) throw LoadError("truncated binary glTF: no JSON chunk");
   const uint64_t jsonLength = readU32(bytes, 12);
-  if (readU32(bytes, 16) != 0x4E4F534Au) throw LoadError("binary glTF: the first chunk is not JSON");
+  if (readU32(bytes, 16) != 0x4E4F534Au)
+    throw LoadError("binary glTF: the first chunk is not JSON");
   const uint64_t jsonEnd = 20 + jsonLength;
   if (jsonEnd > length) {
     throw LoadError("truncated binary glTF: the JSON chunk (" + std::to_string(jsonLength) +
@@ -137,6 +141,34 @@ uint32_t checkGlbLayout(const std::vector<unsigned char>& bytes) {
     }
   }
   return length;
+}
+
+// tinygltf converts "extras" and "extensions" to its own values recursively: a hostile nesting
+// depth overflows the stack (a crash, not an exception), so refuse it before parsing.
+void checkJsonNesting(const unsigned char* json, size_t size) {
+  constexpr int kMaxDepth = 512;
+  int depth = 0;
+  bool inString = false, escaped = false;
+  for (size_t i = 0; i < size; ++i) {
+    const unsigned char c = json[i];
+    if (inString) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        inString = false;
+      }
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxDepth) {
+        throw LoadError("JSON nested deeper than " + std::to_string(kMaxDepth) + " levels");
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
 }
 
 }  // namespace
@@ -159,8 +191,10 @@ tinygltf::Model parseFile(const std::string& path, Warnings& warnings) {
   try {
     if (binary) {
       const uint32_t length = checkGlbLayout(bytes);
+      checkJsonNesting(bytes.data() + 20, readU32(bytes, 12));
       ok = context.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), length, baseDir);
     } else {
+      checkJsonNesting(bytes.data(), bytes.size());
       ok = context.LoadASCIIFromString(&model, &err, &warn,
                                        reinterpret_cast<const char*>(bytes.data()),
                                        unsigned(bytes.size()), baseDir);
@@ -176,7 +210,8 @@ tinygltf::Model parseFile(const std::string& path, Warnings& warnings) {
   }
   if (!ok) {
     std::string reason = oneLine(elideDataUris(err));
-    throw LoadError("cannot load glTF: " + (reason.empty() ? std::string("tinygltf failed") : reason));
+    throw LoadError("cannot load glTF: " +
+                    (reason.empty() ? std::string("tinygltf failed") : reason));
   }
   // tinygltf reports some non-fatal problems in err while succeeding.
   for (const std::string* text : {&err, &warn}) {

@@ -2,6 +2,7 @@
 // world space with the node's transform.
 #include "core/scene/gltf_internal.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -13,7 +14,9 @@ int attribute(const tinygltf::Primitive& primitive, const char* name) {
   return it != primitive.attributes.end() ? it->second : -1;
 }
 
-bool isFinite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool isFinite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // glTF 2.0 spec, sec. 3.7.2.1: "When normals are not specified, client implementations MUST
 // calculate flat normals". Each triangle gets its own three vertices.
@@ -68,8 +71,39 @@ size_t repairNormals(LocalPrimitive& p) {
 
 }  // namespace
 
+const std::vector<Vec3>& AttributeCache::positions(const tinygltf::Model& model, int accessor,
+                                                   const std::string& label) {
+  if (auto it = vec3_.find(accessor); it != vec3_.end()) return it->second;
+  std::vector<Vec3> p = readVec3(model, accessor, "POSITION of " + label);
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (!isFinite(p[i])) {
+      throw LoadError(label + ": accessor " + std::to_string(accessor) +
+                      " (POSITION) has a non-finite vertex position at vertex " +
+                      std::to_string(i));
+    }
+  }
+  return vec3_.emplace(accessor, std::move(p)).first->second;
+}
+
+const std::vector<Vec3>& AttributeCache::vec3(const tinygltf::Model& model, int accessor,
+                                              const std::string& what) {
+  if (auto it = vec3_.find(accessor); it != vec3_.end()) return it->second;
+  return vec3_.emplace(accessor, readVec3(model, accessor, what)).first->second;
+}
+
+const std::vector<Vec2>& AttributeCache::vec2(const tinygltf::Model& model, int accessor,
+                                              const std::string& what) {
+  if (auto it = vec2_.find(accessor); it != vec2_.end()) return it->second;
+  return vec2_.emplace(accessor, readVec2(model, accessor, what)).first->second;
+}
+
+std::vector<uint32_t>& AttributeCache::remap(size_t size) {
+  if (remap_.size() < size) remap_.resize(size, kUnused);
+  return remap_;
+}
+
 LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int primitiveIndex,
-                               Warnings& warnings) {
+                               AttributeCache& cache, Warnings& warnings) {
   const tinygltf::Mesh& mesh = model.meshes[size_t(meshIndex)];
   const tinygltf::Primitive& prim = mesh.primitives[size_t(primitiveIndex)];
   std::string label = "mesh " + std::to_string(meshIndex) + quoted(mesh.name);
@@ -85,12 +119,22 @@ LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int 
     warnings.add(label + " has no POSITION attribute; skipped");
     return out;
   }
-  out.positions = readVec3(model, positionAccessor, "POSITION of " + label);
-  const size_t vertexCount = out.positions.size();
-  for (size_t i = 0; i < vertexCount; ++i) {
-    if (!isFinite(out.positions[i])) {
-      throw LoadError(label + ": accessor " + std::to_string(positionAccessor) +
-                      " (POSITION) has a non-finite vertex position at vertex " + std::to_string(i));
+  const std::vector<Vec3>& positions = cache.positions(model, positionAccessor, label);
+  const size_t vertexCount = positions.size();
+  const std::vector<Vec3>* normals = nullptr;
+  if (const int accessor = attribute(prim, "NORMAL"); accessor >= 0) {
+    normals = &cache.vec3(model, accessor, "NORMAL of " + label);
+    if (normals->size() != vertexCount) {
+      throw LoadError(label + ": NORMAL has " + std::to_string(normals->size()) +
+                      " elements but POSITION has " + std::to_string(vertexCount));
+    }
+  }
+  const std::vector<Vec2>* uvs = nullptr;
+  if (const int accessor = attribute(prim, "TEXCOORD_0"); accessor >= 0) {
+    uvs = &cache.vec2(model, accessor, "TEXCOORD_0 of " + label);
+    if (uvs->size() != vertexCount) {
+      throw LoadError(label + ": TEXCOORD_0 has " + std::to_string(uvs->size()) +
+                      " elements but POSITION has " + std::to_string(vertexCount));
     }
   }
 
@@ -113,28 +157,35 @@ LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int 
     out.indices.resize(out.indices.size() - extra);
   }
 
-  if (const int uvAccessor = attribute(prim, "TEXCOORD_0"); uvAccessor >= 0) {
-    out.uvs = readVec2(model, uvAccessor, "TEXCOORD_0 of " + label);
-    if (out.uvs.size() != vertexCount) {
-      throw LoadError(label + ": TEXCOORD_0 has " + std::to_string(out.uvs.size()) +
-                      " elements but POSITION has " + std::to_string(vertexCount));
+  // Keep the vertices this primitive uses, renumbered in order of first use.
+  std::vector<uint32_t>& remap = cache.remap(vertexCount);
+  std::vector<uint32_t> used;
+  used.reserve(std::min(vertexCount, out.indices.size()));
+  for (uint32_t& i : out.indices) {
+    if (remap[i] == AttributeCache::kUnused) {
+      remap[i] = uint32_t(used.size());
+      used.push_back(i);
     }
-    size_t bad = 0;
-    for (Vec2& uv : out.uvs) {
-      if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) {
-        uv = Vec2(0.f);
-        ++bad;
-      }
-    }
-    if (bad > 0) warnings.add(label + ": " + std::to_string(bad) + " non-finite TEXCOORD_0 set to 0");
+    i = remap[i];
   }
-
-  if (const int normalAccessor = attribute(prim, "NORMAL"); normalAccessor >= 0) {
-    out.normals = readVec3(model, normalAccessor, "NORMAL of " + label);
-    if (out.normals.size() != vertexCount) {
-      throw LoadError(label + ": NORMAL has " + std::to_string(out.normals.size()) +
-                      " elements but POSITION has " + std::to_string(vertexCount));
+  for (uint32_t v : used) remap[v] = AttributeCache::kUnused;
+  out.positions.reserve(used.size());
+  for (uint32_t v : used) out.positions.push_back(positions[v]);
+  if (uvs) {
+    out.uvs.reserve(used.size());
+    size_t bad = 0;
+    for (uint32_t v : used) {
+      const Vec2 uv = (*uvs)[v];
+      const bool finite = std::isfinite(uv.x) && std::isfinite(uv.y);
+      out.uvs.push_back(finite ? uv : Vec2(0.f));
+      bad += !finite;
     }
+    if (bad > 0)
+      warnings.add(label + ": " + std::to_string(bad) + " non-finite TEXCOORD_0 set to 0");
+  }
+  if (normals) {
+    out.normals.reserve(used.size());
+    for (uint32_t v : used) out.normals.push_back((*normals)[v]);
     if (const size_t repaired = repairNormals(out); repaired > 0) {
       warnings.add(label + ": " + std::to_string(repaired) +
                    " zero or non-finite normals replaced by face normals");
@@ -194,9 +245,25 @@ size_t instantiatePrimitive(const LocalPrimitive& local, const glm::dmat4& toWor
     out.indices.push_back(i1);
     out.indices.push_back(i2);
   }
-  // Vertices no kept triangle uses still carry a unit normal, as TriangleMesh promises.
-  for (Vec3& nrm : out.normals) {
-    if (nrm == Vec3(0.f)) nrm = Vec3(0.f, 0.f, 1.f);
+  if (dropped > 0) {
+    // Drop the vertices only dropped triangles used: they would widen the scene's bounds.
+    std::vector<uint32_t> remap(n, AttributeCache::kUnused);
+    uint32_t kept = 0;
+    for (uint32_t& i : out.indices) {
+      if (remap[i] == AttributeCache::kUnused) remap[i] = kept++;
+      i = remap[i];
+    }
+    std::vector<Vec3> positions(kept), normals(kept);
+    std::vector<Vec2> uvs(out.uvs.empty() ? 0 : kept);
+    for (size_t v = 0; v < n; ++v) {
+      if (remap[v] == AttributeCache::kUnused) continue;
+      positions[remap[v]] = out.positions[v];
+      normals[remap[v]] = out.normals[v];
+      if (!uvs.empty()) uvs[remap[v]] = out.uvs[v];
+    }
+    out.positions = std::move(positions);
+    out.normals = std::move(normals);
+    out.uvs = std::move(uvs);
   }
   return dropped;
 }

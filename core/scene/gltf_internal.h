@@ -7,6 +7,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -19,7 +20,8 @@ class LoadError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The scene's warnings, each distinct message once (an instanced mesh warns once, not per instance).
+// The scene's warnings, each distinct message once (an instanced mesh warns once, not per
+// instance).
 class Warnings {
  public:
   void add(const std::string& message);
@@ -71,9 +73,31 @@ struct LocalPrimitive {
   std::vector<uint32_t> indices;
 };
 
-// Decodes mesh `meshIndex`'s primitive `primitiveIndex` (mode TRIANGLES, checked by the caller).
+// Vertex attributes decoded once per accessor: the primitives of a mesh often share one vertex
+// buffer and each index a part of it, and decoding it per primitive would be quadratic.
+class AttributeCache {
+ public:
+  // POSITION data, checked finite on first use (the error names `label`, the first user).
+  const std::vector<Vec3>& positions(const tinygltf::Model& model, int accessor,
+                                     const std::string& label);
+  const std::vector<Vec3>& vec3(const tinygltf::Model& model, int accessor,
+                                const std::string& what);
+  const std::vector<Vec2>& vec2(const tinygltf::Model& model, int accessor,
+                                const std::string& what);
+  // Scratch old -> new vertex map of at least `size` entries, every entry kUnused between uses.
+  std::vector<uint32_t>& remap(size_t size);
+  static constexpr uint32_t kUnused = ~0u;
+
+ private:
+  std::unordered_map<int, std::vector<Vec3>> vec3_;
+  std::unordered_map<int, std::vector<Vec2>> vec2_;
+  std::vector<uint32_t> remap_;
+};
+
+// Decodes mesh `meshIndex`'s primitive `primitiveIndex` (mode TRIANGLES, checked by the caller),
+// keeping only the vertices its indices use.
 LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int primitiveIndex,
-                               Warnings& warnings);
+                               AttributeCache& cache, Warnings& warnings);
 
 // Transforms `local` by `toWorld` into `out` (positions, inverse-transpose normals, winding
 // flipped for a mirroring transform) and drops zero-area triangles; returns how many it dropped.

@@ -21,8 +21,8 @@ namespace {
 // Extensions whose every feature pathlab renders (KHR_mesh_quantization: the accessor reader
 // converts any component type). Their textures where they have any are warned about in place.
 const std::set<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_specular",     "KHR_materials_transmission",      "KHR_mesh_quantization"};
+    "KHR_lights_punctual",    "KHR_materials_emissive_strength", "KHR_materials_ior",
+    "KHR_materials_specular", "KHR_materials_transmission",      "KHR_mesh_quantization"};
 
 void checkExtensions(const tinygltf::Model& model, Warnings& warnings) {
   std::string unsupported;
@@ -66,7 +66,8 @@ glm::dmat4 localTransform(const tinygltf::Model& model, int index) {
   check(node.scale, 3, "scale");
   glm::dmat4 m(1.0);
   if (!node.translation.empty()) {
-    m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+    m = glm::translate(m,
+                       glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
   }
   if (!node.rotation.empty()) {
     glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
@@ -115,6 +116,7 @@ class SceneBuilder {
   SceneDesc& desc_;
   Warnings& warnings_;
   std::map<std::pair<int, int>, LocalPrimitive> primitives_;  // decoded once per (mesh, primitive)
+  AttributeCache attributes_;
   int defaultMaterial_ = -1;
 };
 
@@ -209,10 +211,11 @@ void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
     const std::string label = "mesh " + std::to_string(node.mesh) + quoted(mesh.name) +
                               (mesh.primitives.size() > 1 ? " primitive " + std::to_string(p) : "");
     if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
-      static const char* const kModes[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP",
-                                           "TRIANGLES", "TRIANGLE_STRIP", "TRIANGLE_FAN"};
-      const std::string mode = prim.mode >= 0 && prim.mode <= 6 ? kModes[prim.mode]
-                                                                : std::to_string(prim.mode);
+      static const char* const kModes[] = {"POINTS",      "LINES",     "LINE_LOOP",
+                                           "LINE_STRIP",  "TRIANGLES", "TRIANGLE_STRIP",
+                                           "TRIANGLE_FAN"};
+      const std::string mode =
+          prim.mode >= 0 && prim.mode <= 6 ? kModes[prim.mode] : std::to_string(prim.mode);
       warnings_.add(label + ": mode " + mode + " is not supported (triangles only); skipped");
       continue;
     }
@@ -229,7 +232,9 @@ void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
     auto key = std::make_pair(node.mesh, int(p));
     auto it = primitives_.find(key);
     if (it == primitives_.end()) {
-      it = primitives_.emplace(key, decodePrimitive(model_, node.mesh, int(p), warnings_)).first;
+      it = primitives_
+               .emplace(key, decodePrimitive(model_, node.mesh, int(p), attributes_, warnings_))
+               .first;
     }
     const LocalPrimitive& local = it->second;
     if (local.indices.empty()) continue;
@@ -342,8 +347,9 @@ void checkHasEmitter(const SceneDesc& desc) {
       return;
     }
   }
-  throw LoadError("no light source (no triangle has an emissive material and no "
-                  "KHR_lights_punctual light is in the scene)");
+  throw LoadError(
+      "no light source (no triangle has an emissive material and no "
+      "KHR_lights_punctual light is in the scene)");
 }
 
 SceneDesc load(const std::string& path) {

@@ -49,10 +49,12 @@ class MaterialReader {
     const tinygltf::Value& v = object.Get(key);
     std::vector<double> values;
     for (size_t i = 0; v.IsArray() && i < v.ArrayLen(); ++i) {
-      if (!v.Get(int(i)).IsNumber()) throw LoadError(label_ + ": " + key + " is not a number array");
+      if (!v.Get(int(i)).IsNumber())
+        throw LoadError(label_ + ": " + key + " is not a number array");
       values.push_back(v.Get(int(i)).GetNumberAsDouble());
     }
-    if (!v.IsArray() || values.empty()) throw LoadError(label_ + ": " + key + " is not a number array");
+    if (!v.IsArray() || values.empty())
+      throw LoadError(label_ + ": " + key + " is not a number array");
     return vec3(values, key, fallback);
   }
   TextureRef texture(int textureIndex, int texCoord, const char* slot, bool srgb);
@@ -81,7 +83,8 @@ WrapMode wrapMode(int mode, Warnings& warnings) {
   }
 }
 
-// 8-bit sRGB -> linear table: decoding a 4k texture calls the transfer function 50M times otherwise.
+// 8-bit sRGB -> linear table: decoding a 4k texture calls the transfer function 50M times
+// otherwise.
 const std::array<float, 256>& srgbTable() {
   static const std::array<float, 256> table = [] {
     std::array<float, 256> t{};
@@ -192,9 +195,11 @@ Material MaterialReader::convert(int index) {
   m.name = !g.name.empty() ? g.name : "material " + std::to_string(index);
 
   const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
-  if (pbr.baseColorFactor.size() != 4) throw LoadError(label_ + ": baseColorFactor must have 4 components");
+  if (pbr.baseColorFactor.size() != 4)
+    throw LoadError(label_ + ": baseColorFactor must have 4 components");
   for (int k = 0; k < 4; ++k) {
-    m.baseColorFactor[k] = std::clamp(finite(pbr.baseColorFactor[size_t(k)], "baseColorFactor"), 0.f, 1.f);
+    m.baseColorFactor[k] =
+        std::clamp(finite(pbr.baseColorFactor[size_t(k)], "baseColorFactor"), 0.f, 1.f);
   }
   m.baseColorTexture = textureInfo(pbr.baseColorTexture, "baseColorTexture", /*srgb=*/true);
   m.metallicFactor = std::clamp(finite(pbr.metallicFactor, "metallicFactor"), 0.f, 1.f);

@@ -1,5 +1,6 @@
 // Evaluation of a loaded glTF material at a surface point: factors times texture lookups
-// (Khronos glTF 2.0 spec, sec. 3.9.2 and appendix B; texels are already linear, see gltf_materials.cpp).
+// (Khronos glTF 2.0 spec, sec. 3.9.2 and appendix B; texels are already linear, see
+// gltf_materials.cpp).
 #include "core/scene/material.h"
 
 #include <algorithm>

@@ -12,16 +12,14 @@ namespace {
 // a few periods of [0, n), so the modulo never sees an overflowed value.
 int wrapIndex(int i, int n, WrapMode mode) {
   switch (mode) {
-    case WrapMode::ClampToEdge:
-      return std::clamp(i, 0, n - 1);
+    case WrapMode::ClampToEdge: return std::clamp(i, 0, n - 1);
     case WrapMode::MirroredRepeat: {
       int period = 2 * n;
       int m = ((i % period) + period) % period;
       return m < n ? m : period - 1 - m;
     }
     case WrapMode::Repeat:
-    default:
-      return ((i % n) + n) % n;
+    default: return ((i % n) + n) % n;
   }
 }
 
@@ -31,13 +29,10 @@ int wrapIndex(int i, int n, WrapMode mode) {
 double reduceCoordinate(float u, WrapMode mode) {
   double d = std::isfinite(u) ? double(u) : 0.0;
   switch (mode) {
-    case WrapMode::ClampToEdge:
-      return std::clamp(d, 0.0, 1.0);
-    case WrapMode::MirroredRepeat:
-      return d - 2.0 * std::floor(d * 0.5);
+    case WrapMode::ClampToEdge: return std::clamp(d, 0.0, 1.0);
+    case WrapMode::MirroredRepeat: return d - 2.0 * std::floor(d * 0.5);
     case WrapMode::Repeat:
-    default:
-      return d - std::floor(d);
+    default: return d - std::floor(d);
   }
 }
 
