@@ -5,6 +5,8 @@
 #include "core/sampling/warp.h"
 #include "tests/support/chi2.h"
 
+#include "tests/support/statistics.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -12,20 +14,7 @@
 namespace pathlab {
 namespace {
 
-struct Estimate {
-  double sum = 0, sum2 = 0;
-  long long n = 0;
-  void add(double x) {
-    sum += x;
-    sum2 += x * x;
-    ++n;
-  }
-  double mean() const { return sum / n; }
-  double stdError() const {
-    const double m = mean();
-    return std::sqrt(std::max(sum2 / n - m * m, 0.0) / (n - 1));
-  }
-};
+using Estimate = test::RunningStats;
 
 constexpr int kWidth = 64, kHeight = 48;
 constexpr float kYfov = 0.8f;
@@ -179,8 +168,8 @@ TEST(CameraImportance, IntegratesToOneOverFilmAndLens) {
       const double cosTheta = glm::dot(w, camera.forward());
       e.add(camera.We(Ray{o, w}).r * cosTheta / (lensPdf * uniformConePdf(cosMax)));
     }
-    EXPECT_NEAR(e.mean(), 1.0, 4 * e.stdError()) << (camera.isPinhole() ? "pinhole" : "thin lens");
-    EXPECT_LT(e.stdError(), 0.01);
+    EXPECT_NEAR(e.mean(), 1.0, 4 * e.standardError()) << (camera.isPinhole() ? "pinhole" : "thin lens");
+    EXPECT_LT(e.standardError(), 0.01);
   }
 }
 

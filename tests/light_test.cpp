@@ -5,6 +5,8 @@
 #include "core/math/rng.h"
 #include "tests/support/chi2.h"
 
+#include "tests/support/statistics.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -21,21 +23,7 @@ using test::chi2SphereTest;
 // Ten chi-square tests in this file share one family-wise significance of 1%.
 const double kChi2Significance = test::sidakSignificance(0.01, 10);
 
-// Running mean and standard error of a Monte Carlo estimator, in double.
-struct Estimate {
-  double sum = 0, sum2 = 0;
-  long long n = 0;
-  void add(double x) {
-    sum += x;
-    sum2 += x * x;
-    ++n;
-  }
-  double mean() const { return sum / n; }
-  double stdError() const {
-    const double m = mean();
-    return std::sqrt(std::max(sum2 / n - m * m, 0.0) / (n - 1));
-  }
-};
+using Estimate = test::RunningStats;
 
 // Möller-Trumbore; the distance along a unit direction, if the ray hits the triangle.
 std::optional<float> intersectTriangle(const Vec3& o, const Vec3& d, const std::array<Vec3, 3>& p) {
@@ -200,8 +188,8 @@ TEST(LightArea, IrradianceMatchesLambertFormula) {
       e.add(s.pdfW > 0.f ? s.Li.g * std::max(glm::dot(s.wi, c.n), 0.f) / s.pdfW : 0.0);
     }
     const double expected = lambertIrradiance(c.ref, c.n, {c.tri[0], c.tri[1], c.tri[2]}, L);
-    EXPECT_NEAR(e.mean(), expected, 4 * e.stdError()) << "SE " << e.stdError();
-    EXPECT_LT(e.stdError(), 0.02 * expected);  // the comparison has power
+    EXPECT_NEAR(e.mean(), expected, 4 * e.standardError()) << "SE " << e.standardError();
+    EXPECT_LT(e.standardError(), 0.02 * expected);  // the comparison has power
   }
 }
 
@@ -227,8 +215,8 @@ TEST(LightArea, ParallelSquareIrradianceMatchesClosedForm) {
     }
     e.add(sum);
   }
-  EXPECT_NEAR(e.mean(), closedForm, 4 * e.stdError());
-  EXPECT_LT(e.stdError(), 0.01 * closedForm);
+  EXPECT_NEAR(e.mean(), closedForm, 4 * e.standardError());
+  EXPECT_LT(e.standardError(), 0.01 * closedForm);
 }
 
 TEST(LightArea, RadianceAndPowerWithTexture) {
@@ -418,7 +406,7 @@ TEST(LightEmission, PowerMatchesMonteCarlo) {
     }
     const double expected = luminance(light.power());
     // Area, point and directional estimators are constant (zero SE); the spot's varies.
-    EXPECT_NEAR(e.mean(), expected, 4 * e.stdError() + 1e-5 * expected) << name;
+    EXPECT_NEAR(e.mean(), expected, 4 * e.standardError() + 1e-5 * expected) << name;
   }
 }
 
@@ -480,7 +468,7 @@ TEST(LightSet, SelectionProportionalToPower) {
     ++dof;
   }
   EXPECT_GT(test::regularizedGammaQ(0.5 * dof, 0.5 * chi2), kChi2Significance) << chi2;
-  EXPECT_NEAR(remapped.mean(), 0.5, 4 * remapped.stdError());  // uniform within the chosen bin
+  EXPECT_NEAR(remapped.mean(), 0.5, 4 * remapped.standardError());  // uniform within the chosen bin
 
   EXPECT_EQ(set.lightOfTriangle(0, 1), 1);
   EXPECT_EQ(set.lightOfTriangle(0, 0), -1);

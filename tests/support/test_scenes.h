@@ -3,6 +3,7 @@
 
 #include "core/math/rng.h"
 #include "core/scene/scene_desc.h"
+#include "tests/support/statistics.h"
 
 #include <functional>
 
@@ -18,29 +19,5 @@ TriangleMesh quad(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3
 std::vector<TriangleMesh> inwardBox(float h, int material);
 
 CameraDesc lookAt(const Vec3& eye, const Vec3& target, const Vec3& up, float yfov);
-
-// Mean and standard error of a per-sample estimator.
-struct MeanEstimate {
-  double mean = 0.0, standardError = 0.0;
-  uint64_t count = 0;
-  double zScore(double expected) const { return (mean - expected) / standardError; }
-};
-
-class RunningStats {
- public:
-  void add(double v) {
-    ++n_;
-    const double d = v - mean_;
-    mean_ += d / static_cast<double>(n_);
-    m2_ += d * (v - mean_);
-  }
-  MeanEstimate estimate() const {
-    return {mean_, n_ > 1 ? std::sqrt(m2_ / static_cast<double>(n_ - 1) / static_cast<double>(n_)) : 0.0, n_};
-  }
-
- private:
-  uint64_t n_ = 0;
-  double mean_ = 0.0, m2_ = 0.0;
-};
 
 }  // namespace pathlab::test

@@ -1,0 +1,34 @@
+// Running mean and standard error of a Monte Carlo estimator (Welford's update, in double).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+namespace pathlab::test {
+
+struct MeanEstimate {
+  double mean = 0.0, standardError = 0.0;
+  uint64_t count = 0;
+  double zScore(double expected) const { return (mean - expected) / standardError; }
+};
+
+class RunningStats {
+ public:
+  void add(double v) {
+    ++n_;
+    const double d = v - mean_;
+    mean_ += d / static_cast<double>(n_);
+    m2_ += d * (v - mean_);
+  }
+  double mean() const { return mean_; }
+  double standardError() const {
+    return n_ > 1 ? std::sqrt(m2_ / static_cast<double>(n_ - 1) / static_cast<double>(n_)) : 0.0;
+  }
+  MeanEstimate estimate() const { return {mean_, standardError(), n_}; }
+
+ private:
+  uint64_t n_ = 0;
+  double mean_ = 0.0, m2_ = 0.0;
+};
+
+}  // namespace pathlab::test
