@@ -66,9 +66,20 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--max-length", o.settings.maxLength,
                   "Maximum path length in edges (1: emitters seen directly, 2: direct lighting)")
       ->check(CLI::Range(1, 100000));
-  cmd->add_option("--integrator", o.settings.integrator, "Estimator: pt (unidirectional path tracer)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, IntegratorKind>{{"pt", IntegratorKind::Pt}},
-                                          CLI::ignore_case));
+  cmd->add_option("--integrator", o.settings.integrator,
+                  "Estimator: bpt (bidirectional, default), pt (path tracer), lt (light tracing: the t = 1 techniques)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, IntegratorKind>{{"pt", IntegratorKind::Pt}, {"bpt", IntegratorKind::Bpt},
+                                                {"lt", IntegratorKind::Lt}},
+          CLI::ignore_case));
+  cmd->add_option("--mis", o.settings.mis.heuristic, "MIS heuristic of bpt: balance, power or uniform")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, MisHeuristic>{{"balance", MisHeuristic::Balance}, {"power", MisHeuristic::Power},
+                                              {"uniform", MisHeuristic::Uniform}},
+          CLI::ignore_case));
+  cmd->add_option("--beta", o.settings.mis.beta, "Exponent of the power heuristic")->check(CLI::Range(0.01f, 100.f));
+  cmd->add_option("--techniques", o.settings.techniques,
+                  "Enabled (s,t) techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all");
   cmd->add_flag("--rr,!--no-rr", o.settings.russianRoulette,
                 "Russian roulette from the third edge on (default on)");
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
@@ -85,6 +96,11 @@ int runRender(const RenderOptions& o) {
   if (static_cast<long long>(o.settings.width) * o.settings.height > kMaxPixels)
     throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", o.settings.width,
                                          o.settings.height, kMaxPixels));
+  if (o.settings.integrator != IntegratorKind::Pt) {
+    const TechniqueSet techniques = techniquesOf(o.settings);  // throws on a bad SPEC
+    for (int k : techniques.uncoveredLengths())
+      std::cerr << fmt::format("pathlab: warning: no enabled technique samples paths of length {}\n", k);
+  }
   checkOutputWritable(o.output, o.force);
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));

@@ -12,7 +12,12 @@ namespace pathlab::app {
 struct RenderOptions {
   std::string scene;
   std::string output;
-  RenderSettings settings;
+  // The CLI renders bidirectionally unless told otherwise (--integrator pt).
+  RenderSettings settings = [] {
+    RenderSettings s;
+    s.integrator = IntegratorKind::Bpt;
+    return s;
+  }();
   int spp = 0;          // 0: use the time limit (or the default of 64 if neither is given)
   double seconds = 0.0;
   int threads = 0;      // 0: every hardware thread

@@ -44,6 +44,9 @@ expect_error "huge image" "width|pixels" render "$BOX" -o "$TMP/x.pfm" --width 1
 expect_error "too many pixels" "pixels" render "$BOX" -o "$TMP/x.pfm" --width 16384 --height 16384
 expect_error "unknown option" "--bogus" render "$BOX" -o "$TMP/x.pfm" --bogus
 expect_error "unknown integrator" "integrator" render "$BOX" -o "$TMP/x.pfm" --integrator magic
+expect_error "unknown heuristic" "mis" render "$BOX" -o "$TMP/x.pfm" --mis maximum
+expect_error "bad technique" "techniques" render "$BOX" -o "$TMP/x.pfm" --techniques "1;x"
+expect_error "too long technique" "9,9" render "$BOX" -o "$TMP/x.pfm" --techniques "9,9" --max-length 4
 expect_error "unknown extension" "\.bmp" render "$BOX" -o "$TMP/x.bmp" --spp 1
 expect_error "spp with time" "time|spp" render "$BOX" -o "$TMP/x.pfm" --spp 4 --time 1
 expect_error "zero max length" "max-length" render "$BOX" -o "$TMP/x.pfm" --max-length 0

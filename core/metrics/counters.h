@@ -1,6 +1,8 @@
 // Work and health counters of a render: rays traced and samples the film refused.
 #pragma once
 
+#include "core/math/types.h"
+
 #include <cstdint>
 
 namespace pathlab {
@@ -25,5 +27,12 @@ struct Counters {
     return *this;
   }
 };
+
+// Files a contribution the film refused (isValidContribution false) under its reason.
+inline void countDiscarded(const Spectrum& L, Counters& c) {
+  if (glm::any(glm::isnan(L))) ++c.discardedNaN;
+  else if (glm::any(glm::isinf(L))) ++c.discardedInf;
+  else ++c.discardedNegative;
+}
 
 }  // namespace pathlab

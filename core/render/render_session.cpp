@@ -9,12 +9,6 @@ namespace pathlab {
 
 namespace {
 constexpr int kTileSize = 16;
-
-void countDiscarded(const Spectrum& L, Counters& c) {
-  if (glm::any(glm::isnan(L))) ++c.discardedNaN;
-  else if (glm::any(glm::isinf(L))) ++c.discardedInf;
-  else ++c.discardedNegative;
-}
 }  // namespace
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
@@ -22,15 +16,26 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
       settings_(settings),
       camera_(scene.cameraDesc(), settings.width, settings.height, settings.lens),
       pathTracer_(scene, settings),
-      film_(settings.width, settings.height) {}
+      film_(settings.width, settings.height) {
+  if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, settings);
+}
 
 Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& counters) const {
+  return sampleAt(x, y, pass, nullptr, counters);
+}
+
+Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, Film* film, Counters& counters) const {
   const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(settings_.width) + static_cast<uint64_t>(x);
   Pcg32 rng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Camera);
   const Vec2 uFilm = rng.next2D();  // box filter: uniform over the pixel
   const Vec2 uLens = rng.next2D();
-  const Ray ray = camera_.generateRay(Vec2(static_cast<float>(x), static_cast<float>(y)) + uFilm, uLens);
+  const Vec2 pRaster = Vec2(static_cast<float>(x), static_cast<float>(y)) + uFilm;
   ++counters.cameraSamples;
+  if (bidirTracer_) {
+    Pcg32 lightRng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Light);
+    return bidirTracer_->sample(pRaster, uLens, rng, lightRng, film, counters);
+  }
+  const Ray ray = camera_.generateRay(pRaster, uLens);
   return pathTracer_.Li(ray, rng, counters);
 }
 
@@ -44,13 +49,13 @@ void RenderSession::renderPass() {
         Counters& c = local.local();
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            const Spectrum L = replaySample(x, y, pass, c);
+            const Spectrum L = sampleAt(x, y, pass, &film_, c);
             if (!film_.addSample(x, y, L)) countDiscarded(L, c);
           }
         pixelsDone_.fetch_add(static_cast<uint64_t>(tile.rows().size() * tile.cols().size()),
                               std::memory_order_relaxed);
       });
-  film_.finishPass(1, 0);
+  film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
   for (const Counters& c : local) counters_ += c;
   ++passes_;
 }

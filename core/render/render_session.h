@@ -3,6 +3,7 @@
 // can be replayed alone.
 #pragma once
 
+#include "core/bpt/bidir_tracer.h"
 #include "core/film/film.h"
 #include "core/metrics/counters.h"
 #include "core/pt/path_tracer.h"
@@ -21,6 +22,8 @@ class RenderSession {
   // Renders one more pass over the whole film (blocking; uses the TBB arena of the caller).
   void renderPass();
   // The estimate of one camera sample, exactly as renderPass computes it (for replay and tests).
+  // For Bpt and Lt this is the camera-side part only: the t = 1 splats of the sample's light
+  // subpath go to the film during renderPass, never here.
   Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters) const;
 
   const Film& film() const { return film_; }
@@ -37,6 +40,9 @@ class RenderSession {
   RenderSettings settings_;
   Camera camera_;
   PathTracer pathTracer_;
+  std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt and Lt
+
+  Spectrum sampleAt(int x, int y, uint64_t pass, Film* film, Counters& counters) const;
   Film film_;
   Counters counters_;
   uint64_t passes_ = 0;

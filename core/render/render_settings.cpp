@@ -6,6 +6,8 @@ namespace pathlab {
 const char* integratorName(IntegratorKind kind) {
   switch (kind) {
     case IntegratorKind::Pt: return "pt";
+    case IntegratorKind::Bpt: return "bpt";
+    case IntegratorKind::Lt: return "lt";
   }
   return "?";
 }

@@ -2,6 +2,7 @@
 // settings (defaulted operator==) starts a new generation of the film.
 #pragma once
 
+#include "core/bpt/mis_options.h"
 #include "core/camera/camera.h"
 
 #include <cstdint>
@@ -9,7 +10,8 @@
 
 namespace pathlab {
 
-enum class IntegratorKind { Pt };
+// Pt: the path tracer; Bpt: bidirectional; Lt: bidirectional restricted to t = 1 (light tracing).
+enum class IntegratorKind { Pt, Bpt, Lt };
 
 struct RenderSettings {
   int width = 512;
@@ -19,6 +21,8 @@ struct RenderSettings {
   uint64_t seed = 0;
   IntegratorKind integrator = IntegratorKind::Pt;
   LensOptions lens;
+  std::string techniques = "all";  // TechniqueSet SPEC (core/bpt/technique_set.h), Bpt and Lt only
+  MisOptions mis;
 
   bool operator==(const RenderSettings&) const = default;
 };

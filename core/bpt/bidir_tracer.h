@@ -1,0 +1,43 @@
+// The bidirectional path tracer's per-sample kernel: both subpaths, every enabled (s, t),
+// weighted by misWeight; light-tracing (t = 1) contributions are splatted to the film.
+#pragma once
+
+#include "core/bpt/mis.h"
+#include "core/bpt/subpath.h"
+#include "core/bpt/technique_set.h"
+#include "core/film/film.h"
+#include "core/render/render_settings.h"
+
+namespace pathlab {
+
+// pbrt-v4 issue 347: the number of light subpaths per pass sets both the t = 1 splat scale
+// (Film::finishPass) and the t = 1 sample count in the MIS weight. One light subpath is traced
+// per camera sample; this is the only place that says so.
+inline constexpr uint64_t kLightSubpathsPerCameraSample = 1;
+inline uint64_t lightSubpathsPerPass(uint64_t pixelCount) { return pixelCount * kLightSubpathsPerCameraSample; }
+inline float lightTracingRatio() { return static_cast<float>(kLightSubpathsPerCameraSample); }
+
+class BidirTracer {
+ public:
+  BidirTracer(const Scene& scene, const Camera& camera, const RenderSettings& settings);
+
+  // One camera sample through pRaster and one light subpath: returns the pixel estimate and
+  // splats the t = 1 contributions to `film` (if given), counting refused splats.
+  Spectrum sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, Film* film,
+                  Counters& counters) const;
+
+  const TechniqueSet& techniques() const { return techniques_; }
+
+ private:
+  const Scene& scene_;
+  const Camera& camera_;
+  int maxLength_;
+  bool russianRoulette_;
+  TechniqueSet techniques_;
+  MisOptions mis_;
+};
+
+// The TechniqueSet a RenderSettings asks for: its SPEC, restricted to t = 1 for light tracing.
+TechniqueSet techniquesOf(const RenderSettings& settings);
+
+}  // namespace pathlab

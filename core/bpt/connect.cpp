@@ -1,0 +1,135 @@
+// Connection of a light subpath prefix (s vertices) with a camera subpath prefix (t vertices).
+#include "core/bpt/connect.h"
+
+#include "core/bsdf/bsdf.h"
+
+namespace pathlab {
+
+namespace {
+
+Bsdf bsdfAt(const Scene& scene, const PathVertex& v) {
+  return Bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), v.uv, scene.textures()));
+}
+
+}  // namespace
+
+Spectrum emittedOverOriginPdf(const Scene& scene, const PathVertex& x0, const Vec3& w) {
+  const Light& light = scene.lights()[static_cast<size_t>(x0.light)];
+  const float pmf = scene.lights().pmf(x0.light);
+  if (!(pmf > 0.f)) return Spectrum(0.f);
+  switch (light.type()) {
+    case LightType::Area: {
+      // Lambertian emitter: x0.beta = Le / (pmf pdfPosA) on whichever side it emits.
+      if (isBlack(light.radiance(x0.ng, x0.uv, w))) return Spectrum(0.f);
+      return x0.beta;
+    }
+    case LightType::Point:
+    case LightType::Spot:
+      return light.intensity(w) / pmf;  // position density 1
+    case LightType::Directional:
+      return Spectrum(0.f);  // a delta direction is never met by a connection
+  }
+  return Spectrum(0.f);
+}
+
+Connection connect(const Scene& scene, const Camera& camera, const PathVertex* lightPath, int s,
+                   const PathVertex* cameraPath, int t, Pcg32& rng, Counters& counters) {
+  Connection c;
+  if (t < 1 || s < 0) return c;
+
+  if (s == 0) {
+    // The camera subpath found an emitter by itself (Veach's s = 0).
+    const PathVertex& pt = cameraPath[t - 1];
+    if (t < 2 || pt.type != VertexType::Surface || pt.light < 0) return c;
+    const Light& light = scene.lights()[static_cast<size_t>(pt.light)];
+    c.L = pt.beta * light.radiance(pt.ng, pt.uv, pt.wo);
+    return c;
+  }
+
+  if (t == 1) {
+    // Light tracing: the lens point is sampled afresh from the light vertex.
+    const PathVertex& qs = lightPath[s - 1];
+    if (qs.isDelta || qs.isInfinite) return c;
+    const std::optional<CameraWiSample> cs = camera.sampleWi(qs.p, rng.next2D());
+    if (!cs) return c;
+    Spectrum L;
+    if (qs.type == VertexType::Light) {
+      L = emittedOverOriginPdf(scene, qs, cs->wi) * (qs.onSurface() ? absDot(qs.ng, cs->wi) : 1.f);
+    } else {
+      const BsdfEval ev = bsdfAt(scene, qs).eval(qs.wo, cs->wi, TransportMode::Importance);
+      L = qs.beta * ev.f * absDot(cs->wi, qs.ns);
+    }
+    if (isBlack(L)) return c;
+    ++counters.shadowRays;
+    const Vec3 nq = qs.onSurface() ? qs.ng : Vec3(0.f);
+    if (!scene.visible(qs.p, nq, cs->pLens, Vec3(0.f))) return c;
+    c.L = L * cs->We / cs->pdfW;
+    c.pRaster = cs->pRaster;
+    c.sampled.type = VertexType::Camera;
+    c.sampled.p = cs->pLens;
+    c.sampled.beta = cs->We / cs->pdfW;
+    c.sampled.isDeltaPosition = camera.isPinhole();
+    c.hasSampled = true;
+    return c;
+  }
+
+  const PathVertex& pt = cameraPath[t - 1];
+  if (pt.isDelta || pt.type != VertexType::Surface) return c;
+
+  if (s == 1) {
+    // Next-event estimation: a fresh light sample instead of the light subpath's x0. The density
+    // divided by is pmf x sampleLi's pdf; for every light type pathlab has, that is the same
+    // position density pmf x pdfLe().pdfPosA (uniform on the triangle, or a delta) that the
+    // light subpath uses for x0, so `sampled.pdfFwdA` below is the view misWeight must use.
+    float pmf = 0.f;
+    const float uLight = rng.next1D();
+    const Vec2 uPos = rng.next2D();
+    const int li = scene.lights().sample(uLight, &pmf);
+    if (li < 0 || !(pmf > 0.f)) return c;
+    const Light& light = scene.lights()[static_cast<size_t>(li)];
+    const LightLiSample ls = light.sampleLi(pt.p, uPos);
+    if (!(ls.pdfW > 0.f) || isBlack(ls.Li)) return c;
+    const BsdfEval ev = bsdfAt(scene, pt).eval(pt.wo, ls.wi, TransportMode::Radiance);
+    const Spectrum L = pt.beta * ev.f * ls.Li * (absDot(ls.wi, pt.ns) / (pmf * ls.pdfW));
+    if (isBlack(L)) return c;
+    ++counters.shadowRays;
+    const bool unblocked = light.isInfinite() ? scene.visibleToInfinity(pt.p, pt.ng, ls.wi)
+                                              : scene.visible(pt.p, pt.ng, ls.pLight, ls.nLight);
+    if (!unblocked) return c;
+    c.L = L;
+    PathVertex& v = c.sampled;
+    v.type = VertexType::Light;
+    v.p = ls.pLight;
+    v.light = li;
+    v.isDeltaPosition = light.isDeltaPosition();
+    v.isInfinite = light.isInfinite();
+    v.ng = light.type() == LightType::Area ? ls.nLight : (v.isInfinite ? -ls.wi : Vec3(0.f));
+    const EmissionPdf e = light.pdfLe(v.p, v.ng, -ls.wi);
+    v.pdfFwdA = v.isInfinite ? pmf : pmf * e.pdfPosA;
+    v.beta = ls.Li / (pmf * ls.pdfW);
+    c.hasSampled = true;
+    return c;
+  }
+
+  // s >= 2, t >= 2: both ends are surface vertices found by the walks.
+  const PathVertex& qs = lightPath[s - 1];
+  if (qs.isDelta || qs.type != VertexType::Surface) return c;
+  Vec3 d = qs.p - pt.p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.f)) return c;
+  d /= std::sqrt(dist2);
+  const BsdfEval fq = bsdfAt(scene, qs).eval(qs.wo, -d, TransportMode::Importance);
+  if (isBlack(fq.f)) return c;
+  const BsdfEval fp = bsdfAt(scene, pt).eval(pt.wo, d, TransportMode::Radiance);
+  if (isBlack(fp.f)) return c;
+  // Geometry term with shading normals (pbrt-v4 G), matching the walks' |cos| with ns.
+  const float G = absDot(qs.ns, d) * absDot(pt.ns, d) / dist2;
+  const Spectrum L = qs.beta * fq.f * fp.f * pt.beta * G;
+  if (isBlack(L)) return c;
+  ++counters.shadowRays;
+  if (!scene.visible(pt.p, pt.ng, qs.p, qs.ng)) return c;
+  c.L = L;
+  return c;
+}
+
+}  // namespace pathlab

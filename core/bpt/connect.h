@@ -1,0 +1,32 @@
+// connect(s, t): the unweighted contribution of bidirectional technique (s, t) for one pair of
+// subpaths (Veach 1997, sec. 10.2; pbrt-v4 ConnectBDPT without the MIS weight).
+#pragma once
+
+#include "core/bpt/path_vertex.h"
+#include "core/camera/camera.h"
+#include "core/math/rng.h"
+#include "core/metrics/counters.h"
+#include "core/scene/scene.h"
+
+namespace pathlab {
+
+struct Connection {
+  Spectrum L{0.f};     // unweighted contribution; zero when the technique cannot form the path
+  Vec2 pRaster{0.f};   // t = 1: where it lands on the film (splat); otherwise unused
+  // s = 1 and t = 1 draw a fresh endpoint (a light sample, a lens point). The estimator divides
+  // by its density, so misWeight must see this vertex, not the subpath's own x0 (`hasSampled`).
+  PathVertex sampled;
+  bool hasSampled = false;
+};
+
+// lightPath has at least s vertices, cameraPath at least t (t >= 1, s >= 0). Vertices flagged
+// isDelta cannot be connected: the contribution is then zero.
+Connection connect(const Scene& scene, const Camera& camera, const PathVertex* lightPath, int s,
+                   const PathVertex* cameraPath, int t, Pcg32& rng, Counters& counters);
+
+// Emission of light-subpath vertex x0 toward direction `w`, divided by the density with which x0
+// was chosen (light pmf x position pdf): Le / (pmf pdfPosA) or I / pmf; zero for a direction a
+// directional light does not emit in.
+Spectrum emittedOverOriginPdf(const Scene& scene, const PathVertex& x0, const Vec3& w);
+
+}  // namespace pathlab

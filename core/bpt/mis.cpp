@@ -1,0 +1,161 @@
+// misWeight: copy the densities of the path, patch the four the connection changes, and walk the
+// ratios p_i / p_s outward from the connection (Veach 1997, sec. 10.3).
+#include "core/bpt/mis.h"
+
+#include "core/bsdf/bsdf.h"
+
+#include <cmath>
+
+namespace pathlab {
+
+namespace {
+
+// pbrt's "remap zero to one": a delta density cancels between the techniques that share it.
+double remap0(double p) { return p != 0.0 ? p : 1.0; }
+
+// Area density at `next` of being sampled from light vertex (or emitting surface) `v`.
+float pdfLightToward(const Scene& scene, const PathVertex& v, const PathVertex& next) {
+  if (v.light < 0) return 0.f;
+  const Light& light = scene.lights()[static_cast<size_t>(v.light)];
+  const EmissionPdf e = light.pdfLe(v.p, v.ng, glm::normalize(next.p - v.p));
+  return convertDensity(v.isInfinite ? e.pdfPosA : e.pdfDirW, v, next);
+}
+
+// Density of x0 = v as the origin of a light subpath: pmf x pdfPosA (directional: pmf, sec. above).
+float pdfLightOrigin(const Scene& scene, const PathVertex& v) {
+  if (v.light < 0) return 0.f;
+  const Light& light = scene.lights()[static_cast<size_t>(v.light)];
+  const float pmf = scene.lights().pmf(v.light);
+  if (light.isInfinite()) return pmf;
+  return pmf * light.pdfLe(v.p, v.ng, Vec3(0.f, 0.f, 1.f)).pdfPosA;
+}
+
+// Area density at `next` of being sampled at `v`, having arrived at `v` from `prev`.
+float pdfArea(const Scene& scene, const Camera& camera, const PathVertex& v, const PathVertex* prev,
+              const PathVertex& next, TransportMode mode) {
+  switch (v.type) {
+    case VertexType::Camera: {
+      const CameraPdf c = camera.pdfWe(Ray{v.p, glm::normalize(next.p - v.p)});
+      return convertDensity(c.pdfDirW, v, next);
+    }
+    case VertexType::Light:
+      return pdfLightToward(scene, v, next);
+    case VertexType::Surface: {
+      if (!prev) return 0.f;
+      const Bsdf bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), v.uv, scene.textures()));
+      const float pdfW = bsdf.pdf(glm::normalize(prev->p - v.p), glm::normalize(next.p - v.p), mode);
+      return convertDensity(pdfW, v, next);
+    }
+  }
+  return 0.f;
+}
+
+}  // namespace
+
+const char* misHeuristicName(MisHeuristic h) {
+  switch (h) {
+    case MisHeuristic::Balance: return "balance";
+    case MisHeuristic::Power: return "power";
+    case MisHeuristic::Uniform: return "uniform";
+  }
+  return "?";
+}
+
+PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path) {
+  const int s = path.s, t = path.t, n = s + t;
+  PathDensities d;
+  d.n = n;
+  d.pFromLight.assign(static_cast<size_t>(n), 0.0);
+  d.pFromCamera.assign(static_cast<size_t>(n), 0.0);
+  d.delta.assign(static_cast<size_t>(n), false);
+  auto lightVertex = [&](int i) -> const PathVertex& {
+    return (i == 0 && s == 1 && t >= 2 && path.sampled) ? *path.sampled : path.lightPath[i];
+  };
+  auto cameraVertex = [&](int j) -> const PathVertex& {
+    return (j == 0 && t == 1 && path.sampled) ? *path.sampled : path.cameraPath[j];
+  };
+  auto vertex = [&](int i) -> const PathVertex& { return i < s ? lightVertex(i) : cameraVertex(n - 1 - i); };
+
+  for (int i = 0; i < s; ++i) {
+    const PathVertex& v = lightVertex(i);
+    d.pFromLight[static_cast<size_t>(i)] = v.pdfFwdA;
+    d.pFromCamera[static_cast<size_t>(i)] = v.pdfRevA;
+    d.delta[static_cast<size_t>(i)] = v.isDelta;
+  }
+  for (int j = 0; j < t; ++j) {
+    const PathVertex& v = cameraVertex(j);
+    d.pFromCamera[static_cast<size_t>(n - 1 - j)] = v.pdfFwdA;
+    d.pFromLight[static_cast<size_t>(n - 1 - j)] = v.pdfRevA;
+    d.delta[static_cast<size_t>(n - 1 - j)] = v.isDelta;
+  }
+
+  // The patches (pbrt-v4 MISWeight): qs = x(s-1), pt = x(s) are now connected.
+  const PathVertex& pt = vertex(s);
+  const PathVertex* ptMinus = t >= 2 ? &vertex(s + 1) : nullptr;
+  const PathVertex* qs = s >= 1 ? &vertex(s - 1) : nullptr;
+  const PathVertex* qsMinus = s >= 2 ? &vertex(s - 2) : nullptr;
+  d.pFromLight[static_cast<size_t>(s)] =
+      qs ? pdfArea(scene, camera, *qs, qsMinus, pt, TransportMode::Importance) : pdfLightOrigin(scene, pt);
+  if (ptMinus)
+    d.pFromLight[static_cast<size_t>(s + 1)] =
+        qs ? pdfArea(scene, camera, pt, qs, *ptMinus, TransportMode::Importance) : pdfLightToward(scene, pt, *ptMinus);
+  if (qs) d.pFromCamera[static_cast<size_t>(s - 1)] = pdfArea(scene, camera, pt, ptMinus, *qs, TransportMode::Radiance);
+  if (qsMinus)
+    d.pFromCamera[static_cast<size_t>(s - 2)] = pdfArea(scene, camera, *qs, &pt, *qsMinus, TransportMode::Radiance);
+  d.delta[static_cast<size_t>(s)] = false;
+  if (s >= 1) d.delta[static_cast<size_t>(s - 1)] = false;
+
+  const PathVertex& x0 = vertex(0);
+  d.x0CanBeHit = !x0.isDeltaPosition && !x0.isInfinite && x0.light >= 0 && x0.type != VertexType::Camera;
+  return d;
+}
+
+bool techniquePossible(const PathDensities& d, int sp) {
+  if (sp < 0 || sp >= d.n) return false;  // t' >= 1
+  if (sp == 0) return d.x0CanBeHit && !d.delta[0];
+  // The connection joins x(s'-1) and x(s'): neither may scatter by a delta lobe.
+  return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
+}
+
+float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
+                const MisOptions& options, float lightTracingRatio) {
+  const int s = path.s, t = path.t, n = s + t;
+  if (!techniques.contains(s, t)) return 0.f;
+  const PathDensities d = pathDensities(scene, camera, path);
+  if (!techniquePossible(d, s)) return 0.f;
+  auto usable = [&](int sp) { return techniques.contains(sp, n - sp) && techniquePossible(d, sp); };
+
+  if (options.heuristic == MisHeuristic::Uniform) {
+    // 1 / (number of enabled techniques able to produce this path), counted.
+    int count = 0;
+    for (int sp = 0; sp < n; ++sp) count += usable(sp) ? 1 : 0;
+    return 1.f / static_cast<float>(count);
+  }
+
+  // Veach 1997 eq. 10.9 (balance: beta = 1) and the power heuristic with exponent beta:
+  //   w_s = (n_s p_s)^beta / sum_i (n_i p_i)^beta,
+  // with p_i the density of the path under technique i (s' = i light vertices) and n_i its sample
+  // count (lightTracingRatio for t' = 1, else 1). The ratios come from Veach eq. 10.10:
+  //   p_{i+1} / p_i = pFromLight(x_i) / pFromCamera(x_i),
+  // walked outward from i = s so that no p_i is formed on its own.
+  const double beta = options.heuristic == MisHeuristic::Balance ? 1.0 : static_cast<double>(options.beta);
+  auto count = [&](int sp) { return (n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0; };
+  const double own = count(s);
+  double sum = 1.0;  // the technique itself, relative to (n_s p_s)^beta
+  double r = 1.0;
+  for (int sp = s + 1; sp < n; ++sp) {  // more light vertices: x(sp-1) moves to the light side
+    const size_t i = static_cast<size_t>(sp - 1);
+    r *= remap0(d.pFromLight[i]) / remap0(d.pFromCamera[i]);
+    if (usable(sp)) sum += std::pow(r * count(sp) / own, beta);
+  }
+  r = 1.0;
+  for (int sp = s - 1; sp >= 0; --sp) {  // fewer light vertices: x(sp) moves to the camera side
+    const size_t i = static_cast<size_t>(sp);
+    r *= remap0(d.pFromCamera[i]) / remap0(d.pFromLight[i]);
+    if (usable(sp)) sum += std::pow(r * count(sp) / own, beta);
+  }
+  const double w = 1.0 / sum;
+  return std::isfinite(w) ? static_cast<float>(w) : 0.f;
+}
+
+}  // namespace pathlab

@@ -1,0 +1,47 @@
+// The multiple importance sampling weight of bidirectional technique (s, t) for one path, as a
+// pure function of the two subpath prefixes (Veach 1997, sec. 10.3; pbrt-v4 MISWeight without
+// ScopedAssignment; Tungsten LightPath::misWeight).
+#pragma once
+
+#include "core/bpt/mis_options.h"
+#include "core/bpt/path_vertex.h"
+#include "core/bpt/technique_set.h"
+#include "core/camera/camera.h"
+#include "core/scene/scene.h"
+
+#include <vector>
+
+namespace pathlab {
+
+struct MisPath {
+  const PathVertex* lightPath = nullptr;  // at least s vertices
+  int s = 0;
+  const PathVertex* cameraPath = nullptr;  // at least t vertices
+  int t = 1;
+  // The fresh endpoint of Connection::sampled: t = 1 replaces cameraPath[0] (the lens point);
+  // s = 1 with t >= 2 replaces lightPath[0] (the light sample). nullptr when none was drawn.
+  const PathVertex* sampled = nullptr;
+};
+
+// Weight of technique (s, t) among the enabled techniques able to produce the same path.
+// `lightTracingRatio` = light subpaths per pass / camera samples per pass (the sample counts n_i
+// of Veach's multi-sample model for t = 1 against t >= 2); see bidir_tracer.h.
+// Returns 0 when (s, t) itself is disabled or impossible.
+float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
+                const MisOptions& options, float lightTracingRatio = 1.f);
+
+// The densities of the whole path x0 .. x(n-1) (n = s + t, x0 on the light, x(n-1) the camera)
+// after the connection: pFromLight[i] / pFromCamera[i] are the area densities of x_i sampled from
+// the light / camera side, as misWeight sees them. Exposed for the tests' brute-force oracle.
+struct PathDensities {
+  int n = 0;
+  std::vector<double> pFromLight, pFromCamera;
+  std::vector<bool> delta;   // delta scattering at x_i
+  bool x0CanBeHit = false;   // x0 is on an area light (technique s = 0 possible)
+};
+PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path);
+
+// Whether technique s' (t' = n - s') can produce a path with these delta flags.
+bool techniquePossible(const PathDensities& d, int sPrime);
+
+}  // namespace pathlab

@@ -1,0 +1,52 @@
+// One vertex of a light or camera subpath (Veach 1997, ch. 10; pbrt-v4 BDPT `Vertex`): plain,
+// trivially copyable data with both of its densities in area measure, set when it is created.
+#pragma once
+
+#include "core/math/types.h"
+
+#include <type_traits>
+
+namespace pathlab {
+
+enum class VertexType : uint8_t { Camera, Light, Surface };
+
+struct PathVertex {
+  VertexType type = VertexType::Surface;
+  Vec3 p{0.f};
+  Vec3 ng{0.f};          // geometric normal (area light: its triangle normal; punctual, camera: 0)
+  Vec3 ns{0.f};          // shading normal (surfaces only)
+  Vec3 wo{0.f};          // unit direction toward the previous vertex of its own subpath (0 at x0)
+  Vec2 uv{0.f};
+  int material = -1;     // surfaces
+  int light = -1;        // light vertices, and surfaces lying on an area light (index in LightSet)
+  Spectrum beta{0.f};    // throughput of the subpath up to and including this vertex
+  // Density of this vertex when sampled from its own subpath's side (pdfFwdA) and from the other
+  // side (pdfRevA), both in area measure (pbrt-v4 `pdfFwd` / `pdfRev`). A delta density counts
+  // as one (pbrt's "remap zero to one"), applied where the ratios are formed.
+  float pdfFwdA = 0.f;
+  float pdfRevA = 0.f;
+  bool isDelta = false;          // a delta BSDF lobe was sampled here: cannot be connected
+  bool isDeltaPosition = false;  // point / spot light, pinhole: cannot be hit by a ray
+  bool isInfinite = false;       // directional light: densities toward it are planar, not 1/d^2
+
+  bool onSurface() const { return type == VertexType::Surface || (type == VertexType::Light && ng != Vec3(0.f) && !isInfinite); }
+};
+
+static_assert(std::is_trivially_copyable_v<PathVertex>);
+
+// Solid-angle density at `from` of the direction toward `to` -> area density at `to`
+// (pbrt-v4 Vertex::ConvertDensity): |cos| at the receiving vertex over distance squared; no
+// cosine when the receiver is a camera or punctual light. From a directional light (`from`
+// infinite) the given value is already an area density on a plane normal to the light, so only
+// the receiver's cosine applies.
+inline float convertDensity(float pdfW, const PathVertex& from, const PathVertex& to) {
+  const Vec3 d = to.p - from.p;
+  const float dist2 = glm::dot(d, d);
+  if (from.isInfinite) return to.onSurface() ? pdfW * absDot(to.ng, glm::normalize(from.ng)) : pdfW;
+  if (!(dist2 > 0.f)) return 0.f;
+  float pdf = pdfW / dist2;
+  if (to.onSurface()) pdf *= absDot(to.ng, d) / std::sqrt(dist2);
+  return pdf;
+}
+
+}  // namespace pathlab

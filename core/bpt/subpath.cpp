@@ -1,0 +1,146 @@
+// Subpath generation: the camera and light random walks of bidirectional path tracing.
+#include "core/bpt/subpath.h"
+
+#include "core/bsdf/bsdf.h"
+#include "core/render/render_settings.h"
+
+namespace pathlab {
+
+namespace {
+
+// pbrt-v4 RandomWalk: extends `path` from its last vertex along `ray`. `pdfFwdW` is the density
+// (solid angle, or planar area from a directional light) with which `ray.d` was chosen. Each new
+// vertex gets pdfFwdA; each sampled direction fills in pdfRevA of the vertex before it.
+void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, TransportMode mode, Pcg32& rng,
+                const WalkOptions& options, Subpath& path, Counters& counters) {
+  const Spectrum betaStart = beta;
+  std::optional<Bsdf> prevBsdf;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
+  while (path.count < options.maxVertices) {
+    ++counters.rays;
+    const std::optional<SurfaceHit> hit = scene.intersect(ray);
+    if (!hit) break;
+    PathVertex& prev = path[path.count - 1];
+    PathVertex& v = path[path.count];
+    v = PathVertex{};
+    v.type = VertexType::Surface;
+    v.p = hit->p;
+    v.ng = hit->ng;
+    v.ns = hit->ns;
+    v.uv = hit->uv;
+    // From the stored positions, not the (offset) ray: the densities below are then those of
+    // the path the vertices describe, which is what misWeight re-evaluates.
+    const Vec3 back = prev.p - v.p;
+    v.wo = glm::dot(back, back) > 0.f && !prev.isInfinite ? glm::normalize(back) : -ray.d;
+    v.material = hit->material;
+    v.light = hit->light;
+    v.beta = beta;
+    const Vec3 dirGeom = -v.wo;
+    if (prevBsdf) {
+      // Re-evaluate both densities of the sampled scattering at prev along the directions between
+      // the stored points (the ray left from an offset origin; near-coincident vertices would
+      // otherwise disagree with misWeight's own evaluation).
+      const BsdfEval ev = prevBsdf->eval(prev.wo, dirGeom, mode);
+      pdfFwdW = ev.pdfFwdW;
+      PathVertex& prevPrev = path[path.count - 2];
+      prevPrev.pdfRevA = convertDensity(ev.pdfRevW, prev, prevPrev);
+    } else if (prev.type == VertexType::Light && prev.onSurface()) {
+      pdfFwdW = scene.lights()[static_cast<size_t>(prev.light)].pdfLe(prev.p, prev.ng, dirGeom).pdfDirW;
+    }
+    v.pdfFwdA = convertDensity(pdfFwdW, prev, v);
+    ++path.count;
+    if (path.count >= options.maxVertices) break;
+
+    const Bsdf bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), v.uv, scene.textures()));
+    const float uLobe = rng.next1D();
+    const Vec2 uDir = rng.next2D();
+    const std::optional<BsdfSample> bs = bsdf.sample(v.wo, uDir, uLobe, mode);
+    if (!bs || bs->pdfFwdW <= 0.f || isBlack(bs->f)) break;
+    // In Importance mode f is the adjoint BSDF with Veach's shading-normal correction (bsdf.h).
+    beta *= bs->f * (absDot(bs->wi, v.ns) / bs->pdfFwdW);
+    pdfFwdW = bs->pdfFwdW;
+    float pdfRevW = bs->pdfRevW;
+    prevBsdf.reset();
+    if (bs->isDelta) {
+      // pbrt: a delta vertex stores zero densities, remapped to one where ratios are formed.
+      v.isDelta = true;
+      pdfFwdW = pdfRevW = 0.f;
+    } else {
+      prevBsdf.emplace(bsdf);
+    }
+    prev.pdfRevA = convertDensity(pdfRevW, v, prev);
+    ray = Ray{offsetRayOrigin(v.p, v.ng, bs->wi), bs->wi};
+
+    // Russian roulette as in the path tracer, on the throughput gained since the walk began
+    // (a light subpath starts with the emitted power's scale). Unbiased; the MIS densities leave
+    // it out, which keeps the weights a partition of unity.
+    const int edges = path.count - 1;
+    if (options.russianRoulette && edges >= kRussianRouletteStart) {
+      const Spectrum rel = beta / glm::max(betaStart, Spectrum(1e-30f));
+      const float q = glm::min(maxComponent(rel), 0.95f);
+      if (!(q > 0.f) || rng.next1D() >= q) break;
+      beta /= q;
+    }
+  }
+}
+
+}  // namespace
+
+int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster, Vec2 uLens, Pcg32& rng,
+                          const WalkOptions& options, CameraSubpath& path, Counters& counters) {
+  path.setCapacity(options.maxVertices);
+  path.count = 0;
+  if (options.maxVertices < 1) return 0;
+  const Ray ray = camera.generateRay(pRaster, uLens);
+  const CameraPdf pdf = camera.pdfWe(ray);
+  PathVertex& c = path[0];
+  c = PathVertex{};
+  c.type = VertexType::Camera;
+  c.p = ray.o;
+  // We / (pdfPosA pdfDirW) = 1 per pixel sample with the box filter (camera.h).
+  c.beta = Spectrum(1.f);
+  c.pdfFwdA = pdf.pdfPosA;
+  c.isDeltaPosition = camera.isPinhole();
+  path.count = 1;
+  if (!(pdf.pdfDirW > 0.f)) return path.count;
+  randomWalk(scene, ray, Spectrum(1.f), pdf.pdfDirW, TransportMode::Radiance, rng, options, path, counters);
+  return path.count;
+}
+
+int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& options, LightSubpath& path,
+                         Counters& counters) {
+  path.setCapacity(options.maxVertices);
+  path.count = 0;
+  if (options.maxVertices < 1) return 0;
+  const LightSet& lights = scene.lights();
+  float pmf = 0.f;
+  const float uLight = rng.next1D();
+  const Vec2 uPos = rng.next2D(), uDir = rng.next2D();
+  const int li = lights.sample(uLight, &pmf);
+  if (li < 0 || !(pmf > 0.f)) return 0;
+  const Light& light = lights[static_cast<size_t>(li)];
+  const LightLeSample le = light.sampleLe(uPos, uDir);
+  if (!(le.pdfPosA > 0.f) || !(le.pdfDirW > 0.f) || isBlack(le.Le)) return 0;
+
+  PathVertex& x0 = path[0];
+  x0 = PathVertex{};
+  x0.type = VertexType::Light;
+  x0.p = le.ray.o;
+  x0.ng = light.type() == LightType::Area || light.isInfinite() ? le.n : Vec3(0.f);
+  x0.light = li;
+  x0.isDeltaPosition = light.isDeltaPosition();
+  x0.isInfinite = light.isInfinite();
+  // A directional light's origin is a delta direction (density one, remapped) chosen with the
+  // light; the disk position density moves to x1, in area measure there (pbrt-v4).
+  x0.pdfFwdA = x0.isInfinite ? pmf : pmf * le.pdfPosA;
+  x0.beta = le.Le / (pmf * le.pdfPosA);
+  path.count = 1;
+
+  const float cosLight = light.type() == LightType::Area ? absDot(le.n, le.ray.d) : 1.f;
+  const Spectrum beta = le.Le * (cosLight / (pmf * le.pdfPosA * le.pdfDirW));
+  const Ray ray{light.type() == LightType::Area ? offsetRayOrigin(le.ray.o, le.n, le.ray.d) : le.ray.o, le.ray.d};
+  const float pdfW = x0.isInfinite ? le.pdfPosA : le.pdfDirW;
+  randomWalk(scene, ray, beta, pdfW, TransportMode::Importance, rng, options, path, counters);
+  return path.count;
+}
+
+}  // namespace pathlab

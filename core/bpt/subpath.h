@@ -1,0 +1,44 @@
+// Camera and light subpaths: random walks that store their vertices with both area densities
+// (Veach 1997, sec. 10.2; pbrt-v4 BDPT GenerateCameraSubpath / GenerateLightSubpath / RandomWalk).
+#pragma once
+
+#include "core/bpt/path_vertex.h"
+#include "core/camera/camera.h"
+#include "core/math/rng.h"
+#include "core/metrics/counters.h"
+#include "core/scene/scene.h"
+
+#include <vector>
+
+namespace pathlab {
+
+// A subpath in a buffer whose capacity is set once (per thread), so that generating a sample
+// never allocates. Vertex 0 is the camera (CameraSubpath) or the point on the light (LightSubpath).
+struct Subpath {
+  std::vector<PathVertex> vertices;
+  int count = 0;
+
+  void setCapacity(int n) {
+    if (static_cast<int>(vertices.size()) < n) vertices.resize(static_cast<size_t>(n));
+  }
+  const PathVertex& operator[](int i) const { return vertices[static_cast<size_t>(i)]; }
+  PathVertex& operator[](int i) { return vertices[static_cast<size_t>(i)]; }
+  const PathVertex* data() const { return vertices.data(); }
+};
+struct CameraSubpath : Subpath {};
+struct LightSubpath : Subpath {};
+
+struct WalkOptions {
+  int maxVertices = 0;         // camera subpath: maxLength + 1; light subpath: maxLength
+  bool russianRoulette = true;  // the path tracer's rule (render_settings.h), on the walk's own throughput
+};
+
+// The camera subpath through film position pRaster (pixels). Returns the number of vertices.
+int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster, Vec2 uLens, Pcg32& rng,
+                          const WalkOptions& options, CameraSubpath& path, Counters& counters);
+
+// The light subpath from a light chosen in proportion to its power. Returns the number of vertices.
+int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& options, LightSubpath& path,
+                         Counters& counters);
+
+}  // namespace pathlab

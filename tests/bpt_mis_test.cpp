@@ -1,0 +1,203 @@
+// misWeight: partition of unity over the techniques able to produce a path, for every heuristic
+// and random enabled subsets, against a brute-force oracle built from explicit full-path
+// densities (each technique's path pdf as a product of area densities).
+#include "core/bpt/bidir_tracer.h"
+#include "core/bpt/connect.h"
+#include "core/bsdf/bsdf.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/test_scenes.h"
+
+#include <gtest/gtest.h>
+
+namespace pathlab {
+namespace {
+
+using test::lambertian;
+using test::quad;
+
+// Area density at x_to of sampling it at x_at, having come from x_from (nullptr at a light
+// origin or the camera): the oracle's own evaluation, written from the definitions.
+double oracleDensity(const Scene& scene, const Camera& camera, const PathVertex& at, const PathVertex* from,
+                     const PathVertex& to, TransportMode mode) {
+  const Vec3 d = to.p - at.p;
+  const double dist2 = glm::dot(d, d);
+  const Vec3 w = glm::normalize(d);
+  const double cosTo = to.type == VertexType::Camera || to.ng == Vec3(0.f) ? 1.0 : absDot(to.ng, w);
+  double pdfW = 0.0;
+  if (at.type == VertexType::Camera) {
+    pdfW = camera.pdfWe(Ray{at.p, w}).pdfDirW;
+  } else if (!from) {  // light origin
+    const Light& light = scene.lights()[static_cast<size_t>(at.light)];
+    pdfW = light.pdfLe(at.p, at.ng, w).pdfDirW;
+  } else {
+    const Bsdf bsdf(at.ns, at.ng, evalMaterial(scene.material(at.material), at.uv, scene.textures()));
+    pdfW = bsdf.pdf(glm::normalize(from->p - at.p), w, mode);
+  }
+  return pdfW * cosTo / dist2;
+}
+
+struct FullPath {
+  std::vector<PathVertex> x;  // x0 on the light ... x(n-1) the camera
+  std::vector<double> pL, pE;
+};
+
+FullPath densities(const Scene& scene, const Camera& camera, std::vector<PathVertex> x) {
+  FullPath f;
+  const int n = static_cast<int>(x.size());
+  f.pL.assign(static_cast<size_t>(n), 0.0);
+  f.pE.assign(static_cast<size_t>(n), 0.0);
+  f.pL[0] = scene.lights().pmf(x[0].light) *
+            scene.lights()[static_cast<size_t>(x[0].light)].pdfLe(x[0].p, x[0].ng, Vec3(0, 0, 1)).pdfPosA;
+  for (int i = 1; i < n; ++i)
+    f.pL[static_cast<size_t>(i)] = oracleDensity(scene, camera, x[static_cast<size_t>(i - 1)],
+                                                 i >= 2 ? &x[static_cast<size_t>(i - 2)] : nullptr,
+                                                 x[static_cast<size_t>(i)], TransportMode::Importance);
+  f.pE[static_cast<size_t>(n - 1)] = 1.0;
+  for (int i = n - 2; i >= 0; --i)
+    f.pE[static_cast<size_t>(i)] = oracleDensity(scene, camera, x[static_cast<size_t>(i + 1)],
+                                                 i + 2 < n ? &x[static_cast<size_t>(i + 2)] : nullptr,
+                                                 x[static_cast<size_t>(i)], TransportMode::Radiance);
+  f.x = std::move(x);
+  return f;
+}
+
+// Brute force: p_s' = prod_{i < s'} pL_i * prod_{i >= s'} pE_i, then the heuristic directly.
+std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled, const MisOptions& o) {
+  const int n = static_cast<int>(f.x.size());
+  std::vector<double> p(static_cast<size_t>(n), 0.0), w(static_cast<size_t>(n), 0.0);
+  const bool x0Hittable = !f.x[0].isDeltaPosition && !f.x[0].isInfinite;
+  double sum = 0.0;
+  int count = 0;
+  for (int sp = 0; sp < n; ++sp) {
+    if (!enabled.contains(sp, n - sp) || (sp == 0 && !x0Hittable)) continue;
+    double prod = 1.0;
+    for (int i = 0; i < n - 1; ++i) prod *= i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)];
+    const double b = o.heuristic == MisHeuristic::Power ? o.beta : 1.0;
+    p[static_cast<size_t>(sp)] = std::pow(prod, b);
+    sum += p[static_cast<size_t>(sp)];
+    ++count;
+  }
+  for (int sp = 0; sp < n; ++sp)
+    if (p[static_cast<size_t>(sp)] > 0.0)
+      w[static_cast<size_t>(sp)] = o.heuristic == MisHeuristic::Uniform ? 1.0 / count : p[static_cast<size_t>(sp)] / sum;
+  return w;
+}
+
+// Technique s' of the full path, in the form the walks would have stored it.
+float fastWeight(const Scene& scene, const Camera& camera, const FullPath& f, int sp, const TechniqueSet& enabled,
+                 const MisOptions& o) {
+  const int n = static_cast<int>(f.x.size());
+  std::vector<PathVertex> light, cam;
+  for (int i = 0; i < sp; ++i) {
+    PathVertex v = f.x[static_cast<size_t>(i)];
+    v.pdfFwdA = static_cast<float>(f.pL[static_cast<size_t>(i)]);
+    v.pdfRevA = static_cast<float>(f.pE[static_cast<size_t>(i)]);
+    light.push_back(v);
+  }
+  for (int i = n - 1; i >= sp; --i) {
+    PathVertex v = f.x[static_cast<size_t>(i)];
+    v.pdfFwdA = static_cast<float>(f.pE[static_cast<size_t>(i)]);
+    v.pdfRevA = static_cast<float>(f.pL[static_cast<size_t>(i)]);
+    cam.push_back(v);
+  }
+  return misWeight(scene, camera, MisPath{light.data(), sp, cam.data(), n - sp, nullptr}, enabled, o, lightTracingRatio());
+}
+
+SceneDesc furnace() {
+  SceneDesc desc;
+  desc.path = "furnace";
+  desc.materials = {lambertian(0.6f, Spectrum(0.7f))};
+  desc.meshes = test::inwardBox(1.f, 0);
+  desc.camera = test::lookAt(Vec3(0.1f, 0.2f, 0.3f), Vec3(1.f, -0.3f, -0.5f), Vec3(0, 1, 0), 1.2f);
+  return desc;
+}
+
+SceneDesc squareEmitter() {
+  SceneDesc desc;
+  desc.path = "square";
+  desc.materials = {lambertian(0.5f), lambertian(0.f, Spectrum(1.f))};
+  desc.meshes = {quad(Vec3(-5, 0, 5), Vec3(5, 0, 5), Vec3(5, 0, -5), Vec3(-5, 0, -5), 0),
+                 quad(Vec3(-.5f, 1, -.5f), Vec3(.5f, 1, -.5f), Vec3(.5f, 1, .5f), Vec3(-.5f, 1, .5f), 1)};
+  desc.camera = test::lookAt(Vec3(0.3f, 1.5f, 2.6f), Vec3(0.f), Vec3(0, 1, 0), 0.9f);
+  return desc;
+}
+
+SceneDesc pointLight() {
+  SceneDesc desc;
+  desc.path = "point";
+  desc.materials = {lambertian(0.6f)};
+  desc.meshes = test::inwardBox(1.f, 0);
+  PunctualLightDesc l;
+  l.position = Vec3(0.2f, 0.5f, -0.1f);
+  desc.punctualLights = {l};
+  desc.camera = test::lookAt(Vec3(0.1f, 0.2f, 0.3f), Vec3(1.f, -0.3f, -0.5f), Vec3(0, 1, 0), 1.2f);
+  return desc;
+}
+
+void checkPartition(const Scene& scene, int maxLength, const char* name) {
+  const int size = 8;
+  const Camera camera(scene.cameraDesc(), size, size);
+  Pcg32 rng(1234, 5);
+  CameraSubpath cp;
+  LightSubpath lp;
+  Counters counters;
+  int checked = 0;
+  for (int sample = 0; sample < 400; ++sample) {
+    const int nt = generateCameraSubpath(scene, camera, Vec2(rng.next1D() * size, rng.next1D() * size), rng.next2D(),
+                                         rng, WalkOptions{maxLength + 1, false}, cp, counters);
+    const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, false}, lp, counters);
+    for (int t = 1; t <= nt; ++t)
+      for (int s = 0; s <= ns && s + t - 1 <= maxLength; ++s) {
+        if (s + t < 2) continue;
+        const Connection c = connect(scene, camera, lp.data(), s, cp.data(), t, rng, counters);
+        if (isBlack(c.L)) continue;
+        const int n = s + t;
+        std::vector<PathVertex> x;
+        for (int i = 0; i < s; ++i) x.push_back(i == 0 && s == 1 && t >= 2 ? c.sampled : lp[i]);
+        for (int j = t - 1; j >= 0; --j) x.push_back(j == 0 && t == 1 ? c.sampled : cp[j]);
+        x[0].type = VertexType::Light;  // an emitter found by the camera walk is the light origin
+        const FullPath f = densities(scene, camera, x);
+        for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+          const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f};
+          TechniqueSet enabled = TechniqueSet::all(maxLength);
+          if (rng.next1D() < 0.7f)
+            for (int sp = 0; sp < n; ++sp)
+              if (sp != s && rng.next1D() < 0.4f) enabled.disable(sp, n - sp);
+          const std::vector<double> oracle = oracleWeights(f, enabled, o);
+          // The weight the tracer computes from the walks' own densities.
+          const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr};
+          const float wReal = misWeight(scene, camera, real, enabled, o, lightTracingRatio());
+          EXPECT_NEAR(wReal, oracle[static_cast<size_t>(s)], 1e-4)
+              << name << " (" << s << "," << t << ") " << misHeuristicName(h) << [&] {
+                   const PathDensities d = pathDensities(scene, camera, real);
+                   std::string out;
+                   for (int i = 0; i < n; ++i)
+                     out += "\n x" + std::to_string(i) + " L " + std::to_string(d.pFromLight[size_t(i)]) + " / " +
+                            std::to_string(f.pL[size_t(i)]) + "  E " + std::to_string(d.pFromCamera[size_t(i)]) + " / " +
+                            std::to_string(f.pE[size_t(i)]);
+                   return out;
+                 }();
+          double sum = 0.0;
+          for (int sp = 0; sp < n; ++sp) {
+            const float w = fastWeight(scene, camera, f, sp, enabled, o);
+            EXPECT_NEAR(w, oracle[static_cast<size_t>(sp)], 1e-4) << name << " s'=" << sp << " of (" << s << "," << t << ")";
+            sum += w;
+          }
+          EXPECT_NEAR(sum, 1.0, 1e-5) << name << " (" << s << "," << t << ") " << misHeuristicName(h);
+          ++checked;
+        }
+      }
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(checked, 100) << name;
+}
+
+TEST(BptMis, PartitionOfUnityFurnace) { checkPartition(Scene(furnace()), 5, "furnace"); }
+TEST(BptMis, PartitionOfUnitySquareEmitter) { checkPartition(Scene(squareEmitter()), 4, "square"); }
+TEST(BptMis, PartitionOfUnityPointLight) { checkPartition(Scene(pointLight()), 4, "point"); }
+TEST(BptMis, PartitionOfUnityCornellBox) {
+  checkPartition(Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf")), 5, "cornell");
+}
+
+}  // namespace
+}  // namespace pathlab
