@@ -10,6 +10,8 @@
 namespace pathlab {
 namespace {
 
+using test::floorScene;
+using test::furnace;
 using test::lambertian;
 using test::MeanEstimate;
 using test::quad;
@@ -40,14 +42,6 @@ double zDifference(const MeanEstimate& a, const MeanEstimate& b) {
   return (a.mean - b.mean) / std::sqrt(a.standardError * a.standardError + b.standardError * b.standardError);
 }
 
-SceneDesc furnace(float rho, float Le) {
-  SceneDesc desc;
-  desc.path = "furnace";
-  desc.materials = {lambertian(rho, Spectrum(Le))};
-  desc.meshes = test::inwardBox(1.f, 0);
-  desc.camera = test::lookAt(Vec3(0.1f, 0.2f, 0.3f), Vec3(1.f, -0.3f, -0.5f), Vec3(0, 1, 0), 1.2f);
-  return desc;
-}
 
 RenderSettings bptSettings(int size, int maxLength, uint64_t seed) {
   RenderSettings s;
@@ -117,14 +111,6 @@ TEST(BptFurnace, EachUnweightedTechniqueGivesItsLength) {
     }
 }
 
-SceneDesc floorScene(float rho) {
-  SceneDesc desc;
-  desc.path = "floor";
-  desc.materials = {lambertian(rho)};
-  const float F = 50.f;
-  desc.meshes = {quad(Vec3(-F, 0, F), Vec3(F, 0, F), Vec3(F, 0, -F), Vec3(-F, 0, -F), 0)};
-  return desc;
-}
 
 void expectAgreement(const Scene& scene, RenderSettings s, int passes, const char* what) {
   s.integrator = IntegratorKind::Pt;

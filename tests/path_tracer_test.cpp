@@ -11,6 +11,8 @@
 namespace pathlab {
 namespace {
 
+using test::floorScene;
+using test::furnace;
 using test::lambertian;
 using test::MeanEstimate;
 using test::quad;
@@ -37,14 +39,6 @@ MeanEstimate renderMean(const Scene& scene, const RenderSettings& s, int passes,
   return stats.estimate();
 }
 
-SceneDesc furnace(float rho, float Le) {
-  SceneDesc desc;
-  desc.path = "furnace";
-  desc.materials = {lambertian(rho, Spectrum(Le))};
-  desc.meshes = test::inwardBox(1.f, 0);
-  desc.camera = test::lookAt(Vec3(0.1f, 0.2f, 0.3f), Vec3(1.f, -0.3f, -0.5f), Vec3(0, 1, 0), 1.2f);
-  return desc;
-}
 
 struct FurnaceCase {
   float rho;
@@ -105,14 +99,6 @@ Vec3 floorPointOfPixel(const Camera& camera, int x, int y) {
   return r.o + r.d * (-r.o.y / r.d.y);
 }
 
-SceneDesc floorScene(float rho) {
-  SceneDesc desc;
-  desc.path = "floor";
-  desc.materials = {lambertian(rho)};
-  const float F = 50.f;
-  desc.meshes = {quad(Vec3(-F, 0, F), Vec3(F, 0, F), Vec3(F, 0, -F), Vec3(-F, 0, -F), 0)};
-  return desc;
-}
 
 // Radiance reflected by a Lambertian floor under a square emitter of radiance Le:
 // Lo = rho / pi * E = rho * Le * F (the form factor of the emitter from the floor point).

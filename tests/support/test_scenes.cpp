@@ -47,4 +47,22 @@ CameraDesc lookAt(const Vec3& eye, const Vec3& target, const Vec3& up, float yfo
   return desc;
 }
 
+SceneDesc furnace(float rho, float Le) {
+  SceneDesc desc;
+  desc.path = "furnace";
+  desc.materials = {lambertian(rho, Spectrum(Le))};
+  desc.meshes = inwardBox(1.f, 0);
+  desc.camera = lookAt(Vec3(0.1f, 0.2f, 0.3f), Vec3(1.f, -0.3f, -0.5f), Vec3(0, 1, 0), 1.2f);
+  return desc;
+}
+
+SceneDesc floorScene(float rho) {
+  SceneDesc desc;
+  desc.path = "floor";
+  desc.materials = {lambertian(rho)};
+  const float F = 50.f;
+  desc.meshes = {quad(Vec3(-F, 0, F), Vec3(F, 0, F), Vec3(F, 0, -F), Vec3(-F, 0, -F), 0)};
+  return desc;
+}
+
 }  // namespace pathlab::test

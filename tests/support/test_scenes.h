@@ -18,6 +18,13 @@ TriangleMesh quad(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3
 // Axis-aligned box [-h, h]^3 with faces pointing inward (a closed room seen from inside).
 std::vector<TriangleMesh> inwardBox(float h, int material);
 
+// The white furnace: an inward box [-1,1]^3, every wall Lambertian with albedo rho emitting Le,
+// and a camera inside it.
+SceneDesc furnace(float rho, float Le);
+
+// A 100 m x 100 m Lambertian floor at y = 0 facing +y (no light, no camera).
+SceneDesc floorScene(float rho);
+
 CameraDesc lookAt(const Vec3& eye, const Vec3& target, const Vec3& up, float yfov);
 
 }  // namespace pathlab::test
