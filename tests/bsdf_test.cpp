@@ -226,6 +226,11 @@ TEST(BsdfSampling, SampleEvalPdfConsistent) {
         ASSERT_TRUE(near(s->pdfFwdW, bsdf.pdf(c.wo, s->wi, mode), 1e-4f)) << c.name;
         ASSERT_TRUE(near(s->pdfRevW, e.pdfRevW, 1e-4f)) << c.name;
         ASSERT_TRUE(near(e.pdfRevW, bsdf.pdf(s->wi, c.wo, mode), 1e-4f)) << c.name;
+        // The BPT's misWeight takes a vertex's reverse density from the other subpath's transport
+        // mode: sampling densities must not depend on the mode.
+        const TransportMode other = mode == TransportMode::Radiance ? TransportMode::Importance : TransportMode::Radiance;
+        ASSERT_TRUE(near(bsdf.pdf(c.wo, s->wi, other), s->pdfFwdW, 1e-5f)) << c.name;
+        ASSERT_TRUE(near(bsdf.pdf(s->wi, c.wo, other), s->pdfRevW, 1e-5f)) << c.name;
       }
       EXPECT_GT(nonDelta, 100) << c.name;
     }
