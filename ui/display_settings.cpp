@@ -1,16 +1,10 @@
-// Display transform shared by the viewer and PNG output.
+// Display transform of the viewer: the same exposure and sRGB encoding as PNG output.
 #include "ui/display_settings.h"
 
-#include "core/scene/texture.h"
-
-#include <algorithm>
-#include <cmath>
+#include "core/film/image_io.h"
 
 namespace pathlab::ui {
 
-float displayValue(float linear, const DisplaySettings& settings) {
-  const float v = linear * std::exp2(settings.exposure);
-  return linearToSrgb(std::isfinite(v) ? std::clamp(v, 0.f, 1.f) : 0.f);
-}
+float displayValue(float linear, const DisplaySettings& settings) { return exposeToSrgb(linear, settings.exposure); }
 
 }  // namespace pathlab::ui

@@ -62,8 +62,13 @@ const char* misHeuristicName(MisHeuristic h) {
 }
 
 PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path) {
-  const int s = path.s, t = path.t, n = s + t;
   PathDensities d;
+  pathDensities(scene, camera, path, d);
+  return d;
+}
+
+void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d) {
+  const int s = path.s, t = path.t, n = s + t;
   d.n = n;
   d.pFromLight.assign(static_cast<size_t>(n), 0.0);
   d.pFromCamera.assign(static_cast<size_t>(n), 0.0);
@@ -107,7 +112,6 @@ PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisP
 
   const PathVertex& x0 = vertex(0);
   d.x0CanBeHit = !x0.isDeltaPosition && !x0.isInfinite && x0.light >= 0 && x0.type != VertexType::Camera;
-  return d;
 }
 
 bool techniquePossible(const PathDensities& d, int sp) {
@@ -121,7 +125,10 @@ float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, c
                 const MisOptions& options, float lightTracingRatio) {
   const int s = path.s, t = path.t, n = s + t;
   if (!techniques.contains(s, t)) return 0.f;
-  const PathDensities d = pathDensities(scene, camera, path);
+  // Per-thread scratch: misWeight runs for every technique of every sample, so it must not
+  // allocate; the result still depends only on the arguments.
+  thread_local PathDensities d;
+  pathDensities(scene, camera, path, d);
   if (!techniquePossible(d, s)) return 0.f;
   auto usable = [&](int sp) { return techniques.contains(sp, n - sp) && techniquePossible(d, sp); };
 

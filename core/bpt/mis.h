@@ -40,6 +40,8 @@ struct PathDensities {
   bool x0CanBeHit = false;   // x0 is on an area light (technique s = 0 possible)
 };
 PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path);
+// The same into `d`, reusing its storage (no allocation once it has grown to the path length).
+void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d);
 
 // Whether technique s' (t' = n - s') can produce a path with these delta flags.
 bool techniquePossible(const PathDensities& d, int sPrime);

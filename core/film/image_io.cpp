@@ -26,14 +26,15 @@ ImageFormat imageFormatOf(const std::string& path) {
   throw ImageError(path + ": unknown image format '" + ext + "' (use .exr, .pfm or .png)");
 }
 
+float exposeToSrgb(float linear, float exposure) {
+  const float v = linear * std::exp2(exposure);
+  return linearToSrgb(std::isfinite(v) ? glm::clamp(v, 0.f, 1.f) : 0.f);
+}
+
 std::vector<unsigned char> toneMapSrgb8(const Image& image, float exposure) {
-  const float scale = std::exp2(exposure);
   std::vector<unsigned char> out(image.rgb.size());
-  for (size_t i = 0; i < image.rgb.size(); ++i) {
-    const float v = image.rgb[i] * scale;
-    const float s = linearToSrgb(std::isfinite(v) ? glm::clamp(v, 0.f, 1.f) : 0.f);
-    out[i] = static_cast<unsigned char>(glm::clamp(s * 255.f + 0.5f, 0.f, 255.f));
-  }
+  for (size_t i = 0; i < image.rgb.size(); ++i)
+    out[i] = static_cast<unsigned char>(glm::clamp(exposeToSrgb(image.rgb[i], exposure) * 255.f + 0.5f, 0.f, 255.f));
   return out;
 }
 

@@ -25,6 +25,9 @@ void writeImage(const std::string& path, const Image& image, float exposure = 0.
 
 Image readImage(const std::string& path);  // .exr or .pfm
 
+// Display value in [0,1] of one linear channel: exposure (stops), clamp, sRGB encode.
+float exposeToSrgb(float linear, float exposure);
+
 // The 8-bit sRGB bytes a PNG gets, RGB row-major top-first.
 std::vector<unsigned char> toneMapSrgb8(const Image& image, float exposure);
 
