@@ -3,6 +3,7 @@
 #include "app/render_command.h"
 
 #include "app/progress.h"
+#include "app/pyramid_output.h"
 #include "core/film/image_io.h"
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
@@ -49,6 +50,25 @@ std::string humanCount(double v) {
   return fmt::format("{:.0f}", v);
 }
 
+// Per-technique counters: all of them with --stats, otherwise only the techniques that discarded
+// contributions (so a NaN source is named without asking).
+void printTechniqueCounters(const Counters& c, int maxLength, bool all) {
+  bool header = false;
+  auto row = [&](const std::string& name, const TechniqueCounters& t) {
+    if (!all && t.discarded.total() == 0) return;
+    if (!header) {
+      std::cerr << fmt::format("{:>10} {:>12} {:>12} {:>12} {:>12} {:>10}\n", "technique", "tried", "zero", "blocked",
+                               "contributed", "discarded");
+      header = true;
+    }
+    std::cerr << fmt::format("{:>10} {:>12} {:>12} {:>12} {:>12} {:>10}\n", name, t.tried, t.zero, t.blocked,
+                             t.contributed, t.discarded.total());
+  };
+  for (int k = 1; k <= std::min(maxLength, kCountedLength); ++k)
+    for (int s = 0; s <= k; ++s) row(fmt::format("({},{})", s, k + 1 - s), c.technique(s, k + 1 - s));
+  if (maxLength > kCountedLength) row(fmt::format("k>{}", kCountedLength), c.techniques[kCountedTechniques]);
+}
+
 }  // namespace
 
 void addRenderCommand(CLI::App& app, RenderOptions& o) {
@@ -61,47 +81,37 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--time", o.seconds, "Render for this many seconds of wall time instead of a sample count")
       ->check(CLI::Range(0.001, 7.0 * 24 * 3600))
       ->excludes(spp);
-  cmd->add_option("--width", o.settings.width, "Image width in pixels")->check(CLI::Range(1, kMaxImageSide));
-  cmd->add_option("--height", o.settings.height, "Image height in pixels")->check(CLI::Range(1, kMaxImageSide));
-  cmd->add_option("--max-length", o.settings.maxLength,
-                  "Maximum path length in edges (1: emitters seen directly, 2: direct lighting)")
-      ->check(CLI::Range(1, 100000));
-  cmd->add_option("--integrator", o.settings.integrator,
-                  "Estimator: bpt (bidirectional, default), pt (path tracer), lt (light tracing: the t = 1 techniques)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, IntegratorKind>{{"pt", IntegratorKind::Pt}, {"bpt", IntegratorKind::Bpt},
-                                                {"lt", IntegratorKind::Lt}},
-          CLI::ignore_case));
-  cmd->add_option("--mis", o.settings.mis.heuristic, "MIS heuristic of bpt: balance, power or uniform")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, MisHeuristic>{{"balance", MisHeuristic::Balance}, {"power", MisHeuristic::Power},
-                                              {"uniform", MisHeuristic::Uniform}},
-          CLI::ignore_case));
-  cmd->add_option("--beta", o.settings.mis.beta, "Exponent of the power heuristic")->check(CLI::Range(0.01f, 100.f));
-  cmd->add_option("--techniques", o.settings.techniques,
-                  "Enabled (s,t) techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all");
-  cmd->add_flag("--rr,!--no-rr", o.settings.russianRoulette,
-                "Russian roulette from the third edge on (default on)");
+  cmd->add_option("--width", o.estimator.settings.width, "Image width in pixels")->check(CLI::Range(1, kMaxImageSide));
+  cmd->add_option("--height", o.estimator.settings.height, "Image height in pixels")->check(CLI::Range(1, kMaxImageSide));
+  addEstimatorOptions(cmd, o.estimator);
+  cmd->add_option("--pyramid", o.estimator.settings.pyramidLength,
+                  "Also write every technique (s,t) up to this length, weighted and unweighted, and two mosaics "
+                  "(rows: length, columns: s) next to the output")
+      ->check(CLI::Range(1, kMaxPyramidLength));
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
-  cmd->add_option("--seed", o.settings.seed, "Seed of every random stream (samples are keyed by seed, pixel, index)");
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
-  cmd->add_option("--aperture", o.settings.lens.apertureRadius, "Thin-lens aperture radius in scene units (0: pinhole)")
-      ->check(CLI::Range(0.f, 1e6f));
-  cmd->add_option("--focus-distance", o.settings.lens.focusDistance, "Thin-lens focus distance in scene units")
-      ->check(CLI::Range(1e-6f, 1e9f));
+  cmd->add_flag("--stats", o.stats, "Print per-technique counters: connections tried, zero, blocked, contributing, discarded");
   cmd->add_flag("-f,--force", o.force, "Overwrite the output file if it exists");
 }
 
-int runRender(const RenderOptions& o) {
-  if (static_cast<long long>(o.settings.width) * o.settings.height > kMaxPixels)
-    throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", o.settings.width,
-                                         o.settings.height, kMaxPixels));
-  if (o.settings.integrator != IntegratorKind::Pt) {
-    const TechniqueSet techniques = techniquesOf(o.settings);  // throws on a bad SPEC
+int runRender(RenderOptions o) {
+  finishEstimatorOptions(o.estimator);
+  const RenderSettings& settings = o.estimator.settings;
+  if (static_cast<long long>(settings.width) * settings.height > kMaxPixels)
+    throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", settings.width,
+                                         settings.height, kMaxPixels));
+  if (settings.integrator != IntegratorKind::Pt) {
+    const TechniqueSet techniques = techniquesOf(settings);
     for (int k : techniques.uncoveredLengths())
       std::cerr << fmt::format("pathlab: warning: no enabled technique samples paths of length {}\n", k);
+    if (settings.isolate && !settings.isolate->unweighted &&
+        !techniques.contains(settings.isolate->s, settings.isolate->t))
+      std::cerr << fmt::format("pathlab: warning: technique ({},{}) is not enabled, so its weighted share is zero\n",
+                               settings.isolate->s, settings.isolate->t);
   }
   checkOutputWritable(o.output, o.force);
+  if (settings.pyramidLength > 0)
+    for (const std::string& path : pyramidPaths(o.output, settings.pyramidLength)) checkOutputWritable(path, o.force);
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 
@@ -112,7 +122,7 @@ int runRender(const RenderOptions& o) {
   std::cerr << fmt::format("{}: {} triangles, {} lights, loaded in {:.2f} s\n", o.scene, scene.triangleCount(),
                            scene.lights().size(), loadSeconds);
 
-  RenderSession session(scene, o.settings);
+  RenderSession session(scene, settings);
   const bool timed = o.seconds > 0.0;
   const uint64_t targetSpp = timed ? 0 : static_cast<uint64_t>(o.spp > 0 ? o.spp : kDefaultSpp);
   const auto start = std::chrono::steady_clock::now();
@@ -130,13 +140,15 @@ int runRender(const RenderOptions& o) {
   }
   const double seconds = elapsed();
   writeImage(o.output, session.image(), o.exposure);
+  if (settings.pyramidLength > 0) writePyramid(o.output, session, o.exposure);
 
   const Counters& c = session.counters();
   std::cerr << fmt::format(
       "{}: {} spp ({}) in {:.2f} s, {} samples/s, {} rays/s, {} discarded samples (NaN {}, Inf {}, negative {})\n",
-      o.output, session.passes(), integratorName(o.settings.integrator), seconds,
+      o.output, session.passes(), integratorName(settings.integrator), seconds,
       humanCount(static_cast<double>(c.cameraSamples) / seconds), humanCount(static_cast<double>(c.totalRays()) / seconds),
-      c.discarded(), c.discardedNaN, c.discardedInf, c.discardedNegative);
+      c.discarded(), c.discardedCounts().nan, c.discardedCounts().inf, c.discardedCounts().negative);
+  if (settings.integrator != IntegratorKind::Pt) printTechniqueCounters(c, settings.maxLength, o.stats);
   return 0;
 }
 

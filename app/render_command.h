@@ -1,7 +1,7 @@
 // `pathlab render`: options, validation and the headless render loop.
 #pragma once
 
-#include "core/render/render_settings.h"
+#include "app/estimator_options.h"
 
 #include <CLI/CLI.hpp>
 
@@ -12,21 +12,17 @@ namespace pathlab::app {
 struct RenderOptions {
   std::string scene;
   std::string output;
-  // The CLI renders bidirectionally unless told otherwise (--integrator pt).
-  RenderSettings settings = [] {
-    RenderSettings s;
-    s.integrator = IntegratorKind::Bpt;
-    return s;
-  }();
+  EstimatorOptions estimator;
   int spp = 0;          // 0: use the time limit (or the default of 64 if neither is given)
   double seconds = 0.0;
   int threads = 0;      // 0: every hardware thread
   float exposure = 0.f;
   bool force = false;
+  bool stats = false;   // print the per-technique counters
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& options);
 // Returns the process exit code. Errors are exceptions, reported by main.
-int runRender(const RenderOptions& options);
+int runRender(RenderOptions options);
 
 }  // namespace pathlab::app

@@ -50,12 +50,30 @@ expect_error "too long technique" "9,9" render "$BOX" -o "$TMP/x.pfm" --techniqu
 expect_error "unknown extension" "\.bmp" render "$BOX" -o "$TMP/x.bmp" --spp 1
 expect_error "spp with time" "time|spp" render "$BOX" -o "$TMP/x.pfm" --spp 4 --time 1
 expect_error "zero max length" "max-length" render "$BOX" -o "$TMP/x.pfm" --max-length 0
+expect_error "isolate not S,T" "isolate" render "$BOX" -o "$TMP/x.pfm" --isolate 3
+expect_error "isolate too long" "length 6" render "$BOX" -o "$TMP/x.pfm" --isolate 3,4 --max-length 4
+expect_error "isolate with pt" "bpt or lt" render "$BOX" -o "$TMP/x.pfm" --isolate 1,2 --integrator pt
+expect_error "unweighted alone" "unweighted" render "$BOX" -o "$TMP/x.pfm" --unweighted
+expect_error "pyramid with pt" "pyramid" render "$BOX" -o "$TMP/x.pfm" --pyramid 2 --integrator pt
+expect_error "pyramid too long" "pyramid" render "$BOX" -o "$TMP/x.pfm" --pyramid 9
 expect_error "missing directory" "no-such-dir" render "$BOX" -o "$TMP/no-such-dir/x.pfm" --spp 1 --width 8 --height 8
 
 # Nothing the user made is overwritten without asking.
 echo "precious" >"$TMP/keep.png"
 expect_error "existing output" "exists" render "$BOX" -o "$TMP/keep.png" --spp 1 --width 8 --height 8
 if [ "$(cat "$TMP/keep.png")" = "precious" ]; then ok; else fail "existing output was overwritten"; fi
+
+# The technique pyramid writes one image per technique and two mosaics, and refuses to
+# overwrite any of them.
+if "$PATHLAB" render "$BOX" -o "$TMP/pyr.pfm" --spp 1 --width 16 --height 12 --pyramid 2 2>"$TMP/err"; then
+  count=$(ls "$TMP"/pyr-s*-t*.pfm | wc -l)
+  [ "$count" -eq 10 ] && [ -s "$TMP/pyr-pyramid.png" ] && [ -s "$TMP/pyr-pyramid-unweighted.png" ] && ok ||
+    fail "pyramid files: $count technique images"
+else fail "pyramid render: $(cat "$TMP/err")"; fi
+rm -f "$TMP/pyr.pfm"
+expect_error "pyramid file exists" "pyr-s0-t2.pfm: file exists" render "$BOX" -o "$TMP/pyr.pfm" --spp 1 --width 16 --height 12 --pyramid 2
+"$PATHLAB" render "$BOX" -o "$TMP/iso.pfm" --spp 1 --width 16 --height 12 --isolate 1,2 --unweighted 2>/dev/null && ok ||
+  fail "isolated unweighted render"
 
 # Every bundled scene renders, in every format, without NaN or Inf pixels.
 for scene in "$SRC"/assets/*.gltf "$SRC"/tests/scenes/cornell-box.glb; do

@@ -20,9 +20,11 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const RenderS
       maxLength_(settings.maxLength),
       russianRoulette_(settings.russianRoulette),
       techniques_(techniquesOf(settings)),
-      mis_(settings.mis) {}
+      mis_(settings.mis),
+      isolate_(settings.isolate),
+      pyramidLength_(std::min(settings.pyramidLength, settings.maxLength)) {}
 
-Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, Film* film,
+Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
                              Counters& counters) const {
   // Per-thread buffers sized once: no allocation per sample.
   thread_local CameraSubpath cameraPath;
@@ -31,20 +33,51 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
                                        WalkOptions{maxLength_ + 1, russianRoulette_}, cameraPath, counters);
   const int ns = generateLightSubpath(scene_, lightRng, WalkOptions{maxLength_, russianRoulette_}, lightPath, counters);
 
+  // Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
+  // sample and (s, t): a technique's estimate does not depend on which other techniques are
+  // evaluated, so an isolated render, the pyramid and the full image see the same connections.
+  const uint64_t keyHigh = cameraRng.nextU32();  // two statements: operand order is unspecified
+  const uint64_t connectionKey = keyHigh << 32 | cameraRng.nextU32();
+  const int pyramidLength = targets.pyramid ? pyramidLength_ : 0;
   Spectrum L(0.f);
   const float ratio = lightTracingRatio();
   for (int t = 1; t <= nt; ++t)
     for (int s = 0; s <= ns; ++s) {
       const int k = s + t - 1;
-      if (k < 1 || k > maxLength_ || !techniques_.contains(s, t)) continue;
-      const Connection c = connect(scene_, camera_, lightPath.data(), s, cameraPath.data(), t, cameraRng, counters);
-      if (isBlack(c.L)) continue;
-      const MisPath path{lightPath.data(), s, cameraPath.data(), t, c.hasSampled ? &c.sampled : nullptr};
-      const float w = misWeight(scene_, camera_, path, techniques_, mis_, ratio);
-      if (w == 0.f) continue;
-      const Spectrum contribution = c.L * w;
+      if (k < 1 || k > maxLength_) continue;
+      const bool enabled = techniques_.contains(s, t);
+      const bool isolated = isolate_ && isolate_->s == s && isolate_->t == t;
+      const bool inImage = isolate_ ? isolated && (enabled || isolate_->unweighted) : enabled;
+      const bool inPyramid = k <= pyramidLength;
+      if (!inImage && !inPyramid) continue;
+
+      TechniqueCounters& tc = counters.technique(s, t);
+      ++tc.tried;
+      Pcg32 connectionRng(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))),
+                          connectionKey);
+      const Connection c = connect(scene_, camera_, lightPath.data(), s, cameraPath.data(), t, connectionRng, counters);
+      if (isBlack(c.L)) {
+        ++(c.blocked ? tc.blocked : tc.zero);
+        continue;
+      }
+      ++tc.contributed;
+      if (!isValidContribution(c.L)) {
+        countDiscarded(c.L, tc.discarded);
+        continue;
+      }
+      // The weight is computed over the enabled set; a disabled technique's share is zero.
+      float w = 0.f;
+      if (enabled) {
+        const MisPath path{lightPath.data(), s, cameraPath.data(), t, c.hasSampled ? &c.sampled : nullptr};
+        w = misWeight(scene_, camera_, path, techniques_, mis_, ratio);
+      }
+      const Spectrum weighted = c.L * w;
+      if (inPyramid) targets.pyramid->add(s, t, t == 1 ? c.pRaster : pRaster, weighted, c.L);
+      if (!inImage) continue;
+      const Spectrum contribution = isolated && isolate_->unweighted ? c.L : weighted;
+      if (isBlack(contribution)) continue;
       if (t == 1) {
-        if (film && !film->splat(c.pRaster, contribution)) countDiscarded(contribution, counters);
+        if (targets.film && !targets.film->splat(c.pRaster, contribution)) countDiscarded(contribution, tc.discarded);
       } else {
         L += contribution;
       }

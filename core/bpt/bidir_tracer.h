@@ -6,7 +6,10 @@
 #include "core/bpt/subpath.h"
 #include "core/bpt/technique_set.h"
 #include "core/film/film.h"
+#include "core/film/technique_films.h"
 #include "core/render/render_settings.h"
+
+#include <optional>
 
 namespace pathlab {
 
@@ -17,13 +20,21 @@ inline constexpr uint64_t kLightSubpathsPerCameraSample = 1;
 inline uint64_t lightSubpathsPerPass(uint64_t pixelCount) { return pixelCount * kLightSubpathsPerCameraSample; }
 inline float lightTracingRatio() { return static_cast<float>(kLightSubpathsPerCameraSample); }
 
+// Where one sample's contributions go: the t = 1 splats of the image to `film`, and every
+// technique of the pyramid's lengths, weighted and unweighted, to `pyramid`. Either may be null.
+struct SampleTargets {
+  Film* film = nullptr;
+  TechniqueFilms* pyramid = nullptr;
+};
+
 class BidirTracer {
  public:
   BidirTracer(const Scene& scene, const Camera& camera, const RenderSettings& settings);
 
-  // One camera sample through pRaster and one light subpath: returns the pixel estimate and
-  // splats the t = 1 contributions to `film` (if given), counting refused splats.
-  Spectrum sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, Film* film,
+  // One camera sample through pRaster and one light subpath: returns the camera-side pixel
+  // estimate (t >= 2) and splats the t = 1 contributions. Contributions that are NaN, Inf or
+  // negative are dropped one technique at a time and counted under that technique.
+  Spectrum sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
                   Counters& counters) const;
 
   const TechniqueSet& techniques() const { return techniques_; }
@@ -33,8 +44,10 @@ class BidirTracer {
   const Camera& camera_;
   int maxLength_;
   bool russianRoulette_;
-  TechniqueSet techniques_;
+  TechniqueSet techniques_;  // the enabled set: MIS weights are normalised over it
   MisOptions mis_;
+  std::optional<Isolation> isolate_;
+  int pyramidLength_;
 };
 
 // The TechniqueSet a RenderSettings asks for: its SPEC, restricted to t = 1 for light tracing.

@@ -62,7 +62,10 @@ Connection connect(const Scene& scene, const Camera& camera, const PathVertex* l
     if (isBlack(L)) return c;
     ++counters.shadowRays;
     const Vec3 nq = qs.onSurface() ? qs.ng : Vec3(0.f);
-    if (!scene.visible(qs.p, nq, cs->pLens, Vec3(0.f))) return c;
+    if (!scene.visible(qs.p, nq, cs->pLens, Vec3(0.f))) {
+      c.blocked = true;
+      return c;
+    }
     c.L = L * cs->We / cs->pdfW;
     c.pRaster = cs->pRaster;
     c.sampled.type = VertexType::Camera;
@@ -95,7 +98,10 @@ Connection connect(const Scene& scene, const Camera& camera, const PathVertex* l
     ++counters.shadowRays;
     const bool unblocked = light.isInfinite() ? scene.visibleToInfinity(pt.p, pt.ng, ls.wi)
                                               : scene.visible(pt.p, pt.ng, ls.pLight, ls.nLight);
-    if (!unblocked) return c;
+    if (!unblocked) {
+      c.blocked = true;
+      return c;
+    }
     c.L = L;
     PathVertex& v = c.sampled;
     v.type = VertexType::Light;
@@ -127,7 +133,10 @@ Connection connect(const Scene& scene, const Camera& camera, const PathVertex* l
   const Spectrum L = qs.beta * fq.f * fp.f * pt.beta * G;
   if (isBlack(L)) return c;
   ++counters.shadowRays;
-  if (!scene.visible(pt.p, pt.ng, qs.p, qs.ng)) return c;
+  if (!scene.visible(pt.p, pt.ng, qs.p, qs.ng)) {
+    c.blocked = true;
+    return c;
+  }
   c.L = L;
   return c;
 }

@@ -17,6 +17,7 @@ struct Connection {
   // by its density, so misWeight must see this vertex, not the subpath's own x0 (`hasSampled`).
   PathVertex sampled;
   bool hasSampled = false;
+  bool blocked = false;  // a non-zero contribution whose shadow ray was occluded
 };
 
 // lightPath has at least s vertices, cameraPath at least t (t >= 1, s >= 0). Vertices flagged

@@ -1,38 +1,89 @@
-// Work and health counters of a render: rays traced and samples the film refused.
+// Work and health counters of a render: rays traced, samples the film refused, and per
+// bidirectional technique (s, t) the connections tried, blocked and zero and the contributions
+// discarded. Plain data: one copy per thread, merged after each pass.
 #pragma once
 
 #include "core/math/types.h"
 
+#include <array>
 #include <cstdint>
 
 namespace pathlab {
+
+// Techniques of length <= kCountedLength get counters of their own; longer ones share a bucket.
+inline constexpr int kCountedLength = 12;
+inline constexpr size_t kCountedTechniques = kCountedLength * (kCountedLength + 3) / 2;
+
+struct DiscardCounts {
+  uint64_t nan = 0, inf = 0, negative = 0;
+  uint64_t total() const { return nan + inf + negative; }
+  DiscardCounts& operator+=(const DiscardCounts& o) {
+    nan += o.nan;
+    inf += o.inf;
+    negative += o.negative;
+    return *this;
+  }
+};
+
+struct TechniqueCounters {
+  uint64_t tried = 0;        // connect(s, t) called with both prefixes present
+  uint64_t zero = 0;         // no contribution before any visibility test (delta vertex, f = 0, ...)
+  uint64_t blocked = 0;      // the shadow ray was occluded
+  uint64_t contributed = 0;  // a non-zero unweighted contribution
+  DiscardCounts discarded;   // contributions refused as NaN, Inf or negative
+  TechniqueCounters& operator+=(const TechniqueCounters& o) {
+    tried += o.tried;
+    zero += o.zero;
+    blocked += o.blocked;
+    contributed += o.contributed;
+    discarded += o.discarded;
+    return *this;
+  }
+};
+
+// Slot of technique (s, t) of length k = s + t - 1 >= 1: lengths up to kCountedLength in the
+// TechniqueSet order, every longer technique in the last slot.
+inline size_t techniqueSlot(int s, int t) {
+  const int k = s + t - 1;
+  if (k > kCountedLength) return kCountedTechniques;
+  return static_cast<size_t>((k - 1) * (k + 2) / 2 + s);
+}
 
 struct Counters {
   uint64_t cameraSamples = 0;
   uint64_t rays = 0;          // closest-hit queries
   uint64_t shadowRays = 0;    // visibility queries
-  uint64_t discardedNaN = 0;  // contributions with a NaN channel
-  uint64_t discardedInf = 0;  // ... with an infinite channel
-  uint64_t discardedNegative = 0;
+  DiscardCounts discardedSamples;  // refused at the film's door (whole samples or splats)
+  std::array<TechniqueCounters, kCountedTechniques + 1> techniques{};
 
-  uint64_t discarded() const { return discardedNaN + discardedInf + discardedNegative; }
+  // Every discarded contribution: per technique for the bidirectional tracer, whole samples for
+  // the path tracer.
+  DiscardCounts discardedCounts() const {
+    DiscardCounts d = discardedSamples;
+    for (const TechniqueCounters& t : techniques) d += t.discarded;
+    return d;
+  }
+  uint64_t discarded() const { return discardedCounts().total(); }
   uint64_t totalRays() const { return rays + shadowRays; }
+  TechniqueCounters& technique(int s, int t) { return techniques[techniqueSlot(s, t)]; }
+  const TechniqueCounters& technique(int s, int t) const { return techniques[techniqueSlot(s, t)]; }
+
   Counters& operator+=(const Counters& o) {
     cameraSamples += o.cameraSamples;
     rays += o.rays;
     shadowRays += o.shadowRays;
-    discardedNaN += o.discardedNaN;
-    discardedInf += o.discardedInf;
-    discardedNegative += o.discardedNegative;
+    discardedSamples += o.discardedSamples;
+    for (size_t i = 0; i < techniques.size(); ++i) techniques[i] += o.techniques[i];
     return *this;
   }
 };
 
-// Files a contribution the film refused (isValidContribution false) under its reason.
-inline void countDiscarded(const Spectrum& L, Counters& c) {
-  if (glm::any(glm::isnan(L))) ++c.discardedNaN;
-  else if (glm::any(glm::isinf(L))) ++c.discardedInf;
-  else ++c.discardedNegative;
+// Files a contribution that isValidContribution refused under its reason.
+inline void countDiscarded(const Spectrum& L, DiscardCounts& d) {
+  if (glm::any(glm::isnan(L))) ++d.nan;
+  else if (glm::any(glm::isinf(L))) ++d.inf;
+  else ++d.negative;
 }
+inline void countDiscarded(const Spectrum& L, Counters& c) { countDiscarded(L, c.discardedSamples); }
 
 }  // namespace pathlab

@@ -9,22 +9,34 @@ namespace pathlab {
 
 namespace {
 constexpr int kTileSize = 16;
+
+const RenderSettings& validated(const RenderSettings& settings) {
+  validateSettings(settings);
+  return settings;
+}
 }  // namespace
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
     : scene_(scene),
-      settings_(settings),
-      camera_(scene.cameraDesc(), settings.width, settings.height, settings.lens),
+      settings_(validated(settings)),
+      camera_(settings.camera.value_or(scene.cameraDesc()), settings.width, settings.height, settings.lens),
       pathTracer_(scene, settings),
       film_(settings.width, settings.height) {
   if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, settings);
+  if (bidirTracer_ && settings.pyramidLength > 0)
+    pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength);
 }
 
-Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& counters) const {
-  return sampleAt(x, y, pass, nullptr, counters);
+Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats) const {
+  return sampleAt(x, y, pass, SampleTargets{splats, nullptr}, counters);
 }
 
-Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, Film* film, Counters& counters) const {
+Image RenderSession::techniqueImage(int s, int t, bool unweighted) const {
+  if (!pyramid_) return Image{film_.width(), film_.height(), std::vector<float>(3 * film_.pixelCount(), 0.f)};
+  return pyramid_->readout(s, t, unweighted, film_.samplesPerPixel(), film_.lightSubpaths());
+}
+
+Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const {
   const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(settings_.width) + static_cast<uint64_t>(x);
   Pcg32 rng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Camera);
   const Vec2 uFilm = rng.next2D();  // box filter: uniform over the pixel
@@ -33,31 +45,39 @@ Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, Film* film, Counte
   ++counters.cameraSamples;
   if (bidirTracer_) {
     Pcg32 lightRng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Light);
-    return bidirTracer_->sample(pRaster, uLens, rng, lightRng, film, counters);
+    return bidirTracer_->sample(pRaster, uLens, rng, lightRng, targets, counters);
   }
   const Ray ray = camera_.generateRay(pRaster, uLens);
   return pathTracer_.Li(ray, rng, counters);
 }
 
-void RenderSession::renderPass() {
+bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   tbb::enumerable_thread_specific<Counters> local;
   pixelsDone_.store(0, std::memory_order_relaxed);
   const uint64_t pass = passes_;
+  const SampleTargets targets{&film_, pyramid_.get()};
+  std::atomic<bool> cancelled{false};
   tbb::parallel_for(
       tbb::blocked_range2d<int>(0, settings_.height, kTileSize, 0, settings_.width, kTileSize),
       [&](const tbb::blocked_range2d<int>& tile) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) {
+          cancelled.store(true, std::memory_order_relaxed);
+          return;
+        }
         Counters& c = local.local();
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            const Spectrum L = sampleAt(x, y, pass, &film_, c);
+            const Spectrum L = sampleAt(x, y, pass, targets, c);
             if (!film_.addSample(x, y, L)) countDiscarded(L, c);
           }
         pixelsDone_.fetch_add(static_cast<uint64_t>(tile.rows().size() * tile.cols().size()),
                               std::memory_order_relaxed);
       });
-  film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
   for (const Counters& c : local) counters_ += c;
+  if (cancelled.load()) return false;
+  film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
   ++passes_;
+  return true;
 }
 
 }  // namespace pathlab

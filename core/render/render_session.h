@@ -5,6 +5,7 @@
 
 #include "core/bpt/bidir_tracer.h"
 #include "core/film/film.h"
+#include "core/film/technique_films.h"
 #include "core/metrics/counters.h"
 #include "core/pt/path_tracer.h"
 #include "core/render/render_settings.h"
@@ -17,17 +18,23 @@ namespace pathlab {
 
 class RenderSession {
  public:
+  // Throws std::invalid_argument for settings validateSettings refuses.
   RenderSession(const Scene& scene, const RenderSettings& settings);
 
   // Renders one more pass over the whole film (blocking; uses the TBB arena of the caller).
-  void renderPass();
-  // The estimate of one camera sample, exactly as renderPass computes it (for replay and tests).
-  // For Bpt and Lt this is the camera-side part only: the t = 1 splats of the sample's light
-  // subpath go to the film during renderPass, never here.
-  Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters) const;
+  // When *cancel becomes true the pass stops between tiles and false is returned: the film then
+  // holds part of a pass and the session must be discarded (a new generation starts afresh).
+  bool renderPass(const std::atomic<bool>* cancel = nullptr);
+  // The estimate of one camera sample, exactly as renderPass computes it (for replay and tests):
+  // the camera-side part is returned; for Bpt and Lt the sample's t = 1 splats go to `splats`
+  // if given (a film of the same size, normalised by the caller).
+  Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats = nullptr) const;
 
   const Film& film() const { return film_; }
   Image image() const { return film_.readout(); }
+  // Technique (s, t) of the pyramid (settings.pyramidLength > 0), weighted or unweighted.
+  bool hasPyramid() const { return pyramid_ != nullptr; }
+  Image techniqueImage(int s, int t, bool unweighted) const;
   const Counters& counters() const { return counters_; }
   uint64_t passes() const { return passes_; }
   const RenderSettings& settings() const { return settings_; }
@@ -42,8 +49,9 @@ class RenderSession {
   PathTracer pathTracer_;
   std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt and Lt
 
-  Spectrum sampleAt(int x, int y, uint64_t pass, Film* film, Counters& counters) const;
+  Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;
   Film film_;
+  std::unique_ptr<TechniqueFilms> pyramid_;
   Counters counters_;
   uint64_t passes_ = 0;
   std::atomic<uint64_t> pixelsDone_{0};

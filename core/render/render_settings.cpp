@@ -1,5 +1,13 @@
-// Names of the settings' enumerations, as the CLI and the viewer print them.
+// Names of the settings' enumerations, as the CLI and the viewer print them, and the checks
+// every front end runs before any work.
 #include "core/render/render_settings.h"
+
+#include "core/bpt/technique_set.h"
+#include "core/film/technique_films.h"
+
+#include <fmt/core.h>
+
+#include <stdexcept>
 
 namespace pathlab {
 
@@ -10,6 +18,39 @@ const char* integratorName(IntegratorKind kind) {
     case IntegratorKind::Lt: return "lt";
   }
   return "?";
+}
+
+void validateSettings(const RenderSettings& s) {
+  if (s.width < 1 || s.height < 1)
+    throw std::invalid_argument(fmt::format("image size {} x {} is not positive", s.width, s.height));
+  if (s.maxLength < 1) throw std::invalid_argument(fmt::format("maximum path length {} is less than 1", s.maxLength));
+  const bool bidirectional = s.integrator != IntegratorKind::Pt;
+  if (bidirectional) TechniqueSet::parse(s.techniques, s.maxLength);  // throws naming the bad item
+  if (s.isolate) {
+    const Isolation& i = *s.isolate;
+    if (!bidirectional) throw std::invalid_argument("isolating a technique needs the bpt or lt integrator");
+    const int k = i.s + i.t - 1;
+    if (i.s < 0 || i.t < 1 || k < 1)
+      throw std::invalid_argument(fmt::format("technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", i.s, i.t));
+    if (k > s.maxLength)
+      throw std::invalid_argument(
+          fmt::format("technique ({},{}) has length {}, more than the maximum length {}", i.s, i.t, k, s.maxLength));
+    if (s.integrator == IntegratorKind::Lt && i.t != 1)
+      throw std::invalid_argument(fmt::format("light tracing has only the t = 1 techniques, not ({},{})", i.s, i.t));
+  }
+  if (s.pyramidLength != 0) {
+    if (!bidirectional) throw std::invalid_argument("the technique pyramid needs the bpt or lt integrator");
+    if (s.pyramidLength < 0 || s.pyramidLength > kMaxPyramidLength)
+      throw std::invalid_argument(fmt::format("pyramid length {} is outside 1..{}", s.pyramidLength, kMaxPyramidLength));
+    if (s.pyramidLength > s.maxLength)
+      throw std::invalid_argument(
+          fmt::format("pyramid length {} is more than the maximum path length {}", s.pyramidLength, s.maxLength));
+    const uint64_t bytes = TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength);
+    if (bytes > kMaxPyramidBytes)
+      throw std::invalid_argument(fmt::format("a pyramid of length {} at {} x {} needs {:.1f} GiB (at most {} GiB)",
+                                              s.pyramidLength, s.width, s.height, static_cast<double>(bytes) / (1ull << 30),
+                                              kMaxPyramidBytes >> 30));
+  }
 }
 
 }  // namespace pathlab

@@ -4,14 +4,25 @@
 
 #include "core/bpt/mis_options.h"
 #include "core/camera/camera.h"
+#include "core/scene/scene_desc.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace pathlab {
 
 // Pt: the path tracer; Bpt: bidirectional; Lt: bidirectional restricted to t = 1 (light tracing).
 enum class IntegratorKind { Pt, Bpt, Lt };
+
+// One technique shown alone (Bpt and Lt). Weighted: its MIS-weighted share among the enabled
+// techniques (the shares of all enabled techniques sum to the full image). Unweighted: its own
+// estimate of every path of length s + t - 1 it can sample (weight 1).
+struct Isolation {
+  int s = 0, t = 1;
+  bool unweighted = false;
+  bool operator==(const Isolation&) const = default;
+};
 
 struct RenderSettings {
   int width = 512;
@@ -21,14 +32,27 @@ struct RenderSettings {
   uint64_t seed = 0;
   IntegratorKind integrator = IntegratorKind::Pt;
   LensOptions lens;
+  std::optional<CameraDesc> camera;  // overrides the scene's camera (the viewer's orbit/fly)
   std::string techniques = "all";  // TechniqueSet SPEC (core/bpt/technique_set.h), Bpt and Lt only
   MisOptions mis;
+  std::optional<Isolation> isolate;  // Bpt and Lt only
+  // > 0: also accumulate every technique (s, t) of length <= pyramidLength, weighted and
+  // unweighted, in films of their own (the technique pyramid, Veach 1997 fig. 10.3).
+  int pyramidLength = 0;
 
   bool operator==(const RenderSettings&) const = default;
 };
 
 inline constexpr int kRussianRouletteStart = 3;
+inline constexpr int kMaxPyramidLength = 8;
+inline constexpr uint64_t kMaxPyramidBytes = 8ull << 30;
 
 const char* integratorName(IntegratorKind kind);
+
+// Throws std::invalid_argument with a one-line message naming the setting when the settings
+// cannot be rendered: a bad technique SPEC, an isolated technique outside 1..maxLength or not a
+// light-tracing one under `lt`, isolation or a pyramid asked of the path tracer, a pyramid
+// longer than maxLength or kMaxPyramidLength or too large for memory.
+void validateSettings(const RenderSettings& settings);
 
 }  // namespace pathlab

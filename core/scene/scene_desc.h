@@ -42,6 +42,7 @@ struct CameraDesc {
   float yfov = 0.6911f;           // radians
   std::optional<float> aspectRatio;
   std::string name;
+  bool operator==(const CameraDesc&) const = default;
 };
 
 struct SceneDesc {

@@ -1,0 +1,67 @@
+// Registration and post-processing of the estimator options.
+#include "app/estimator_options.h"
+
+#include <fmt/core.h>
+
+#include <charconv>
+#include <map>
+#include <stdexcept>
+
+namespace pathlab::app {
+
+namespace {
+
+int parseInt(const std::string& text, const std::string& what) {
+  int v = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+  if (ec != std::errc() || ptr != end) throw std::invalid_argument(fmt::format("{}: '{}' is not an integer", what, text));
+  return v;
+}
+
+}  // namespace
+
+void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
+  RenderSettings& s = o.settings;
+  cmd->add_option("--max-length", s.maxLength,
+                  "Maximum path length in edges (1: emitters seen directly, 2: direct lighting)")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--integrator", s.integrator,
+                  "Estimator: bpt (bidirectional, default), pt (path tracer), lt (light tracing: the t = 1 techniques)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, IntegratorKind>{{"pt", IntegratorKind::Pt}, {"bpt", IntegratorKind::Bpt},
+                                                {"lt", IntegratorKind::Lt}},
+          CLI::ignore_case));
+  cmd->add_option("--mis", s.mis.heuristic, "MIS heuristic of bpt: balance, power or uniform")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, MisHeuristic>{{"balance", MisHeuristic::Balance}, {"power", MisHeuristic::Power},
+                                              {"uniform", MisHeuristic::Uniform}},
+          CLI::ignore_case));
+  cmd->add_option("--beta", s.mis.beta, "Exponent of the power heuristic")->check(CLI::Range(0.01f, 100.f));
+  cmd->add_option("--techniques", s.techniques,
+                  "Enabled (s,t) techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all");
+  auto* isolate = cmd->add_option("--isolate", o.isolate,
+                                  "Show technique S,T alone: its MIS-weighted share (or with --unweighted its own estimate)");
+  cmd->add_flag("--unweighted", o.unweighted,
+                "With --isolate: the technique's unweighted estimate of every path of its length it can sample")
+      ->needs(isolate);
+  cmd->add_flag("--rr,!--no-rr", s.russianRoulette, "Russian roulette from the third edge on (default on)");
+  cmd->add_option("--seed", s.seed, "Seed of every random stream (samples are keyed by seed, pixel, index)");
+  cmd->add_option("--aperture", s.lens.apertureRadius, "Thin-lens aperture radius in scene units (0: pinhole)")
+      ->check(CLI::Range(0.f, 1e6f));
+  cmd->add_option("--focus-distance", s.lens.focusDistance, "Thin-lens focus distance in scene units")
+      ->check(CLI::Range(1e-6f, 1e9f));
+}
+
+void finishEstimatorOptions(EstimatorOptions& o) {
+  if (!o.isolate.empty()) {
+    const size_t comma = o.isolate.find(',');
+    if (comma == std::string::npos)
+      throw std::invalid_argument(fmt::format("--isolate: '{}' is not S,T", o.isolate));
+    o.settings.isolate = Isolation{parseInt(o.isolate.substr(0, comma), "--isolate"),
+                                   parseInt(o.isolate.substr(comma + 1), "--isolate"), o.unweighted};
+  }
+  validateSettings(o.settings);
+}
+
+}  // namespace pathlab::app

@@ -1,0 +1,31 @@
+// The options that change the estimate, shared by `render` and `view` so a demo starts in the
+// same state a headless render would: integrator, MIS, techniques, isolation, pyramid, length.
+#pragma once
+
+#include "core/render/render_settings.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace pathlab::app {
+
+struct EstimatorOptions {
+  // The CLI renders bidirectionally unless told otherwise (--integrator pt).
+  RenderSettings settings = [] {
+    RenderSettings s;
+    s.integrator = IntegratorKind::Bpt;
+    return s;
+  }();
+  std::string isolate;      // "S,T" or empty
+  bool unweighted = false;  // with --isolate
+};
+
+// Registers --max-length --integrator --mis --beta --techniques --isolate --unweighted --rr/--no-rr
+// --seed --aperture --focus-distance on `cmd`.
+void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& options);
+// Turns the parsed strings into settings.isolate and checks the result with validateSettings
+// (throws one-line std::invalid_argument / std::runtime_error messages naming the option).
+void finishEstimatorOptions(EstimatorOptions& options);
+
+}  // namespace pathlab::app

@@ -1,0 +1,77 @@
+// Per-technique images and mosaics of the technique pyramid.
+#include "app/pyramid_output.h"
+
+#include "core/film/image_io.h"
+
+#include <fmt/core.h>
+
+#include <filesystem>
+
+namespace pathlab::app {
+
+namespace {
+
+std::string techniquePath(const std::filesystem::path& out, int s, int t, bool unweighted) {
+  std::filesystem::path p = out;
+  p.replace_filename(fmt::format("{}-s{}-t{}{}{}", out.stem().string(), s, t, unweighted ? "-unweighted" : "",
+                                 out.extension().string()));
+  return p.string();
+}
+
+std::string mosaicPath(const std::filesystem::path& out, bool unweighted) {
+  std::filesystem::path p = out;
+  p.replace_filename(fmt::format("{}-pyramid{}.png", out.stem().string(), unweighted ? "-unweighted" : ""));
+  return p.string();
+}
+
+}  // namespace
+
+std::vector<std::string> pyramidPaths(const std::string& output, int length) {
+  std::vector<std::string> paths;
+  for (int k = 1; k <= length; ++k)
+    for (int s = 0; s <= k; ++s)
+      for (bool unweighted : {false, true}) paths.push_back(techniquePath(output, s, k + 1 - s, unweighted));
+  paths.push_back(mosaicPath(output, false));
+  paths.push_back(mosaicPath(output, true));
+  return paths;
+}
+
+Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap, float background) {
+  if (tiles.empty()) return {};
+  const int w = tiles.front().width, h = tiles.front().height;
+  Image m;
+  m.width = (length + 1) * w + (length + 2) * gap;
+  m.height = length * h + (length + 1) * gap;
+  m.rgb.assign(3 * static_cast<size_t>(m.width) * static_cast<size_t>(m.height), background);
+  size_t i = 0;
+  for (int k = 1; k <= length; ++k)
+    for (int s = 0; s <= k && i < tiles.size(); ++s, ++i) {
+      const int x0 = gap + s * (w + gap), y0 = gap + (k - 1) * (h + gap);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const Vec3 v = tiles[i].at(x, y);
+          const size_t o = 3 * (static_cast<size_t>(y0 + y) * static_cast<size_t>(m.width) + static_cast<size_t>(x0 + x));
+          m.rgb[o] = v.r;
+          m.rgb[o + 1] = v.g;
+          m.rgb[o + 2] = v.b;
+        }
+    }
+  return m;
+}
+
+void writePyramid(const std::string& output, const RenderSession& session, float exposure) {
+  const int length = session.settings().pyramidLength;
+  const std::filesystem::path out(output);
+  for (bool unweighted : {false, true}) {
+    std::vector<Image> tiles;
+    for (int k = 1; k <= length; ++k)
+      for (int s = 0; s <= k; ++s) {
+        const int t = k + 1 - s;
+        tiles.push_back(session.techniqueImage(s, t, unweighted));
+        writeImage(techniquePath(out, s, t, unweighted), tiles.back(), exposure);
+      }
+    writeImage(mosaicPath(out, unweighted), techniqueMosaic(tiles, length), exposure);
+  }
+}
+
+}  // namespace pathlab::app

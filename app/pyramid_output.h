@@ -1,0 +1,20 @@
+// `render --pyramid L` output: one image per technique (s, t), weighted and unweighted, and two
+// mosaics laid out like Veach's figure 10.3 (rows: path length k = 1..L; columns: s = 0..k).
+#pragma once
+
+#include "core/render/render_session.h"
+
+#include <string>
+#include <vector>
+
+namespace pathlab::app {
+
+// Every file a pyramid of length L writes next to `output` (OUT.ext -> OUT-s0-t2.ext,
+// OUT-s0-t2-unweighted.ext, ..., OUT-pyramid.png, OUT-pyramid-unweighted.png).
+std::vector<std::string> pyramidPaths(const std::string& output, int length);
+void writePyramid(const std::string& output, const RenderSession& session, float exposure);
+
+// Tiles of one mosaic, row-major in (k, s) order, with a gap of `gap` pixels of value `background`.
+Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap = 4, float background = 0.02f);
+
+}  // namespace pathlab::app

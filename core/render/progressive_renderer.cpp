@@ -1,0 +1,252 @@
+// The worker loop: take the newest generation's settings, render its previews then full passes,
+// publish each finished image; a new generation cancels the pass in flight (between tiles).
+#include "core/render/progressive_renderer.h"
+
+#include "core/film/downsample.h"
+#include "core/render/render_session.h"
+
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+namespace pathlab {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Preview resolutions of a new generation, coarsest first (each 1 sample per pixel).
+constexpr int kPreviewFactors[] = {8, 4, 2};
+
+// The same view at 1/factor of the resolution (rounded up: the aspect ratio may differ by less
+// than a preview pixel).
+RenderSettings previewSettings(const RenderSettings& full, int factor) {
+  RenderSettings p = full;
+  p.width = (full.width + factor - 1) / factor;
+  p.height = (full.height + factor - 1) / factor;
+  p.pyramidLength = 0;
+  return p;
+}
+
+}  // namespace
+
+struct ProgressiveRenderer::State {
+  explicit State(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+
+  mutable std::mutex mutex;
+  std::condition_variable wake;               // settings, scene, pause, stop changed
+  mutable std::condition_variable published;  // a new image was published
+  std::shared_ptr<const Scene> scene;
+  RenderSettings settings;
+  uint64_t generation = 1;
+  bool paused = false, stop = false;
+  uint64_t targetSpp = 0;
+  int thumbnailSide = 128;
+  std::atomic<bool> cancel{false};
+
+  uint64_t version = 0;
+  RenderSnapshot front;
+  std::vector<TechniqueThumbnail> thumbnails;
+  uint64_t thumbnailsVersion = 0;
+
+  tbb::task_arena arena;
+  std::thread worker;
+
+  void run();
+};
+
+void ProgressiveRenderer::State::run() {
+  uint64_t gen = 0;
+  std::shared_ptr<const Scene> sc;
+  RenderSettings set;
+  std::unique_ptr<RenderSession> session;
+  size_t previewStep = 0;
+  Counters previewCounters;
+  Clock::time_point start;
+  uint64_t target = 0;
+  int side = 128;
+
+  auto publish = [&](Image image, bool preview, int factor, const Counters& counters, uint64_t spp) {
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    std::lock_guard lock(mutex);
+    if (generation != gen) return;  // superseded while finishing: never shown
+    front.image = std::move(image);
+    front.generation = gen;
+    front.version = ++version;
+    front.preview = preview;
+    front.previewFactor = factor;
+    front.samplesPerPixel = spp;
+    front.seconds = seconds;
+    front.counters = counters;
+    front.settings = set;
+    published.notify_all();
+  };
+
+  for (;;) {
+    {
+      std::unique_lock lock(mutex);
+      wake.wait(lock, [&] {
+        const bool done = session && target > 0 && session->passes() >= target;
+        return stop || generation != gen || (!paused && !done);
+      });
+      if (stop) return;
+      if (generation != gen) {
+        session.reset();  // before the scene it refers to may be released
+        gen = generation;
+        sc = scene;
+        set = settings;
+        cancel.store(false);
+        previewStep = 0;
+        previewCounters = Counters{};
+        start = Clock::now();
+        thumbnails.clear();
+        ++thumbnailsVersion;
+      }
+      target = targetSpp;
+      side = thumbnailSide;
+    }
+
+    if (previewStep < std::size(kPreviewFactors)) {
+      const int factor = kPreviewFactors[previewStep++];
+      if (set.width < 2 * factor && set.height < 2 * factor) continue;  // no coarser than the image
+      RenderSession preview(*sc, previewSettings(set, factor));
+      if (!arena.execute([&] { return preview.renderPass(&cancel); })) continue;
+      previewCounters += preview.counters();
+      publish(preview.image(), true, factor, previewCounters, 0);
+      continue;
+    }
+
+    if (!session) session = std::make_unique<RenderSession>(*sc, set);
+    if (!arena.execute([&] { return session->renderPass(&cancel); })) continue;
+    Counters counters = previewCounters;
+    counters += session->counters();
+    publish(session->image(), false, 1, counters, session->passes());
+
+    if (session->hasPyramid()) {
+      std::vector<TechniqueThumbnail> thumbs;
+      for (int k = 1; k <= set.pyramidLength; ++k)
+        for (int s = 0; s <= k; ++s) {
+          const int t = k + 1 - s;
+          thumbs.push_back({s, t, downsample(session->techniqueImage(s, t, false), side),
+                            downsample(session->techniqueImage(s, t, true), side)});
+        }
+      std::lock_guard lock(mutex);
+      if (generation == gen) {
+        thumbnails = std::move(thumbs);
+        ++thumbnailsVersion;
+      }
+    }
+  }
+}
+
+ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
+                                         int threads)
+    : state_(std::make_unique<State>(threads)) {
+  validateSettings(settings);
+  state_->scene = std::move(scene);
+  state_->settings = settings;
+  state_->worker = std::thread([s = state_.get()] { s->run(); });
+}
+
+ProgressiveRenderer::~ProgressiveRenderer() {
+  {
+    std::lock_guard lock(state_->mutex);
+    state_->stop = true;
+    state_->cancel.store(true);
+  }
+  state_->wake.notify_all();
+  state_->worker.join();
+}
+
+bool ProgressiveRenderer::setSettings(const RenderSettings& settings) {
+  validateSettings(settings);
+  {
+    std::lock_guard lock(state_->mutex);
+    if (settings == state_->settings) return false;
+    state_->settings = settings;
+    ++state_->generation;
+    state_->cancel.store(true);
+  }
+  state_->wake.notify_all();
+  return true;
+}
+
+void ProgressiveRenderer::setScene(std::shared_ptr<const Scene> scene, const RenderSettings& settings) {
+  validateSettings(settings);
+  {
+    std::lock_guard lock(state_->mutex);
+    state_->scene = std::move(scene);
+    state_->settings = settings;
+    ++state_->generation;
+    state_->cancel.store(true);
+  }
+  state_->wake.notify_all();
+}
+
+RenderSettings ProgressiveRenderer::settings() const {
+  std::lock_guard lock(state_->mutex);
+  return state_->settings;
+}
+
+std::shared_ptr<const Scene> ProgressiveRenderer::scene() const {
+  std::lock_guard lock(state_->mutex);
+  return state_->scene;
+}
+
+uint64_t ProgressiveRenderer::generation() const {
+  std::lock_guard lock(state_->mutex);
+  return state_->generation;
+}
+
+void ProgressiveRenderer::setPaused(bool paused) {
+  {
+    std::lock_guard lock(state_->mutex);
+    state_->paused = paused;
+  }
+  state_->wake.notify_all();
+}
+
+bool ProgressiveRenderer::paused() const {
+  std::lock_guard lock(state_->mutex);
+  return state_->paused;
+}
+
+void ProgressiveRenderer::setTargetSpp(uint64_t spp) {
+  {
+    std::lock_guard lock(state_->mutex);
+    state_->targetSpp = spp;
+  }
+  state_->wake.notify_all();
+}
+
+void ProgressiveRenderer::setThumbnailSide(int side) {
+  std::lock_guard lock(state_->mutex);
+  state_->thumbnailSide = std::max(1, side);
+}
+
+bool ProgressiveRenderer::snapshot(RenderSnapshot& out) const {
+  std::lock_guard lock(state_->mutex);
+  if (state_->front.version == 0 || state_->front.version <= out.version) return false;
+  out = state_->front;
+  return true;
+}
+
+bool ProgressiveRenderer::pyramid(std::vector<TechniqueThumbnail>& out, uint64_t& version) const {
+  std::lock_guard lock(state_->mutex);
+  if (state_->thumbnailsVersion <= version) return false;
+  out = state_->thumbnails;
+  version = state_->thumbnailsVersion;
+  return true;
+}
+
+bool ProgressiveRenderer::waitForSpp(uint64_t spp, double timeoutSeconds) const {
+  std::unique_lock lock(state_->mutex);
+  return state_->published.wait_for(lock, std::chrono::duration<double>(timeoutSeconds), [&] {
+    return state_->front.generation == state_->generation && state_->front.samplesPerPixel >= spp;
+  });
+}
+
+}  // namespace pathlab

@@ -1,0 +1,141 @@
+// Generations of the progressive renderer (issue 3): a settings change restarts accumulation and
+// the images of a generation are exactly those of a standalone render with its settings, however
+// often the settings changed before; previews come first; pause and target stop the worker.
+#include "core/render/progressive_renderer.h"
+#include "core/render/render_session.h"
+#include "core/scene/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+namespace pathlab {
+namespace {
+
+std::shared_ptr<const Scene> cornellBox() {
+  static const auto scene =
+      std::make_shared<const Scene>(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
+  return scene;
+}
+
+RenderSettings small(IntegratorKind integrator, uint64_t seed) {
+  RenderSettings s;
+  s.width = 48;
+  s.height = 32;
+  s.maxLength = 5;
+  s.seed = seed;
+  s.integrator = integrator;
+  return s;
+}
+
+Image standalone(const RenderSettings& settings, uint64_t passes) {
+  RenderSession session(*cornellBox(), settings);
+  for (uint64_t i = 0; i < passes; ++i) session.renderPass();
+  return session.image();
+}
+
+// Waits for a full-resolution snapshot of the current generation with exactly `spp` passes
+// (the renderer is stopped at that target).
+RenderSnapshot settledSnapshot(const ProgressiveRenderer& r, uint64_t spp) {
+  EXPECT_TRUE(r.waitForSpp(spp, 60.0));
+  RenderSnapshot snap;
+  EXPECT_TRUE(r.snapshot(snap));
+  return snap;
+}
+
+void expectSameImage(const Image& a, const Image& b) {
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  // Path tracing is bitwise deterministic; bidirectional splats are atomic double sums whose
+  // order depends on the thread schedule, hence the small relative tolerance.
+  for (size_t i = 0; i < a.rgb.size(); ++i)
+    ASSERT_NEAR(a.rgb[i], b.rgb[i], 1e-5 * std::max(std::abs(a.rgb[i]), std::abs(b.rgb[i])) + 1e-8) << "value " << i;
+}
+
+TEST(ProgressiveRenderer, AGenerationIsAStandaloneRender) {
+  ProgressiveRenderer renderer(cornellBox(), small(IntegratorKind::Pt, 1), 2);
+  renderer.setTargetSpp(3);
+  RenderSnapshot first = settledSnapshot(renderer, 3);
+  EXPECT_FALSE(first.preview);
+  EXPECT_EQ(first.samplesPerPixel, 3u);
+  EXPECT_EQ(first.settings, small(IntegratorKind::Pt, 1));
+  expectSameImage(first.image, standalone(small(IntegratorKind::Pt, 1), 3));
+
+  // Toggle many times quickly; only the last settings may reach the image.
+  for (int i = 0; i < 25; ++i) {
+    RenderSettings s = small(i % 2 ? IntegratorKind::Bpt : IntegratorKind::Lt, static_cast<uint64_t>(i));
+    s.mis.heuristic = i % 3 ? MisHeuristic::Power : MisHeuristic::Balance;
+    EXPECT_TRUE(renderer.setSettings(s));
+  }
+  RenderSettings last = small(IntegratorKind::Bpt, 99);
+  last.techniques = "s=0;s=1;t=1";
+  EXPECT_TRUE(renderer.setSettings(last));
+  EXPECT_FALSE(renderer.setSettings(last));  // unchanged: no new generation
+  const RenderSnapshot snap = settledSnapshot(renderer, 3);
+  EXPECT_EQ(snap.generation, renderer.generation());
+  EXPECT_GT(snap.generation, first.generation);
+  EXPECT_EQ(snap.settings, last);
+  EXPECT_EQ(snap.counters.discarded(), 0u);
+  expectSameImage(snap.image, standalone(last, 3));
+}
+
+TEST(ProgressiveRenderer, PreviewsComeFirstAtLowResolution) {
+  RenderSettings s = small(IntegratorKind::Bpt, 2);
+  s.width = 160;
+  s.height = 120;
+  ProgressiveRenderer renderer(cornellBox(), s, 2);
+  renderer.setTargetSpp(1);
+  ASSERT_TRUE(renderer.waitForSpp(1, 60.0));
+  RenderSnapshot snap;
+  ASSERT_TRUE(renderer.snapshot(snap));
+  EXPECT_FALSE(snap.preview);
+  EXPECT_EQ(snap.image.width, 160);
+  // Three previews (1/8, 1/4, 1/2) and one full pass were published: versions 1..4.
+  EXPECT_EQ(snap.version, 4u);
+  EXPECT_GT(snap.counters.cameraSamples, 160u * 120u);  // the previews' samples count too
+  EXPECT_FALSE(renderer.snapshot(snap));  // nothing newer
+}
+
+TEST(ProgressiveRenderer, RefusesBadSettingsAndKeepsTheOldOnes) {
+  ProgressiveRenderer renderer(cornellBox(), small(IntegratorKind::Bpt, 3), 1);
+  const uint64_t generation = renderer.generation();
+  RenderSettings bad = small(IntegratorKind::Bpt, 3);
+  bad.techniques = "7,7";
+  EXPECT_THROW(renderer.setSettings(bad), std::invalid_argument);
+  EXPECT_EQ(renderer.generation(), generation);
+  EXPECT_EQ(renderer.settings(), small(IntegratorKind::Bpt, 3));
+}
+
+TEST(ProgressiveRenderer, PyramidThumbnailsArePublished) {
+  RenderSettings s = small(IntegratorKind::Bpt, 4);
+  s.pyramidLength = 2;
+  ProgressiveRenderer renderer(cornellBox(), s, 2);
+  renderer.setThumbnailSide(16);
+  renderer.setTargetSpp(2);
+  ASSERT_TRUE(renderer.waitForSpp(2, 60.0));
+  std::vector<TechniqueThumbnail> thumbs;
+  uint64_t version = 0;
+  // The thumbnails follow the image's publication; wait briefly for them.
+  for (int i = 0; i < 200 && !renderer.pyramid(thumbs, version); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(thumbs.size(), 5u);  // (0,2) (1,1) (0,3) (1,2) (2,1)
+  EXPECT_EQ(thumbs[3].s, 1);
+  EXPECT_EQ(thumbs[3].t, 2);
+  EXPECT_EQ(thumbs[3].weighted.width, 16);
+  EXPECT_EQ(thumbs[3].unweighted.height, 10);  // 48 x 32 scaled to a longer side of 16 (one rounded down)
+}
+
+TEST(ProgressiveRenderer, PausedRendersNothingNew) {
+  ProgressiveRenderer renderer(cornellBox(), small(IntegratorKind::Pt, 5), 2);
+  ASSERT_TRUE(renderer.waitForSpp(1, 60.0));
+  renderer.setPaused(true);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the pass in flight ends
+  RenderSnapshot a;
+  renderer.snapshot(a);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  RenderSnapshot b = a;
+  EXPECT_FALSE(renderer.snapshot(b));
+  renderer.setPaused(false);
+  EXPECT_TRUE(renderer.waitForSpp(a.samplesPerPixel + 1, 60.0));
+}
+
+}  // namespace
+}  // namespace pathlab
