@@ -149,7 +149,7 @@ void checkPartition(const Scene& scene, int maxLength, const char* name) {
     for (int t = 1; t <= nt; ++t)
       for (int s = 0; s <= ns && s + t - 1 <= maxLength; ++s) {
         if (s + t < 2) continue;
-        const Connection c = connect(scene, camera, lp.data(), s, cp.data(), t, rng, counters);
+        const Connection c = connect(scene, camera, lp, s, cp, t, rng, counters);
         if (isBlack(c.L)) continue;
         const int n = s + t;
         std::vector<PathVertex> x;
@@ -164,8 +164,8 @@ void checkPartition(const Scene& scene, int maxLength, const char* name) {
             for (int sp = 0; sp < n; ++sp)
               if (sp != s && rng.next1D() < 0.4f) enabled.disable(sp, n - sp);
           const std::vector<double> oracle = oracleWeights(f, enabled, o);
-          // The weight the tracer computes from the walks' own densities.
-          const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr};
+          // The weight the tracer computes from the walks' own densities and the connection's.
+          const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
           const float wReal = misWeight(scene, camera, real, enabled, o, lightTracingRatio());
           EXPECT_NEAR(wReal, oracle[static_cast<size_t>(s)], 1e-4)
               << name << " (" << s << "," << t << ") " << misHeuristicName(h) << [&] {

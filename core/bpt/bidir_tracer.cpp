@@ -55,7 +55,7 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
       ++tc.tried;
       Pcg32 connectionRng(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))),
                           connectionKey);
-      const Connection c = connect(scene_, camera_, lightPath.data(), s, cameraPath.data(), t, connectionRng, counters);
+      const Connection c = connect(scene_, camera_, lightPath, s, cameraPath, t, connectionRng, counters);
       if (isBlack(c.L)) {
         ++(c.blocked ? tc.blocked : tc.zero);
         continue;
@@ -68,7 +68,7 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
       // The weight is computed over the enabled set; a disabled technique's share is zero.
       float w = 0.f;
       if (enabled) {
-        const MisPath path{lightPath.data(), s, cameraPath.data(), t, c.hasSampled ? &c.sampled : nullptr};
+        const MisPath path{lightPath.data(), s, cameraPath.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
         w = misWeight(scene_, camera_, path, techniques_, mis_, ratio);
       }
       const Spectrum weighted = c.L * w;

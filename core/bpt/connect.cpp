@@ -5,14 +5,6 @@
 
 namespace pathlab {
 
-namespace {
-
-Bsdf bsdfAt(const Scene& scene, const PathVertex& v) {
-  return Bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), v.uv, scene.textures()));
-}
-
-}  // namespace
-
 Spectrum emittedOverOriginPdf(const Scene& scene, const PathVertex& x0, const Vec3& w) {
   const Light& light = scene.lights()[static_cast<size_t>(x0.light)];
   const float pmf = scene.lights().pmf(x0.light);
@@ -32,8 +24,8 @@ Spectrum emittedOverOriginPdf(const Scene& scene, const PathVertex& x0, const Ve
   return Spectrum(0.f);
 }
 
-Connection connect(const Scene& scene, const Camera& camera, const PathVertex* lightPath, int s,
-                   const PathVertex* cameraPath, int t, Pcg32& rng, Counters& counters) {
+Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,
+                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters) {
   Connection c;
   if (t < 1 || s < 0) return c;
 
@@ -56,8 +48,11 @@ Connection connect(const Scene& scene, const Camera& camera, const PathVertex* l
     if (qs.type == VertexType::Light) {
       L = emittedOverOriginPdf(scene, qs, cs->wi) * (qs.onSurface() ? absDot(qs.ng, cs->wi) : 1.f);
     } else {
-      const BsdfEval ev = bsdfAt(scene, qs).eval(qs.wo, cs->wi, TransportMode::Importance);
+      const BsdfEval ev = lightPath.bsdf(s - 1).eval(qs.wo, cs->wi, TransportMode::Importance);
       L = qs.beta * ev.f * absDot(cs->wi, qs.ns);
+      c.pdfs.atLight = true;
+      c.pdfs.qsToPt = ev.pdfFwdW;
+      c.pdfs.qsToPrev = ev.pdfRevW;
     }
     if (isBlack(L)) return c;
     ++counters.shadowRays;
@@ -92,7 +87,10 @@ Connection connect(const Scene& scene, const Camera& camera, const PathVertex* l
     const Light& light = scene.lights()[static_cast<size_t>(li)];
     const LightLiSample ls = light.sampleLi(pt.p, uPos);
     if (!(ls.pdfW > 0.f) || isBlack(ls.Li)) return c;
-    const BsdfEval ev = bsdfAt(scene, pt).eval(pt.wo, ls.wi, TransportMode::Radiance);
+    const BsdfEval ev = cameraPath.bsdf(t - 1).eval(pt.wo, ls.wi, TransportMode::Radiance);
+    c.pdfs.atCamera = true;
+    c.pdfs.ptToQs = ev.pdfFwdW;
+    c.pdfs.ptToPrev = ev.pdfRevW;
     const Spectrum L = pt.beta * ev.f * ls.Li * (absDot(ls.wi, pt.ns) / (pmf * ls.pdfW));
     if (isBlack(L)) return c;
     ++counters.shadowRays;
@@ -124,10 +122,11 @@ Connection connect(const Scene& scene, const Camera& camera, const PathVertex* l
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.f)) return c;
   d /= std::sqrt(dist2);
-  const BsdfEval fq = bsdfAt(scene, qs).eval(qs.wo, -d, TransportMode::Importance);
+  const BsdfEval fq = lightPath.bsdf(s - 1).eval(qs.wo, -d, TransportMode::Importance);
   if (isBlack(fq.f)) return c;
-  const BsdfEval fp = bsdfAt(scene, pt).eval(pt.wo, d, TransportMode::Radiance);
+  const BsdfEval fp = cameraPath.bsdf(t - 1).eval(pt.wo, d, TransportMode::Radiance);
   if (isBlack(fp.f)) return c;
+  c.pdfs = ConnectionPdfs{true, fq.pdfFwdW, fq.pdfRevW, true, fp.pdfFwdW, fp.pdfRevW};
   // Geometry term with shading normals (pbrt-v4 G), matching the walks' |cos| with ns.
   const float G = absDot(qs.ns, d) * absDot(pt.ns, d) / dist2;
   const Spectrum L = qs.beta * fq.f * fp.f * pt.beta * G;

@@ -99,14 +99,28 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   const PathVertex* ptMinus = t >= 2 ? &vertex(s + 1) : nullptr;
   const PathVertex* qs = s >= 1 ? &vertex(s - 1) : nullptr;
   const PathVertex* qsMinus = s >= 2 ? &vertex(s - 2) : nullptr;
+  // Density at `next` of scattering at v (from prev): the connection's own evaluation when it
+  // made one at v (`given`), else a fresh one.
+  const ConnectionPdfs* given = path.pdfs;
+  const bool atLight = given && given->atLight && qs && qs->type == VertexType::Surface;
+  const bool atCamera = given && given->atCamera && pt.type == VertexType::Surface;
+  auto scatter = [&](const PathVertex& v, const PathVertex* prev, const PathVertex& next, TransportMode mode,
+                     bool known, float knownPdfW) {
+    return known ? convertDensity(knownPdfW, v, next) : pdfArea(scene, camera, v, prev, next, mode);
+  };
   d.pFromLight[static_cast<size_t>(s)] =
-      qs ? pdfArea(scene, camera, *qs, qsMinus, pt, TransportMode::Importance) : pdfLightOrigin(scene, pt);
+      qs ? scatter(*qs, qsMinus, pt, TransportMode::Importance, atLight, atLight ? given->qsToPt : 0.f)
+         : pdfLightOrigin(scene, pt);
   if (ptMinus)
     d.pFromLight[static_cast<size_t>(s + 1)] =
-        qs ? pdfArea(scene, camera, pt, qs, *ptMinus, TransportMode::Importance) : pdfLightToward(scene, pt, *ptMinus);
-  if (qs) d.pFromCamera[static_cast<size_t>(s - 1)] = pdfArea(scene, camera, pt, ptMinus, *qs, TransportMode::Radiance);
+        qs ? scatter(pt, qs, *ptMinus, TransportMode::Importance, atCamera, atCamera ? given->ptToPrev : 0.f)
+           : pdfLightToward(scene, pt, *ptMinus);
+  if (qs)
+    d.pFromCamera[static_cast<size_t>(s - 1)] =
+        scatter(pt, ptMinus, *qs, TransportMode::Radiance, atCamera, atCamera ? given->ptToQs : 0.f);
   if (qsMinus)
-    d.pFromCamera[static_cast<size_t>(s - 2)] = pdfArea(scene, camera, *qs, &pt, *qsMinus, TransportMode::Radiance);
+    d.pFromCamera[static_cast<size_t>(s - 2)] =
+        scatter(*qs, &pt, *qsMinus, TransportMode::Radiance, atLight, atLight ? given->qsToPrev : 0.f);
   d.delta[static_cast<size_t>(s)] = false;
   if (s >= 1) d.delta[static_cast<size_t>(s - 1)] = false;
 
@@ -148,18 +162,19 @@ float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, c
   const double beta = options.heuristic == MisHeuristic::Balance ? 1.0 : static_cast<double>(options.beta);
   auto count = [&](int sp) { return (n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0; };
   const double own = count(s);
+  auto term = [beta](double x) { return beta == 1.0 ? x : beta == 2.0 ? x * x : std::pow(x, beta); };
   double sum = 1.0;  // the technique itself, relative to (n_s p_s)^beta
   double r = 1.0;
   for (int sp = s + 1; sp < n; ++sp) {  // more light vertices: x(sp-1) moves to the light side
     const size_t i = static_cast<size_t>(sp - 1);
     r *= remap0(d.pFromLight[i]) / remap0(d.pFromCamera[i]);
-    if (usable(sp)) sum += std::pow(r * count(sp) / own, beta);
+    if (usable(sp)) sum += term(r * count(sp) / own);
   }
   r = 1.0;
   for (int sp = s - 1; sp >= 0; --sp) {  // fewer light vertices: x(sp) moves to the camera side
     const size_t i = static_cast<size_t>(sp);
     r *= remap0(d.pFromCamera[i]) / remap0(d.pFromLight[i]);
-    if (usable(sp)) sum += std::pow(r * count(sp) / own, beta);
+    if (usable(sp)) sum += term(r * count(sp) / own);
   }
   const double w = 1.0 / sum;
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;

@@ -3,6 +3,7 @@
 // ScopedAssignment; Tungsten LightPath::misWeight).
 #pragma once
 
+#include "core/bpt/connect.h"
 #include "core/bpt/mis_options.h"
 #include "core/bpt/path_vertex.h"
 #include "core/bpt/technique_set.h"
@@ -21,6 +22,9 @@ struct MisPath {
   // The fresh endpoint of Connection::sampled: t = 1 replaces cameraPath[0] (the lens point);
   // s = 1 with t >= 2 replaces lightPath[0] (the light sample). nullptr when none was drawn.
   const PathVertex* sampled = nullptr;
+  // The connection's own BSDF densities at its endpoints (Connection::pdfs); nullptr: recompute
+  // them from the vertices (the tests' reference path).
+  const ConnectionPdfs* pdfs = nullptr;
 };
 
 // Weight of technique (s, t) among the enabled techniques able to produce the same path.

@@ -14,7 +14,7 @@ namespace {
 void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, TransportMode mode, Pcg32& rng,
                 const WalkOptions& options, Subpath& path, Counters& counters) {
   const Spectrum betaStart = beta;
-  std::optional<Bsdf> prevBsdf;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
+  const Bsdf* prevBsdf = nullptr;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
   while (path.count < options.maxVertices) {
     ++counters.rays;
     const std::optional<SurfaceHit> hit = scene.intersect(ray);
@@ -47,10 +47,12 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       pdfFwdW = scene.lights()[static_cast<size_t>(prev.light)].pdfLe(prev.p, prev.ng, dirGeom).pdfDirW;
     }
     v.pdfFwdA = convertDensity(pdfFwdW, prev, v);
+    // Every surface vertex, the last included, gets its BSDF: connect() evaluates it.
+    Bsdf& bsdf = path.bsdfs[static_cast<size_t>(path.count)];
+    bsdf = Bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), v.uv, scene.textures()));
     ++path.count;
     if (path.count >= options.maxVertices) break;
 
-    const Bsdf bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), v.uv, scene.textures()));
     const float uLobe = rng.next1D();
     const Vec2 uDir = rng.next2D();
     const std::optional<BsdfSample> bs = bsdf.sample(v.wo, uDir, uLobe, mode);
@@ -59,13 +61,13 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     beta *= bs->f * (absDot(bs->wi, v.ns) / bs->pdfFwdW);
     pdfFwdW = bs->pdfFwdW;
     float pdfRevW = bs->pdfRevW;
-    prevBsdf.reset();
+    prevBsdf = nullptr;
     if (bs->isDelta) {
       // pbrt: a delta vertex stores zero densities, remapped to one where ratios are formed.
       v.isDelta = true;
       pdfFwdW = pdfRevW = 0.f;
     } else {
-      prevBsdf.emplace(bsdf);
+      prevBsdf = &bsdf;
     }
     prev.pdfRevA = convertDensity(pdfRevW, v, prev);
     ray = Ray{offsetRayOrigin(v.p, v.ng, bs->wi), bs->wi};

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/bpt/path_vertex.h"
+#include "core/bsdf/bsdf.h"
 #include "core/camera/camera.h"
 #include "core/math/rng.h"
 #include "core/metrics/counters.h"
@@ -14,16 +15,23 @@ namespace pathlab {
 
 // A subpath in a buffer whose capacity is set once (per thread), so that generating a sample
 // never allocates. Vertex 0 is the camera (CameraSubpath) or the point on the light (LightSubpath).
+// The BSDF of every surface vertex is kept beside it: the connections and the walk evaluate it
+// again, and building it (material and texture lookups, frame) is a large part of a sample's cost.
 struct Subpath {
   std::vector<PathVertex> vertices;
+  std::vector<Bsdf> bsdfs;  // bsdfs[i] is valid when vertices[i] is a surface vertex
   int count = 0;
 
   void setCapacity(int n) {
-    if (static_cast<int>(vertices.size()) < n) vertices.resize(static_cast<size_t>(n));
+    if (static_cast<int>(vertices.size()) < n) {
+      vertices.resize(static_cast<size_t>(n));
+      bsdfs.resize(static_cast<size_t>(n));
+    }
   }
   const PathVertex& operator[](int i) const { return vertices[static_cast<size_t>(i)]; }
   PathVertex& operator[](int i) { return vertices[static_cast<size_t>(i)]; }
   const PathVertex* data() const { return vertices.data(); }
+  const Bsdf& bsdf(int i) const { return bsdfs[static_cast<size_t>(i)]; }
 };
 struct CameraSubpath : Subpath {};
 struct LightSubpath : Subpath {};

@@ -91,6 +91,7 @@ Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material) : m_(m
   active_[kDiffuse] = weight_[kDiffuse] > 0.f && base > 0.f &&
                       !(f0DielectricMax_ >= 1.f && f90Dielectric_ >= 1.f);
   active_[kTransmission] = weight_[kTransmission] > 0.f && (base > 0.f || m_.specularFactor > 0.f);
+  diffuseOnly_ = active_[kDiffuse] && !active_[kMetal] && !active_[kSpecular] && !active_[kTransmission];
   hasNonDelta_ = active_[kDiffuse] ||
                  (!reflectionDelta_ && (active_[kMetal] || active_[kSpecular])) ||
                  (!transmissionDelta_ && active_[kTransmission]);
@@ -112,6 +113,10 @@ float Bsdf::transmissionTransmittance(float cosThetaI, float cosThetaT, float et
 // be non-zero samplable (a black conductor still reflects at grazing microfacets).
 Bsdf::LobeProbabilities Bsdf::lobeProbabilities(float cosTheta, float etap) const {
   LobeProbabilities p{};
+  if (diffuseOnly_) {  // the common Lambertian case, without the Fresnel terms that cancel
+    p[kDiffuse] = 1.f;
+    return p;
+  }
   const float base = maxComponent(m_.baseColor);
   if (active_[kMetal]) {
     p[kMetal] = weight_[kMetal] *
@@ -175,6 +180,7 @@ Spectrum Bsdf::evalLocal(const Vec3& o, const Vec3& i, float etap, TransportMode
 }
 
 float Bsdf::pdfLocal(const Vec3& o, const Vec3& i, float etap) const {
+  if (diffuseOnly_) return i.z > 0.f ? cosineHemispherePdf(i.z) : 0.f;
   const LobeProbabilities p = lobeProbabilities(o.z, etap);
   float pdf = 0.f;
   if (i.z > 0.f) {

@@ -59,6 +59,7 @@ class Bsdf {
   // ns: shading normal (interpolated); ng: geometric normal. Neither need face the viewer. For
   // transmission, ng points to the outside of the solid (ior is inside relative to outside).
   Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material);
+  Bsdf() = default;  // a black placeholder (subpath buffers); assign a real one before use
 
   // Non-delta part only; zero for delta-only materials.
   BsdfEval eval(const Vec3& wo, const Vec3& wi, TransportMode mode) const;
@@ -91,10 +92,11 @@ class Bsdf {
   float shadingCorrection(const Vec3& wo, const Vec3& wi, TransportMode mode) const;
 
   Frame frame_;
-  Vec3 ng_;
+  Vec3 ng_{0.f, 0.f, 1.f};
   MaterialPoint m_;
   float alpha_ = 0.f;
   bool hasNonDelta_ = true;
+  bool diffuseOnly_ = false;        // only the diffuse lobe is active: densities are cosine's
   float weight_[kLobeCount] = {};   // lobe weights from metallic and transmission
   bool active_[kLobeCount] = {};    // the lobe can be non-zero somewhere
   bool reflectionDelta_ = false;    // metal and specular layer are mirrors
