@@ -12,6 +12,8 @@
 #include <tbb/global_control.h>
 
 #include <chrono>
+#include <cstdio>
+#include <optional>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
@@ -69,13 +71,60 @@ void printTechniqueCounters(const Counters& c, int maxLength, bool all) {
   if (maxLength > kCountedLength) row(fmt::format("k>{}", kCountedLength), c.techniques[kCountedTechniques]);
 }
 
+struct ReplayRequest {
+  int x = 0, y = 0;
+  uint64_t sample = 0;
+};
+
+ReplayRequest parseReplay(const std::string& text, const RenderSettings& settings) {
+  ReplayRequest r;
+  long long x = -1, y = -1, sample = -1;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%lld,%lld,%lld%c", &x, &y, &sample, &extra) != 3)
+    throw std::invalid_argument(fmt::format("--replay: '{}' is not X,Y,SAMPLE", text));
+  if (x < 0 || y < 0 || x >= settings.width || y >= settings.height || sample < 0)
+    throw std::invalid_argument(fmt::format("--replay: pixel {},{} sample {} is outside the {} x {} image", x, y, sample,
+                                            settings.width, settings.height));
+  r.x = static_cast<int>(x);
+  r.y = static_cast<int>(y);
+  r.sample = static_cast<uint64_t>(sample);
+  return r;
+}
+
+// One sample, exactly as the render computed it, technique by technique (stdout).
+int runReplay(const RenderSession& session, const ReplayRequest& r) {
+  Counters counters;
+  SampleTrace trace;
+  Film splats(session.settings().width, session.settings().height);
+  const Spectrum L = session.replaySample(r.x, r.y, r.sample, counters, &splats, &trace);
+  std::cout << fmt::format("pixel {},{} sample {} ({}): camera-side estimate ({:g}, {:g}, {:g})\n", r.x, r.y, r.sample,
+                           integratorName(session.settings().integrator), L.r, L.g, L.b);
+  if (session.settings().integrator == IntegratorKind::Pt) return 0;
+  std::cout << fmt::format("camera subpath {} vertices, light subpath {} vertices\n", trace.cameraVertices,
+                           trace.lightVertices);
+  std::cout << fmt::format("{:>8} {:>36} {:>10} {:>36} {:>16} {}\n", "(s,t)", "unweighted", "weight", "weighted",
+                           "raster", "");
+  for (const TechniqueRecord& t : trace.records) {
+    const Spectrum w = t.unweighted * t.weight;
+    std::cout << fmt::format("{:>8} {:>36} {:>10.4g} {:>36} {:>16} {}\n", fmt::format("({},{})", t.s, t.t),
+                             fmt::format("({:.4g}, {:.4g}, {:.4g})", t.unweighted.r, t.unweighted.g, t.unweighted.b),
+                             t.weight, fmt::format("({:.4g}, {:.4g}, {:.4g})", w.r, w.g, w.b),
+                             fmt::format("{:.1f},{:.1f}", t.pRaster.x, t.pRaster.y),
+                             t.blocked ? "blocked" : isBlack(t.unweighted) ? "zero" : t.inImage ? "" : "not in the image");
+  }
+  return 0;
+}
+
 }  // namespace
 
 void addRenderCommand(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene headless to an image file");
   cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
-  cmd->add_option("-o,--output", o.output, "Output image: .exr and .pfm store float radiance, .png is tone mapped (sRGB)")
-      ->required();
+  auto* output =
+      cmd->add_option("-o,--output", o.output, "Output image: .exr and .pfm store float radiance, .png is tone mapped (sRGB)");
+  cmd->add_option("--replay", o.replay,
+                  "Replay sample SAMPLE of pixel X,Y with the same options and print every technique's part")
+      ->excludes(output);
   auto* spp = cmd->add_option("--spp", o.spp, "Samples per pixel (default 64 when --time is not given)")
                   ->check(CLI::Range(1, kMaxSpp));
   cmd->add_option("--time", o.seconds, "Render for this many seconds of wall time instead of a sample count")
@@ -90,6 +139,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
       ->check(CLI::Range(1, kMaxPyramidLength));
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
+  cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
+                "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
   cmd->add_flag("--stats", o.stats, "Print per-technique counters: connections tried, zero, blocked, contributing, discarded");
   cmd->add_flag("-f,--force", o.force, "Overwrite the output file if it exists");
 }
@@ -97,6 +148,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
 int runRender(RenderOptions o) {
   finishEstimatorOptions(o.estimator);
   const RenderSettings& settings = o.estimator.settings;
+  if (o.output.empty() && o.replay.empty())
+    throw std::runtime_error("render needs an output image (-o OUT) or --replay X,Y,SAMPLE");
   if (static_cast<long long>(settings.width) * settings.height > kMaxPixels)
     throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", settings.width,
                                          settings.height, kMaxPixels));
@@ -109,8 +162,10 @@ int runRender(RenderOptions o) {
       std::cerr << fmt::format("pathlab: warning: technique ({},{}) is not enabled, so its weighted share is zero\n",
                                settings.isolate->s, settings.isolate->t);
   }
-  checkOutputWritable(o.output, o.force);
-  if (settings.pyramidLength > 0)
+  std::optional<ReplayRequest> replay;
+  if (!o.replay.empty()) replay = parseReplay(o.replay, settings);
+  if (!replay) checkOutputWritable(o.output, o.force);
+  if (!replay && settings.pyramidLength > 0)
     for (const std::string& path : pyramidPaths(o.output, settings.pyramidLength)) checkOutputWritable(path, o.force);
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
@@ -123,6 +178,7 @@ int runRender(RenderOptions o) {
                            scene.lights().size(), loadSeconds);
 
   RenderSession session(scene, settings);
+  if (replay) return runReplay(session, *replay);
   const bool timed = o.seconds > 0.0;
   const uint64_t targetSpp = timed ? 0 : static_cast<uint64_t>(o.spp > 0 ? o.spp : kDefaultSpp);
   const auto start = std::chrono::steady_clock::now();
@@ -149,6 +205,16 @@ int runRender(RenderOptions o) {
       humanCount(static_cast<double>(c.cameraSamples) / seconds), humanCount(static_cast<double>(c.totalRays()) / seconds),
       c.discarded(), c.discardedCounts().nan, c.discardedCounts().inf, c.discardedCounts().negative);
   if (settings.integrator != IntegratorKind::Pt) printTechniqueCounters(c, settings.maxLength, o.stats);
+  if (settings.checkMis)
+    std::cerr << fmt::format("MIS check: {} of {} paths whose weights do not sum to one\n", c.misPartitionFailures,
+                             c.misPartitionChecks);
+  for (size_t i = 0; i < c.discardExampleCount; ++i) {
+    const DiscardExample& e = c.discardExamples[i];
+    std::cerr << fmt::format("discarded ({:g}, {:g}, {:g}) at pixel {},{} sample {}{}: rerun with the same options and "
+                             "--replay {},{},{}\n",
+                             e.value.r, e.value.g, e.value.b, e.x, e.y, e.sample,
+                             e.s >= 0 ? fmt::format(" technique ({},{})", e.s, e.t) : std::string(), e.x, e.y, e.sample);
+  }
   return 0;
 }
 

@@ -19,6 +19,7 @@ struct RenderOptions {
   float exposure = 0.f;
   bool force = false;
   bool stats = false;   // print the per-technique counters
+  std::string replay;   // "X,Y,SAMPLE": print that one sample's techniques instead of rendering
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& options);

@@ -172,6 +172,41 @@ TEST(RenderSettingsValidation, RefusesWhatCannotBeRendered) {
                std::invalid_argument);
 }
 
+// Replaying every pixel's sample (camera side plus its t = 1 splats) rebuilds the rendered
+// film: the replay is the render, technique by technique.
+TEST(RenderSession, ReplayOfEverySampleRebuildsTheBidirectionalImage) {
+  RenderSettings s = pyramidSettings(5, 0, 21);
+  RenderSession session(cornellBox(), s);
+  session.renderPass();
+  Film replayed(s.width, s.height);
+  Counters c;
+  SampleTrace trace;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      EXPECT_TRUE(replayed.addSample(x, y, session.replaySample(x, y, 0, c, &replayed, &trace)));
+      for (const TechniqueRecord& r : trace.records) EXPECT_LE(r.s + r.t - 1, 5);
+    }
+  replayed.finishPass(1, lightSubpathsPerPass(replayed.pixelCount()));
+  expectImagesNear(replayed.readout(), session.image(), 1e-5, "replayed vs rendered");
+}
+
+// The checkMis setting (on in debug builds) finds the weights a partition of unity on every path
+// of every bundled scene, under each heuristic.
+TEST(RenderSession, MisWeightsSumToOneOnEveryPathOfTheBundledScenes) {
+  for (const char* name : {"cornell-box", "veach-mis", "bidir-lamp", "caustic"}) {
+    const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name + ".gltf"));
+    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+      RenderSettings s = pyramidSettings(8, 0, 22);
+      s.mis.heuristic = h;
+      s.checkMis = true;
+      RenderSession session(scene, s);
+      session.renderPass();
+      EXPECT_GT(session.counters().misPartitionChecks, 100u) << name;
+      EXPECT_EQ(session.counters().misPartitionFailures, 0u) << name << " " << misHeuristicName(h);
+    }
+  }
+}
+
 // A cancelled pass stops between tiles and leaves the pass count alone.
 TEST(RenderSession, CancelledPassReportsIt) {
   RenderSession session(cornellBox(), pyramidSettings(4, 0, 0));

@@ -75,6 +75,13 @@ expect_error "pyramid file exists" "pyr-s0-t2.pfm: file exists" render "$BOX" -o
 "$PATHLAB" render "$BOX" -o "$TMP/iso.pfm" --spp 1 --width 16 --height 12 --isolate 1,2 --unweighted 2>/dev/null && ok ||
   fail "isolated unweighted render"
 
+# --replay prints one sample technique by technique; bad requests are one-line errors.
+if "$PATHLAB" render "$BOX" --replay 5,6,2 --width 16 --height 12 --max-length 3 >"$TMP/replay" 2>"$TMP/err" &&
+  grep -q "pixel 5,6 sample 2" "$TMP/replay" && grep -q "(1,2)" "$TMP/replay"; then ok; else fail "replay: $(cat "$TMP/replay" "$TMP/err")"; fi
+expect_error "replay outside" "outside" render "$BOX" --replay 99,1,0 --width 16 --height 12
+expect_error "replay not X,Y,S" "replay" render "$BOX" --replay 1,2 --width 16 --height 12
+expect_error "no output" "output" render "$BOX" --spp 1
+
 # Every bundled scene renders, in every format, without NaN or Inf pixels.
 for scene in "$SRC"/assets/*.gltf "$SRC"/tests/scenes/cornell-box.glb; do
   name=$(basename "$scene")

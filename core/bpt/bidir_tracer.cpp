@@ -22,7 +22,8 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const RenderS
       techniques_(techniquesOf(settings)),
       mis_(settings.mis),
       isolate_(settings.isolate),
-      pyramidLength_(std::min(settings.pyramidLength, settings.maxLength)) {}
+      pyramidLength_(std::min(settings.pyramidLength, settings.maxLength)),
+      checkMis_(settings.checkMis) {}
 
 Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
                              Counters& counters) const {
@@ -39,6 +40,15 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
   const uint64_t keyHigh = cameraRng.nextU32();  // two statements: operand order is unspecified
   const uint64_t connectionKey = keyHigh << 32 | cameraRng.nextU32();
   const int pyramidLength = targets.pyramid ? pyramidLength_ : 0;
+  if (targets.trace) {
+    targets.trace->cameraVertices = nt;
+    targets.trace->lightVertices = ns;
+    targets.trace->records.clear();
+  }
+  auto discard = [&](const Spectrum& value, int s, int t, TechniqueCounters& tc) {
+    countDiscarded(value, tc.discarded);
+    counters.noteDiscard(DiscardExample{targets.id.x, targets.id.y, targets.id.sample, s, t, value});
+  };
   Spectrum L(0.f);
   const float ratio = lightTracingRatio();
   for (int t = 1; t <= nt; ++t)
@@ -58,11 +68,12 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
       const Connection c = connect(scene_, camera_, lightPath, s, cameraPath, t, connectionRng, counters);
       if (isBlack(c.L)) {
         ++(c.blocked ? tc.blocked : tc.zero);
+        if (targets.trace) targets.trace->records.push_back({s, t, c.L, 0.f, pRaster, c.blocked, false});
         continue;
       }
       ++tc.contributed;
       if (!isValidContribution(c.L)) {
-        countDiscarded(c.L, tc.discarded);
+        discard(c.L, s, t, tc);
         continue;
       }
       // The weight is computed over the enabled set; a disabled technique's share is zero.
@@ -70,14 +81,21 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
       if (enabled) {
         const MisPath path{lightPath.data(), s, cameraPath.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
         w = misWeight(scene_, camera_, path, techniques_, mis_, ratio);
+        if (checkMis_) {
+          ++counters.misPartitionChecks;
+          const double sum = misWeightSum(scene_, camera_, path, techniques_, mis_, ratio);
+          if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
+        }
       }
+      if (targets.trace)
+        targets.trace->records.push_back({s, t, c.L, w, t == 1 ? c.pRaster : pRaster, false, inImage});
       const Spectrum weighted = c.L * w;
       if (inPyramid) targets.pyramid->add(s, t, t == 1 ? c.pRaster : pRaster, weighted, c.L);
       if (!inImage) continue;
       const Spectrum contribution = isolated && isolate_->unweighted ? c.L : weighted;
       if (isBlack(contribution)) continue;
       if (t == 1) {
-        if (targets.film && !targets.film->splat(c.pRaster, contribution)) countDiscarded(contribution, tc.discarded);
+        if (targets.film && !targets.film->splat(c.pRaster, contribution)) discard(contribution, s, t, tc);
       } else {
         L += contribution;
       }

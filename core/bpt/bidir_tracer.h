@@ -20,11 +20,34 @@ inline constexpr uint64_t kLightSubpathsPerCameraSample = 1;
 inline uint64_t lightSubpathsPerPass(uint64_t pixelCount) { return pixelCount * kLightSubpathsPerCameraSample; }
 inline float lightTracingRatio() { return static_cast<float>(kLightSubpathsPerCameraSample); }
 
-// Where one sample's contributions go: the t = 1 splats of the image to `film`, and every
-// technique of the pyramid's lengths, weighted and unweighted, to `pyramid`. Either may be null.
+// One technique's part of a replayed sample (`pathlab render --replay`).
+struct TechniqueRecord {
+  int s = 0, t = 1;
+  Spectrum unweighted{0.f};  // connect(s, t)'s contribution
+  float weight = 0.f;        // its MIS weight among the enabled techniques (0 if disabled)
+  Vec2 pRaster{0.f};         // where it lands: the sample's own pixel, or the splat position (t = 1)
+  bool blocked = false;
+  bool inImage = false;      // reached the image (enabled, or the isolated technique)
+};
+struct SampleTrace {
+  int cameraVertices = 0, lightVertices = 0;
+  std::vector<TechniqueRecord> records;  // every technique tried, in evaluation order
+};
+
+// Which sample this is, for the discarded-sample report (Counters::discardExamples).
+struct SampleId {
+  int x = -1, y = -1;
+  uint64_t sample = 0;
+};
+
+// Where one sample's contributions go: the t = 1 splats of the image to `film`, every technique
+// of the pyramid's lengths, weighted and unweighted, to `pyramid`, and a record of each
+// technique to `trace`. Each may be null.
 struct SampleTargets {
   Film* film = nullptr;
   TechniqueFilms* pyramid = nullptr;
+  SampleTrace* trace = nullptr;
+  SampleId id;
 };
 
 class BidirTracer {
@@ -48,6 +71,7 @@ class BidirTracer {
   MisOptions mis_;
   std::optional<Isolation> isolate_;
   int pyramidLength_;
+  bool checkMis_;
 };
 
 // The TechniqueSet a RenderSettings asks for: its SPEC, restricted to t = 1 for light tracing.

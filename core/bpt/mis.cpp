@@ -135,22 +135,20 @@ bool techniquePossible(const PathDensities& d, int sp) {
   return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
 }
 
-float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
-                const MisOptions& options, float lightTracingRatio) {
-  const int s = path.s, t = path.t, n = s + t;
-  if (!techniques.contains(s, t)) return 0.f;
-  // Per-thread scratch: misWeight runs for every technique of every sample, so it must not
-  // allocate; the result still depends only on the arguments.
-  thread_local PathDensities d;
-  pathDensities(scene, camera, path, d);
-  if (!techniquePossible(d, s)) return 0.f;
+namespace {
+
+// Weight of technique s among the usable ones for the path whose densities are d.
+double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& techniques, const MisOptions& options,
+                           float lightTracingRatio) {
+  const int n = d.n;
   auto usable = [&](int sp) { return techniques.contains(sp, n - sp) && techniquePossible(d, sp); };
+  if (!usable(s)) return 0.0;
 
   if (options.heuristic == MisHeuristic::Uniform) {
     // 1 / (number of enabled techniques able to produce this path), counted.
     int count = 0;
     for (int sp = 0; sp < n; ++sp) count += usable(sp) ? 1 : 0;
-    return 1.f / static_cast<float>(count);
+    return 1.0 / static_cast<double>(count);
   }
 
   // Veach 1997 eq. 10.9 (balance: beta = 1) and the power heuristic with exponent beta:
@@ -176,8 +174,29 @@ float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, c
     r *= remap0(d.pFromCamera[i]) / remap0(d.pFromLight[i]);
     if (usable(sp)) sum += term(r * count(sp) / own);
   }
-  const double w = 1.0 / sum;
+  return 1.0 / sum;
+}
+
+}  // namespace
+
+float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
+                const MisOptions& options, float lightTracingRatio) {
+  if (!techniques.contains(path.s, path.t)) return 0.f;
+  // Per-thread scratch: misWeight runs for every technique of every sample, so it must not
+  // allocate; the result still depends only on the arguments.
+  thread_local PathDensities d;
+  pathDensities(scene, camera, path, d);
+  const double w = weightFromDensities(d, path.s, techniques, options, lightTracingRatio);
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;
+}
+
+double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
+                    const MisOptions& options, float lightTracingRatio) {
+  thread_local PathDensities d;
+  pathDensities(scene, camera, path, d);
+  double sum = 0.0;
+  for (int sp = 0; sp < d.n; ++sp) sum += weightFromDensities(d, sp, techniques, options, lightTracingRatio);
+  return sum;
 }
 
 }  // namespace pathlab

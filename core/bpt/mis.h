@@ -34,6 +34,12 @@ struct MisPath {
 float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
                 const MisOptions& options, float lightTracingRatio = 1.f);
 
+// The sum over every enabled technique able to produce this path of its weight (the path's own
+// densities, each technique's ratios walked from it): one whenever the weights are a partition of
+// unity (Veach 1997 eq. 9.11). For the checkMis setting and the tests.
+double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
+                    const MisOptions& options, float lightTracingRatio = 1.f);
+
 // The densities of the whole path x0 .. x(n-1) (n = s + t, x0 on the light, x(n-1) the camera)
 // after the connection: pFromLight[i] / pFromCamera[i] are the area densities of x_i sampled from
 // the light / camera side, as misWeight sees them. Exposed for the tests' brute-force oracle.

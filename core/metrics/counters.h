@@ -49,12 +49,31 @@ inline size_t techniqueSlot(int s, int t) {
   return static_cast<size_t>((k - 1) * (k + 2) / 2 + s);
 }
 
+// Where a discarded contribution came from, so `pathlab render --replay X,Y,SAMPLE` can
+// reproduce it. s = t = -1 for a whole path-tracer sample.
+struct DiscardExample {
+  int x = -1, y = -1;
+  uint64_t sample = 0;
+  int s = -1, t = -1;
+  Spectrum value{0.f};
+};
+inline constexpr size_t kDiscardExamples = 4;
+
 struct Counters {
   uint64_t cameraSamples = 0;
   uint64_t rays = 0;          // closest-hit queries
   uint64_t shadowRays = 0;    // visibility queries
   DiscardCounts discardedSamples;  // refused at the film's door (whole samples or splats)
   std::array<TechniqueCounters, kCountedTechniques + 1> techniques{};
+  // Paths whose enabled techniques' MIS weights did not sum to one (RenderSettings::checkMis).
+  uint64_t misPartitionFailures = 0;
+  uint64_t misPartitionChecks = 0;
+  std::array<DiscardExample, kDiscardExamples> discardExamples{};
+  size_t discardExampleCount = 0;
+
+  void noteDiscard(const DiscardExample& e) {
+    if (discardExampleCount < kDiscardExamples) discardExamples[discardExampleCount++] = e;
+  }
 
   // Every discarded contribution: per technique for the bidirectional tracer, whole samples for
   // the path tracer.
@@ -74,6 +93,9 @@ struct Counters {
     shadowRays += o.shadowRays;
     discardedSamples += o.discardedSamples;
     for (size_t i = 0; i < techniques.size(); ++i) techniques[i] += o.techniques[i];
+    misPartitionFailures += o.misPartitionFailures;
+    misPartitionChecks += o.misPartitionChecks;
+    for (size_t i = 0; i < o.discardExampleCount; ++i) noteDiscard(o.discardExamples[i]);
     return *this;
   }
 };

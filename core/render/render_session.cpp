@@ -27,8 +27,9 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength);
 }
 
-Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats) const {
-  return sampleAt(x, y, pass, SampleTargets{splats, nullptr}, counters);
+Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats,
+                                     SampleTrace* trace) const {
+  return sampleAt(x, y, pass, SampleTargets{splats, nullptr, trace, SampleId{x, y, pass}}, counters);
 }
 
 Image RenderSession::techniqueImage(int s, int t, bool unweighted) const {
@@ -55,7 +56,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   tbb::enumerable_thread_specific<Counters> local;
   pixelsDone_.store(0, std::memory_order_relaxed);
   const uint64_t pass = passes_;
-  const SampleTargets targets{&film_, pyramid_.get()};
+  const SampleTargets shared{&film_, pyramid_.get(), nullptr, {}};
   std::atomic<bool> cancelled{false};
   tbb::parallel_for(
       tbb::blocked_range2d<int>(0, settings_.height, kTileSize, 0, settings_.width, kTileSize),
@@ -67,8 +68,13 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
         Counters& c = local.local();
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+            SampleTargets targets = shared;
+            targets.id = SampleId{x, y, pass};
             const Spectrum L = sampleAt(x, y, pass, targets, c);
-            if (!film_.addSample(x, y, L)) countDiscarded(L, c);
+            if (!film_.addSample(x, y, L)) {
+              countDiscarded(L, c);
+              c.noteDiscard(DiscardExample{x, y, pass, -1, -1, L});
+            }
           }
         pixelsDone_.fetch_add(static_cast<uint64_t>(tile.rows().size() * tile.cols().size()),
                               std::memory_order_relaxed);

@@ -28,7 +28,8 @@ class RenderSession {
   // The estimate of one camera sample, exactly as renderPass computes it (for replay and tests):
   // the camera-side part is returned; for Bpt and Lt the sample's t = 1 splats go to `splats`
   // if given (a film of the same size, normalised by the caller).
-  Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats = nullptr) const;
+  Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats = nullptr,
+                        SampleTrace* trace = nullptr) const;
 
   const Film& film() const { return film_; }
   Image image() const { return film_.readout(); }

@@ -39,6 +39,13 @@ struct RenderSettings {
   // > 0: also accumulate every technique (s, t) of length <= pyramidLength, weighted and
   // unweighted, in films of their own (the technique pyramid, Veach 1997 fig. 10.3).
   int pyramidLength = 0;
+  // Check on every path that the MIS weights of the enabled techniques able to produce it sum to
+  // one (Counters::misPartitionFailures). On by default in debug builds.
+#ifdef NDEBUG
+  bool checkMis = false;
+#else
+  bool checkMis = true;
+#endif
 
   bool operator==(const RenderSettings&) const = default;
 };
