@@ -57,7 +57,7 @@ Connection connect(const Scene& scene, const Camera& camera, const Subpath& ligh
     if (isBlack(L)) return c;
     ++counters.shadowRays;
     const Vec3 nq = qs.onSurface() ? qs.ng : Vec3(0.f);
-    if (!scene.visible(qs.p, nq, cs->pLens, Vec3(0.f))) {
+    if (!scene.visible(qs.p, nq, qs.pError, cs->pLens, Vec3(0.f), Vec3(0.f))) {
       c.blocked = true;
       return c;
     }
@@ -94,8 +94,8 @@ Connection connect(const Scene& scene, const Camera& camera, const Subpath& ligh
     const Spectrum L = pt.beta * ev.f * ls.Li * (absDot(ls.wi, pt.ns) / (pmf * ls.pdfW));
     if (isBlack(L)) return c;
     ++counters.shadowRays;
-    const bool unblocked = light.isInfinite() ? scene.visibleToInfinity(pt.p, pt.ng, ls.wi)
-                                              : scene.visible(pt.p, pt.ng, ls.pLight, ls.nLight);
+    const bool unblocked = light.isInfinite() ? scene.visibleToInfinity(pt.p, pt.ng, pt.pError, ls.wi)
+                                              : scene.visible(pt.p, pt.ng, pt.pError, ls.pLight, ls.nLight, ls.pError);
     if (!unblocked) {
       c.blocked = true;
       return c;
@@ -104,6 +104,7 @@ Connection connect(const Scene& scene, const Camera& camera, const Subpath& ligh
     PathVertex& v = c.sampled;
     v.type = VertexType::Light;
     v.p = ls.pLight;
+    v.pError = ls.pError;
     v.light = li;
     v.isDeltaPosition = light.isDeltaPosition();
     v.isInfinite = light.isInfinite();
@@ -132,7 +133,7 @@ Connection connect(const Scene& scene, const Camera& camera, const Subpath& ligh
   const Spectrum L = qs.beta * fq.f * fp.f * pt.beta * G;
   if (isBlack(L)) return c;
   ++counters.shadowRays;
-  if (!scene.visible(pt.p, pt.ng, qs.p, qs.ng)) {
+  if (!scene.visible(pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError)) {
     c.blocked = true;
     return c;
   }

@@ -16,6 +16,7 @@ struct PathVertex {
   Vec3 ng{0.f};          // geometric normal (area light: its triangle normal; punctual, camera: 0)
   Vec3 ns{0.f};          // shading normal (surfaces only)
   Vec3 wo{0.f};          // unit direction toward the previous vertex of its own subpath (0 at x0)
+  Vec3 pError{0.f};      // floating-point error bound of p (ray.h interpolationError); 0 off surfaces
   Vec2 uv{0.f};
   int material = -1;     // surfaces
   int light = -1;        // light vertices, and surfaces lying on an area light (index in LightSet)

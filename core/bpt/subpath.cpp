@@ -24,6 +24,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     v = PathVertex{};
     v.type = VertexType::Surface;
     v.p = hit->p;
+    v.pError = hit->pError;
     v.ng = hit->ng;
     v.ns = hit->ns;
     v.uv = hit->uv;
@@ -70,7 +71,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       prevBsdf = &bsdf;
     }
     prev.pdfRevA = convertDensity(pdfRevW, v, prev);
-    ray = Ray{offsetRayOrigin(v.p, v.ng, bs->wi), bs->wi};
+    ray = Ray{offsetRayOrigin(v.p, v.pError, v.ng, bs->wi), bs->wi};
 
     // Russian roulette as in the path tracer, on the throughput gained since the walk began
     // (a light subpath starts with the emitted power's scale). Unbiased; the MIS densities leave
@@ -127,6 +128,7 @@ int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& opti
   x0 = PathVertex{};
   x0.type = VertexType::Light;
   x0.p = le.ray.o;
+  x0.pError = le.pError;
   x0.ng = light.type() == LightType::Area || light.isInfinite() ? le.n : Vec3(0.f);
   x0.light = li;
   x0.isDeltaPosition = light.isDeltaPosition();
@@ -139,7 +141,7 @@ int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& opti
 
   const float cosLight = light.type() == LightType::Area ? absDot(le.n, le.ray.d) : 1.f;
   const Spectrum beta = le.Le * (cosLight / (pmf * le.pdfPosA * le.pdfDirW));
-  const Ray ray{light.type() == LightType::Area ? offsetRayOrigin(le.ray.o, le.n, le.ray.d) : le.ray.o, le.ray.d};
+  const Ray ray{offsetRayOrigin(le.ray.o, le.pError, le.n, le.ray.d), le.ray.d};
   const float pdfW = x0.isInfinite ? le.pdfPosA : le.pdfDirW;
   randomWalk(scene, ray, beta, pdfW, TransportMode::Importance, rng, options, path, counters);
   return path.count;

@@ -101,6 +101,7 @@ LightLiSample Light::sampleLi(const Vec3& ref, Vec2 u) const {
       const float b2 = 1.f - b.x - b.y;
       const Vec3 p = b.x * p_[0] + b.y * p_[1] + b2 * p_[2];
       const Vec2 uv = b.x * uv_[0] + b.y * uv_[1] + b2 * uv_[2];
+      s.pError = interpolationError(b.x, p_[0], b.y, p_[1], b2, p_[2]);
       const Vec3 toLight = p - ref;
       const float dist2 = glm::dot(toLight, toLight);
       if (!(dist2 > 0.f)) return s;
@@ -183,6 +184,7 @@ LightLeSample Light::sampleLe(Vec2 uPos, Vec2 uDir) const {
       const Vec3 local = sampleCosineHemisphere(uDir);
       const Vec3 dir = side * frame_.toWorld(local);
       s.ray = Ray{p, dir};
+      s.pError = interpolationError(b.x, p_[0], b.y, p_[1], b2, p_[2]);
       s.n = n_;
       s.pdfPosA = 1.f / area_;
       s.pdfDirW = sideProb * cosineHemispherePdf(local.z);

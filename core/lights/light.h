@@ -21,6 +21,7 @@ struct LightLiSample {
   Vec3 wi{0.f};          // from the reference point toward the light
   Vec3 pLight{0.f};      // the point on the light (far along -direction for directional)
   Vec3 nLight{0.f};      // light surface normal (area); zero for punctual lights
+  Vec3 pError{0.f};      // error bound of pLight (area lights, interpolationError)
   float dist = 0.f;      // distance to pLight (infinity for directional)
   float pdfW = 0.f;      // solid angle at the reference point; 1 for delta lights
   bool isDelta = false;  // delta in position or direction: cannot be hit by a ray
@@ -29,6 +30,7 @@ struct LightLiSample {
 struct LightLeSample {
   Spectrum Le{0.f};      // emitted radiance (area) / intensity (point, spot) / irradiance (dir.)
   Ray ray;               // origin on the light, unit direction of travel
+  Vec3 pError{0.f};      // error bound of ray.o (area lights, interpolationError)
   Vec3 n{0.f};           // light surface normal (area); for directional, the direction itself
   float pdfPosA = 0.f;   // area measure (1 for a point position)
   float pdfDirW = 0.f;   // solid angle (1 for a delta direction)

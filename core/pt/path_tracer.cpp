@@ -23,8 +23,8 @@ Spectrum PathTracer::sampleDirect(const SurfaceHit& hit, const Bsdf& bsdf, const
   const BsdfEval ev = bsdf.eval(wo, ls.wi, TransportMode::Radiance);
   if (isBlack(ev.f)) return Spectrum(0.f);
   ++counters.shadowRays;
-  const bool unblocked = light.isInfinite() ? scene_.visibleToInfinity(hit.p, hit.ng, ls.wi)
-                                            : scene_.visible(hit.p, hit.ng, ls.pLight, ls.nLight);
+  const bool unblocked = light.isInfinite() ? scene_.visibleToInfinity(hit.p, hit.ng, hit.pError, ls.wi)
+                                            : scene_.visible(hit.p, hit.ng, hit.pError, ls.pLight, ls.nLight, ls.pError);
   if (!unblocked) return Spectrum(0.f);
   const float pdfLight = lightPmf * ls.pdfW;
   const float weight = ls.isDelta ? 1.f : powerHeuristic(pdfLight, ev.pdfFwdW);
@@ -68,7 +68,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) co
     prevDelta = bs->isDelta;
     prevPdfW = bs->pdfFwdW;
     prevP = hit->p;
-    ray = Ray{offsetRayOrigin(hit->p, hit->ng, bs->wi), bs->wi};
+    ray = Ray{offsetRayOrigin(hit->p, hit->pError, hit->ng, bs->wi), bs->wi};
 
     // Russian roulette on the throughput (unbiased: survivors are reweighted by 1/q).
     if (russianRoulette_ && edges >= kRussianRouletteStart) {

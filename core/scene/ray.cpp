@@ -1,24 +1,34 @@
-// Robust ray-origin offsetting (Wächter and Binder 2019).
+// Robust ray-origin offsetting from floating-point error bounds (Pharr, Jakob, Humphreys, pbrt-v4,
+// sec. 6.8).
 #include "core/scene/ray.h"
 
-#include <bit>
+#include <cmath>
 
 namespace pathlab {
 
-Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n, const Vec3& dir) {
-  // Constants from the paper: below kOrigin the float spacing is too fine for the integer
-  // offset, so a small absolute offset takes over.
-  constexpr float kOrigin = 1.f / 32.f;
-  constexpr float kFloatScale = 1.f / 65536.f;
-  constexpr float kIntScale = 256.f;
-  const Vec3 nf = glm::dot(n, dir) < 0.f ? -n : n;
-  Vec3 out;
+namespace {
+// gamma(n) = n eps / (1 - n eps), eps = 2^-24 (pbrt-v4 eq. 6.31).
+constexpr float gamma(int n) {
+  constexpr float eps = 0x1p-24f;
+  return static_cast<float>(n) * eps / (1.f - static_cast<float>(n) * eps);
+}
+constexpr float kOffsetSafety = 32.f;
+}  // namespace
+
+Vec3 interpolationError(float b0, const Vec3& p0, float b1, const Vec3& p1, float b2, const Vec3& p2) {
+  return (kOffsetSafety * gamma(7)) * (glm::abs(b0 * p0) + glm::abs(b1 * p1) + glm::abs(b2 * p2));
+}
+
+Vec3 offsetRayOrigin(const Vec3& p, const Vec3& pError, const Vec3& n, const Vec3& dir) {
+  const float d = glm::dot(glm::abs(n), pError);
+  Vec3 offset = d * n;
+  if (glm::dot(dir, n) < 0.f) offset = -offset;
+  Vec3 po = p + offset;
   for (int i = 0; i < 3; ++i) {
-    const auto ofi = static_cast<int32_t>(kIntScale * nf[i]);
-    const int32_t bits = std::bit_cast<int32_t>(p[i]) + (p[i] < 0.f ? -ofi : ofi);
-    out[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * nf[i] : std::bit_cast<float>(bits);
+    if (offset[i] > 0.f) po[i] = std::nextafter(po[i], std::numeric_limits<float>::infinity());
+    else if (offset[i] < 0.f) po[i] = std::nextafter(po[i], -std::numeric_limits<float>::infinity());
   }
-  return out;
+  return po;
 }
 
 }  // namespace pathlab

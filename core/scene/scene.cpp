@@ -126,6 +126,8 @@ size_t Scene::triangleCount() const {
   return n;
 }
 
+void* Scene::embreeHandle() const { return embree_->scene; }
+
 std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -153,6 +155,7 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   hit.t = rh.ray.tfar;
   // Barycentric interpolation is more accurate than o + t d (pbrt-v4 sec. 6.8).
   hit.p = b0 * p0 + b1 * p1 + b2 * p2;
+  hit.pError = interpolationError(b0, p0, b1, p1, b2, p2);
   hit.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
   hit.ns = hit.ng;
   if (!mesh.normals.empty()) {
@@ -187,15 +190,16 @@ bool occluded(RTCScene scene, const Vec3& o, const Vec3& d, float tfar) {
 }
 }  // namespace
 
-bool Scene::visible(const Vec3& a, const Vec3& na, const Vec3& b, const Vec3& nb) const {
-  const Vec3 oa = na == Vec3(0.f) ? a : offsetRayOrigin(a, na, b - a);
-  const Vec3 ob = nb == Vec3(0.f) ? b : offsetRayOrigin(b, nb, a - b);
+bool Scene::visible(const Vec3& a, const Vec3& na, const Vec3& ea, const Vec3& b, const Vec3& nb,
+                    const Vec3& eb) const {
+  const Vec3 oa = offsetRayOrigin(a, ea, na, b - a);
+  const Vec3 ob = offsetRayOrigin(b, eb, nb, a - b);
   // Shorten at the far end too: rtcOccluded1 makes no promise about hits exactly at tfar.
   return !occluded(embree_->scene, oa, ob - oa, 1.f - 1e-4f);
 }
 
-bool Scene::visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& dir) const {
-  return !occluded(embree_->scene, offsetRayOrigin(p, n, dir), dir, std::numeric_limits<float>::infinity());
+bool Scene::visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& e, const Vec3& dir) const {
+  return !occluded(embree_->scene, offsetRayOrigin(p, e, n, dir), dir, std::numeric_limits<float>::infinity());
 }
 
 }  // namespace pathlab

@@ -21,11 +21,12 @@ class Scene {
   Scene& operator=(const Scene&) = delete;
 
   std::optional<SurfaceHit> intersect(const Ray& ray) const;
-  // True when nothing blocks the open segment between two points. Normals (may be zero for
-  // points not on a surface) select the side each end is offset toward (Wächter-Binder offsets).
-  bool visible(const Vec3& a, const Vec3& na, const Vec3& b, const Vec3& nb) const;
+  // True when nothing blocks the open segment between two points. Each end is moved off its
+  // surface along its normal by its error bound (offsetRayOrigin); zero normals and bounds for
+  // points not on a surface (lens, punctual light).
+  bool visible(const Vec3& a, const Vec3& na, const Vec3& ea, const Vec3& b, const Vec3& nb, const Vec3& eb) const;
   // True when nothing blocks the ray from a surface point toward infinity (directional lights).
-  bool visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& dir) const;
+  bool visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& e, const Vec3& dir) const;
 
   const std::vector<TriangleMesh>& meshes() const { return desc_.meshes; }
   const std::vector<Material>& materials() const { return desc_.materials; }
@@ -39,6 +40,8 @@ class Scene {
   const std::string& path() const { return desc_.path; }
   const std::vector<std::string>& warnings() const { return desc_.warnings; }
   size_t triangleCount() const;
+  // The RTCScene, for the ray-throughput ceiling benchmark (tests/bench); renderers use intersect/visible.
+  void* embreeHandle() const;
 
  private:
   SceneDesc desc_;
