@@ -161,6 +161,7 @@ TEST(RenderSettingsValidation, RefusesWhatCannotBeRendered) {
   refused([](RenderSettings& s) { s.maxLength = 12; s.pyramidLength = kMaxPyramidLength + 1; });
   refused([](RenderSettings& s) { s.width = s.height = 16384; s.pyramidLength = 4; });  // far beyond memory
   refused([](RenderSettings& s) { s.techniques = "2,x"; });
+  refused([](RenderSettings& s) { s.maxLength = kMaxBidirectionalLength + 1; });
   RenderSettings ok = pyramidSettings(4, 4, 0);
   ok.isolate = Isolation{2, 3, true};
   EXPECT_NO_THROW(validateSettings(ok));

@@ -107,7 +107,10 @@ TEST(BptFurnace, EachUnweightedTechniqueGivesItsLength) {
       }
       EXPECT_LT(std::abs(m.zScore(expected)), kMaxZ)
           << "(" << s << "," << t << ") mean " << m.mean << " expected " << expected << " se " << m.standardError;
-      EXPECT_LT(m.standardError, 0.05 * expected) << s << "," << t;  // power to see a 20% bias
+      // Power to see a 40% bias. Not sharper: the connections' geometry term cos cos / d^2 has
+      // infinite variance at the box's corners (its square integrates like r^-3 dr), so the
+      // measured standard error itself swings by 2x between seeds.
+      EXPECT_LT(m.standardError, 0.10 * expected) << s << "," << t;
     }
 }
 

@@ -23,22 +23,39 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const RenderS
       mis_(settings.mis),
       isolate_(settings.isolate),
       pyramidLength_(std::min(settings.pyramidLength, settings.maxLength)),
-      checkMis_(settings.checkMis) {}
+      checkMis_(settings.checkMis) {
+  // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
+  // with t >= 2 samples its light vertex afresh (next-event estimation).
+  auto need = [&](int s, int t) {
+    cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, t);
+    if (!(s == 1 && t >= 2)) lightVerticesNeeded_ = std::max(lightVerticesNeeded_, s);
+  };
+  for (int k = 1; k <= maxLength_; ++k)
+    for (int s = 0; s <= k; ++s)
+      if (techniques_.contains(s, k + 1 - s) || k <= pyramidLength_) need(s, k + 1 - s);
+  if (isolate_) need(isolate_->s, isolate_->t);
+}
 
 Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
                              Counters& counters) const {
-  // Per-thread buffers sized once: no allocation per sample.
-  thread_local CameraSubpath cameraPath;
-  thread_local LightSubpath lightPath;
-  const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, cameraRng,
-                                       WalkOptions{maxLength_ + 1, russianRoulette_}, cameraPath, counters);
-  const int ns = generateLightSubpath(scene_, lightRng, WalkOptions{maxLength_, russianRoulette_}, lightPath, counters);
-
   // Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
   // sample and (s, t): a technique's estimate does not depend on which other techniques are
   // evaluated, so an isolated render, the pyramid and the full image see the same connections.
+  // Drawn first, so that how long the walks below are allowed to grow changes nothing either.
   const uint64_t keyHigh = cameraRng.nextU32();  // two statements: operand order is unspecified
   const uint64_t connectionKey = keyHigh << 32 | cameraRng.nextU32();
+
+  // Per-thread buffers sized once: no allocation per sample. Each walk stops at the longest
+  // prefix any technique in use needs (light tracing needs no camera walk at all).
+  thread_local CameraSubpath cameraPath;
+  thread_local LightSubpath lightPath;
+  const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, cameraRng,
+                                       WalkOptions{cameraVerticesNeeded_, russianRoulette_}, cameraPath, counters);
+  const int ns = lightVerticesNeeded_ > 0
+                     ? generateLightSubpath(scene_, lightRng, WalkOptions{lightVerticesNeeded_, russianRoulette_},
+                                            lightPath, counters)
+                     : 0;
+
   const int pyramidLength = targets.pyramid ? pyramidLength_ : 0;
   if (targets.trace) {
     targets.trace->cameraVertices = nt;
@@ -52,9 +69,10 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
   Spectrum L(0.f);
   const float ratio = lightTracingRatio();
   for (int t = 1; t <= nt; ++t)
-    for (int s = 0; s <= ns; ++s) {
+    for (int s = 0; s <= std::max(ns, 1); ++s) {
       const int k = s + t - 1;
       if (k < 1 || k > maxLength_) continue;
+      if (s > ns && !(s == 1 && t >= 2)) continue;  // next-event estimation needs no light subpath
       const bool enabled = techniques_.contains(s, t);
       const bool isolated = isolate_ && isolate_->s == s && isolate_->t == t;
       const bool inImage = isolate_ ? isolated && (enabled || isolate_->unweighted) : enabled;

@@ -72,6 +72,8 @@ class BidirTracer {
   std::optional<Isolation> isolate_;
   int pyramidLength_;
   bool checkMis_;
+  int cameraVerticesNeeded_ = 1;  // the camera vertex itself is always there
+  int lightVerticesNeeded_ = 0;
 };
 
 // The TechniqueSet a RenderSettings asks for: its SPEC, restricted to t = 1 for light tracing.

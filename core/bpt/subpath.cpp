@@ -75,11 +75,11 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
 
     // Russian roulette as in the path tracer, on the throughput gained since the walk began
     // (a light subpath starts with the emitted power's scale). Unbiased; the MIS densities leave
-    // it out, which keeps the weights a partition of unity.
+    // it out, which keeps the weights a partition of unity. Not capped below one (path_tracer.cpp).
     const int edges = path.count - 1;
     if (options.russianRoulette && edges >= kRussianRouletteStart) {
       const Spectrum rel = beta / glm::max(betaStart, Spectrum(1e-30f));
-      const float q = glm::min(maxComponent(rel), 0.95f);
+      const float q = glm::min(maxComponent(rel), 1.f);
       if (!(q > 0.f) || rng.next1D() >= q) break;
       beta /= q;
     }

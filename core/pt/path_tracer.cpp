@@ -70,9 +70,12 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) co
     prevP = hit->p;
     ray = Ray{offsetRayOrigin(hit->p, hit->pError, hit->ng, bs->wi), bs->wi};
 
-    // Russian roulette on the throughput (unbiased: survivors are reweighted by 1/q).
+    // Russian roulette on the throughput (unbiased: survivors are reweighted by 1/q). The survival
+    // probability is not capped below one: with a cap of 0.95, paths of the mean length
+    // 1 / (1 - albedo) = 1000 of an albedo-0.999 furnace survive with probability 0.95^1000, and
+    // the estimate, unbiased in theory, is wrong for any practical sample count.
     if (russianRoulette_ && edges >= kRussianRouletteStart) {
-      const float q = glm::min(maxComponent(beta), 0.95f);
+      const float q = glm::min(maxComponent(beta), 1.f);
       if (!(q > 0.f) || rng.next1D() >= q) break;
       beta /= q;
     }

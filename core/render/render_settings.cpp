@@ -25,6 +25,9 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument(fmt::format("image size {} x {} is not positive", s.width, s.height));
   if (s.maxLength < 1) throw std::invalid_argument(fmt::format("maximum path length {} is less than 1", s.maxLength));
   const bool bidirectional = s.integrator != IntegratorKind::Pt;
+  if (bidirectional && s.maxLength > kMaxBidirectionalLength)
+    throw std::invalid_argument(fmt::format("maximum path length {} is more than the {} edges the {} integrator supports",
+                                            s.maxLength, kMaxBidirectionalLength, integratorName(s.integrator)));
   if (bidirectional) TechniqueSet::parse(s.techniques, s.maxLength);  // throws naming the bad item
   if (s.isolate) {
     const Isolation& i = *s.isolate;

@@ -52,6 +52,9 @@ struct RenderSettings {
 
 inline constexpr int kRussianRouletteStart = 3;
 inline constexpr int kMaxPyramidLength = 8;
+// The bidirectional tracers keep one bit per technique (about n^2 / 2) and connect O(n^2) prefix
+// pairs with O(n) weights each: beyond this many edges that is memory and time for nothing.
+inline constexpr int kMaxBidirectionalLength = 4096;
 inline constexpr uint64_t kMaxPyramidBytes = 8ull << 30;
 
 const char* integratorName(IntegratorKind kind);

@@ -1,0 +1,51 @@
+// One configuration rendered progressively with its error recorded at geometrically spaced
+// checkpoints: the measurement behind `pathlab converge` (and, later, the viewer's live plot).
+#pragma once
+
+#include "core/metrics/convergence_config.h"
+#include "core/metrics/counters.h"
+#include "core/metrics/error_metrics.h"
+#include "core/scene/scene.h"
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pathlab {
+
+struct Checkpoint {
+  double seconds = 0.0;  // render time: the sum of renderPass durations, metrics excluded
+  uint64_t spp = 0;
+  std::optional<ErrorMetrics> error;  // against the reference, when there is one
+  TwoBufferEstimate twoBuffer;        // zeros until two passes are done
+  uint64_t cameraSamples = 0, rays = 0;  // rays: closest-hit and shadow queries
+};
+
+// Either a time or a sample count. Checkpoints follow a geometric sequence in that quantity:
+// after the first pass, then whenever it has grown by `factor` since the last checkpoint, and at
+// the end, so a log-log plot gets evenly spaced points.
+struct ConvergenceBudget {
+  double seconds = 0.0;  // > 0: render for this much render time (at least two passes)
+  uint64_t spp = 0;      // > 0: render this many passes
+  double factor = 1.5;
+};
+
+struct ConvergenceCurve {
+  std::string label;
+  std::vector<Checkpoint> checkpoints;
+  Counters counters;
+  Image image;  // the final mean
+};
+
+using CheckpointCallback = std::function<void(const Checkpoint&)>;
+
+// Blocking; uses the caller's TBB arena. `reference` may be null (then only the two-buffer
+// estimate is recorded). `passesDone`, if given, is updated after each pass (progress display).
+ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
+                                const ConvergenceBudget& budget, const CheckpointCallback& onCheckpoint = {},
+                                std::atomic<uint64_t>* passesDone = nullptr);
+
+}  // namespace pathlab

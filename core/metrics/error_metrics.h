@@ -1,0 +1,67 @@
+// Image error against a reference (RMSE, relative MSE, MAPE) and, without one, the two-buffer
+// estimate of the error of a progressive mean from its even and odd passes.
+#pragma once
+
+#include "core/film/film.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace pathlab {
+
+// The ε of relative MSE: per-pixel squared error over (reference² + ε). It keeps black pixels from
+// dominating (a pixel whose reference is 0 would otherwise weigh infinitely). 1e-2 is the value of
+// Rousselle, Knaus and Zwicker 2011 ("Adaptive sampling and reconstruction using greedy error
+// minimization"), reused by most later work on denoising and adaptive sampling.
+inline constexpr double kRelMseEpsilon = 1e-2;
+// The ε of MAPE (mean absolute percentage error): |x − r| / (|r| + ε), for the same reason.
+inline constexpr double kMapeEpsilon = 1e-2;
+
+// Every metric is a mean over all pixels and all three channels (as pbrt-v4's imgtool).
+struct ErrorMetrics {
+  double mse = 0.0;
+  double rmse = 0.0;    // sqrt(mse)
+  double relMse = 0.0;  // mean (x − r)² / (r² + kRelMseEpsilon)
+  double mape = 0.0;    // mean |x − r| / (|r| + kMapeEpsilon)
+};
+
+// Throws std::invalid_argument when the sizes differ.
+ErrorMetrics errorMetrics(const Image& image, const Image& reference);
+
+// The variance part of the error of the mean image, estimated without a reference.
+struct TwoBufferEstimate {
+  double mse = 0.0;     // estimate of E[(mean − truth)²] without bias; compare with ErrorMetrics::mse
+  double relMse = 0.0;  // the same over (mean² + kRelMseEpsilon); the mean stands in for the reference
+};
+
+// Passes are independent (every pass draws from streams keyed by the pass index), so the mean of
+// the mA even passes (A) and of the mB odd passes (B) are independent unbiased estimates with
+// per-pass variance σ². Then E[(A − B)²] = σ²(1/mA + 1/mB) = σ² n / (mA mB) with n = mA + mB,
+// and the variance of the mean of all n passes is σ²/n, hence
+//     Var(mean) ≈ (A − B)² · mA mB / n²,   which is (A − B)²/4 when mA = mB = n/2
+// (the "two-buffer" estimate of the dual-buffer denoisers, e.g. Rousselle et al. 2012, "Adaptive
+// rendering with non-local means filtering").
+// Averaged over pixels it estimates the image's MSE without a reference (bias excluded).
+class EvenOddBuffers {
+ public:
+  EvenOddBuffers(int width, int height);
+
+  // One pass's own image (not a running mean): pass 0, 2, 4... go to A, 1, 3, 5... to B.
+  void addPass(const std::vector<double>& passRgb);
+  // The progressive mean after one more pass (what RenderSession::image() returns after pass n).
+  // The pass's own image is n·mean_n − (n−1)·mean_{n−1}: exact because the film's read-out is
+  // linear in the sums with a constant number of light subpaths per pass (Film::readout).
+  void addRunningMean(const Image& mean);
+
+  uint64_t passes() const { return evenPasses_ + oddPasses_; }
+  // Needs at least one even and one odd pass; returns zeros before.
+  TwoBufferEstimate estimate() const;
+
+ private:
+  int width_, height_;
+  std::vector<double> even_, odd_;  // sums of pass images
+  std::vector<double> previousMean_;
+  uint64_t evenPasses_ = 0, oddPasses_ = 0;
+};
+
+}  // namespace pathlab
