@@ -220,5 +220,49 @@ TEST(Extremes, RoughnessFromMirrorToDiffuse) {
       << "mirror " << nearMirror[0].mean << " vs alpha 1.6e-3 " << nearMirror[1].mean;
 }
 
+// A smooth glass cube (normals outward, ior inside) on a floor under a square emitter, at
+// indices from barely refracting (1.0001, below the threshold where refraction is treated as
+// not bending) through glass (1.5) to beyond diamond (3: total internal reflection traps most
+// light inside): PT and BPT agree. Seen at a grazing 1e-3 rad over the floor as well.
+TEST(Extremes, GlassFromIorOneToThreeAndGrazingViews) {
+  for (float ior : {1.0001f, 1.5f, 3.f}) {
+    for (bool grazing : {false, true}) {
+      if (grazing && ior != 1.5f) continue;
+      SceneDesc desc = test::floorScene(0.5f);
+      Material glass;
+      glass.name = "glass";
+      glass.metallicFactor = 0.f;
+      glass.roughnessFactor = 0.f;
+      glass.transmissionFactor = 1.f;
+      glass.ior = ior;
+      desc.materials.push_back(glass);
+      desc.materials.push_back(test::lambertian(0.f, Spectrum(3.f)));
+      for (TriangleMesh m : test::inwardBox(0.2f, 1)) {
+        for (Vec3& p : m.positions) p.y += 0.2f;
+        for (size_t i = 0; i < m.indices.size(); i += 3) std::swap(m.indices[i + 1], m.indices[i + 2]);  // outward
+        for (Vec3& n : m.normals) n = -n;
+        desc.meshes.push_back(std::move(m));
+      }
+      desc.meshes.push_back(test::quad(Vec3(-.4f, 1.2f, -.4f), Vec3(.4f, 1.2f, -.4f), Vec3(.4f, 1.2f, .4f),
+                                       Vec3(-.4f, 1.2f, .4f), 2));
+      desc.camera = grazing ? test::lookAt(Vec3(0.f, 1e-3f, 2.f), Vec3(0.f, 1e-3f, 0.f), Vec3(0, 1, 0), 0.6f)
+                            : test::lookAt(Vec3(0.6f, 0.7f, 1.2f), Vec3(0.f, 0.15f, 0.f), Vec3(0, 1, 0), 0.9f);
+      const Scene scene(std::move(desc));
+      RenderSettings s;
+      s.width = s.height = 12;
+      s.maxLength = 6;
+      s.integrator = IntegratorKind::Pt;
+      const test::MeanEstimate pt = seedMeans(scene, s, 8, 4);
+      ASSERT_GT(pt.mean, 0.0) << ior;
+      s.integrator = IntegratorKind::Bpt;
+      const test::MeanEstimate bpt = seedMeans(scene, s, 8, 4);
+      // 4 comparisons: |z| < 4.5.
+      EXPECT_LT(std::abs(zDiff(bpt, pt)), 4.5) << "ior " << ior << (grazing ? " grazing" : "") << ": " << bpt.mean
+                                               << " +- " << bpt.standardError << " vs pt " << pt.mean << " +- "
+                                               << pt.standardError;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace pathlab
