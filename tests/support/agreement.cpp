@@ -1,0 +1,95 @@
+// Renders every estimator once, then runs the pairwise region z-tests.
+#include "tests/support/agreement.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+
+namespace pathlab::test {
+
+AgreementRun runAgreement(const Scene& scene, const std::vector<EstimatorSpec>& estimators,
+                          const std::vector<PixelLabels>& labelSets, const std::vector<PairSpec>& pairs,
+                          double familyAlpha) {
+  AgreementRun run;
+  for (const EstimatorSpec& e : estimators) {
+    std::vector<RegionMeans> m = renderRegionMeans(scene, e.settings, e.passes, labelSets);
+    run.seconds.push_back(m.front().seconds);
+    for (RegionMeans& r : m) run.estimates.push_back(std::move(r));
+  }
+  auto find = [&](const std::string& name) {
+    for (size_t i = 0; i < estimators.size(); ++i)
+      if (estimators[i].name == name) return i;
+    throw std::invalid_argument("no estimator named " + name);
+  };
+  for (const PairSpec& p : pairs) {
+    const RegionMeans& a = run.estimates[find(p.a) * labelSets.size() + static_cast<size_t>(p.labelSet)];
+    const RegionMeans& b = run.estimates[find(p.b) * labelSets.size() + static_cast<size_t>(p.labelSet)];
+    PairResult r;
+    r.spec = p;
+    r.agreement = compareRegions(a, b);
+    double largest = 0.0;
+    for (size_t c = 0; c < 3; ++c) largest = std::max({largest, std::abs(a.whole[c].mean), std::abs(b.whole[c].mean)});
+    for (size_t c = 0; c < 3; ++c) {
+      r.meanA[c] = a.whole[c].mean;
+      r.meanB[c] = b.whole[c].mean;
+      const double mean = std::max(std::abs(a.whole[c].mean), std::abs(b.whole[c].mean));
+      if (mean < 1e-3 * largest || mean == 0.0) continue;  // a channel with (almost) nothing in it
+      const double se = std::hypot(a.whole[c].standardError, b.whole[c].standardError);
+      r.relativeSe = std::max(r.relativeSe, se / mean);
+    }
+    std::vector<double> relative;
+    for (size_t k = 0; k < a.region.size() && k < b.region.size(); ++k)
+      for (size_t c = 0; c < 3; ++c) {
+        const double mean = std::max(std::abs(a.region[k][c].mean), std::abs(b.region[k][c].mean));
+        if (a.region[k][c].count == 0 || mean < 1e-3 * largest || mean == 0.0) continue;
+        relative.push_back(std::hypot(a.region[k][c].standardError, b.region[k][c].standardError) / mean);
+      }
+    if (!relative.empty()) {
+      std::nth_element(relative.begin(), relative.begin() + static_cast<std::ptrdiff_t>(relative.size() / 2),
+                       relative.end());
+      r.medianRelativeSe = relative[relative.size() / 2];
+    } else {
+      r.medianRelativeSe = std::numeric_limits<double>::infinity();
+    }
+    run.comparisons += r.agreement.comparisons;
+    run.pairs.push_back(r);
+  }
+  run.threshold = bonferroniZ(familyAlpha, run.comparisons);
+  return run;
+}
+
+uint64_t testSeedBase() {
+  const char* env = std::getenv("PATHLAB_TEST_SEED");
+  return env ? std::strtoull(env, nullptr, 10) : 0;
+}
+
+std::string AgreementRun::summary() const {
+  std::string s = fmt::format("{} comparisons, threshold |z| < {:.2f}\n", comparisons, threshold);
+  for (const PairResult& p : pairs)
+    s += fmt::format(
+        "  {} vs {} (labels {}): max |z| {:.2f}, relative se {:.4f} (whole image), {:.4f} (median region); worst {}\n",
+        p.spec.a, p.spec.b, p.spec.labelSet, p.agreement.maxAbsZ, p.relativeSe, p.medianRelativeSe, p.agreement.worst);
+  return s;
+}
+
+void expectAgreement(const AgreementRun& run, const std::string& what) {
+  std::string failures;
+  for (const PairResult& p : run.pairs) {
+    if (!(p.agreement.maxAbsZ < run.threshold))
+      failures += fmt::format("  {} vs {} disagree: {}\n", p.spec.a, p.spec.b, p.agreement.worst);
+    if (!(p.medianRelativeSe < p.spec.maxRelativeSe))
+      failures += fmt::format("  {} vs {} too noisy to detect a bias: median region relative se {:.4f} >= {:.4f}\n",
+                              p.spec.a, p.spec.b, p.medianRelativeSe, p.spec.maxRelativeSe);
+    if (p.agreement.comparisons == 0) failures += fmt::format("  {} vs {}: nothing compared\n", p.spec.a, p.spec.b);
+  }
+  for (const RegionMeans& m : run.estimates)
+    if (m.discarded != 0) failures += fmt::format("  {} samples discarded (NaN, Inf or negative)\n", m.discarded);
+  if (!failures.empty()) ADD_FAILURE() << what << ":\n" << failures << run.summary();
+}
+
+}  // namespace pathlab::test

@@ -1,0 +1,57 @@
+// Several estimators of one image rendered side by side and compared pairwise by region z-tests,
+// with one Bonferroni threshold for the whole family of comparisons (region_estimate.h).
+#pragma once
+
+#include "tests/support/region_estimate.h"
+
+#include <string>
+#include <vector>
+
+namespace pathlab::test {
+
+struct EstimatorSpec {
+  std::string name;
+  RenderSettings settings;  // seeds must differ between estimators (independent errors)
+  int passes = 32;
+};
+
+struct PairSpec {
+  std::string a, b;  // estimator names
+  int labelSet = 0;  // index into the label sets given to runAgreement
+  // Power: the median over regions and channels (those with a mean not negligible) of the
+  // standard error of a - b relative to the mean must be below this, so that a typical region
+  // would show a bias of a few times this fraction (the whole image: several times less).
+  double maxRelativeSe = 0.05;
+};
+
+struct PairResult {
+  PairSpec spec;
+  Agreement agreement;
+  double relativeSe = 0.0;        // largest over the channels, whole image
+  double medianRelativeSe = 0.0;  // median over regions and channels
+  double meanA[3] = {0, 0, 0}, meanB[3] = {0, 0, 0};
+};
+
+struct AgreementRun {
+  std::vector<RegionMeans> estimates;  // [estimator * labelSets + labelSet]
+  std::vector<double> seconds;         // per estimator
+  std::vector<PairResult> pairs;
+  int comparisons = 0;
+  double threshold = 0.0;  // bonferroniZ(familyAlpha, comparisons)
+  std::string summary() const;
+};
+
+// familyAlpha: the probability that unbiased estimators fail at least one comparison of the run
+// (Bonferroni: every comparison is tested at familyAlpha / comparisons, two-sided).
+AgreementRun runAgreement(const Scene& scene, const std::vector<EstimatorSpec>& estimators,
+                          const std::vector<PixelLabels>& labelSets, const std::vector<PairSpec>& pairs,
+                          double familyAlpha);
+
+// Base of the fixed seeds of a test: 0, or PATHLAB_TEST_SEED when set (to rerun a test with other
+// seeds and see that its threshold does not depend on one lucky seed).
+uint64_t testSeedBase();
+
+// gtest expectations on a run: every pair within the threshold, enough power, nothing discarded.
+void expectAgreement(const AgreementRun& run, const std::string& what);
+
+}  // namespace pathlab::test
