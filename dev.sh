@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # pathlab set-up on Debian 12, idempotent and quick when nothing changed:
-#   ./dev.sh run    install missing packages, build, render the default scene
+#   ./dev.sh run    install missing packages, build, open the viewer (render the default scene
+#                   to out/cornell-box.png when there is no $DISPLAY)
 #   ./dev.sh test   install missing packages, build, run the whole test suite
 set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(g++ make cmake pkg-config python3
   libembree-dev libtbb-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
-  libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev)
+  libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libglfw3-dev libimgui-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri fonts-dejavu-core xvfb xauth)
 BUILD_DIR=${PATHLAB_BUILD_DIR:-build}
 
 install_packages() {
@@ -32,9 +34,13 @@ case "${1:-}" in
   run)
     install_packages
     build
+    if [ -n "${DISPLAY:-}" ]; then
+      exec "$BUILD_DIR/app/pathlab" view assets/cornell-box.gltf --presets assets/presets.json
+    fi
+    # No display: render the default scene instead (the viewer also runs offscreen, see README).
     mkdir -p out
     "$BUILD_DIR/app/pathlab" render assets/cornell-box.gltf -o out/cornell-box.png --spp 64 --force
-    echo "dev.sh: wrote out/cornell-box.png" >&2
+    echo "dev.sh: no \$DISPLAY, so no viewer; wrote out/cornell-box.png" >&2
     ;;
   test)
     install_packages

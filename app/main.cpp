@@ -1,5 +1,7 @@
 // pathlab: one executable, subcommands wired to the core. Every error becomes one line and exit 1.
+#include "app/converge_command.h"
 #include "app/render_command.h"
+#include "app/view_command.h"
 
 #include <exception>
 #include <iostream>
@@ -11,6 +13,10 @@ int main(int argc, char** argv) {
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return "pathlab: " + std::string(e.what()) + "\n"; });
   pathlab::app::RenderOptions render;
   pathlab::app::addRenderCommand(app, render);
+  pathlab::app::ConvergeOptions converge;
+  pathlab::app::addConvergeCommand(app, converge);
+  pathlab::app::ViewOptions view;
+  pathlab::app::addViewCommand(app, view);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -18,6 +24,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("render")) return pathlab::app::runRender(render);
+    if (app.got_subcommand("converge")) return pathlab::app::runConverge(converge);
+    if (app.got_subcommand("view")) return pathlab::app::runView(view);
   } catch (const std::exception& e) {
     std::cerr << "pathlab: " << e.what() << "\n";
     return 1;

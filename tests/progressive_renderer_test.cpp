@@ -109,12 +109,18 @@ TEST(ProgressiveRenderer, PyramidThumbnailsArePublished) {
   s.pyramidLength = 2;
   ProgressiveRenderer renderer(cornellBox(), s, 2);
   renderer.setThumbnailSide(16);
-  renderer.setTargetSpp(2);
-  ASSERT_TRUE(renderer.waitForSpp(2, 60.0));
+  renderer.setTargetSpp(3);
+  ASSERT_TRUE(renderer.waitForSpp(1, 60.0));
   std::vector<TechniqueThumbnail> thumbs;
   uint64_t version = 0;
-  // The thumbnails follow the image's publication; wait briefly for them.
-  for (int i = 0; i < 200 && !renderer.pyramid(thumbs, version); ++i)
+  // The thumbnails follow the image's publication (a new generation first publishes an empty
+  // list), and setThumbnailSide applies from the next publication on: wait for filled thumbnails
+  // of the new size.
+  auto ready = [&] {
+    renderer.pyramid(thumbs, version);
+    return !thumbs.empty() && thumbs[0].weighted.width == 16;
+  };
+  for (int i = 0; i < 1000 && !ready(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ASSERT_EQ(thumbs.size(), 5u);  // (0,2) (1,1) (0,3) (1,2) (2,1)
   EXPECT_EQ(thumbs[3].s, 1);

@@ -1,17 +1,41 @@
-// Display-only settings (never reset accumulation): exposure and tone mapping of the shown image.
+// Display-only settings (never reset accumulation): exposure, tone map and false colour of the
+// shown image, and their CPU reference, which shaders/display.frag mirrors.
 #pragma once
+
+#include "core/film/film.h"
+#include "core/math/types.h"
+
+#include <cstdint>
+#include <vector>
 
 namespace pathlab::ui {
 
-enum class ToneMap { Clamp };
+// Clamp: what PNG output does. Filmic: the ACES fit (Narkowicz 2015), which rolls highlights off
+// instead of clipping them.
+enum class ToneMap { Clamp, Filmic };
 
 struct DisplaySettings {
   float exposure = 0.f;  // stops
   ToneMap toneMap = ToneMap::Clamp;
+  bool falseColour = false;  // log10 luminance through the turbo colour map
+  float logMin = -3.f;       // false colour range, decades of exposed luminance
+  float logMax = 1.f;
   bool operator==(const DisplaySettings&) const = default;
 };
 
 // Display value of a linear radiance channel: exposure, clamp, sRGB encode (as PNG output does).
 float displayValue(float linear, const DisplaySettings& settings);
+// The displayed sRGB colour in [0,1] of a linear radiance, exactly as shaders/display.frag.
+Vec3 displayColour(const Spectrum& radiance, const DisplaySettings& settings);
+
+Vec3 acesFilmic(const Vec3& x);
+Vec3 turbo(float t);  // t clamped to [0,1]
+
+// Exposure in stops that brings the mean luminance of `image` to middle grey (0.18); 0 for a
+// black image. The technique pyramid's thumbnails each get their own.
+float autoExposure(const Image& image);
+
+// RGBA8 of the displayed image, top row first (thumbnails are tone mapped on the CPU).
+std::vector<uint8_t> toRgba8(const Image& image, const DisplaySettings& settings);
 
 }  // namespace pathlab::ui

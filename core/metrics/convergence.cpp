@@ -5,10 +5,21 @@
 #include "core/render/render_session.h"
 
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <stdexcept>
 
 namespace pathlab {
+
+namespace {
+
+double processCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+}  // namespace
 
 ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
                                 const ConvergenceBudget& budget, const CheckpointCallback& onCheckpoint,
@@ -28,13 +39,15 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
   // interleaved pass indices to stay the same estimator as one session.
   EvenOddBuffers buffers(s.width, s.height);
   ConvergenceCurve curve{config.label, {}, {}, {}};
-  double renderSeconds = 0.0;
+  double renderSeconds = 0.0, wallSeconds = 0.0, cpuSeconds = 0.0;
   double lastCheckpoint = 0.0;  // in the budget's quantity
   const bool timed = budget.seconds > 0.0;
 
   auto record = [&](const Image& mean) {
     Checkpoint c;
     c.seconds = renderSeconds;
+    c.wallSeconds = wallSeconds;
+    c.cpuSeconds = cpuSeconds;
     c.spp = session.passes();
     if (reference) c.error = errorMetrics(mean, *reference);
     c.twoBuffer = buffers.estimate();
@@ -47,8 +60,11 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
 
   for (;;) {
     const auto start = std::chrono::steady_clock::now();
+    const double cpuStart = processCpuSeconds();
     session.renderPass();
-    renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    wallSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    cpuSeconds += processCpuSeconds() - cpuStart;
+    renderSeconds = budget.clock == ClockKind::Cpu ? cpuSeconds : wallSeconds;
     if (passesDone) passesDone->store(session.passes(), std::memory_order_relaxed);
     const Image mean = session.image();
     buffers.addRunningMean(mean);

@@ -16,8 +16,16 @@
 
 namespace pathlab {
 
+// Which clock measures render time. Wall: what a user waits. Cpu: the process's CPU time
+// (CLOCK_PROCESS_CPUTIME_ID, all threads): on a shared machine whose load exceeds its cores it
+// counts only the time the render actually ran, so comparisons stay fair while other processes
+// come and go. With several threads it also counts TBB workers spinning for work: use it with
+// --threads 1.
+enum class ClockKind { Wall, Cpu };
+
 struct Checkpoint {
-  double seconds = 0.0;  // render time: the sum of renderPass durations, metrics excluded
+  double seconds = 0.0;  // render time on the budget's clock: the sum of renderPass durations, metrics excluded
+  double wallSeconds = 0.0, cpuSeconds = 0.0;  // both clocks, whichever the budget uses
   uint64_t spp = 0;
   std::optional<ErrorMetrics> error;  // against the reference, when there is one
   TwoBufferEstimate twoBuffer;        // zeros until two passes are done
@@ -31,6 +39,7 @@ struct ConvergenceBudget {
   double seconds = 0.0;  // > 0: render for this much render time (at least two passes)
   uint64_t spp = 0;      // > 0: render this many passes
   double factor = 1.5;
+  ClockKind clock = ClockKind::Wall;
 };
 
 struct ConvergenceCurve {

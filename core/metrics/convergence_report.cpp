@@ -31,13 +31,15 @@ std::string markdownCell(const std::string& s) {
 }  // namespace
 
 std::string convergenceCsv(const std::vector<ConvergenceCurve>& curves) {
-  std::string csv = "config,spp,seconds,rmse,relmse,mape,twobuffer_mse,twobuffer_relmse,camera_samples,rays\n";
+  std::string csv =
+      "config,spp,seconds,rmse,relmse,mape,twobuffer_mse,twobuffer_relmse,camera_samples,rays,wall_seconds,cpu_seconds\n";
   for (const ConvergenceCurve& curve : curves)
     for (const Checkpoint& c : curve.checkpoints) {
       const std::string errors =
           c.error ? fmt::format("{:.6g},{:.6g},{:.6g}", c.error->rmse, c.error->relMse, c.error->mape) : ",,";
-      csv += fmt::format("{},{},{:.6f},{},{:.6g},{:.6g},{},{}\n", csvQuote(curve.label), c.spp, c.seconds, errors,
-                         c.twoBuffer.mse, c.twoBuffer.relMse, c.cameraSamples, c.rays);
+      csv += fmt::format("{},{},{:.6f},{},{:.6g},{:.6g},{},{},{:.6f},{:.6f}\n", csvQuote(curve.label), c.spp, c.seconds,
+                         errors, c.twoBuffer.mse, c.twoBuffer.relMse, c.cameraSamples, c.rays, c.wallSeconds,
+                         c.cpuSeconds);
     }
   return csv;
 }
@@ -64,10 +66,10 @@ std::vector<EfficiencyRow> efficiencyRows(const std::vector<ConvergenceCurve>& c
   return rows;
 }
 
-std::string efficiencyMarkdown(const std::vector<EfficiencyRow>& rows) {
-  std::string md =
-      "| configuration | spp | time (s) | relMSE | two-buffer relMSE | RMSE | MAPE | efficiency 1/(relMSE·s) | speed-up |\n"
-      "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+std::string efficiencyMarkdown(const std::vector<EfficiencyRow>& rows, const std::string& timeHeading) {
+  std::string md = "| configuration | spp | " + timeHeading +
+                   " | relMSE | two-buffer relMSE | RMSE | MAPE | efficiency 1/(relMSE·s) | speed-up |\n"
+                   "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const EfficiencyRow& r : rows)
     md += fmt::format("| {} | {} | {:.3g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.2f}× |\n",
                       markdownCell(r.label), r.spp, r.seconds, r.relMse, r.twoBufferRelMse, r.rmse, r.mape,

@@ -8,9 +8,9 @@
 
 namespace pathlab {
 
-// One row per checkpoint: config, spp, seconds, rmse, relmse, mape (empty without a reference),
-// twobuffer_mse, twobuffer_relmse, camera_samples, rays. Labels are quoted (RFC 4180): they
-// contain commas.
+// One row per checkpoint: config, spp, seconds (on the budget's clock), rmse, relmse, mape (empty
+// without a reference), twobuffer_mse, twobuffer_relmse, camera_samples, rays, wall_seconds,
+// cpu_seconds. Labels are quoted (RFC 4180): they contain commas.
 std::string convergenceCsv(const std::vector<ConvergenceCurve>& curves);
 
 // Efficiency of a Monte Carlo estimator = 1 / (variance × time) (Hammersley and Handscomb 1964;
@@ -24,6 +24,7 @@ struct EfficiencyRow {
   double efficiency = 0.0, speedup = 0.0;
 };
 std::vector<EfficiencyRow> efficiencyRows(const std::vector<ConvergenceCurve>& curves);
-std::string efficiencyMarkdown(const std::vector<EfficiencyRow>& rows);
+// `timeHeading` names the clock of the time column ("time (s)", "CPU time (s)").
+std::string efficiencyMarkdown(const std::vector<EfficiencyRow>& rows, const std::string& timeHeading = "time (s)");
 
 }  // namespace pathlab

@@ -31,7 +31,10 @@ ErrorMetrics errorMetrics(const Image& image, const Image& reference);
 // The variance part of the error of the mean image, estimated without a reference.
 struct TwoBufferEstimate {
   double mse = 0.0;     // estimate of E[(mean − truth)²] without bias; compare with ErrorMetrics::mse
-  double relMse = 0.0;  // the same over (mean² + kRelMseEpsilon); the mean stands in for the reference
+  // The same over (mean² + kRelMseEpsilon): the mean stands in for the reference. A pixel holding
+  // a rare huge sample (a firefly) is normalised by its own inflated mean, so this underrates
+  // error dominated by rare large samples; compare it with the reference's relMSE to see them.
+  double relMse = 0.0;
 };
 
 // Passes are independent (every pass draws from streams keyed by the pass index), so the mean of
@@ -49,8 +52,10 @@ class EvenOddBuffers {
   // One pass's own image (not a running mean): pass 0, 2, 4... go to A, 1, 3, 5... to B.
   void addPass(const std::vector<double>& passRgb);
   // The progressive mean after one more pass (what RenderSession::image() returns after pass n).
-  // The pass's own image is n·mean_n − (n−1)·mean_{n−1}: exact because the film's read-out is
-  // linear in the sums with a constant number of light subpaths per pass (Film::readout).
+  // The pass's own image is n·mean_n − (n−1)·mean_{n−1}: the film's read-out is linear in its
+  // sums with a constant number of light subpaths per pass (Film::readout), so this is exact up
+  // to the float rounding of the read-out (about n · 6e-8 of the pixel value, far below the
+  // noise of one pass for any pass count a run reaches).
   void addRunningMean(const Image& mean);
 
   uint64_t passes() const { return evenPasses_ + oddPasses_; }

@@ -126,6 +126,10 @@ void ProgressiveRenderer::State::run() {
     publish(session->image(), false, 1, counters, session->passes());
 
     if (session->hasPyramid()) {
+      {
+        std::lock_guard lock(mutex);
+        side = thumbnailSide;
+      }
       std::vector<TechniqueThumbnail> thumbs;
       for (int k = 1; k <= set.pyramidLength; ++k)
         for (int s = 0; s <= k; ++s) {

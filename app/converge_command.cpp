@@ -1,0 +1,255 @@
+// `pathlab converge`: every option checked before any work, the reference loaded or rendered (and
+// cached by hash), the configurations rendered one after another, the results written.
+#include "app/converge_command.h"
+
+#include "app/progress.h"
+#include "core/bpt/bidir_tracer.h"
+#include "core/film/image_io.h"
+#include "core/metrics/convergence.h"
+#include "core/metrics/convergence_report.h"
+#include "core/metrics/loglog_plot.h"
+#include "core/metrics/reference_key.h"
+#include "core/scene/gltf_loader.h"
+
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+#include <thread>
+
+namespace pathlab::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kDefaultSide = 256;
+constexpr double kDefaultSeconds = 10.0;
+constexpr int kReferenceFactor = 10;
+constexpr const char* kOutputs[] = {"convergence.csv", "convergence.svg", "efficiency.md"};
+
+// The reference must not share random streams with the configurations it judges (the bpt
+// configuration would otherwise repeat the reference's first passes exactly and look too good):
+// its seed is offset by an odd 64-bit constant (the golden ratio's bits).
+constexpr uint64_t kReferenceSeedOffset = 0x9E3779B97F4A7C15ull;
+
+// Text files are written like images: a temporary beside the target, then a rename.
+void writeTextAtomically(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
+  }
+  fs::rename(tmp, path);
+}
+
+void checkOutputDir(const ConvergeOptions& o) {
+  const fs::path dir(o.outputDir);
+  if (fs::exists(dir) && !fs::is_directory(dir))
+    throw std::runtime_error(o.outputDir + ": exists and is not a directory");
+  if (!fs::exists(dir)) {
+    if (!dir.parent_path().empty() && !fs::is_directory(dir.parent_path()))
+      throw std::runtime_error(o.outputDir + ": the directory " + dir.parent_path().string() + " does not exist");
+    return;
+  }
+  if (o.force) return;
+  for (const char* name : kOutputs)
+    if (fs::exists(dir / name))
+      throw std::runtime_error((dir / name).string() + ": file exists (pass --force to overwrite the results in " +
+                               o.outputDir + ")");
+}
+
+std::string humanCount(double v) {
+  if (v >= 1e9) return fmt::format("{:.2f}G", v / 1e9);
+  if (v >= 1e6) return fmt::format("{:.2f}M", v / 1e6);
+  if (v >= 1e3) return fmt::format("{:.1f}k", v / 1e3);
+  return fmt::format("{:.0f}", v);
+}
+
+// Runs one configuration with a progress bar on stderr.
+ConvergenceCurve runWithProgress(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
+                                 const ConvergenceBudget& budget) {
+  std::atomic<uint64_t> passes{0};
+  const auto start = std::chrono::steady_clock::now();
+  ProgressBar bar([&] {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const uint64_t n = passes.load(std::memory_order_relaxed);
+    const double done = budget.seconds > 0 ? elapsed / budget.seconds : static_cast<double>(n) / static_cast<double>(budget.spp);
+    return std::pair{done, fmt::format("{}: {} spp", config.label, n)};
+  });
+  return runConvergence(scene, config, reference, budget, {}, &passes);
+}
+
+void printSummary(const ConvergenceCurve& curve) {
+  const Checkpoint& c = curve.checkpoints.back();
+  std::string error = c.error ? fmt::format("relMSE {:.4g}, ", c.error->relMse) : "";
+  std::cerr << fmt::format("{}: {} spp in {:.2f} s, {}two-buffer relMSE {:.4g}, {} samples/s, {} rays/s\n", curve.label,
+                           c.spp, c.seconds, error, c.twoBuffer.relMse,
+                           humanCount(static_cast<double>(c.cameraSamples) / c.seconds),
+                           humanCount(static_cast<double>(c.rays) / c.seconds));
+}
+
+}  // namespace
+
+void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "converge", "Render several configurations for the same time, record their error against a reference, "
+                  "and write convergence.csv, convergence.svg (log-log relMSE against time) and efficiency.md");
+  cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  cmd->add_option("-o,--output", o.outputDir, "Output directory (created if missing)")->required();
+  auto* reference = cmd->add_option("--reference", o.reference,
+                  "Reference image (.exr or .pfm); without it one is rendered with bpt (balance heuristic) and "
+                  "cached in the output directory as reference-<hash>.exr");
+  cmd->add_option("--configs", o.configs,
+                  "';'-separated configurations INTEGRATOR[:key=value,...], keys mis, beta, techniques, max-length "
+                  "(e.g. \"bpt;pt;lt;bpt:mis=power;bpt:techniques=s=1;k=1\")")
+      ->capture_default_str();
+  auto* spp = cmd->add_option("--spp", o.spp, "Render each configuration for this many samples per pixel")
+                  ->check(CLI::Range(2, 1 << 24));
+  cmd->add_option("--time", o.seconds, "Render each configuration for this many seconds (default 10)")
+      ->check(CLI::Range(0.001, 7.0 * 24 * 3600))
+      ->excludes(spp);
+  auto* refSpp = cmd->add_option("--reference-spp", o.referenceSpp, "Samples per pixel of a rendered reference")
+                     ->check(CLI::Range(2, 1 << 24));
+  auto* refTime = cmd->add_option("--reference-time", o.referenceSeconds,
+                                   "Seconds of a rendered reference (default 10 times the per-configuration budget)")
+                      ->check(CLI::Range(0.001, 30.0 * 24 * 3600))
+                      ->excludes(refSpp);
+  reference->excludes(refSpp)->excludes(refTime);
+  cmd->add_option("--checkpoint-factor", o.checkpointFactor,
+                  "Checkpoints are spaced geometrically in time (or spp) by this factor")
+      ->check(CLI::Range(1.01, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--clock", o.clock,
+                  "Clock of --time, the CSV, the plot and the table: wall, or cpu (the process's CPU time: fair "
+                  "on a loaded machine; use it with --threads 1)")
+      ->check(CLI::IsMember({"wall", "cpu"}))
+      ->capture_default_str();
+  cmd->add_option("--width", o.width, "Image width (default: the reference's, or 256)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", o.height, "Image height (default: the reference's, or 256)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--max-length", o.maxLength, "Maximum path length in edges (a configuration may override it)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_flag("--rr,!--no-rr", o.russianRoulette, "Russian roulette from the third edge on (default on)");
+  cmd->add_option("--seed", o.seed, "Seed of every configuration's random streams");
+  cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
+  cmd->add_flag("-f,--force", o.force, "Overwrite convergence.csv, convergence.svg and efficiency.md");
+}
+
+int runConverge(ConvergeOptions o) {
+  // Every check before any work: configurations, output directory, reference, budget.
+  RenderSettings base;
+  base.maxLength = o.maxLength;
+  base.russianRoulette = o.russianRoulette;
+  base.seed = o.seed;
+  base.width = o.width > 0 ? o.width : kDefaultSide;
+  base.height = o.height > 0 ? o.height : kDefaultSide;
+  if (static_cast<long long>(base.width) * base.height > 16LL * 1024 * 1024)
+    throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than 16M pixels", base.width, base.height));
+  std::vector<ConvergenceConfig> configs = parseConvergenceConfigs(o.configs, base);
+  for (const ConvergenceConfig& c : configs)
+    if (c.settings.integrator != IntegratorKind::Pt)
+      for (int k : techniquesOf(c.settings).uncoveredLengths())
+        std::cerr << fmt::format("pathlab: warning: '{}' has no enabled technique for paths of length {} (biased)\n",
+                                 c.label, k);
+  checkOutputDir(o);
+
+  Image reference;
+  std::string referenceNote = fmt::format("Reference: `{}`.", o.reference);  // under the table
+  if (!o.reference.empty()) {
+    reference = readImage(o.reference);
+    if ((o.width > 0 && o.width != reference.width) || (o.height > 0 && o.height != reference.height))
+      throw std::runtime_error(fmt::format("{}: the reference is {} x {}, not the {} x {} asked for", o.reference,
+                                           reference.width, reference.height, base.width, base.height));
+    for (ConvergenceConfig& c : configs) {
+      c.settings.width = reference.width;
+      c.settings.height = reference.height;
+    }
+    base.width = reference.width;
+    base.height = reference.height;
+  }
+  ConvergenceBudget budget;
+  budget.factor = o.checkpointFactor;
+  budget.clock = o.clock == "cpu" ? ClockKind::Cpu : ClockKind::Wall;
+  if (o.spp > 0) budget.spp = static_cast<uint64_t>(o.spp);
+  else budget.seconds = o.seconds > 0 ? o.seconds : kDefaultSeconds;
+
+  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  Scene scene(loadGltf(o.scene));
+  for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
+  fs::create_directories(o.outputDir);
+  const fs::path dir(o.outputDir);
+
+  if (o.reference.empty()) {
+    ConvergenceConfig best{"reference (bpt, balance)", base};
+    best.settings.integrator = IntegratorKind::Bpt;
+    best.settings.seed = base.seed + kReferenceSeedOffset;
+    ConvergenceBudget refBudget;
+    refBudget.factor = 1e9;  // only the first and last checkpoints
+    refBudget.clock = budget.clock;
+    std::string budgetText;
+    // --reference-time or --reference-spp if given, else ten times the budget of a configuration.
+    if (o.referenceSpp > 0 || (o.referenceSeconds <= 0 && budget.spp > 0)) {
+      refBudget.spp = o.referenceSpp > 0 ? static_cast<uint64_t>(o.referenceSpp) : kReferenceFactor * budget.spp;
+      budgetText = fmt::format("spp={}", refBudget.spp);
+    } else {
+      refBudget.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceFactor * budget.seconds;
+      budgetText = fmt::format("{}={}", budget.clock == ClockKind::Cpu ? "cputime" : "time", refBudget.seconds);
+    }
+    const fs::path cached = dir / fmt::format("reference-{}.exr", referenceKey(o.scene, best.settings, budgetText));
+    if (fs::exists(cached)) {
+      reference = readImage(cached.string());
+      std::cerr << fmt::format("reference: reusing {}\n", cached.string());
+      referenceNote = fmt::format("Reference: `{}`, bpt (balance heuristic), {} (cached).", cached.filename().string(),
+                                  budgetText);
+    } else {
+      std::cerr << fmt::format("reference: rendering {} with bpt (balance heuristic)\n", budgetText);
+      const ConvergenceCurve ref = runWithProgress(scene, best, nullptr, refBudget);
+      printSummary(ref);
+      writeImage(cached.string(), ref.image);
+      reference = ref.image;
+      std::cerr << fmt::format("reference: wrote {}\n", cached.string());
+      // The reference's own error adds to every relMSE measured against it: a floor, given here.
+      referenceNote = fmt::format(
+          "Reference: `{}`, bpt (balance heuristic), {} spp in {:.3g} s; its own two-buffer relMSE {:.3g} is a "
+          "floor under every relMSE above.",
+          cached.filename().string(), ref.checkpoints.back().spp, ref.checkpoints.back().seconds,
+          ref.checkpoints.back().twoBuffer.relMse);
+    }
+  }
+
+  std::vector<ConvergenceCurve> curves;
+  for (const ConvergenceConfig& c : configs) {
+    curves.push_back(runWithProgress(scene, c, &reference, budget));
+    printSummary(curves.back());
+  }
+
+  LogLogPlot plot;
+  const bool cpu = budget.clock == ClockKind::Cpu;
+  plot.title = fmt::format("{}: relative MSE against {}", fs::path(o.scene).filename().string(),
+                           cpu ? "CPU time" : "render time");
+  plot.xLabel = cpu ? "CPU time (s)" : "render time (s)";
+  plot.yLabel = "relMSE";
+  for (const ConvergenceCurve& curve : curves) {
+    PlotSeries series{curve.label, {}};
+    for (const Checkpoint& c : curve.checkpoints) series.points.emplace_back(c.seconds, c.error->relMse);
+    plot.series.push_back(std::move(series));
+  }
+  const std::string table =
+      efficiencyMarkdown(efficiencyRows(curves), cpu ? "CPU time (s)" : "time (s)") + "\n" + referenceNote + "\n";
+  writeTextAtomically(dir / "convergence.csv", convergenceCsv(curves));
+  writeTextAtomically(dir / "convergence.svg", renderSvg(plot));
+  writeTextAtomically(dir / "efficiency.md", table);
+  std::cout << table;
+  std::cerr << fmt::format("wrote {}, {} and {}\n", (dir / "convergence.csv").string(), (dir / "convergence.svg").string(),
+                           (dir / "efficiency.md").string());
+  return 0;
+}
+
+}  // namespace pathlab::app

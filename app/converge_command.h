@@ -1,0 +1,35 @@
+// `pathlab converge`: several configurations rendered for the same time (or sample count), their
+// error against a reference recorded over time, an efficiency table and a log-log plot.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace pathlab::app {
+
+struct ConvergeOptions {
+  std::string scene;
+  std::string outputDir;
+  std::string reference;  // empty: render one (bpt, balance) and cache it in outputDir by hash
+  std::string configs = "bpt;pt;lt;bpt:mis=power;bpt:mis=uniform";
+  double seconds = 0.0;   // per configuration; default 10 when --spp is not given
+  int spp = 0;
+  double referenceSeconds = 0.0;  // default 10 x seconds
+  int referenceSpp = 0;           // default 10 x spp
+  double checkpointFactor = 1.5;
+  std::string clock = "wall";  // or "cpu": process CPU time (fair on a loaded machine, with --threads 1)
+  int width = 0, height = 0;  // 0: the reference's size, or 256 without --reference
+  int maxLength = 10;
+  bool russianRoulette = true;
+  uint64_t seed = 0;
+  int threads = 0;
+  bool force = false;
+};
+
+void addConvergeCommand(CLI::App& app, ConvergeOptions& options);
+// Returns the process exit code. Errors are exceptions, reported by main.
+int runConverge(ConvergeOptions options);
+
+}  // namespace pathlab::app

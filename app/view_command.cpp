@@ -1,0 +1,68 @@
+// `pathlab view [SCENE]`: registers the viewer's options and hands them to ui::runViewer.
+#include "app/view_command.h"
+
+#include "ui/run_viewer.h"
+
+#include <tbb/global_control.h>
+
+#include <filesystem>
+#include <thread>
+
+namespace {
+
+// The bundled scene, found from the working directory or else in the source tree the binary was
+// built from (so `build/app/pathlab view` works from anywhere on the build machine).
+constexpr const char* kDefaultScene = "assets/cornell-box.gltf";
+
+}  // namespace
+
+namespace pathlab::app {
+
+void addViewCommand(CLI::App& app, ViewOptions& o) {
+  CLI::App* cmd = app.add_subcommand("view", "Open the interactive viewer (or, with --headless, screenshot it)");
+  ui::ViewerOptions& v = o.viewer;
+  v.scene = kDefaultScene;
+  cmd->add_option("scene", v.scene, "glTF 2.0 scene (.gltf or .glb); default: the bundled Cornell box");
+  addEstimatorOptions(cmd, o.estimator);
+  cmd->add_option("--threads", v.threads, "Render threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--width", v.windowWidth, "Window width in pixels (the image fills the window beside the panel)")
+      ->check(CLI::Range(64, 16384));
+  cmd->add_option("--height", v.windowHeight, "Window height in pixels")->check(CLI::Range(64, 16384));
+  auto* presets = cmd->add_option("--presets", v.presetsFile, "JSON file of named presets (e.g. assets/presets.json)");
+  cmd->add_option("--preset", v.preset, "Start with this named preset (replaces the estimator options)")
+      ->needs(presets);
+  cmd->add_flag("--lecture", v.lecture, "Lecture mode: UI scaled for a projector");
+  cmd->add_option("--exposure", v.exposure, "Display exposure in stops")->check(CLI::Range(-40.f, 40.f));
+  cmd->add_option("--spp", v.spp, "Stop accumulating at this many samples per pixel (headless: the screenshot waits for them)")
+      ->check(CLI::Range(0, 1 << 24));
+  cmd->add_option("--pyramid", v.pyramidLength, "Open the technique pyramid up to this path length")
+      ->check(CLI::Range(1, kMaxPyramidLength));
+  cmd->add_flag("--hide-ui", v.hideUi, "Start with the panels hidden (Tab shows them)");
+  cmd->add_option("--script", v.script,
+                  "Scripted input for tests: 'FRAME:key=NAME;FRAME:drag=X0,Y0>X1,Y1' (frames count from 0)");
+  auto* headless = cmd->add_flag("--headless", v.headless, "Draw offscreen through EGL (no display needed)");
+  (void)headless;
+  auto* frames = cmd->add_option("--frames", v.frames, "Close after this many frames (headless default: 60)")
+                     ->check(CLI::Range(1, 100000));
+  cmd->add_option("--screenshot", v.screenshot, "After the last frame, write the whole viewer to this PNG")
+      ->needs(frames);
+  cmd->add_option("--render-scale", v.renderScale, "Render resolution relative to the window: 1, 0.5 or 0.25")
+      ->check(CLI::IsMember({1.f, 0.5f, 0.25f}));
+  cmd->add_flag("-f,--force", v.force, "Overwrite the screenshot if it exists");
+}
+
+int runView(ViewOptions o) {
+  finishEstimatorOptions(o.estimator);
+  if (o.viewer.headless && o.viewer.frames == 0) o.viewer.frames = 60;
+  o.viewer.settings = o.estimator.settings;
+  if (o.viewer.scene == kDefaultScene && !std::filesystem::exists(o.viewer.scene))
+    o.viewer.scene = PATHLAB_ASSETS_DIR "/cornell-box.gltf";
+  // The render threads get every core; the UI thread still runs at its own bounded frame rate.
+  const int threads =
+      o.viewer.threads > 0 ? o.viewer.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  o.viewer.threads = threads;
+  return ui::runViewer(o.viewer);
+}
+
+}  // namespace pathlab::app

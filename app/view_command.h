@@ -1,0 +1,20 @@
+// `pathlab view`: the interactive viewer's options (the estimator options are render's).
+#pragma once
+
+#include "app/estimator_options.h"
+#include "ui/viewer_options.h"
+
+#include <CLI/CLI.hpp>
+
+namespace pathlab::app {
+
+struct ViewOptions {
+  EstimatorOptions estimator;
+  ui::ViewerOptions viewer;
+};
+
+void addViewCommand(CLI::App& app, ViewOptions& options);
+// Returns the process exit code. Errors are exceptions, reported by main.
+int runView(ViewOptions options);
+
+}  // namespace pathlab::app

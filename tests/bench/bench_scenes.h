@@ -1,0 +1,18 @@
+// The bundled scenes the benchmarks run on, loaded once and shared by every benchmark.
+#pragma once
+
+#include "core/scene/scene.h"
+
+#include <string>
+#include <vector>
+
+namespace pathlab::bench {
+
+// Stems of assets/*.gltf, sorted ("bidir-lamp", "caustic", "cornell-box", "veach-mis").
+std::vector<std::string> bundledScenes();
+// Loads assets/<name>.gltf on first use (benchmarks filtered out never load their scene).
+const Scene& benchScene(const std::string& name);
+// Every hardware thread (the "all threads" setting); at least 1.
+int allThreads();
+
+}  // namespace pathlab::bench

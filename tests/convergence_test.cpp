@@ -1,0 +1,154 @@
+// `pathlab converge` machinery: configuration parsing, the converge loop on a tiny render, CSV,
+// efficiency table and the SVG plot.
+#include "core/metrics/convergence.h"
+#include "core/metrics/convergence_config.h"
+#include "core/metrics/convergence_report.h"
+#include "core/metrics/loglog_plot.h"
+#include "core/metrics/reference_key.h"
+#include "core/render/render_session.h"
+#include "core/scene/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace pathlab {
+namespace {
+
+const std::string kBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
+
+TEST(ConvergenceConfig, ParsesTheIssueExample) {
+  const auto c = parseConvergenceConfigs("bpt;pt;lt;bpt:mis=power;bpt:mis=uniform", RenderSettings{});
+  ASSERT_EQ(c.size(), 5u);
+  EXPECT_EQ(c[0].settings.integrator, IntegratorKind::Bpt);
+  EXPECT_EQ(c[1].settings.integrator, IntegratorKind::Pt);
+  EXPECT_EQ(c[2].settings.integrator, IntegratorKind::Lt);
+  EXPECT_EQ(c[3].settings.mis.heuristic, MisHeuristic::Power);
+  EXPECT_EQ(c[4].settings.mis.heuristic, MisHeuristic::Uniform);
+  EXPECT_EQ(c[3].label, "bpt:mis=power");
+}
+
+TEST(ConvergenceConfig, TechniqueSpecsKeepTheirSeparators) {
+  RenderSettings base;
+  base.seed = 7;
+  const auto c = parseConvergenceConfigs(" bpt:techniques=1,2;k=1,mis=power,beta=3 ; pt:max-length=4;", base);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0].settings.techniques, "1,2;k=1");
+  EXPECT_EQ(c[0].settings.mis.heuristic, MisHeuristic::Power);
+  EXPECT_EQ(c[0].settings.mis.beta, 3.f);
+  EXPECT_EQ(c[0].settings.seed, 7u);
+  EXPECT_EQ(c[1].settings.maxLength, 4);
+  const auto d = parseConvergenceConfigs("bpt:techniques=s=1;t=1;k=1;lt", base);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[0].settings.techniques, "s=1;t=1;k=1");
+}
+
+TEST(ConvergenceConfig, BadConfigsAreOneLineErrors) {
+  for (const char* bad : {"", ";", "magic", "bpt:mis=max", "pt:mis=power", "bpt:beta=x", "bpt:foo=1", "bpt:mis",
+                          "bpt:techniques=9,9,max-length=4", "bpt:max-length=0", "bpt;bpt", "bpt:techniques=x"}) {
+    try {
+      parseConvergenceConfigs(bad, RenderSettings{});
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const std::invalid_argument& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+      EXPECT_EQ(msg.rfind("--configs:", 0), 0u) << msg;
+    }
+  }
+}
+
+TEST(ReferenceKey, ChangesWithSettingsAndBudget) {
+  RenderSettings s;
+  const std::string a = referenceKey(kBox, s, "time=10");
+  EXPECT_EQ(a.size(), 16u);
+  EXPECT_EQ(a, referenceKey(kBox, s, "time=10"));
+  EXPECT_NE(a, referenceKey(kBox, s, "time=20"));
+  s.maxLength = 4;
+  EXPECT_NE(a, referenceKey(kBox, s, "time=10"));
+  EXPECT_THROW(referenceKey(kBox + ".missing", s, "time=10"), std::runtime_error);
+}
+
+TEST(Convergence, ErrorFallsAndCheckpointsAreGeometric) {
+  Scene scene(loadGltf(kBox));
+  RenderSettings base;
+  base.width = base.height = 12;
+  base.maxLength = 4;
+  auto configs = parseConvergenceConfigs("bpt;pt", base);
+  ConvergenceConfig refConfig{"ref", base};
+  refConfig.settings.integrator = IntegratorKind::Bpt;
+  refConfig.settings.seed = 1000;
+  ConvergenceBudget refBudget;
+  refBudget.spp = 256;
+  const Image reference = runConvergence(scene, refConfig, nullptr, refBudget).image;
+
+  ConvergenceBudget budget;
+  budget.spp = 40;
+  std::vector<ConvergenceCurve> curves;
+  for (const auto& c : configs) curves.push_back(runConvergence(scene, c, &reference, budget));
+  for (const ConvergenceCurve& curve : curves) {
+    std::vector<uint64_t> spp;
+    for (const Checkpoint& c : curve.checkpoints) spp.push_back(c.spp);
+    EXPECT_EQ(spp, (std::vector<uint64_t>{1, 2, 3, 5, 8, 12, 18, 27, 40})) << curve.label;
+    const Checkpoint &first = curve.checkpoints.front(), &last = curve.checkpoints.back();
+    ASSERT_TRUE(first.error && last.error);
+    EXPECT_LT(last.error->relMse, 0.5 * first.error->relMse) << curve.label;
+    EXPECT_GT(last.twoBuffer.relMse, 0.0);
+    EXPECT_EQ(last.cameraSamples, 40u * 144u);
+    for (size_t i = 1; i < curve.checkpoints.size(); ++i)
+      EXPECT_GE(curve.checkpoints[i].seconds, curve.checkpoints[i - 1].seconds);
+  }
+
+  const std::string csv = convergenceCsv(curves);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 9);
+  EXPECT_EQ(csv.rfind("config,spp,seconds,rmse,relmse,mape,", 0), 0u);
+  const auto rows = efficiencyRows(curves);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(rows[0].speedup, 1.0);
+  EXPECT_DOUBLE_EQ(rows[1].efficiency, 1.0 / (rows[1].relMse * rows[1].seconds));
+  const std::string md = efficiencyMarkdown(rows);
+  EXPECT_EQ(std::count(md.begin(), md.end(), '\n'), 4);
+}
+
+TEST(Convergence, ATimeBudgetRunsAtLeastTwoPasses) {
+  Scene scene(loadGltf(kBox));
+  RenderSettings base;
+  base.width = base.height = 4;
+  ConvergenceBudget budget;
+  budget.seconds = 1e-6;
+  const ConvergenceCurve curve = runConvergence(scene, {"pt", base}, nullptr, budget);
+  EXPECT_EQ(curve.checkpoints.back().spp, 2u);
+  EXPECT_FALSE(curve.checkpoints.back().error.has_value());
+}
+
+TEST(Convergence, TheCpuClockIsRecordedAndCanSetTheBudget) {
+  Scene scene(loadGltf(kBox));
+  RenderSettings base;
+  base.width = base.height = 8;
+  ConvergenceBudget budget;
+  budget.seconds = 0.05;
+  budget.clock = ClockKind::Cpu;
+  const ConvergenceCurve curve = runConvergence(scene, {"pt", base}, nullptr, budget);
+  const Checkpoint& last = curve.checkpoints.back();
+  EXPECT_EQ(last.seconds, last.cpuSeconds);
+  EXPECT_GE(last.cpuSeconds, 0.05);
+  EXPECT_GT(last.wallSeconds, 0.0);
+}
+
+TEST(LogLogPlot, OnePolylinePerSeriesAndDecadeLabels) {
+  LogLogPlot plot{"title & <escaping>", "time (s)", "relMSE", {}};
+  plot.series.push_back({"bpt", {{0.01, 1.0}, {0.1, 0.1}, {1.0, 1e-4}}});
+  plot.series.push_back({"bpt:techniques=1,2;k=1", {{0.02, 2.0}, {2.0, 0.02}, {3.0, 0.0}}});
+  const std::string svg = renderSvg(plot);
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  size_t polylines = 0;
+  for (size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++polylines;
+  EXPECT_EQ(polylines, 2u);
+  EXPECT_NE(svg.find("title &amp; &lt;escaping&gt;"), std::string::npos);
+  EXPECT_NE(svg.find(">0.01</text>"), std::string::npos);  // an x decade label
+  EXPECT_NE(svg.find(">-4</tspan>"), std::string::npos);   // a y decade label, 10^-4
+  EXPECT_THROW(renderSvg(LogLogPlot{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pathlab

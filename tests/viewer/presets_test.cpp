@@ -1,0 +1,115 @@
+// Named presets: the shipped file parses and every preset renders; bad files give one line naming
+// the file, the preset and the problem.
+#include "ui/presets.h"
+
+#include "core/bpt/technique_set.h"
+
+#include <gtest/gtest.h>
+
+namespace pathlab::ui {
+namespace {
+
+const std::string kShipped = std::string(PATHLAB_SOURCE_DIR) + "/assets/presets.json";
+
+TEST(Presets, ShippedFileParsesAndEveryPresetIsRenderable) {
+  const std::vector<NamedPreset> presets = loadPresets(kShipped);
+  ASSERT_GE(presets.size(), 5u);
+  RenderSettings base;
+  base.width = 320;
+  base.height = 200;
+  for (const NamedPreset& p : presets) {
+    const RenderSettings s = p.applyTo(base);
+    EXPECT_NO_THROW(validateSettings(s)) << p.name;
+    EXPECT_EQ(s.width, 320) << p.name;  // the image size is the window's, never the preset's
+  }
+  EXPECT_EQ(findPreset(presets, "light tracing (t = 1)", kShipped).techniques, "t=1");
+}
+
+TEST(Presets, FieldsAndDefaults) {
+  const auto presets = parsePresets(R"({"presets": [
+      {"name": "a"},
+      {"name": "b", "integrator": "lt", "techniques": "t=1", "mis": "power", "beta": 3, "maxLength": 4,
+       "isolate": [2, 1], "unweighted": true,
+       "camera": {"eye": [0, 1, 2], "target": [0, 1, 0], "yfovDegrees": 60}}]})",
+                                    "p.json");
+  ASSERT_EQ(presets.size(), 2u);
+  EXPECT_EQ(presets[0].integrator, IntegratorKind::Bpt);
+  EXPECT_EQ(presets[0].techniques, "all");
+  EXPECT_EQ(presets[0].maxLength, 10);
+  EXPECT_FALSE(presets[0].isolate);
+  EXPECT_FALSE(presets[0].camera);
+  const NamedPreset& b = presets[1];
+  EXPECT_EQ(b.integrator, IntegratorKind::Lt);
+  EXPECT_EQ(b.mis.heuristic, MisHeuristic::Power);
+  EXPECT_EQ(b.mis.beta, 3.f);
+  EXPECT_EQ(*b.isolate, (Isolation{2, 1, true}));
+  ASSERT_TRUE(b.camera);
+  EXPECT_NEAR(b.camera->yfov, glm::radians(60.f), 1e-6f);
+  EXPECT_NEAR(b.camera->cameraToWorld[3].z, 2.f, 1e-6f);
+  EXPECT_NEAR(b.camera->cameraToWorld[2].z, 1.f, 1e-6f);  // looks down -z: camera z axis is +z
+
+  // A preset without a camera keeps the current one.
+  RenderSettings current;
+  current.camera = b.camera;
+  EXPECT_EQ(presets[0].applyTo(current).camera, b.camera);
+}
+
+struct BadCase {
+  const char* json;
+  const char* expected;  // part of the message
+};
+
+// Short test names in CTest: the expected part of the message.
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.expected; }
+
+class BadPresets : public testing::TestWithParam<BadCase> {};
+
+TEST_P(BadPresets, OneLineNamingFileAndProblem) {
+  try {
+    parsePresets(GetParam().json, "dir/talk.json");
+    FAIL() << "no error for " << GetParam().json;
+  } catch (const PresetError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("dir/talk.json: ", 0), 0u) << what;
+    EXPECT_NE(what.find(GetParam().expected), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Presets, BadPresets,
+    testing::Values(BadCase{"{\"presets\": [", "parse error"}, BadCase{"[]", "\"presets\""},
+                    BadCase{R"({"presets": [{"techniques": "all"}]})", "no \"name\""},
+                    BadCase{R"({"presets": [{"name": "x", "colour": 1}]})", "unknown key \"colour\""},
+                    BadCase{R"({"presets": [{"name": "x", "techniques": "9;x"}]})", "preset 0 (\"x\"): techniques"},
+                    BadCase{R"({"presets": [{"name": "x", "integrator": "mlt"}]})", "mlt"},
+                    BadCase{R"({"presets": [{"name": "x", "mis": "max"}]})", "max"},
+                    BadCase{R"({"presets": [{"name": "x", "maxLength": 0}]})", "maxLength"},
+                    BadCase{R"({"presets": [{"name": "x", "maxLength": "5"}]})", "an integer"},
+                    BadCase{R"({"presets": [{"name": "x", "maxLength": 3, "isolate": [3, 3]}]})", "(3,3)"},
+                    BadCase{R"({"presets": [{"name": "x", "isolate": [1]}]})", "[s, t]"},
+                    BadCase{R"({"presets": [{"name": "x", "unweighted": true}]})", "needs \"isolate\""},
+                    BadCase{R"({"presets": [{"name": "x", "integrator": "pt", "isolate": [1, 2]}]})", "bpt or lt"},
+                    BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [0, 0, 0], "target": [0, 0, 0]}}]})",
+                            "coincide"},
+                    BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [0, 0], "target": [0, 0, 1]}}]})",
+                            "3 numbers"},
+                    BadCase{R"({"presets": [{"name": "x"}, {"name": "x"}]})", "preset 1 (\"x\"): duplicate"}),
+    [](const testing::TestParamInfo<BadCase>& info) { return "case" + std::to_string(info.index); });
+
+TEST(Presets, UnknownNameListsTheKnownOnes) {
+  const auto presets = parsePresets(R"({"presets": [{"name": "a"}, {"name": "b"}]})", "p.json");
+  try {
+    findPreset(presets, "c", "p.json");
+    FAIL();
+  } catch (const PresetError& e) {
+    EXPECT_STREQ(e.what(), "p.json: no preset \"c\" (known: \"a\", \"b\")");
+  }
+}
+
+TEST(Presets, MissingFile) {
+  EXPECT_THROW(loadPresets("/nonexistent/presets.json"), PresetError);
+}
+
+}  // namespace
+}  // namespace pathlab::ui

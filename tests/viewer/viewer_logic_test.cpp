@@ -1,0 +1,117 @@
+// Small parts of the viewer without OpenGL: the shortcut table, fresh output names, background
+// scene loading with one-line errors.
+#include "ui/output_names.h"
+#include "ui/scene_loader.h"
+#include "ui/input_script.h"
+#include "ui/shortcuts.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <thread>
+
+namespace pathlab::ui {
+namespace {
+
+TEST(Shortcuts, UniqueAndClearOfTheFlyKeys) {
+  std::set<std::pair<int, bool>> keys;
+  std::set<Action> actions;
+  for (const Shortcut& s : shortcuts()) {
+    EXPECT_TRUE(keys.insert({s.key, s.ctrl}).second) << s.keyName << " bound twice";
+    EXPECT_TRUE(actions.insert(s.action).second) << s.description;
+    EXPECT_GT(std::string(s.description).size(), 3u);
+    if (!s.ctrl) {
+      for (int fly : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
+        EXPECT_NE(s.key, fly) << s.keyName << " is a fly key";
+    }
+  }
+  EXPECT_EQ(actions.size(), static_cast<size_t>(Action::Quit) + 1);  // every action has a key
+}
+
+TEST(OutputNames, NeverAnExistingFile) {
+  const std::string dir = std::string(PATHLAB_TEST_TMP) + "/output_names";
+  std::filesystem::remove_all(dir);
+  const std::string first = freshStem(dir, "pathlab", {".exr", ".png"});
+  EXPECT_EQ(first.rfind(dir + "/pathlab-", 0), 0u);
+  std::ofstream(first + ".png") << "x";
+  const std::string second = freshStem(dir, "pathlab", {".exr", ".png"});
+  EXPECT_NE(second, first);
+  EXPECT_FALSE(std::filesystem::exists(second + ".png"));
+  EXPECT_FALSE(std::filesystem::exists(second + ".exr"));
+}
+
+std::optional<SceneLoadResult> waitFor(SceneLoader& loader) {
+  for (int i = 0; i < 600; ++i) {
+    if (auto r = loader.poll()) return r;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return std::nullopt;
+}
+
+TEST(SceneLoader, LoadsInTheBackground) {
+  SceneLoader loader;
+  EXPECT_FALSE(loader.busy());
+  loader.start(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf");
+  EXPECT_TRUE(loader.busy());
+  const auto r = waitFor(loader);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->scene) << r->error;
+  EXPECT_TRUE(r->error.empty());
+  EXPECT_FALSE(loader.busy());
+}
+
+TEST(SceneLoader, ABrokenSceneIsOneLineNamingTheFile) {
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(PATHLAB_SOURCE_DIR) + "/tests/scenes/bad")) {
+    const std::string ext = entry.path().extension().string();
+    if ((ext != ".gltf" && ext != ".glb") || entry.path().filename() == "degenerate.gltf") continue;  // loads, warns
+    SceneLoader loader;
+    loader.start(entry.path().string());
+    const auto r = waitFor(loader);
+    ASSERT_TRUE(r);
+    EXPECT_FALSE(r->scene) << entry.path();
+    EXPECT_NE(r->error.find(entry.path().filename().string()), std::string::npos) << r->error;
+    EXPECT_EQ(r->error.find('\n'), std::string::npos) << r->error;
+  }
+  const SceneLoadResult missing = SceneLoader::load("/nonexistent/box.gltf");
+  EXPECT_FALSE(missing.scene);
+  EXPECT_NE(missing.error.find("/nonexistent/box.gltf"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pathlab::ui
+
+namespace pathlab::ui {
+namespace {
+
+TEST(InputScript, ParsesKeysAndDragsAndReplaysThemFrameByFrame) {
+  const std::vector<InputEvent> script = parseInputScript("2:key=3;5:drag=10,20>30,40;9:key=Ctrl+S;12:key=W");
+  ASSERT_EQ(script.size(), 4u);
+  EXPECT_EQ(script[0].key, GLFW_KEY_3);
+  EXPECT_TRUE(script[2].ctrl);
+  EXPECT_EQ(inputAt(script, 1).keysDown.size(), 0u);
+  EXPECT_EQ(inputAt(script, 2).keysDown, std::vector<int>{GLFW_KEY_3});
+  EXPECT_EQ(inputAt(script, 3).keysDown.size(), 0u);  // pressed for one frame
+  // Drag: move, press, move while pressed, release.
+  const FrameInput f5 = inputAt(script, 5), f6 = inputAt(script, 6), f7 = inputAt(script, 7), f8 = inputAt(script, 8);
+  EXPECT_TRUE(f5.hasMouse && !f5.mouseDown && f5.mouse == Vec2(10, 20));
+  EXPECT_TRUE(f6.mouseDown && f6.mouse == Vec2(10, 20));
+  EXPECT_TRUE(f7.mouseDown && f7.mouse == Vec2(30, 40));
+  EXPECT_TRUE(!f8.mouseDown && f8.mouse == Vec2(30, 40));
+  EXPECT_FALSE(inputAt(script, 9).hasMouse);
+  EXPECT_TRUE(inputAt(script, 9).ctrl);
+  EXPECT_EQ(inputAt(script, 21).keysDown, std::vector<int>{GLFW_KEY_W});  // fly keys are held
+  const std::vector<InputEvent> drop = parseInputScript("3:drop=a b/c.gltf");
+  EXPECT_EQ(inputAt(drop, 3).dropped, std::vector<std::string>{"a b/c.gltf"});
+  EXPECT_TRUE(inputAt(drop, 4).dropped.empty());
+  EXPECT_EQ(inputAt(parseInputScript("1:resize=640,480"), 1).resize, Vec2i(640, 480));
+  for (const char* bad : {"1:resize=0,4", "1:resize=4", "1:drop=", "x:key=3", "1:key=nope", "1:drag=1,2", "1:press=3", "-1:key=3"})
+    EXPECT_THROW(parseInputScript(bad), std::invalid_argument) << bad;
+}
+
+}  // namespace
+}  // namespace pathlab::ui

@@ -1,0 +1,108 @@
+// Parsing and replaying scripted input (see input_script.h).
+#include "ui/input_script.h"
+
+#include "ui/shortcuts.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+namespace pathlab::ui {
+
+namespace {
+
+constexpr int kFlyHoldFrames = 10;
+
+bool parseKey(const std::string& name, InputEvent& e) {
+  for (const Shortcut& s : shortcuts())
+    if (name == s.keyName) {
+      e.key = s.key;
+      e.ctrl = s.ctrl;
+      return true;
+    }
+  if (name.size() == 1 && std::string("WASDQE").find(name[0]) != std::string::npos) {
+    e.key = name[0];  // GLFW letter codes are their upper-case ASCII
+    e.holdFrames = kFlyHoldFrames;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<InputEvent> parseInputScript(const std::string& script) {
+  std::vector<InputEvent> events;
+  size_t start = 0;
+  while (start < script.size()) {
+    const size_t end = std::min(script.find(';', start), script.size());
+    const std::string item = script.substr(start, end - start);
+    start = end + 1;
+    if (item.empty()) continue;
+    auto bad = [&](const char* why) { return std::invalid_argument("--script: '" + item + "': " + why); };
+    InputEvent e;
+    const size_t colon = item.find(':');
+    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:drop=PATH or FRAME:resize=W,H");
+    try {
+      size_t used = 0;
+      e.frame = std::stoi(item.substr(0, colon), &used);
+      if (used != colon || e.frame < 0) throw std::invalid_argument("frame");
+    } catch (const std::exception&) {
+      throw bad("the frame is not a non-negative integer");
+    }
+    std::string action = item.substr(colon + 1);
+    if (action.rfind("resize=", 0) == 0) {
+      int w = 0, h = 0;
+      char tail;
+      if (std::sscanf(action.c_str() + 7, "%d,%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+        throw bad("expected resize=W,H with sizes in 1..16384");
+      e.kind = InputEvent::Kind::Resize;
+      e.to = {static_cast<float>(w), static_cast<float>(h)};
+    } else if (action.rfind("drop=", 0) == 0) {
+      e.kind = InputEvent::Kind::Drop;
+      e.path = action.substr(5);
+      if (e.path.empty()) throw bad("no file to drop");
+    } else if (action.rfind("key=", 0) == 0) {
+      e.kind = InputEvent::Kind::Key;
+      if (!parseKey(action.substr(4), e)) throw bad("unknown key (see the help panel, F1)");
+    } else {
+      if (action.rfind("Shift+", 0) == 0) e.shift = true, action = action.substr(6);
+      float x0, y0, x1, y1;
+      char tail;
+      if (action.rfind("drag=", 0) != 0 ||
+          std::sscanf(action.c_str() + 5, "%f,%f>%f,%f%c", &x0, &y0, &x1, &y1, &tail) != 4)
+        throw bad("expected key=NAME, drag=X0,Y0>X1,Y1, drop=PATH or resize=W,H");
+      e.kind = InputEvent::Kind::Drag;
+      e.from = {x0, y0};
+      e.to = {x1, y1};
+    }
+    events.push_back(e);
+  }
+  return events;
+}
+
+FrameInput inputAt(const std::vector<InputEvent>& events, int frame) {
+  FrameInput in;
+  for (const InputEvent& e : events) {
+    const int step = frame - e.frame;
+    if (e.kind == InputEvent::Kind::Resize) {
+      if (step == 0) in.resize = Vec2i(e.to);
+    } else if (e.kind == InputEvent::Kind::Drop) {
+      if (step == 0) in.dropped.push_back(e.path);
+    } else if (e.kind == InputEvent::Kind::Key) {
+      if (step >= 0 && step < e.holdFrames) {
+        in.keysDown.push_back(e.key);
+        in.ctrl = in.ctrl || e.ctrl;
+      }
+    } else if (step >= 0 && step < 4) {
+      in.hasMouse = true;
+      in.mouse = step < 2 ? e.from : e.to;
+      in.mouseDown = step == 1 || step == 2;
+      in.shift = e.shift;
+    }
+  }
+  return in;
+}
+
+}  // namespace pathlab::ui

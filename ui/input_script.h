@@ -1,0 +1,48 @@
+// Scripted input for tests and reproducible screenshots: key presses and mouse drags at given
+// frames, fed to Dear ImGui as if they came from the window. ImGui 1.86 has no input queue, so
+// each step writes io.KeysDown / io.MousePos / io.MouseDown for one frame (../shared/TOOLCHAIN.md).
+//
+// SCRIPT: ';'-separated events "FRAME:key=NAME", "FRAME:drag=X0,Y0>X1,Y1" (window pixels, left
+// button; "Shift+drag=..." pans), "FRAME:drop=PATH" (a file dropped on the window) or
+// "FRAME:resize=W,H" (the window resized). NAME is a
+// key of the shortcut table ("3", "M", "Space", "F1", "Ctrl+S", "PageDown", "]") or a fly key
+// W A S D Q E (held for 10 frames).
+#pragma once
+
+#include "core/math/types.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pathlab::ui {
+
+struct InputEvent {
+  enum class Kind { Key, Drag, Drop, Resize } kind = Kind::Key;
+  int frame = 0;
+  int key = 0;        // GLFW key code
+  bool ctrl = false;  // Key: with Ctrl
+  bool shift = false; // Drag: with Shift (pan)
+  int holdFrames = 1; // Key: frames the key stays down
+  Vec2 from{0.f}, to{0.f};  // Drag; Resize: `to` is the size
+  std::string path;   // Drop
+};
+
+// Throws std::invalid_argument naming the bad event.
+std::vector<InputEvent> parseInputScript(const std::string& script);
+
+// What the script does to the input of one frame.
+struct FrameInput {
+  std::vector<int> keysDown;
+  bool ctrl = false, shift = false;
+  bool hasMouse = false;
+  Vec2 mouse{0.f};
+  bool mouseDown = false;
+  std::vector<std::string> dropped;
+  std::optional<Vec2i> resize;
+};
+
+// A drag takes four frames from its start: move to the start, press, move to the end, release.
+FrameInput inputAt(const std::vector<InputEvent>& events, int frame);
+
+}  // namespace pathlab::ui

@@ -1,0 +1,35 @@
+// Background scene loading with one-line errors.
+#include "ui/scene_loader.h"
+
+#include "core/scene/gltf_loader.h"
+
+#include <chrono>
+
+namespace pathlab::ui {
+
+SceneLoadResult SceneLoader::load(const std::string& path) {
+  SceneLoadResult r{path, nullptr, {}};
+  try {
+    r.scene = std::make_shared<const Scene>(loadGltf(path));
+  } catch (const std::exception& e) {
+    // The loader's messages already name the file; others (bad_alloc, ...) get it here.
+    const std::string what = e.what();
+    r.error = what.find(path) != std::string::npos ? what : path + ": " + what;
+  }
+  return r;
+}
+
+void SceneLoader::start(const std::string& path) {
+  if (pending_.valid()) pending_.wait();
+  pendingPath_ = path;
+  pending_ = std::async(std::launch::async, [path] { return load(path); });
+}
+
+std::optional<SceneLoadResult> SceneLoader::poll() {
+  if (!pending_.valid() || pending_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return std::nullopt;
+  SceneLoadResult r = pending_.get();
+  pendingPath_.clear();
+  return r;
+}
+
+}  // namespace pathlab::ui

@@ -1,0 +1,48 @@
+// The shortcut table. Letters W A S D Q E are the fly keys and R resets the camera, so the
+// technique presets sit on the digits (1..4 and 0, like the grid's preset buttons).
+#include "ui/shortcuts.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+namespace pathlab::ui {
+
+namespace {
+
+constexpr Shortcut kShortcuts[] = {
+    {GLFW_KEY_SPACE, false, "Space", Action::TogglePause, "pause / resume rendering"},
+    {GLFW_KEY_TAB, false, "Tab", Action::ToggleUi, "hide / show the panels"},
+    {GLFW_KEY_F1, false, "F1", Action::ToggleHelp, "help (this list)"},
+    {GLFW_KEY_G, false, "G", Action::TogglePyramid, "technique pyramid on / off"},
+    {GLFW_KEY_1, false, "1", Action::TechniquesAll, "techniques: all"},
+    {GLFW_KEY_2, false, "2", Action::TechniquesPathTracing, "techniques: path tracing (s <= 1)"},
+    {GLFW_KEY_3, false, "3", Action::TechniquesLightTracing, "techniques: light tracing (t = 1)"},
+    {GLFW_KEY_4, false, "4", Action::TechniquesOneLength, "techniques: only the selected length"},
+    {GLFW_KEY_0, false, "0", Action::TechniquesClear, "techniques: clear"},
+    {GLFW_KEY_M, false, "M", Action::CycleMode, "mode: combine with MIS / isolate weighted / isolate unweighted"},
+    {GLFW_KEY_U, false, "U", Action::CycleHeuristic, "MIS heuristic: balance / power / uniform"},
+    {GLFW_KEY_I, false, "I", Action::CycleIntegrator, "integrator: bpt / pt / lt"},
+    {GLFW_KEY_RIGHT_BRACKET, false, "]", Action::LongerPaths, "maximum path length + 1"},
+    {GLFW_KEY_LEFT_BRACKET, false, "[", Action::ShorterPaths, "maximum path length - 1"},
+    {GLFW_KEY_RIGHT, false, "Right", Action::IsolateMoreLight, "isolated technique: s + 1, t - 1 (same length)"},
+    {GLFW_KEY_LEFT, false, "Left", Action::IsolateMoreCamera, "isolated technique: s - 1, t + 1 (same length)"},
+    {GLFW_KEY_UP, false, "Up", Action::IsolateLonger, "isolated technique: t + 1 (one edge longer)"},
+    {GLFW_KEY_DOWN, false, "Down", Action::IsolateShorter, "isolated technique: t - 1 (one edge shorter)"},
+    {GLFW_KEY_PAGE_DOWN, false, "PageDown", Action::NextPreset, "next named preset"},
+    {GLFW_KEY_PAGE_UP, false, "PageUp", Action::PreviousPreset, "previous named preset"},
+    {GLFW_KEY_EQUAL, false, "=", Action::ExposureUp, "exposure + 1/2 stop"},
+    {GLFW_KEY_MINUS, false, "-", Action::ExposureDown, "exposure - 1/2 stop"},
+    {GLFW_KEY_T, false, "T", Action::ToggleToneMap, "tone map: clamp / filmic"},
+    {GLFW_KEY_F, false, "F", Action::ToggleFalseColour, "false colour (log luminance) on / off"},
+    {GLFW_KEY_R, false, "R", Action::ResetCamera, "reset the camera to the scene's"},
+    {GLFW_KEY_F5, false, "F5", Action::ReloadScene, "reload the scene file"},
+    {GLFW_KEY_S, true, "Ctrl+S", Action::SaveImage, "save the image as EXR and PNG in out/"},
+    {GLFW_KEY_F12, false, "F12", Action::Screenshot, "screenshot of the window in out/"},
+    {GLFW_KEY_Q, true, "Ctrl+Q", Action::Quit, "quit"},
+};
+
+}  // namespace
+
+std::span<const Shortcut> shortcuts() { return kShortcuts; }
+
+}  // namespace pathlab::ui

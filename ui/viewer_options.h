@@ -1,0 +1,36 @@
+// How `pathlab view` starts: scene, initial estimator state, window and headless options. Filled
+// by the CLI (app/view_command.cpp), read by runViewer.
+#pragma once
+
+#include "core/render/render_settings.h"
+
+#include <cstdint>
+#include <string>
+
+namespace pathlab::ui {
+
+struct ViewerOptions {
+  std::string scene;
+  // The initial estimator (width and height are ignored: the image follows the window).
+  RenderSettings settings;
+  int threads = 0;  // render threads, 0: all hardware threads
+  int windowWidth = 1280;
+  int windowHeight = 720;
+  bool lecture = false;  // UI scaled for a projector
+  std::string presetsFile;
+  std::string preset;    // applied at start (needs presetsFile)
+  float exposure = 0.f;  // stops
+  uint64_t spp = 0;      // stop accumulating at this many samples per pixel (0: never)
+  int pyramidLength = 0; // > 0: open the technique pyramid up to this length
+  float renderScale = 1.f;  // render resolution relative to the image area: 1, 0.5 or 0.25
+  // Headless: draw offscreen through EGL. frames > 0: close after that many drawn frames (then
+  // write the whole viewer to `screenshot` if given); with a window too, for tests.
+  bool headless = false;
+  int frames = 0;
+  std::string screenshot;
+  bool force = false;    // overwrite the screenshot
+  bool hideUi = false;   // start with the panels hidden
+  std::string script;    // scripted input (ui/input_script.h), counted in drawn frames
+};
+
+}  // namespace pathlab::ui
