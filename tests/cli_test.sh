@@ -1,31 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end checks of `pathlab render` as a user meets it: renders of every bundled scene that
 # contain no NaN, and bad input that gives one line naming the problem and a non-zero exit.
-set -u
-PATHLAB=$1
-SRC=$2
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-passes=0
-
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-ok() { passes=$((passes + 1)); }
-
-# expect_error DESCRIPTION PATTERN ARGS...: non-zero exit, exactly one line on stderr matching PATTERN
-expect_error() {
-  local what=$1 pattern=$2
-  shift 2
-  "$PATHLAB" "$@" >"$TMP/out" 2>"$TMP/err" </dev/null
-  local code=$?
-  local lines
-  lines=$(grep -c . "$TMP/err")
-  if [ "$code" -eq 0 ]; then fail "$what: exit code 0"; return; fi
-  if [ "$code" -gt 128 ]; then fail "$what: crashed with code $code"; return; fi
-  if ! grep -qE -- "$pattern" "$TMP/err"; then fail "$what: stderr does not match '$pattern': $(cat "$TMP/err")"; return; fi
-  if [ "$lines" -ne 1 ]; then fail "$what: $lines lines on stderr: $(cat "$TMP/err")"; return; fi
-  ok
-}
+source "$(dirname "$0")/cli_lib.sh"
 
 # Bad scenes: the message names the file.
 for f in "$SRC"/tests/scenes/bad/*.gltf "$SRC"/tests/scenes/bad/*.glb; do

@@ -2,29 +2,7 @@
 # End-to-end checks of `pathlab converge`: a tiny run writes a well-formed CSV whose error falls
 # with time, a valid SVG with one polyline per configuration and the efficiency table; the
 # reference is cached by hash and reused; bad input gives one line and a non-zero exit.
-set -u
-PATHLAB=$1
-SRC=$2
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-passes=0
-
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-ok() { passes=$((passes + 1)); }
-
-# expect_error DESCRIPTION PATTERN ARGS...: non-zero exit, exactly one line on stderr matching PATTERN
-expect_error() {
-  local what=$1 pattern=$2
-  shift 2
-  "$PATHLAB" "$@" >"$TMP/out" 2>"$TMP/err" </dev/null
-  local code=$?
-  if [ "$code" -eq 0 ]; then fail "$what: exit code 0"; return; fi
-  if [ "$code" -gt 128 ]; then fail "$what: crashed with code $code"; return; fi
-  if ! grep -qE -- "$pattern" "$TMP/err"; then fail "$what: stderr does not match '$pattern': $(cat "$TMP/err")"; return; fi
-  if [ "$(grep -c . "$TMP/err")" -ne 1 ]; then fail "$what: not one line on stderr: $(cat "$TMP/err")"; return; fi
-  ok
-}
+source "$(dirname "$0")/cli_lib.sh"
 
 BOX="$SRC/assets/cornell-box.gltf"
 OUT="$TMP/conv"
