@@ -2,14 +2,18 @@
 # pathlab set-up on Debian 12, idempotent and quick when nothing changed:
 #   ./dev.sh run    install missing packages, build, open the viewer (render the default scene
 #                   to out/cornell-box.png when there is no $DISPLAY)
-#   ./dev.sh test   install missing packages, build, run the whole test suite
+#   ./dev.sh test   install missing packages, build, run the whole test suite: the Release tests,
+#                   then the tests under ASan + UBSan and TSan and a 30 s fuzzing run of the
+#                   glTF loader (clang), each in a build directory of its own
+#   ./dev.sh check  the Release tests only (quick, while working)
 set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(g++ make cmake pkg-config python3
   libembree-dev libtbb-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libglfw3-dev libimgui-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri fonts-dejavu-core xvfb xauth)
+  libglfw3-dev libimgui-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri fonts-dejavu-core xvfb xauth
+  clang libclang-rt-14-dev)
 BUILD_DIR=${PATHLAB_BUILD_DIR:-build}
 
 install_packages() {
@@ -46,9 +50,16 @@ case "${1:-}" in
     install_packages
     build
     ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)"
+    tests/sanitize/run_sanitizers.sh all
+    tests/fuzz/run_fuzz.sh 30
+    ;;
+  check)
+    install_packages
+    build
+    ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)"
     ;;
   *)
-    echo "usage: ./dev.sh run | ./dev.sh test" >&2
+    echo "usage: ./dev.sh run | ./dev.sh test | ./dev.sh check" >&2
     exit 2
     ;;
 esac
