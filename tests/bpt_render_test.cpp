@@ -3,6 +3,7 @@
 // tracer on the square-emitter, punctual and Cornell-box scenes. Fixed seeds throughout.
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
+#include "tests/support/image_means.h"
 #include "tests/support/test_scenes.h"
 
 #include <gtest/gtest.h>
@@ -15,32 +16,12 @@ using test::furnace;
 using test::lambertian;
 using test::MeanEstimate;
 using test::quad;
+using test::passMeans;
 using test::RunningStats;
+using test::zDifference;
 
 constexpr double kMaxZ = 4.0;
 
-// Per-pass means of the image (channel r) including the film's splats: pass n adds
-// n m_n - (n - 1) m_(n-1) to the running sums (both film terms scale as 1/n).
-MeanEstimate passMeans(const Scene& scene, const RenderSettings& s, int passes) {
-  RenderSession session(scene, s);
-  RunningStats stats;
-  double previousTotal = 0.0;
-  for (int pass = 1; pass <= passes; ++pass) {
-    session.renderPass();
-    const Image img = session.image();
-    double sum = 0.0;
-    for (size_t i = 0; i < img.rgb.size(); i += 3) sum += img.rgb[i];
-    const double total = sum / static_cast<double>(img.width * img.height) * pass;
-    stats.add(total - previousTotal);
-    previousTotal = total;
-  }
-  EXPECT_EQ(session.counters().discarded(), 0u);
-  return stats.estimate();
-}
-
-double zDifference(const MeanEstimate& a, const MeanEstimate& b) {
-  return (a.mean - b.mean) / std::sqrt(a.standardError * a.standardError + b.standardError * b.standardError);
-}
 
 
 RenderSettings bptSettings(int size, int maxLength, uint64_t seed) {

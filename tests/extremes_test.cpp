@@ -2,7 +2,7 @@
 // and density products over hundreds of vertices must neither overflow nor underflow, and
 // Russian roulette must still reach the lengths that carry the answer.
 #include "core/render/render_session.h"
-#include "tests/support/statistics.h"
+#include "tests/support/image_means.h"
 #include "tests/support/test_scenes.h"
 
 #include <gtest/gtest.h>
@@ -12,25 +12,8 @@
 namespace pathlab {
 namespace {
 
-// Every pixel of the furnace sees Le (1 - rho^K) / (1 - rho) at maximum length K. Per-pass
+// Every pixel of the furnace sees Le (1 - rho^K) / (1 - rho) at maximum length K; per-pass
 // image means (every pixel is one sample of the same value) give the standard error.
-test::MeanEstimate furnaceMean(const Scene& scene, RenderSettings s, int passes) {
-  RenderSession session(scene, s);
-  test::RunningStats stats;
-  double previous = 0.0;
-  for (int pass = 1; pass <= passes; ++pass) {
-    session.renderPass();
-    double sum = 0.0;
-    const Image img = session.image();
-    for (size_t i = 0; i < img.rgb.size(); i += 3) sum += img.rgb[i];
-    const double total = sum / static_cast<double>(img.width * img.height) * pass;
-    stats.add(total - previous);
-    previous = total;
-  }
-  EXPECT_EQ(session.counters().discarded(), 0u);
-  return stats.estimate();
-}
-
 TEST(Extremes, AlbedoNearOneWithThousandEdgePaths) {
   const float rho = 0.999f, Le = 0.01f;
   const int K = 1000;
@@ -57,7 +40,7 @@ TEST(Extremes, AlbedoNearOneWithThousandEdgePaths) {
     s.techniques = c.techniques;
     s.mis.heuristic = c.heuristic;
     s.checkMis = c.integrator != IntegratorKind::Pt;
-    const test::MeanEstimate m = furnaceMean(scene, s, 24);
+    const test::MeanEstimate m = test::passMeans(scene, s, 24);
     SCOPED_TRACE(testing::Message() << integratorName(c.integrator) << " " << c.techniques << " "
                                     << misHeuristicName(c.heuristic) << ": " << m.mean << " +- " << m.standardError
                                     << " expected " << expected);
@@ -67,23 +50,10 @@ TEST(Extremes, AlbedoNearOneWithThousandEdgePaths) {
   }
 }
 
-// Whole-image mean over independent seeds (each seed's mean one sample).
-test::MeanEstimate seedMeans(const Scene& scene, RenderSettings s, int seeds, int passes) {
-  test::RunningStats stats;
-  for (int seed = 0; seed < seeds; ++seed) {
-    s.seed = 500 + static_cast<uint64_t>(seed);
-    RenderSession session(scene, s);
-    for (int i = 0; i < passes; ++i) session.renderPass();
-    EXPECT_EQ(session.counters().discarded(), 0u);
-    double sum = 0.0;
-    for (float v : session.image().rgb) sum += v;
-    stats.add(sum / static_cast<double>(session.image().rgb.size()));
-  }
-  return stats.estimate();
-}
+using test::zDifference;
 
-double zDiff(const test::MeanEstimate& a, const test::MeanEstimate& b) {
-  return (a.mean - b.mean) / std::sqrt(a.standardError * a.standardError + b.standardError * b.standardError);
+test::MeanEstimate seedMeans(const Scene& scene, const RenderSettings& s, int seeds, int passes) {
+  return test::seedMeans(scene, s, seeds, passes, 500);
 }
 
 // A square emitter of side `side` facing down at height 1 over a Lambertian floor, with the same
@@ -118,7 +88,7 @@ TEST(Extremes, EmitterSizeFromAPinToTheSky) {
     ASSERT_GT(pt.mean, 0.0) << side;
     auto expectAgrees = [&](const test::MeanEstimate& m, const char* what) {
       // At most 14 comparisons: |z| < 4.5 keeps the family-wise false-alarm rate below 1e-4.
-      EXPECT_LT(std::abs(zDiff(m, pt)), 4.5) << "side " << side << " " << what << ": " << m.mean << " +- "
+      EXPECT_LT(std::abs(zDifference(m, pt)), 4.5) << "side " << side << " " << what << ": " << m.mean << " +- "
                                              << m.standardError << " vs pt " << pt.mean << " +- " << pt.standardError;
     };
     for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
@@ -136,7 +106,7 @@ TEST(Extremes, EmitterSizeFromAPinToTheSky) {
     }
   }
   ASSERT_EQ(pinBpt.size(), 2u);
-  EXPECT_LT(std::abs(zDiff(pinBpt[0], pinBpt[1])), 4.5) << pinBpt[0].mean << " vs " << pinBpt[1].mean;
+  EXPECT_LT(std::abs(zDifference(pinBpt[0], pinBpt[1])), 4.5) << pinBpt[0].mean << " vs " << pinBpt[1].mean;
 }
 
 // A point light 1e-4 above a floor: the floor's irradiance peaks at I / h^2 = 1e8 I under it, and
@@ -176,7 +146,7 @@ TEST(Extremes, PointLightNextToASurface) {
       others.emplace_back("pt", seedMeans(scene, s, 8, 4));
     }
     for (const auto& [name, m] : others)
-      EXPECT_LT(std::abs(zDiff(m, lt)), 4.5) << "height " << height << " " << name << ": " << m.mean << " +- "
+      EXPECT_LT(std::abs(zDifference(m, lt)), 4.5) << "height " << height << " " << name << ": " << m.mean << " +- "
                                              << m.standardError << " vs lt " << lt.mean << " +- " << lt.standardError;
   }
 }
@@ -207,7 +177,7 @@ TEST(Extremes, RoughnessFromMirrorToDiffuse) {
       s.mis.heuristic = h;
       const test::MeanEstimate bpt = seedMeans(scene, s, 8, 4);
       // 8 comparisons: |z| < 4.5.
-      EXPECT_LT(std::abs(zDiff(bpt, pt)), 4.5) << "roughness " << roughness << " " << misHeuristicName(h) << ": "
+      EXPECT_LT(std::abs(zDifference(bpt, pt)), 4.5) << "roughness " << roughness << " " << misHeuristicName(h) << ": "
                                                << bpt.mean << " +- " << bpt.standardError << " vs pt " << pt.mean
                                                << " +- " << pt.standardError;
       EXPECT_LT(bpt.standardError, 0.05 * bpt.mean) << "roughness " << roughness << " " << misHeuristicName(h);
@@ -216,7 +186,7 @@ TEST(Extremes, RoughnessFromMirrorToDiffuse) {
     EXPECT_LT(pt.standardError, 0.05 * pt.mean) << "roughness " << roughness << " pt";
   }
   ASSERT_EQ(nearMirror.size(), 2u);
-  EXPECT_LT(std::abs(zDiff(nearMirror[0], nearMirror[1])), 4.5)
+  EXPECT_LT(std::abs(zDifference(nearMirror[0], nearMirror[1])), 4.5)
       << "mirror " << nearMirror[0].mean << " vs alpha 1.6e-3 " << nearMirror[1].mean;
 }
 
@@ -257,7 +227,7 @@ TEST(Extremes, GlassFromIorOneToThreeAndGrazingViews) {
       s.integrator = IntegratorKind::Bpt;
       const test::MeanEstimate bpt = seedMeans(scene, s, 8, 4);
       // 4 comparisons: |z| < 4.5.
-      EXPECT_LT(std::abs(zDiff(bpt, pt)), 4.5) << "ior " << ior << (grazing ? " grazing" : "") << ": " << bpt.mean
+      EXPECT_LT(std::abs(zDifference(bpt, pt)), 4.5) << "ior " << ior << (grazing ? " grazing" : "") << ": " << bpt.mean
                                                << " +- " << bpt.standardError << " vs pt " << pt.mean << " +- "
                                                << pt.standardError;
     }

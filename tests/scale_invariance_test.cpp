@@ -5,7 +5,7 @@
 // kilometre-scale one.
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
-#include "tests/support/statistics.h"
+#include "tests/support/image_means.h"
 
 #include <gtest/gtest.h>
 
@@ -20,23 +20,13 @@ SceneDesc scaledCornellBox(float scale) {
   return desc;
 }
 
-// Mean of the image over independent seeds, each seed's whole-image mean one sample (channel sum).
+// Whole-image mean over independent seeds, each seed's render one sample.
 test::MeanEstimate imageMean(const Scene& scene, IntegratorKind integrator, int seeds) {
-  test::RunningStats stats;
-  for (int seed = 0; seed < seeds; ++seed) {
-    RenderSettings s;
-    s.width = s.height = 16;
-    s.maxLength = 4;
-    s.seed = 1000 + static_cast<uint64_t>(seed);
-    s.integrator = integrator;
-    RenderSession session(scene, s);
-    for (int i = 0; i < 4; ++i) session.renderPass();
-    EXPECT_EQ(session.counters().discarded(), 0u);
-    double sum = 0.0;
-    for (float v : session.image().rgb) sum += v;
-    stats.add(sum / static_cast<double>(session.image().rgb.size()));
-  }
-  return stats.estimate();
+  RenderSettings s;
+  s.width = s.height = 16;
+  s.maxLength = 4;
+  s.integrator = integrator;
+  return test::seedMeans(scene, s, seeds, 4, 1000);
 }
 
 TEST(ScaleInvariance, CornellBoxFromMicrometresToKilometres) {
@@ -48,8 +38,7 @@ TEST(ScaleInvariance, CornellBoxFromMicrometresToKilometres) {
     for (float scale : {1e-6f, 1e-4f, 1e-2f, 1e2f, 1e5f}) {
       const Scene scene(scaledCornellBox(scale));
       const test::MeanEstimate m = imageMean(scene, integrator, kSeeds);
-      const double z = (m.mean - reference.mean) /
-                       std::sqrt(m.standardError * m.standardError + reference.standardError * reference.standardError);
+      const double z = test::zDifference(m, reference);
       // 10 comparisons: |z| < 4 has a family-wise false-alarm rate below 10 x 6.3e-5.
       EXPECT_LT(std::abs(z), 4.0) << integratorName(integrator) << " at scale " << scale << ": " << m.mean << " +- "
                                   << m.standardError << " vs " << reference.mean << " +- " << reference.standardError;

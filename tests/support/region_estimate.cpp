@@ -199,14 +199,6 @@ Image imageDifference(const Image& a, const Image& b) {
   return d;
 }
 
-double zDifference(const MeanEstimate& a, const MeanEstimate& b) {
-  const double d = a.mean - b.mean;
-  const double se = std::sqrt(a.standardError * a.standardError + b.standardError * b.standardError);
-  if (se > 0.0) return d / se;
-  if (d == 0.0) return 0.0;
-  return d > 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
-}
-
 double bonferroniZ(double familyAlpha, int comparisons) {
   const double target = familyAlpha / static_cast<double>(std::max(comparisons, 1));
   double lo = 0.0, hi = 40.0;  // erfc(z / sqrt 2) = P(|Z| > z) is decreasing in z

@@ -76,10 +76,6 @@ RegionMeans difference(const RegionMeans& a, const RegionMeans& b);
 // Pixel-wise a - b (the same size).
 Image imageDifference(const Image& a, const Image& b);
 
-// (a - b) / sqrt(se_a^2 + se_b^2); 0 when both are exactly equal, +-inf when they differ with no
-// standard error (two exact results that disagree).
-double zDifference(const MeanEstimate& a, const MeanEstimate& b);
-
 // Two-sided Bonferroni threshold: P(|Z| > z) = familyAlpha / comparisons for a standard normal Z,
 // so that `comparisons` z-tests of unbiased estimators all pass with probability >= 1 - familyAlpha
 // (whatever their correlation). familyAlpha = 1e-3 and 100 comparisons give z = 4.42.

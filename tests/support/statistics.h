@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace pathlab::test {
 
@@ -30,5 +31,15 @@ class RunningStats {
   uint64_t n_ = 0;
   double mean_ = 0.0, m2_ = 0.0;
 };
+
+// (a - b) / sqrt(se_a^2 + se_b^2) of two independent estimates; 0 when both are exactly equal,
+// +-inf when they differ with no standard error (two exact results that disagree).
+inline double zDifference(const MeanEstimate& a, const MeanEstimate& b) {
+  const double d = a.mean - b.mean;
+  const double se = std::sqrt(a.standardError * a.standardError + b.standardError * b.standardError);
+  if (se > 0.0) return d / se;
+  if (d == 0.0) return 0.0;
+  return d > 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
+}
 
 }  // namespace pathlab::test
