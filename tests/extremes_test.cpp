@@ -234,5 +234,25 @@ TEST(Extremes, GlassFromIorOneToThreeAndGrazingViews) {
   }
 }
 
+// Long progressive runs (issue 6): 100,000 passes of a pixel whose every sample is exactly Le
+// (an emitting furnace of albedo 0, seen by the path tracer and by the s = 0 technique alone)
+// read back as Le to float precision. Film sums are double: a float sum would have drifted by
+// about 1e-4 relative at this count.
+TEST(Extremes, LongRunsDoNotDrift) {
+  const float Le = 0.7f;
+  const Scene scene(test::furnace(0.f, Le));
+  for (const auto& [integrator, spec] : {std::pair{IntegratorKind::Pt, "all"}, std::pair{IntegratorKind::Bpt, "s=0"}}) {
+    RenderSettings s;
+    s.width = s.height = 1;
+    s.maxLength = 2;
+    s.integrator = integrator;
+    s.techniques = spec;
+    RenderSession session(scene, s);
+    for (int i = 0; i < 100000; ++i) session.renderPass();
+    EXPECT_EQ(session.passes(), 100000u);
+    EXPECT_NEAR(session.image().at(0, 0).r, Le, 2e-7f) << integratorName(integrator);
+  }
+}
+
 }  // namespace
 }  // namespace pathlab
