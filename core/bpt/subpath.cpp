@@ -39,8 +39,9 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     if (prevBsdf) {
       // Re-evaluate both densities of the sampled scattering at prev along the directions between
       // the stored points (the ray left from an offset origin; near-coincident vertices would
-      // otherwise disagree with misWeight's own evaluation).
-      const BsdfEval ev = prevBsdf->eval(prev.wo, dirGeom, mode);
+      // otherwise disagree with misWeight's own evaluation). Densities only: the value f of this
+      // pair is never used, and computing it cost as much as the densities.
+      const BsdfDensities ev = prevBsdf->densities(prev.wo, dirGeom);
       pdfFwdW = ev.pdfFwdW;
       PathVertex& prevPrev = path[path.count - 2];
       prevPrev.pdfRevA = convertDensity(ev.pdfRevW, prev, prevPrev);
@@ -50,7 +51,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     v.pdfFwdA = convertDensity(pdfFwdW, prev, v);
     // Every surface vertex, the last included, gets its BSDF: connect() evaluates it.
     Bsdf& bsdf = path.bsdfs[static_cast<size_t>(path.count)];
-    bsdf = Bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), v.uv, scene.textures()));
+    bsdf = scene.bsdf(v.material, v.uv, v.ns, v.ng);
     ++path.count;
     if (path.count >= options.maxVertices) break;
 

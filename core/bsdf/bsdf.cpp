@@ -37,33 +37,23 @@ constexpr float kMinCos = 1e-6f;
 // Below this |ior - 1| refraction does not bend light: rough transmission degenerates to a delta.
 constexpr float kMinIorDelta = 1e-3f;
 
-// w in the shading frame, flipped so that the side ng assigns to w is +z; nullopt at grazing
-// angles and where ns and ng disagree about w's side.
-struct Oriented {
-  Vec3 local;
-  float side;  // +1 outside (the side ng points to), -1 inside
-};
-std::optional<Oriented> orient(const Frame& frame, const Vec3& ng, const Vec3& w) {
-  const Vec3 local = frame.toLocal(w);
-  const float cosG = glm::dot(w, ng);
-  if (std::abs(local.z) < kMinCos || std::abs(cosG) < kMinCos || local.z * cosG <= 0.f)
-    return std::nullopt;
-  const float side = cosG > 0.f ? 1.f : -1.f;
-  return Oriented{local * side, side};
-}
-
 Spectrum sanitize(const Spectrum& f) { return isValidContribution(f) ? f : Spectrum(0.f); }
 float sanitize(float p) { return std::isfinite(p) && p > 0.f ? p : 0.f; }
 
 }  // namespace
 
-Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material) : m_(material) {
+void Bsdf::setFrame(const Vec3& ns, const Vec3& ng) {
   ng_ = glm::normalize(ng);
   Vec3 n = glm::normalize(ns);
   if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = ng_;
   if (glm::dot(n, ng_) < 0.f) n = -n;
   frame_ = Frame(n);
+}
 
+Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, const Bsdf& lobes) : Bsdf(lobes) { setFrame(ns, ng); }
+
+Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material) : m_(material) {
+  setFrame(ns, ng);
   m_.baseColor = glm::clamp(m_.baseColor, Spectrum(0.f), Spectrum(1.f));
   m_.metallic = glm::clamp(m_.metallic, 0.f, 1.f);
   m_.roughness = glm::clamp(m_.roughness, 0.f, 1.f);
@@ -92,9 +82,25 @@ Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material) : m_(m
                       !(f0DielectricMax_ >= 1.f && f90Dielectric_ >= 1.f);
   active_[kTransmission] = weight_[kTransmission] > 0.f && (base > 0.f || m_.specularFactor > 0.f);
   diffuseOnly_ = active_[kDiffuse] && !active_[kMetal] && !active_[kSpecular] && !active_[kTransmission];
+  // With no dielectric layer (specularFactor 0, hence F0 = F90 = 0) both Fresnel factors of the
+  // base are exactly zero: the diffuse lobe is the constant below, the same expression evalLocal
+  // forms with (1 - 0) (1 - 0), so the same bits.
+  lambertian_ = diffuseOnly_ && f0DielectricMax_ == 0.f && f90Dielectric_ == 0.f;
+  lambertianF_ = weight_[kDiffuse] * m_.baseColor * (kInvPi * (1.f - 0.f) * (1.f - 0.f));
   hasNonDelta_ = active_[kDiffuse] ||
                  (!reflectionDelta_ && (active_[kMetal] || active_[kSpecular])) ||
                  (!transmissionDelta_ && active_[kTransmission]);
+}
+
+// w in the shading frame, flipped so that the side ng assigns to w is +z; nullopt at grazing
+// angles and where ns and ng disagree about w's side.
+inline std::optional<Bsdf::Oriented> Bsdf::orient(const Vec3& w) const {
+  const Vec3 local = frame_.toLocal(w);
+  const float cosG = glm::dot(w, ng_);
+  if (std::abs(local.z) < kMinCos || std::abs(cosG) < kMinCos || local.z * cosG <= 0.f)
+    return std::nullopt;
+  const float side = cosG > 0.f ? 1.f : -1.f;
+  return Oriented{local * side, side};
 }
 
 float Bsdf::transmissionFresnel(float cosTheta, float etap) const {
@@ -211,8 +217,8 @@ float Bsdf::pdfLocal(const Vec3& o, const Vec3& i, float etap) const {
 }
 
 float Bsdf::pdfWorld(const Vec3& wo, const Vec3& wi) const {
-  const std::optional<Oriented> o = orient(frame_, ng_, wo);
-  const std::optional<Oriented> i = orient(frame_, ng_, wi);
+  const std::optional<Oriented> o = orient(wo);
+  const std::optional<Oriented> i = orient(wi);
   if (!o || !i) return 0.f;
   const float etap = o->side > 0.f ? m_.ior : 1.f / m_.ior;
   return sanitize(pdfLocal(o->local, i->local * o->side * i->side, etap));
@@ -227,18 +233,51 @@ float Bsdf::shadingCorrection(const Vec3& wo, const Vec3& wi, TransportMode mode
 }
 
 BsdfEval Bsdf::eval(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
+  if (!hasNonDelta_) return BsdfEval{};
+  const std::optional<Oriented> o = orient(wo);
+  const std::optional<Oriented> i = orient(wi);
+  if (!o || !i) return BsdfEval{};
+  return evalOriented(*o, *i, wo, wi, mode);
+}
+
+// The reverse density is pdfWorld(wi, wo) with the roles of the two orientations swapped; they
+// are computed once for both densities (and, from sample(), once for sample and eval together):
+// the same arithmetic as orienting each direction anew, so the same bits.
+BsdfDensities Bsdf::densitiesOriented(const Oriented& o, const Oriented& i) const {
+  // Both flipped to wo's side: i.z < 0 exactly when ng says transmission (and likewise from wi's).
+  const float flip = o.side * i.side;
+  if (diffuseOnly_) {
+    // pdfLocal's Lambertian case inline (the common one: every surface of the Cornell box).
+    const float iz = i.local.z * flip, oz = o.local.z * flip;
+    return BsdfDensities{sanitize(iz > 0.f ? cosineHemispherePdf(iz) : 0.f),
+                         sanitize(oz > 0.f ? cosineHemispherePdf(oz) : 0.f)};
+  }
+  const float etapO = o.side > 0.f ? m_.ior : 1.f / m_.ior;
+  const float etapI = i.side > 0.f ? m_.ior : 1.f / m_.ior;
+  return BsdfDensities{sanitize(pdfLocal(o.local, i.local * flip, etapO)),
+                       sanitize(pdfLocal(i.local, o.local * flip, etapI))};
+}
+
+BsdfEval Bsdf::evalOriented(const Oriented& o, const Oriented& i, const Vec3& wo, const Vec3& wi,
+                            TransportMode mode) const {
+  const BsdfDensities d = densitiesOriented(o, i);
   BsdfEval result;
-  if (!hasNonDelta_) return result;
-  const std::optional<Oriented> o = orient(frame_, ng_, wo);
-  const std::optional<Oriented> i = orient(frame_, ng_, wi);
-  if (!o || !i) return result;
-  // Both flipped to wo's side: i.z < 0 exactly when ng says transmission.
-  const Vec3 iLocal = i->local * o->side * i->side;
-  const float etap = o->side > 0.f ? m_.ior : 1.f / m_.ior;
-  result.f = sanitize(evalLocal(o->local, iLocal, etap, mode) * shadingCorrection(wo, wi, mode));
-  result.pdfFwdW = sanitize(pdfLocal(o->local, iLocal, etap));
-  result.pdfRevW = pdfWorld(wi, wo);
+  const Vec3 iLocal = i.local * (o.side * i.side);
+  // evalLocal's Lambertian case inline; etap is needed only by the other lobes.
+  const Spectrum f = lambertian_ ? (iLocal.z > 0.f ? lambertianF_ : Spectrum(0.f))
+                                 : evalLocal(o.local, iLocal, o.side > 0.f ? m_.ior : 1.f / m_.ior, mode);
+  result.f = sanitize(mode == TransportMode::Radiance ? f : f * shadingCorrection(wo, wi, mode));
+  result.pdfFwdW = d.pdfFwdW;
+  result.pdfRevW = d.pdfRevW;
   return result;
+}
+
+BsdfDensities Bsdf::densities(const Vec3& wo, const Vec3& wi) const {
+  if (!hasNonDelta_) return BsdfDensities{};
+  const std::optional<Oriented> o = orient(wo);
+  const std::optional<Oriented> i = orient(wi);
+  if (!o || !i) return BsdfDensities{};
+  return densitiesOriented(*o, *i);
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi, TransportMode /*mode*/) const {
@@ -247,7 +286,7 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi, TransportMode /*mode*/) const {
 
 std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, Vec2 u, float uLobe,
                                        TransportMode mode) const {
-  const std::optional<Oriented> oo = orient(frame_, ng_, wo);
+  const std::optional<Oriented> oo = orient(wo);
   if (!oo) return std::nullopt;
   const Vec3 o = oo->local;
   const float etap = oo->side > 0.f ? m_.ior : 1.f / m_.ior;
@@ -309,7 +348,7 @@ std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, Vec2 u, float uLobe,
 
   BsdfSample s;
   s.wi = glm::normalize(frame_.toWorld(i * oo->side));
-  const std::optional<Oriented> oi = orient(frame_, ng_, s.wi);
+  const std::optional<Oriented> oi = orient(s.wi);
   // The sampled direction must lie where ng agrees with the chosen event.
   if (!oi || (oi->side == oo->side) != reflection) return std::nullopt;
   s.isTransmission = !reflection;
@@ -324,7 +363,8 @@ std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, Vec2 u, float uLobe,
   } else {
     // Like pbrt's BSDF::Sample over all matching components: the full non-delta value and the
     // mixture densities, consistent with eval and pdf.
-    const BsdfEval e = eval(wo, s.wi, mode);
+    // Both directions are oriented already (oo, oi): eval(wo, s.wi) without orienting them again.
+    const BsdfEval e = hasNonDelta_ ? evalOriented(*oo, *oi, wo, s.wi, mode) : BsdfEval{};
     s.f = e.f;
     s.pdfFwdW = e.pdfFwdW;
     s.pdfRevW = e.pdfRevW;

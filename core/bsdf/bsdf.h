@@ -45,6 +45,13 @@ struct BsdfEval {
   float pdfRevW = 0.f;
 };
 
+// Both solid-angle densities of a direction pair, without the BSDF value: what a random walk needs
+// to fill in the reverse density of the vertex it leaves (pbrt-v4 RandomWalk's bsdf.PDF calls).
+struct BsdfDensities {
+  float pdfFwdW = 0.f;
+  float pdfRevW = 0.f;
+};
+
 struct BsdfSample {
   Spectrum f{0.f};        // for a delta lobe: the weight such that f * |cos| / pdfFwdW is the throughput
   Vec3 wi{0.f};
@@ -59,6 +66,10 @@ class Bsdf {
   // ns: shading normal (interpolated); ng: geometric normal. Neither need face the viewer. For
   // transmission, ng points to the outside of the solid (ior is inside relative to outside).
   Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material);
+  // `lobes` (built from the same MaterialPoint) at another surface point: only the frame is new.
+  // The lobe set-up depends on the material alone, so this equals Bsdf(ns, ng, material) bit
+  // for bit, at the cost of the two normalisations (Scene::bsdf caches `lobes` per material).
+  Bsdf(const Vec3& ns, const Vec3& ng, const Bsdf& lobes);
   Bsdf() = default;  // a black placeholder (subpath buffers); assign a real one before use
 
   // Non-delta part only; zero for delta-only materials.
@@ -67,6 +78,8 @@ class Bsdf {
   std::optional<BsdfSample> sample(const Vec3& wo, Vec2 u, float uLobe, TransportMode mode) const;
   // Forward density of the non-delta part (pdfFwdW of eval).
   float pdf(const Vec3& wo, const Vec3& wi, TransportMode mode) const;
+  // pdfFwdW and pdfRevW of eval, bit for bit, without evaluating f.
+  BsdfDensities densities(const Vec3& wo, const Vec3& wi) const;
 
   bool hasNonDelta() const { return hasNonDelta_; }
   bool isDeltaOnly() const { return !hasNonDelta_; }
@@ -90,6 +103,16 @@ class Bsdf {
   float pdfLocal(const Vec3& o, const Vec3& i, float etap) const;
   float pdfWorld(const Vec3& wo, const Vec3& wi) const;
   float shadingCorrection(const Vec3& wo, const Vec3& wi, TransportMode mode) const;
+  void setFrame(const Vec3& ns, const Vec3& ng);
+  struct Oriented {
+    Vec3 local;  // in the shading frame, flipped so that the side ng assigns to the direction is +z
+    float side;  // +1 outside (the side ng points to), -1 inside
+  };
+  std::optional<Oriented> orient(const Vec3& w) const;
+  // eval and densities once both directions are oriented (o for wo, i for wi): each direction is
+  // oriented once per call, and sample() passes on the orientations it has made already.
+  BsdfEval evalOriented(const Oriented& o, const Oriented& i, const Vec3& wo, const Vec3& wi, TransportMode mode) const;
+  BsdfDensities densitiesOriented(const Oriented& o, const Oriented& i) const;
 
   Frame frame_;
   Vec3 ng_{0.f, 0.f, 1.f};
@@ -97,6 +120,8 @@ class Bsdf {
   float alpha_ = 0.f;
   bool hasNonDelta_ = true;
   bool diffuseOnly_ = false;        // only the diffuse lobe is active: densities are cosine's
+  bool lambertian_ = false;         // diffuse only, without a dielectric layer: f is lambertianF_
+  Spectrum lambertianF_{0.f};
   float weight_[kLobeCount] = {};   // lobe weights from metallic and transmission
   bool active_[kLobeCount] = {};    // the lobe can be non-zero somewhere
   bool reflectionDelta_ = false;    // metal and specular layer are mirrors

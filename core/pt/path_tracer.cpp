@@ -57,7 +57,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) co
     }
     if (edges >= maxLength_) break;
 
-    const Bsdf bsdf(hit->ns, hit->ng, evalMaterial(scene_.material(hit->material), hit->uv, scene_.textures()));
+    const Bsdf bsdf = scene_.bsdf(hit->material, hit->uv, hit->ns, hit->ng);
     if (bsdf.hasNonDelta()) L += beta * sampleDirect(*hit, bsdf, wo, rng, counters);
 
     const float uLobe = rng.next1D();

@@ -50,6 +50,16 @@ RTCScene buildBvh(RTCDevice device, const std::vector<TriangleMesh>& meshes) {
 }  // namespace
 
 Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<EmbreeState>()) {
+  // evalMaterial reads only the base colour and metallic-roughness textures; without them the
+  // MaterialPoint, and so the BSDF's lobes, are the same at every point (Scene::bsdf).
+  for (const Material& m : desc_.materials) {
+    const bool untextured = !m.baseColorTexture.valid() && !m.metallicRoughnessTexture.valid();
+    materialUntextured_.push_back(untextured ? 1 : 0);
+    materialLobes_.push_back(untextured ? Bsdf(Vec3(0.f, 0.f, 1.f), Vec3(0.f, 0.f, 1.f),
+                                               evalMaterial(m, Vec2(0.f), desc_.textures))
+                                        : Bsdf());
+  }
+
   // Bounds of everything that can emit or be hit.
   boundsMin_ = Vec3(std::numeric_limits<float>::max());
   boundsMax_ = Vec3(-std::numeric_limits<float>::max());
@@ -127,6 +137,12 @@ size_t Scene::triangleCount() const {
 }
 
 void* Scene::embreeHandle() const { return embree_->scene; }
+
+Bsdf Scene::bsdf(int material, Vec2 uv, const Vec3& ns, const Vec3& ng) const {
+  const auto m = static_cast<size_t>(material);
+  if (materialUntextured_[m]) return Bsdf(ns, ng, materialLobes_[m]);
+  return Bsdf(ns, ng, evalMaterial(desc_.materials[m], uv, desc_.textures));
+}
 
 std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   RTCIntersectContext context;

@@ -2,12 +2,15 @@
 // lights and the camera description. Built once from a SceneDesc; safe to share across threads.
 #pragma once
 
+#include "core/bsdf/bsdf.h"
 #include "core/lights/light_set.h"
 #include "core/scene/ray.h"
 #include "core/scene/scene_desc.h"
 
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace pathlab {
 
@@ -32,6 +35,10 @@ class Scene {
   const std::vector<Material>& materials() const { return desc_.materials; }
   const std::vector<Texture>& textures() const { return desc_.textures; }
   const Material& material(int i) const { return desc_.materials[static_cast<size_t>(i)]; }
+  // The BSDF of material `material` at a surface point (uv, shading and geometric normal):
+  // Bsdf(ns, ng, evalMaterial(...)). For a material without textures the material evaluation and
+  // the lobe set-up are done once, here at construction, and only the frame is built per point.
+  Bsdf bsdf(int material, Vec2 uv, const Vec3& ns, const Vec3& ng) const;
   const LightSet& lights() const { return lights_; }
   const CameraDesc& cameraDesc() const { return camera_; }
   const SceneBounds& bounds() const { return bounds_; }
@@ -45,6 +52,8 @@ class Scene {
 
  private:
   SceneDesc desc_;
+  std::vector<Bsdf> materialLobes_;          // per material, for those without textures
+  std::vector<uint8_t> materialUntextured_;  // materialLobes_[i] is valid
   LightSet lights_;
   CameraDesc camera_;
   SceneBounds bounds_;
