@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 
 namespace pathlab {
 namespace {
@@ -66,6 +68,51 @@ TEST(ReferenceKey, ChangesWithSettingsAndBudget) {
   s.maxLength = 4;
   EXPECT_NE(a, referenceKey(kBox, s, "time=10"));
   EXPECT_THROW(referenceKey(kBox + ".missing", s, "time=10"), std::runtime_error);
+}
+
+// A .gltf whose buffer and image live in files of their own: changing either changes the key,
+// restoring it restores the key, and where the scene lies does not matter.
+TEST(ReferenceKey, HashesExternalBuffersAndImages) {
+  const std::filesystem::path dir = std::filesystem::path(PATHLAB_TEST_TMP) / "reference_key";
+  std::filesystem::create_directories(dir / "moved");
+  const std::string gltf = R"({"asset": {"version": "2.0"},
+    "buffers": [{"uri": "tri%20angle.bin", "byteLength": 36}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]}],
+    "images": [{"uri": "albedo.png"}], "textures": [{"source": 0}],
+    "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}, "emissiveFactor": [1, 1, 1]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+    "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})";
+  const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  auto write = [](const std::filesystem::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  };
+  std::string bin(reinterpret_cast<const char*>(triangle), sizeof triangle);
+  for (const auto& d : {dir, dir / "moved"}) {
+    write(d / "scene.gltf", gltf);
+    write(d / "tri angle.bin", bin);  // the URI is percent-encoded, as the loader decodes it
+    write(d / "albedo.png", "not decoded, only hashed");
+  }
+  const std::string scene = (dir / "scene.gltf").string();
+  const RenderSettings s;
+  const std::string a = referenceKey(scene, s, "spp=8");
+  EXPECT_EQ(a, referenceKey((dir / "moved" / "scene.gltf").string(), s, "spp=8"));
+
+  std::string changed = bin;
+  changed[4] ^= 1;  // same size: tinygltf checks byteLength
+  write(dir / "tri angle.bin", changed);
+  const std::string b = referenceKey(scene, s, "spp=8");
+  EXPECT_NE(a, b);
+  write(dir / "tri angle.bin", bin);
+  EXPECT_EQ(a, referenceKey(scene, s, "spp=8"));
+
+  write(dir / "albedo.png", "another image");
+  EXPECT_NE(a, referenceKey(scene, s, "spp=8"));
+  write(dir / "albedo.png", "not decoded, only hashed");
+
+  std::filesystem::remove(dir / "tri angle.bin");
+  EXPECT_THROW(referenceKey(scene, s, "spp=8"), std::runtime_error);
 }
 
 TEST(Convergence, ErrorFallsAndCheckpointsAreGeometric) {

@@ -2,10 +2,15 @@
 #include "core/metrics/reference_key.h"
 
 #include <fmt/core.h>
+#include <tiny_gltf.h>
 
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
+#include <string_view>
+#include <vector>
 
 namespace pathlab {
 
@@ -14,13 +19,58 @@ namespace {
 // FNV-1a, 64-bit (Fowler, Noll, Vo): enough to tell inputs apart, not a security hash.
 struct Fnv1a {
   uint64_t h = 0xcbf29ce484222325ull;
-  void add(const std::string& bytes) {
+  void add(std::string_view bytes) {
     for (unsigned char c : bytes) {
       h ^= c;
       h *= 0x100000001b3ull;
     }
   }
 };
+
+// Hashes every external file (buffer or image URI) tinygltf reads while parsing the scene, in the
+// order it reads them, through its own file callbacks: the same URI decoding and search paths as
+// the loader (core/scene/gltf_file.cpp). Images are read but not decoded. Data URIs and a .glb's
+// own binary chunk are part of the scene file's bytes already.
+struct ExternalFiles {
+  Fnv1a* hash;
+
+  static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* self) {
+    if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+    Fnv1a& h = *static_cast<ExternalFiles*>(self)->hash;
+    h.add(fmt::format("\nfile {}\n", out->size()));
+    h.add(std::string_view(reinterpret_cast<const char*>(out->data()), out->size()));
+    return true;
+  }
+  static bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                                const unsigned char*, int, void*) {
+    return true;
+  }
+};
+
+void hashExternalFiles(const std::string& scenePath, const std::string& bytes, Fnv1a& hash) {
+  ExternalFiles files{&hash};
+  tinygltf::TinyGLTF context;
+  context.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &ExternalFiles::read,
+                          &tinygltf::WriteWholeFile, &files});
+  context.SetImageLoader(&ExternalFiles::skipImageDecoding, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const std::string baseDir = std::filesystem::path(scenePath).parent_path().string();
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  bool ok = false;
+  try {
+    ok = binary ? context.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                               static_cast<unsigned>(bytes.size()), baseDir)
+                : context.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
+                                              baseDir);
+  } catch (const std::exception& e) {
+    err = e.what();
+  }
+  if (!ok) {
+    const std::string reason = err.substr(0, err.find('\n'));
+    throw std::runtime_error(scenePath + ": cannot read the scene's files (" + reason + ")");
+  }
+}
 
 std::string describe(const RenderSettings& s) {
   std::string text = fmt::format(
@@ -45,6 +95,7 @@ std::string referenceKey(const std::string& scenePath, const RenderSettings& set
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   Fnv1a hash;
   hash.add(bytes);
+  hashExternalFiles(scenePath, bytes, hash);
   hash.add("\n" + describe(settings) + "\n" + budget);
   return fmt::format("{:016x}", hash.h);
 }

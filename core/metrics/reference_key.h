@@ -8,11 +8,14 @@
 
 namespace pathlab {
 
-// 16 hex digits: FNV-1a (64 bit) over the scene file's bytes, every setting that changes the
-// estimate (RenderSettings, written out field by field) and the budget text ("time=20" or
-// "spp=1024"). Throws std::runtime_error naming the file if it cannot be read. Only the scene file
-// itself is hashed: a .gltf whose buffers or textures live in separate files is not re-rendered
-// when only those change (the bundled scenes embed everything).
+// 16 hex digits: FNV-1a (64 bit) over the scene file's bytes, the bytes of every external file the
+// glTF loader reads for it (buffers such as a .gltf's .bin, and image files, found exactly as the
+// loader finds them: tinygltf resolves and reads them, the key hashes what it read), every setting
+// that changes the estimate (RenderSettings, written out field by field) and the budget text
+// ("time=20" or "spp=1024"). Only contents are hashed, not paths: the same scene in another
+// directory gives the same key; a scene whose buffers and images are embedded keeps the key it
+// had before external files were hashed. Throws std::runtime_error naming the file if the scene
+// or one of its external files cannot be read (call it on a scene that loads).
 std::string referenceKey(const std::string& scenePath, const RenderSettings& settings, const std::string& budget);
 
 }  // namespace pathlab
