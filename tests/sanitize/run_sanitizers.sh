@@ -3,8 +3,10 @@
 # 6), each in a build directory of its own, configured once like build/:
 #   - ASan + UBSan: every test but the long statistical renders, whose arithmetic the release
 #     suite already checks; the viewer's headless tests included (Mesa runs uninstrumented).
-#   - TSan: the tests where threads meet (progressive renderer, sessions, film, the viewer's
-#     interface), with TBB serial (tests/support/serial_tbb_under_tsan.cpp).
+#   - TSan: the tests where threads meet (progressive renderer, sessions, film) and the viewer's
+#     headless tests (`pathlab view --headless`: UI, render and scene loader threads; Mesa's
+#     llvmpipe runs uninstrumented, see tsan.supp), with TBB serial
+#     (tests/support/serial_tbb_under_tsan.cpp, linked into pathlab_tests and, under TSan, pathlab).
 # Usage: tests/sanitize/run_sanitizers.sh [address|thread|all]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -30,8 +32,16 @@ fi
 
 if [ "$which" = thread ] || [ "$which" = all ]; then
   configure build-tsan thread
-  cmake --build build-tsan -j "$jobs" --target pathlab_tests
-  TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$supp/tsan.supp" \
-    build-tsan/tests/pathlab_tests \
+  cmake --build build-tsan -j "$jobs" --target pathlab_tests pathlab pathlab_viewer_tests
+  # halt_on_error: the first report fails the test (exit code 66, also from the `pathlab view`
+  # processes the viewer's tests start, which inherit TSAN_OPTIONS). Suppressions: tsan.supp (only
+  # uninstrumented libraries: TBB, Embree, Mesa's llvmpipe driver), never pathlab's own code.
+  export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$supp/tsan.supp"
+  build-tsan/tests/pathlab_tests \
     --gtest_filter='ProgressiveRenderer*:RenderSession*:TechniquePyramid.WeightedShares*:Film*:RenderSettingsValidation*'
+  # The viewer's tests, headless (EGL on llvmpipe): its UI thread, render thread (TBB serial, also
+  # in the pathlab binary) and scene loader thread. Not viewer.window: GLFW and Xvfb are the
+  # release suite's. One at a time: as fast as two at once on these machines (about 45 s), and a
+  # drop test that expects a scene to load within a few frames keeps its margin.
+  ctest --test-dir build-tsan --output-on-failure -j 1 -R '^viewer[.]' -E '^viewer[.]window$'
 fi
