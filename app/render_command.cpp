@@ -53,18 +53,31 @@ std::string humanCount(double v) {
 }
 
 // Per-technique counters: all of them with --stats, otherwise only the techniques that discarded
-// contributions (so a NaN source is named without asking).
+// contributions (so a NaN source is named without asking). With --stats the walks and every
+// technique also get their shadow rays and their share of the timed work (connect + MIS weight).
 void printTechniqueCounters(const Counters& c, int maxLength, bool all) {
   bool header = false;
+  const double timed = static_cast<double>(c.timedNanoseconds());
+  const double rays = static_cast<double>(std::max<uint64_t>(c.totalRays(), 1));
+  auto share = [&](uint64_t ns) { return timed > 0.0 ? fmt::format("{:.1f}%", 100.0 * static_cast<double>(ns) / timed) : std::string("-"); };
+  auto printHeader = [&] {
+    if (header) return;
+    std::cerr << fmt::format("{:>12} {:>12} {:>12} {:>12} {:>12} {:>10} {:>12} {:>7} {:>7}\n", "technique", "tried",
+                             "zero", "blocked", "contributed", "discarded", "rays", "rays%", "time%");
+    header = true;
+  };
+  if (all && c.cameraWalk.rays + c.lightWalk.rays > 0) {
+    printHeader();
+    for (const auto& [name, w] : {std::pair{"camera walks", c.cameraWalk}, std::pair{"light walks", c.lightWalk}})
+      std::cerr << fmt::format("{:>12} {:>12} {:>12} {:>12} {:>12} {:>10} {:>12} {:>6.1f}% {:>7}\n", name, c.cameraSamples,
+                               "", "", "", "", w.rays, 100.0 * static_cast<double>(w.rays) / rays, share(w.nanoseconds));
+  }
   auto row = [&](const std::string& name, const TechniqueCounters& t) {
     if (!all && t.discarded.total() == 0) return;
-    if (!header) {
-      std::cerr << fmt::format("{:>10} {:>12} {:>12} {:>12} {:>12} {:>10}\n", "technique", "tried", "zero", "blocked",
-                               "contributed", "discarded");
-      header = true;
-    }
-    std::cerr << fmt::format("{:>10} {:>12} {:>12} {:>12} {:>12} {:>10}\n", name, t.tried, t.zero, t.blocked,
-                             t.contributed, t.discarded.total());
+    printHeader();
+    std::cerr << fmt::format("{:>12} {:>12} {:>12} {:>12} {:>12} {:>10} {:>12} {:>6.1f}% {:>7}\n", name, t.tried, t.zero,
+                             t.blocked, t.contributed, t.discarded.total(), t.shadowRays,
+                             100.0 * static_cast<double>(t.shadowRays) / rays, share(t.nanoseconds));
   };
   for (int k = 1; k <= std::min(maxLength, kCountedLength); ++k)
     for (int s = 0; s <= k; ++s) row(fmt::format("({},{})", s, k + 1 - s), c.technique(s, k + 1 - s));
@@ -141,7 +154,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
-  cmd->add_flag("--stats", o.stats, "Print per-technique counters: connections tried, zero, blocked, contributing, discarded");
+  cmd->add_flag("--stats", o.stats, "Print per-technique counters: connections tried, zero, blocked, contributing, discarded, shadow rays "
+                "and share of all rays, share of the timed work (connect + MIS weight; the walks too)");
   cmd->add_flag("-f,--force", o.force, "Overwrite the output file if it exists");
 }
 
@@ -179,6 +193,7 @@ int runRender(RenderOptions o) {
 
   RenderSession session(scene, settings);
   if (replay) return runReplay(session, *replay);
+  session.setTiming(o.stats);  // two clock reads a connection: only when the shares are printed
   const bool timed = o.seconds > 0.0;
   const uint64_t targetSpp = timed ? 0 : static_cast<uint64_t>(o.spp > 0 ? o.spp : kDefaultSpp);
   const auto start = std::chrono::steady_clock::now();

@@ -39,7 +39,7 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
       ->check(CLI::Range(1, kMaxPyramidLength));
   cmd->add_flag("--hide-ui", v.hideUi, "Start with the panels hidden (Tab shows them)");
   cmd->add_option("--script", v.script,
-                  "Scripted input for tests: 'FRAME:key=NAME;FRAME:drag=X0,Y0>X1,Y1' (frames count from 0)");
+                  "Scripted input for tests: 'FRAME:key=NAME;FRAME:drag=X0,Y0>X1,Y1;FRAME:wait=SPP' (frames count from 0)");
   auto* headless = cmd->add_flag("--headless", v.headless, "Draw offscreen through EGL (no display needed)");
   (void)headless;
   auto* frames = cmd->add_option("--frames", v.frames, "Close after this many frames (headless default: 60)")
@@ -48,7 +48,13 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
       ->needs(frames);
   cmd->add_option("--render-scale", v.renderScale, "Render resolution relative to the window: 1, 0.5 or 0.25")
       ->check(CLI::IsMember({1.f, 0.5f, 0.25f}));
-  cmd->add_flag("-f,--force", v.force, "Overwrite the screenshot if it exists");
+  cmd->add_option("--reference", v.reference,
+                  "Reference image (.exr or .pfm) for the live error plot and the error view; the image is "
+                  "rendered at its resolution");
+  cmd->add_option("--error-csv", v.errorCsv, "On exit, write every error series to this CSV (needs a reference)");
+  cmd->add_flag("--convergence", v.convergencePanel, "Open the convergence panel (error plot, technique rays and time)");
+  cmd->add_flag("--error-view", v.errorView, "Start in the false-colour error view (needs --reference)");
+  cmd->add_flag("-f,--force", v.force, "Overwrite the screenshot (and the error CSV) if it exists");
 }
 
 int runView(ViewOptions o) {

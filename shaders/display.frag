@@ -1,6 +1,6 @@
 // Display transform of the linear radiance image: exposure, tone map (clamp or the ACES filmic
-// fit), sRGB encoding; or false colour of log10 luminance. Mirrors ui/display_settings.cpp, which
-// the tests check.
+// fit), sRGB encoding; or false colour of log10 luminance; or the per-pixel error against a
+// reference in viridis. Mirrors ui/display_settings.cpp, which the tests check.
 #version 330 core
 
 in vec2 uv;
@@ -13,6 +13,11 @@ uniform int toneMap;         // 0 clamp, 1 ACES filmic
 uniform int falseColour;     // 0 off, 1 log10 luminance
 uniform float logMin;        // false colour range in decades of luminance (after exposure)
 uniform float logMax;
+uniform sampler2D reference;  // RGB32F, the full-resolution reference (errorView only)
+uniform int errorView;        // 0 off, 1 relative squared error, 2 absolute error
+uniform int errorLog;         // 1: errorMin..errorMax are decades; 0: linear 0..errorMax
+uniform float errorMin;
+uniform float errorMax;
 
 // Narkowicz 2015, "ACES Filmic Tone Mapping Curve".
 vec3 acesFilmic(vec3 x) {
@@ -38,7 +43,30 @@ vec3 turbo(float t) {
   return vec3(dot(v4, kR4) + dot(v2, kR2), dot(v4, kG4) + dot(v2, kG2), dot(v4, kB4) + dot(v2, kB2));
 }
 
+// Viridis, degree-6 polynomial fit (Matt Zucker 2020); t in [0,1].
+vec3 viridis(float t) {
+  const vec3 c0 = vec3(0.2777273272234177, 0.005407344544966578, 0.3340998053353061);
+  const vec3 c1 = vec3(0.1050930431085774, 1.404613529898575, 1.384590162594685);
+  const vec3 c2 = vec3(-0.3308618287255563, 0.214847559468213, 0.09509516302823659);
+  const vec3 c3 = vec3(-4.634230498983486, -5.799100973351585, -19.33244095627987);
+  const vec3 c4 = vec3(6.228269936347081, 14.17993336680509, 56.69055260068105);
+  const vec3 c5 = vec3(4.776384997670288, -13.74514537774601, -65.35303263337234);
+  const vec3 c6 = vec3(-5.435455855934631, 4.645852612178535, 26.3124352495832);
+  t = clamp(t, 0.0, 1.0);
+  return c0 + t * (c1 + t * (c2 + t * (c3 + t * (c4 + t * (c5 + t * c6)))));
+}
+
 void main() {
+  if (errorView != 0) {
+    // Mean over the channels of (x - r)^2 / (r^2 + 0.01) (kRelMseEpsilon) or of |x - r|.
+    vec3 x = texture(radiance, vec2(uv.x, 1.0 - uv.y) * uvScale).rgb;
+    vec3 r = texture(reference, vec2(uv.x, 1.0 - uv.y)).rgb;
+    vec3 d = x - r;
+    float e = errorView == 1 ? dot(d * d / (r * r + 0.01), vec3(1.0 / 3.0)) : dot(abs(d), vec3(1.0 / 3.0));
+    float t = errorLog == 1 ? (e > 0.0 ? (log(e) / log(10.0) - errorMin) / (errorMax - errorMin) : 0.0) : e / errorMax;
+    colour = vec4(viridis(t), 1.0);
+    return;
+  }
   vec3 L = texture(radiance, vec2(uv.x, 1.0 - uv.y) * uvScale).rgb * exposureScale;
   if (falseColour == 1) {
     float Y = dot(L, vec3(0.2126, 0.7152, 0.0722));

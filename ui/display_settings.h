@@ -1,9 +1,11 @@
 // Display-only settings (never reset accumulation): exposure, tone map and false colour of the
-// shown image, and their CPU reference, which shaders/display.frag mirrors.
+// shown image, the false-colour error view against a reference, and their CPU reference, which
+// shaders/display.frag mirrors.
 #pragma once
 
 #include "core/film/film.h"
 #include "core/math/types.h"
+#include "core/metrics/error_image.h"
 
 #include <cstdint>
 #include <vector>
@@ -20,6 +22,14 @@ struct DisplaySettings {
   bool falseColour = false;  // log10 luminance through the turbo colour map
   float logMin = -3.f;       // false colour range, decades of exposed luminance
   float logMax = 1.f;
+  // The error view: per-pixel error against the reference (core/metrics/error_image.h) through
+  // the viridis colour map, over [errorLogMin, errorLogMax] decades (log) or [0, errorLinearMax].
+  // Exposure does not apply: the error is of the radiance. Shown only while a reference is valid.
+  bool errorView = false;
+  PixelError errorKind = PixelError::RelativeSquared;
+  bool errorLog = true;
+  float errorLogMin = -4.f, errorLogMax = 0.f;
+  float errorLinearMax = 0.25f;
   bool operator==(const DisplaySettings&) const = default;
 };
 
@@ -30,6 +40,14 @@ Vec3 displayColour(const Spectrum& radiance, const DisplaySettings& settings);
 
 Vec3 acesFilmic(const Vec3& x);
 Vec3 turbo(float t);  // t clamped to [0,1]
+// Viridis (perceptually uniform, colour-blind safe; van der Walt and Smith 2015), as a degree-6
+// polynomial fit (Matt Zucker 2020); t clamped to [0,1].
+Vec3 viridis(float t);
+
+// Position in [0,1] on the error colour bar of a per-pixel error value (0 below the range).
+float errorBarPosition(float error, const DisplaySettings& settings);
+// The colour the error view shows for a pixel of `image` over `reference`, as the shader does.
+Vec3 errorColour(const Spectrum& image, const Spectrum& reference, const DisplaySettings& settings);
 
 // Exposure in stops that brings the mean luminance of `image` to middle grey (0.18); 0 for a
 // black image. The technique pyramid's thumbnails each get their own.

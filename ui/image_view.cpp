@@ -29,6 +29,12 @@ void ImageView::upload(const Image& image, int fullWidth, int fullHeight) {
   ++version_;
 }
 
+void ImageView::setReference(const Image* reference) {
+  if (reference && reference->width > 0) reference_.uploadRgbFloat(reference->width, reference->height, reference->rgb.data());
+  else reference_ = Texture();
+  ++version_;  // the cached error view is stale
+}
+
 void ImageView::renderCache(Vec2i size, const DisplaySettings& display) {
   GLint target = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
@@ -49,9 +55,22 @@ void ImageView::renderCache(Vec2i size, const DisplaySettings& display) {
   glUniform1i(program_.uniform("falseColour"), display.falseColour ? 1 : 0);
   glUniform1f(program_.uniform("logMin"), display.logMin);
   glUniform1f(program_.uniform("logMax"), display.logMax);
+  const bool errorView = display.errorView && !reference_.empty();
+  glUniform1i(program_.uniform("errorView"),
+              errorView ? (display.errorKind == PixelError::RelativeSquared ? 1 : 2) : 0);
+  glUniform1i(program_.uniform("errorLog"), display.errorLog ? 1 : 0);
+  glUniform1f(program_.uniform("errorMin"), display.errorLogMin);
+  glUniform1f(program_.uniform("errorMax"), display.errorLog ? display.errorLogMax : display.errorLinearMax);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, errorView ? reference_.id() : texture_.id());
+  glUniform1i(program_.uniform("reference"), 1);
+  glActiveTexture(GL_TEXTURE0);
   glBindVertexArray(vertexArray_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE0);
   glUseProgram(0);
   glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(target));
   cachedSize_ = size;

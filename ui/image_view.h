@@ -23,12 +23,16 @@ class ImageView {
   // is scaled up with nearest filtering.
   void upload(const Image& image, int fullWidth, int fullHeight);
   bool empty() const { return texture_.empty(); }
+  // The reference of the error view (DisplaySettings::errorView), full resolution; null: none.
+  void setReference(const Image* reference);
+  bool hasReference() const { return !reference_.empty(); }
   // Rectangle in framebuffer pixels, origin top-left (as ImGui's), framebuffer height fbHeight.
   void draw(Vec2i origin, Vec2i size, int fbHeight, const DisplaySettings& display);
 
  private:
   ShaderProgram program_;
   Texture texture_;
+  Texture reference_;
   unsigned vertexArray_ = 0;
   Vec2 uvScale_{1.f};
   float aspect_ = 1.f;

@@ -43,7 +43,7 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
     auto bad = [&](const char* why) { return std::invalid_argument("--script: '" + item + "': " + why); };
     InputEvent e;
     const size_t colon = item.find(':');
-    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:drop=PATH or FRAME:resize=W,H");
+    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:drop=PATH, FRAME:resize=W,H or FRAME:wait=SPP");
     try {
       size_t used = 0;
       e.frame = std::stoi(item.substr(0, colon), &used);
@@ -52,7 +52,14 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
       throw bad("the frame is not a non-negative integer");
     }
     std::string action = item.substr(colon + 1);
-    if (action.rfind("resize=", 0) == 0) {
+    if (action.rfind("wait=", 0) == 0) {
+      unsigned long long spp = 0;
+      char tail;
+      if (std::sscanf(action.c_str() + 5, "%llu%c", &spp, &tail) != 1 || spp < 1 || spp > (1ull << 24))
+        throw bad("expected wait=SPP with SPP in 1..16777216");
+      e.kind = InputEvent::Kind::Wait;
+      e.spp = spp;
+    } else if (action.rfind("resize=", 0) == 0) {
       int w = 0, h = 0;
       char tail;
       if (std::sscanf(action.c_str() + 7, "%d,%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
@@ -72,7 +79,7 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
       char tail;
       if (action.rfind("drag=", 0) != 0 ||
           std::sscanf(action.c_str() + 5, "%f,%f>%f,%f%c", &x0, &y0, &x1, &y1, &tail) != 4)
-        throw bad("expected key=NAME, drag=X0,Y0>X1,Y1, drop=PATH or resize=W,H");
+        throw bad("expected key=NAME, drag=X0,Y0>X1,Y1, drop=PATH, resize=W,H or wait=SPP");
       e.kind = InputEvent::Kind::Drag;
       e.from = {x0, y0};
       e.to = {x1, y1};
@@ -86,7 +93,9 @@ FrameInput inputAt(const std::vector<InputEvent>& events, int frame) {
   FrameInput in;
   for (const InputEvent& e : events) {
     const int step = frame - e.frame;
-    if (e.kind == InputEvent::Kind::Resize) {
+    if (e.kind == InputEvent::Kind::Wait) {
+      if (step == 0) in.waitSpp = e.spp;
+    } else if (e.kind == InputEvent::Kind::Resize) {
       if (step == 0) in.resize = Vec2i(e.to);
     } else if (e.kind == InputEvent::Kind::Drop) {
       if (step == 0) in.dropped.push_back(e.path);

@@ -3,14 +3,17 @@
 // each step writes io.KeysDown / io.MousePos / io.MouseDown for one frame (../shared/TOOLCHAIN.md).
 //
 // SCRIPT: ';'-separated events "FRAME:key=NAME", "FRAME:drag=X0,Y0>X1,Y1" (window pixels, left
-// button; "Shift+drag=..." pans), "FRAME:drop=PATH" (a file dropped on the window) or
-// "FRAME:resize=W,H" (the window resized). NAME is a
+// button; "Shift+drag=..." pans), "FRAME:drop=PATH" (a file dropped on the window),
+// "FRAME:resize=W,H" (the window resized) or "FRAME:wait=SPP" (that frame waits until the current
+// image has SPP samples per pixel: scripts that compare configurations run the same on a loaded
+// machine). NAME is a
 // key of the shortcut table ("3", "M", "Space", "F1", "Ctrl+S", "PageDown", "]") or a fly key
 // W A S D Q E (held for 10 frames).
 #pragma once
 
 #include "core/math/types.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,7 +21,7 @@
 namespace pathlab::ui {
 
 struct InputEvent {
-  enum class Kind { Key, Drag, Drop, Resize } kind = Kind::Key;
+  enum class Kind { Key, Drag, Drop, Resize, Wait } kind = Kind::Key;
   int frame = 0;
   int key = 0;        // GLFW key code
   bool ctrl = false;  // Key: with Ctrl
@@ -26,6 +29,7 @@ struct InputEvent {
   int holdFrames = 1; // Key: frames the key stays down
   Vec2 from{0.f}, to{0.f};  // Drag; Resize: `to` is the size
   std::string path;   // Drop
+  uint64_t spp = 0;   // Wait
 };
 
 // Throws std::invalid_argument naming the bad event.
@@ -40,6 +44,7 @@ struct FrameInput {
   bool mouseDown = false;
   std::vector<std::string> dropped;
   std::optional<Vec2i> resize;
+  std::optional<uint64_t> waitSpp;
 };
 
 // A drag takes four frames from its start: move to the start, press, move to the end, release.

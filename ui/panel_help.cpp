@@ -54,11 +54,17 @@ void Viewer::drawImageOverlay() {
     const ImVec2 extent = ImGui::CalcTextSize(text.c_str());
     caption(text, ImVec2(origin.x + 0.5f * (size.x - extent.x), origin.y + 0.5f * size.y), IM_COL32(255, 200, 80, 255));
   }
+  if (display_.errorView && !shownDisplay().errorView) {
+    const std::string text = "error view: " + (referenceStatus_.empty() ? std::string(errors_->reference() ? "waiting for an image of the reference's view" : "no reference (load one, or Ctrl+R)") : referenceStatus_);
+    caption(text, ImVec2(origin.x + 10.f, origin.y + 10.f), IM_COL32(255, 200, 80, 255));
+  }
+  if (shownDisplay().errorView) drawErrorBarOverlay(origin, size);
   // The configuration under the image, readable from the back of a lecture hall.
   std::string text = describe(snapshot_.settings.width > 0 ? snapshot_.settings : edited_);
   text += snapshot_.preview ? fmt::format("  |  preview 1/{}", snapshot_.previewFactor)
                             : fmt::format("  |  {} spp", snapshot_.samplesPerPixel);
   if (userPaused_) text += "  |  paused";
+  if (shownDisplay().errorView) text += fmt::format("  |  {} vs reference", pixelErrorName(display_.errorKind));
   const float line = ImGui::GetTextLineHeightWithSpacing();
   caption(text, ImVec2(origin.x + 10.f, origin.y + size.y - line - 6.f), IM_COL32(235, 235, 235, 255));
 }

@@ -49,6 +49,8 @@ void Viewer::drawSidePanel(float width, float height) {
   if (ImGui::CollapsingHeader("Status", ImGuiTreeNodeFlags_DefaultOpen)) drawStatusSection();
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen)) drawEstimatorSection();
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) drawDisplaySection();
+  if (ImGui::CollapsingHeader("Reference and error", showConvergence_ ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+    drawReferenceSection();
   if (ImGui::CollapsingHeader("Scene and camera")) drawSceneSection();
   if (ImGui::CollapsingHeader("Presets", presets_.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen)) drawPresetSection();
   ImGui::End();

@@ -71,6 +71,14 @@ void setUpFontsAndStyle(float scale) {
   }
 }
 
+void checkErrorCsvPath(const ViewerOptions& o) {
+  const std::filesystem::path path(o.errorCsv);
+  if (!path.parent_path().empty() && !std::filesystem::is_directory(path.parent_path()))
+    throw std::runtime_error(o.errorCsv + ": the directory " + path.parent_path().string() + " does not exist");
+  if (!o.force && std::filesystem::exists(path))
+    throw std::runtime_error(o.errorCsv + ": file exists (pass --force to overwrite it)");
+}
+
 void checkScreenshotPath(const ViewerOptions& o) {
   const std::filesystem::path path(o.screenshot);
   std::string ext = path.extension().string();
@@ -121,6 +129,9 @@ std::vector<std::string> applyScript(const std::vector<InputEvent>& script, int 
 int runViewer(const ViewerOptions& o) {
   if (o.headless && o.screenshot.empty()) throw std::runtime_error("--headless needs --screenshot OUT.png");
   if (!o.screenshot.empty()) checkScreenshotPath(o);
+  if (!o.errorCsv.empty()) checkErrorCsvPath(o);
+  if ((!o.errorCsv.empty() || o.errorView) && o.reference.empty())
+    throw std::runtime_error(std::string(o.errorView ? "--error-view" : "--error-csv") + " needs --reference REF.exr");
   std::vector<NamedPreset> presets;
   ViewerOptions options = o;
   if (!o.presetsFile.empty()) presets = loadPresets(o.presetsFile);
@@ -156,6 +167,11 @@ int runViewer(const ViewerOptions& o) {
         if (!viewer.renderer().waitForSpp(o.spp, kHeadlessSppTimeout))
           std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", o.spp, kHeadlessSppTimeout);
         viewer.waitForPyramid(5.0);
+      }
+      if (const std::optional<uint64_t> spp = inputAt(script, frame).waitSpp) {
+        if (!viewer.renderer().waitForSpp(*spp, kHeadlessSppTimeout))
+          std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", *spp, kHeadlessSppTimeout);
+        viewer.forceRefresh();
       }
       if (last) viewer.forceRefresh();
       // A window draws only after input (for a moment, so ImGui can settle hover states) and when
@@ -209,11 +225,14 @@ int runViewer(const ViewerOptions& o) {
     if (counted) {
       const RenderSnapshot& s = viewer.shownSnapshot();
       const Vec2i fb = surface->framebufferSize();
-      std::cerr << fmt::format("{}: {}x{} {}, image {}x{} at {} spp; {}\n",
+      const std::string series =
+          o.reference.empty() ? std::string() : fmt::format("; {} error series", viewer.errors().series().size());
+      std::cerr << fmt::format("{}: {}x{} {}, image {}x{} at {} spp; {}{}\n",
                                o.screenshot.empty() ? "pathlab view" : o.screenshot, fb.x, fb.y,
                                o.headless ? "offscreen" : "window", s.settings.width, s.settings.height,
-                               s.samplesPerPixel, stats.summary());
+                               s.samplesPerPixel, stats.summary(), series);
     }
+    if (!o.errorCsv.empty()) viewer.writeErrorCsv(o.errorCsv, true);  // checked before the first frame
   }  // the viewer (and its render threads) goes before the GL context
   return exitCode;
 }

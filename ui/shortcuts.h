@@ -13,6 +13,7 @@ enum class Action {
   IsolateMoreLight, IsolateMoreCamera, IsolateLonger, IsolateShorter,
   NextPreset, PreviousPreset,
   ExposureUp, ExposureDown, ToggleToneMap, ToggleFalseColour,
+  ToggleConvergence, ToggleErrorView, UseImageAsReference,
   ResetCamera, ReloadScene, SaveImage, Screenshot, Quit,
 };
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #ifndef PATHLAB_ASSETS_DIR
@@ -43,6 +44,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
       presets_(std::move(presets)),
       presetsPath_(options.presetsFile),
       imageView_(std::make_unique<ImageView>()),
+      errors_(std::make_shared<ErrorTracker>()),
       showUi_(!options.hideUi) {
   display_.exposure = options.exposure;
   resolutionScale_ = options.renderScale;
@@ -65,8 +67,19 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
   applied_.width = applied_.height = 64;
   RenderSettings initial = applied_;
   if (noTechniqueEnabled(initial)) initial.techniques = "all";
+  if (!options.reference.empty()) {
+    // From the command line a bad reference is an error of the command, not a message.
+    errors_->setReference(readImage(options.reference), viewOf(effectiveSettings(edited_), scene_.get()),
+                          options.reference);
+    showConvergence_ = true;
+  }
+  showConvergence_ = showConvergence_ || options.convergencePanel;
+  display_.errorView = options.errorView;
   renderer_ = std::make_unique<ProgressiveRenderer>(scene_, initial, options.threads);
   renderer_->setTargetSpp(targetSpp_);
+  // Errors are measured on the render thread after each full pass (no copy of the image, no wait
+  // for the UI's refresh); the tracker outlives the renderer through this shared pointer.
+  renderer_->setPassObserver([errors = errors_](const PassInfo& info, const Image& mean) { errors->observe(info, mean); });
   refreshSceneFiles();
 }
 
@@ -84,24 +97,38 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   pollSceneLoad();
 
   handleShortcuts();
-  // Panels beside the image, never over it: the controls on the left, the pyramid on the right.
+  // Panels beside the image, never over it: the controls on the left, the pyramid on the right,
+  // the convergence plot and technique table along the bottom.
+  const float bottom = showUi_ && showConvergence_ ? convergencePanelHeight(io.DisplaySize.y) : 0.f;
+  const float upper = io.DisplaySize.y - bottom;
   const float panelWidth = showUi_ ? std::min(380.f * uiScale_, io.DisplaySize.x * 0.6f) : 0.f;
-  const float pyramidWidth = showUi_ && showPyramid_ ? pyramidPanelWidth(io.DisplaySize.x - panelWidth, io.DisplaySize.y) : 0.f;
+  const float pyramidWidth = showUi_ && showPyramid_ ? pyramidPanelWidth(io.DisplaySize.x - panelWidth, upper) : 0.f;
   imageOrigin_ = {static_cast<int>(panelWidth * framebufferScale), 0};
   imageSize_ = {std::max(framebufferSize.x - imageOrigin_.x - static_cast<int>(pyramidWidth * framebufferScale), 0),
-                framebufferSize.y};
+                std::max(framebufferSize.y - static_cast<int>(bottom * framebufferScale), 0)};
   handleCamera(framebufferScale);
+  updateReferenceState();
 
   if (showUi_) {
-    drawSidePanel(panelWidth, io.DisplaySize.y);
-    if (showPyramid_) drawPyramidWindow(io.DisplaySize.x - pyramidWidth, pyramidWidth, io.DisplaySize.y);
+    drawSidePanel(panelWidth, upper);
+    if (showPyramid_) drawPyramidWindow(io.DisplaySize.x - pyramidWidth, pyramidWidth, upper);
+    if (showConvergence_) drawConvergenceWindow(upper, io.DisplaySize.x, bottom);
   }
   if (showHelp_) drawHelpWindow();
   drawImageOverlay();
 
   // The image follows its area of the window (a resize is a new generation, like any other change).
-  edited_.width = std::max(1, static_cast<int>(static_cast<float>(imageSize_.x) * resolutionScale_));
-  edited_.height = std::max(1, static_cast<int>(static_cast<float>(imageSize_.y) * resolutionScale_));
+  // ... unless a reference sets it: an error needs the same pixels.
+  if (const std::optional<ReferenceView> view = errors_->referenceView(); view && matchReferenceSize_) {
+    edited_.width = view->width;
+    edited_.height = view->height;
+  } else {
+    edited_.width = std::max(1, static_cast<int>(static_cast<float>(imageSize_.x) * resolutionScale_));
+    edited_.height = std::max(1, static_cast<int>(static_cast<float>(imageSize_.y) * resolutionScale_));
+  }
+  // Per-technique timing costs two clock reads a connection: only while its table is shown.
+  const bool timing = showUi_ && showConvergence_;
+  if (timing != timingOn_) renderer_->setTiming(timingOn_ = timing);
   edited_.pyramidLength = showPyramid_ ? std::min(pyramidLength_, edited_.maxLength) : 0;
   if (showPyramid_) {
     // Thumbnails as large as they are shown (no blocky upscaling on a projector), from the next pass.
@@ -119,7 +146,16 @@ bool Viewer::pollImage() {
   }
   const bool pyramid = showPyramid_ && updatePyramid();
   const bool image = updateImage();
-  return image || pyramid;
+  bool reference = false;
+  if (errors_->referenceVersion() != uploadedReference_) {
+    uploadedReference_ = errors_->referenceVersion();
+    const std::shared_ptr<const Image> r = errors_->reference();
+    imageView_->setReference(r.get());
+    reference = true;
+  }
+  // New points arrive on the render thread; the plot redraws when they do.
+  const bool points = showConvergence_ && errors_->version() != seriesVersion_;
+  return image || pyramid || reference || points;
 }
 
 void Viewer::applySettings() {
@@ -193,7 +229,7 @@ void Viewer::waitForPyramid(double seconds) {
 
 void Viewer::drawImage(Vec2i framebufferSize) {
   if (idleForNoTechnique_) return;  // black: nothing is estimated
-  imageView_->draw(imageOrigin_, imageSize_, framebufferSize.y, display_);
+  imageView_->draw(imageOrigin_, imageSize_, framebufferSize.y, shownDisplay());
 }
 
 void Viewer::openScene(const std::string& path) {
@@ -210,6 +246,10 @@ void Viewer::pollSceneLoad() {
   }
   // A reload keeps the view (the file is being edited); another scene starts at its own camera.
   const bool reload = r->path == scenePath_;
+  // The error against a reference of another scene (or of the file before it was edited) is
+  // meaningless: drop it (the plot keeps what was measured against it).
+  const bool hadReference = errors_->reference() != nullptr;
+  errors_->dropReference();
   scene_ = r->scene;
   scenePath_ = r->path;
   if (!reload) {
@@ -229,6 +269,7 @@ void Viewer::pollSceneLoad() {
   std::string text = fmt::format("loaded {}: {} triangles, {} lights", scenePath_, scene_->triangleCount(),
                                  scene_->lights().size());
   for (const std::string& w : scene_->warnings()) text += "; warning: " + w;
+  if (hadReference) text += "; the reference was dropped (it showed the previous scene)";
   showMessage(text);
 }
 

@@ -4,6 +4,7 @@
 // the UI thread, between ImGui::NewFrame and ImGui::Render except drawImage.
 #pragma once
 
+#include "core/metrics/error_tracker.h"
 #include "core/render/progressive_renderer.h"
 #include "ui/display_settings.h"
 #include "ui/image_view.h"
@@ -13,6 +14,8 @@
 #include "ui/shortcuts.h"
 #include "ui/texture.h"
 #include "ui/viewer_options.h"
+
+#include <imgui.h>
 
 #include <chrono>
 #include <utility>
@@ -50,6 +53,9 @@ class Viewer {
   void setFrameTime(double ms) { frameMs_ = frameMs_ == 0.0 ? ms : 0.9 * frameMs_ + 0.1 * ms; }
   void showMessage(const std::string& text, bool error = false);
   const RenderSnapshot& shownSnapshot() const { return snapshot_; }
+  const ErrorTracker& errors() const { return *errors_; }
+  // Writes the error series as CSV (ErrorTracker::csv); throws std::runtime_error naming the file.
+  void writeErrorCsv(const std::string& path, bool force) const;
 
  private:
   // Estimator state
@@ -86,6 +92,22 @@ class Viewer {
   bool forceRefresh_ = false;
   Vec2i imageOrigin_{0}, imageSize_{0};  // framebuffer pixels
 
+  // Reference, error series and the convergence panel (panel_reference.cpp, panel_convergence.cpp)
+  std::shared_ptr<ErrorTracker> errors_;
+  std::string typedReferencePath_;
+  bool matchReferenceSize_ = true;     // render at the reference's resolution
+  uint64_t uploadedReference_ = 0;     // ErrorTracker::referenceVersion of the reference texture
+  std::string referenceStatus_;        // why the error cannot be computed now ("" when it can)
+  bool referenceValid_ = false;        // for the shown image
+  bool showConvergence_ = false;
+  ErrorMetric plotMetric_ = ErrorMetric::RelMse;
+  bool plotAgainstSpp_ = false;
+  bool plotSlope_ = true;
+  int maxSeries_ = 8;
+  std::vector<ErrorSeries> series_;  // a copy, refreshed when the tracker's version changes
+  uint64_t seriesVersion_ = 0;
+  bool timingOn_ = false;
+
   // Technique pyramid
   bool showPyramid_ = false;
   int pyramidLength_ = 3;
@@ -121,6 +143,11 @@ class Viewer {
   void resetCamera();
   void applyPreset(int index);
   void saveImage();
+  void loadReference(const std::string& path);  // a message in the UI on failure
+  void useImageAsReference();
+  void returnToReferenceView();
+  void updateReferenceState();
+  DisplaySettings shownDisplay() const;
   // viewer_input.cpp
   void handleShortcuts();
   void handleCamera(float framebufferScale);
@@ -134,6 +161,13 @@ class Viewer {
   void drawDisplaySection();
   void drawSceneSection();
   void drawPresetSection();
+  void drawReferenceSection();
+  void drawErrorBar(const DisplaySettings& d);
+  void drawErrorBarOverlay(ImVec2 imageOrigin, ImVec2 imageSize);
+  float convergencePanelHeight(float windowHeight) const;
+  void drawConvergenceWindow(float y, float width, float height);
+  void drawTechniqueTable();
+  void exportErrorCsv();
   void drawHelpWindow();
   // Width of the pyramid panel for the space left of the window; sets pyramidThumbnail_.
   float pyramidPanelWidth(float availableWidth, float height);

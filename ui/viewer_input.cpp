@@ -79,6 +79,12 @@ void Viewer::perform(Action action) {
       display_.toneMap = display_.toneMap == ToneMap::Clamp ? ToneMap::Filmic : ToneMap::Clamp;
       break;
     case Action::ToggleFalseColour: display_.falseColour = !display_.falseColour; break;
+    case Action::ToggleConvergence: showConvergence_ = !showConvergence_; break;
+    case Action::ToggleErrorView:
+      display_.errorView = !display_.errorView;
+      if (display_.errorView && !errors_->reference()) showMessage("the error view needs a reference (Ctrl+R takes the image)", true);
+      break;
+    case Action::UseImageAsReference: useImageAsReference(); break;
     case Action::ResetCamera: resetCamera(); break;
     case Action::ReloadScene: openScene(scenePath_); break;
     case Action::SaveImage: saveImage(); break;

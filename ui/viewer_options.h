@@ -31,6 +31,12 @@ struct ViewerOptions {
   bool force = false;    // overwrite the screenshot
   bool hideUi = false;   // start with the panels hidden
   std::string script;    // scripted input (ui/input_script.h), counted in drawn frames
+  // A reference image (.exr or .pfm) for the live error plot and the error view; rendered at its
+  // resolution. errorCsv: write the error series there on exit.
+  std::string reference;
+  std::string errorCsv;
+  bool convergencePanel = false;  // open the convergence panel (plot and technique table)
+  bool errorView = false;         // start in the false-colour error view
 };
 
 }  // namespace pathlab::ui

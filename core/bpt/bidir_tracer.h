@@ -62,6 +62,13 @@ class BidirTracer {
 
   const TechniqueSet& techniques() const { return techniques_; }
 
+  // Time the walks and every technique's connect() + misWeight into the counters, on one camera
+  // sample in eight (Counters::timedSamples counts them). Off by default: when off it costs one
+  // branch. Not a RenderSettings member, so switching it never starts a new generation; set it
+  // between passes, never during one.
+  void setTiming(bool on) { timing_ = on; }
+  bool timing() const { return timing_; }
+
  private:
   const Scene& scene_;
   const Camera& camera_;
@@ -74,6 +81,7 @@ class BidirTracer {
   bool checkMis_;
   int cameraVerticesNeeded_ = 1;  // the camera vertex itself is always there
   int lightVerticesNeeded_ = 0;
+  bool timing_ = false;
 };
 
 // The TechniqueSet a RenderSettings asks for: its SPEC, restricted to t = 1 for light tracing.

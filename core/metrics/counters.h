@@ -1,6 +1,7 @@
 // Work and health counters of a render: rays traced, samples the film refused, and per
-// bidirectional technique (s, t) the connections tried, blocked and zero and the contributions
-// discarded. Plain data: one copy per thread, merged after each pass.
+// bidirectional technique (s, t) the connections tried, blocked and zero, the shadow rays traced,
+// the time spent and the contributions discarded. Plain data: one copy per thread, merged after
+// each pass.
 #pragma once
 
 #include "core/math/types.h"
@@ -31,12 +32,18 @@ struct TechniqueCounters {
   uint64_t blocked = 0;      // the shadow ray was occluded
   uint64_t contributed = 0;  // a non-zero unweighted contribution
   DiscardCounts discarded;   // contributions refused as NaN, Inf or negative
+  uint64_t shadowRays = 0;   // visibility queries of its connections (blocked + contributed for s >= 1)
+  // connect() and misWeight, summed over threads, of the timed samples only (BidirTracer::setTiming):
+  // compare shares, or time per timed try, never totals.
+  uint64_t nanoseconds = 0;
   TechniqueCounters& operator+=(const TechniqueCounters& o) {
     tried += o.tried;
     zero += o.zero;
     blocked += o.blocked;
     contributed += o.contributed;
     discarded += o.discarded;
+    shadowRays += o.shadowRays;
+    nanoseconds += o.nanoseconds;
     return *this;
   }
 };
@@ -48,6 +55,17 @@ inline size_t techniqueSlot(int s, int t) {
   if (k > kCountedLength) return kCountedTechniques;
   return static_cast<size_t>((k - 1) * (k + 2) / 2 + s);
 }
+
+// The random walks that build the subpaths: closest-hit rays always, time while timing is on.
+struct WalkCounters {
+  uint64_t rays = 0;
+  uint64_t nanoseconds = 0;
+  WalkCounters& operator+=(const WalkCounters& o) {
+    rays += o.rays;
+    nanoseconds += o.nanoseconds;
+    return *this;
+  }
+};
 
 // Where a discarded contribution came from, so `pathlab render --replay X,Y,SAMPLE` can
 // reproduce it. s = t = -1 for a whole path-tracer sample.
@@ -65,6 +83,8 @@ struct Counters {
   uint64_t shadowRays = 0;    // visibility queries
   DiscardCounts discardedSamples;  // refused at the film's door (whole samples or splats)
   std::array<TechniqueCounters, kCountedTechniques + 1> techniques{};
+  WalkCounters cameraWalk, lightWalk;  // bidirectional tracer only
+  uint64_t timedSamples = 0;           // camera samples timed (a fraction of them while timing is on)
   // Paths whose enabled techniques' MIS weights did not sum to one (RenderSettings::checkMis).
   uint64_t misPartitionFailures = 0;
   uint64_t misPartitionChecks = 0;
@@ -84,6 +104,12 @@ struct Counters {
   }
   uint64_t discarded() const { return discardedCounts().total(); }
   uint64_t totalRays() const { return rays + shadowRays; }
+  // Time of the walks and of every technique's connections, while timing was on.
+  uint64_t timedNanoseconds() const {
+    uint64_t ns = cameraWalk.nanoseconds + lightWalk.nanoseconds;
+    for (const TechniqueCounters& t : techniques) ns += t.nanoseconds;
+    return ns;
+  }
   TechniqueCounters& technique(int s, int t) { return techniques[techniqueSlot(s, t)]; }
   const TechniqueCounters& technique(int s, int t) const { return techniques[techniqueSlot(s, t)]; }
 
@@ -93,6 +119,9 @@ struct Counters {
     shadowRays += o.shadowRays;
     discardedSamples += o.discardedSamples;
     for (size_t i = 0; i < techniques.size(); ++i) techniques[i] += o.techniques[i];
+    cameraWalk += o.cameraWalk;
+    lightWalk += o.lightWalk;
+    timedSamples += o.timedSamples;
     misPartitionFailures += o.misPartitionFailures;
     misPartitionChecks += o.misPartitionChecks;
     for (size_t i = 0; i < o.discardExampleCount; ++i) noteDiscard(o.discardExamples[i]);

@@ -46,6 +46,8 @@ struct ProgressiveRenderer::State {
   uint64_t targetSpp = 0;
   int thumbnailSide = 128;
   std::atomic<bool> cancel{false};
+  bool timing = false;
+  std::shared_ptr<const PassObserver> observer;
 
   uint64_t version = 0;
   RenderSnapshot front;
@@ -66,8 +68,19 @@ void ProgressiveRenderer::State::run() {
   size_t previewStep = 0;
   Counters previewCounters;
   Clock::time_point start;
-  uint64_t target = 0;
   int side = 128;
+  bool timed = false;
+  std::shared_ptr<const PassObserver> observe;
+  double renderSeconds = 0.0;  // sum of the pass durations of this generation
+
+  // Runs one pass in the arena, adding its duration to renderSeconds.
+  auto runPass = [&](RenderSession& session) {
+    session.setTiming(timed);
+    const auto passStart = Clock::now();
+    const bool finished = arena.execute([&] { return session.renderPass(&cancel); });
+    renderSeconds += std::chrono::duration<double>(Clock::now() - passStart).count();
+    return finished;
+  };
 
   auto publish = [&](Image image, bool preview, int factor, const Counters& counters, uint64_t spp) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -80,6 +93,7 @@ void ProgressiveRenderer::State::run() {
     front.previewFactor = factor;
     front.samplesPerPixel = spp;
     front.seconds = seconds;
+    front.renderSeconds = renderSeconds;
     front.counters = counters;
     front.settings = set;
     published.notify_all();
@@ -89,7 +103,8 @@ void ProgressiveRenderer::State::run() {
     {
       std::unique_lock lock(mutex);
       wake.wait(lock, [&] {
-        const bool done = session && target > 0 && session->passes() >= target;
+        // The target as it is now (targetSpp), not as it was: raising it must wake the worker.
+        const bool done = session && targetSpp > 0 && session->passes() >= targetSpp;
         return stop || generation != gen || (!paused && !done);
       });
       if (stop) return;
@@ -102,28 +117,32 @@ void ProgressiveRenderer::State::run() {
         previewStep = 0;
         previewCounters = Counters{};
         start = Clock::now();
+        renderSeconds = 0.0;
         thumbnails.clear();
         ++thumbnailsVersion;
       }
-      target = targetSpp;
       side = thumbnailSide;
+      timed = timing;
+      observe = observer;
     }
 
     if (previewStep < std::size(kPreviewFactors)) {
       const int factor = kPreviewFactors[previewStep++];
       if (set.width < 2 * factor && set.height < 2 * factor) continue;  // no coarser than the image
       RenderSession preview(*sc, previewSettings(set, factor));
-      if (!arena.execute([&] { return preview.renderPass(&cancel); })) continue;
+      if (!runPass(preview)) continue;
       previewCounters += preview.counters();
       publish(preview.image(), true, factor, previewCounters, 0);
       continue;
     }
 
     if (!session) session = std::make_unique<RenderSession>(*sc, set);
-    if (!arena.execute([&] { return session->renderPass(&cancel); })) continue;
+    if (!runPass(*session)) continue;
     Counters counters = previewCounters;
     counters += session->counters();
-    publish(session->image(), false, 1, counters, session->passes());
+    Image image = session->image();
+    if (observe && *observe) (*observe)(PassInfo{gen, set, sc.get(), session->passes(), renderSeconds}, image);
+    publish(std::move(image), false, 1, counters, session->passes());
 
     if (session->hasPyramid()) {
       {
@@ -229,6 +248,17 @@ void ProgressiveRenderer::setTargetSpp(uint64_t spp) {
 void ProgressiveRenderer::setThumbnailSide(int side) {
   std::lock_guard lock(state_->mutex);
   state_->thumbnailSide = std::max(1, side);
+}
+
+void ProgressiveRenderer::setTiming(bool on) {
+  std::lock_guard lock(state_->mutex);
+  state_->timing = on;
+}
+
+void ProgressiveRenderer::setPassObserver(PassObserver observer) {
+  auto shared = observer ? std::make_shared<const PassObserver>(std::move(observer)) : nullptr;
+  std::lock_guard lock(state_->mutex);
+  state_->observer = std::move(shared);
 }
 
 bool ProgressiveRenderer::snapshot(RenderSnapshot& out) const {

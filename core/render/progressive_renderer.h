@@ -13,6 +13,7 @@
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -28,6 +29,7 @@ struct RenderSnapshot {
   int previewFactor = 1;          // image is (width / f) x (height / f), rounded up
   uint64_t samplesPerPixel = 0;   // full-resolution passes accumulated
   double seconds = 0.0;           // wall time of this generation so far
+  double renderSeconds = 0.0;     // time spent in its passes (previews included): pauses excluded
   Counters counters;              // of this generation (full passes and previews)
   RenderSettings settings;        // the settings this image was rendered with
 };
@@ -37,6 +39,19 @@ struct TechniqueThumbnail {
   int s = 0, t = 1;
   Image weighted, unweighted;
 };
+
+// What the pass observer sees after every full-resolution pass, on the render thread.
+struct PassInfo {
+  uint64_t generation = 0;
+  const RenderSettings& settings;
+  const Scene* scene = nullptr;
+  uint64_t samplesPerPixel = 0;
+  double renderSeconds = 0.0;  // as RenderSnapshot::renderSeconds, up to the end of this pass
+};
+// Called on the render thread with the generation's mean image after every full pass, before
+// the image is published; its own time is not counted in renderSeconds. It must be quick (it
+// delays the next pass) and must not call back into the renderer.
+using PassObserver = std::function<void(const PassInfo&, const Image&)>;
 
 class ProgressiveRenderer {
  public:
@@ -70,6 +85,11 @@ class ProgressiveRenderer {
   // there is none or nothing newer than `version` (updated on success).
   bool pyramid(std::vector<TechniqueThumbnail>& out, uint64_t& version) const;
   void setThumbnailSide(int side);  // default 128; used from the next publication on
+
+  // Per-technique timing (BidirTracer::setTiming) from the next pass on; no new generation.
+  void setTiming(bool on);
+  // Replaces the pass observer (empty: none); takes effect from the next pass.
+  void setPassObserver(PassObserver observer);
 
   // Blocks until the current generation has at least `spp` full passes (tests, screenshots), or
   // `timeoutSeconds` elapsed; returns whether it got there.

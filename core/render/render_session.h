@@ -31,6 +31,11 @@ class RenderSession {
   Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats = nullptr,
                         SampleTrace* trace = nullptr) const;
 
+  // Per-technique and per-walk timing in the counters (BidirTracer::setTiming); between passes only.
+  void setTiming(bool on) {
+    if (bidirTracer_) bidirTracer_->setTiming(on);
+  }
+
   const Film& film() const { return film_; }
   Image image() const { return film_.readout(); }
   // Technique (s, t) of the pyramid (settings.pyramidLength > 0), weighted or unweighted.

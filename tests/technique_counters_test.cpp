@@ -1,0 +1,121 @@
+// Per-technique rays and time (issue 5, the viewer's technique table and `render --stats`):
+// counters merge field by field; every shadow ray of a technique with s >= 1 ends blocked or
+// contributing; the walks' rays are all the closest-hit rays; timing is off unless asked for and
+// never starts a new generation of the progressive renderer.
+#include "core/metrics/counters.h"
+#include "core/render/progressive_renderer.h"
+#include "core/render/render_session.h"
+#include "core/scene/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+namespace pathlab {
+namespace {
+
+const Scene& cornellBox() {
+  static const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
+  return scene;
+}
+
+RenderSettings bpt() {
+  RenderSettings s;
+  s.width = 24;
+  s.height = 16;
+  s.maxLength = 5;
+  s.integrator = IntegratorKind::Bpt;
+  return s;
+}
+
+TEST(TechniqueCounters, MergeEveryField) {
+  Counters a, b;
+  a.technique(1, 2).shadowRays = 3;
+  a.technique(1, 2).nanoseconds = 100;
+  a.cameraWalk = {10, 1000};
+  a.lightWalk = {20, 2000};
+  a.timedSamples = 5;
+  b.technique(1, 2).shadowRays = 4;
+  b.technique(1, 2).nanoseconds = 50;
+  b.technique(2, 1).nanoseconds = 7;
+  b.cameraWalk = {1, 1};
+  b.lightWalk = {2, 2};
+  b.timedSamples = 1;
+  a += b;
+  EXPECT_EQ(a.technique(1, 2).shadowRays, 7u);
+  EXPECT_EQ(a.technique(1, 2).nanoseconds, 150u);
+  EXPECT_EQ(a.technique(2, 1).nanoseconds, 7u);
+  EXPECT_EQ(a.cameraWalk.rays, 11u);
+  EXPECT_EQ(a.cameraWalk.nanoseconds, 1001u);
+  EXPECT_EQ(a.lightWalk.rays, 22u);
+  EXPECT_EQ(a.lightWalk.nanoseconds, 2002u);
+  EXPECT_EQ(a.timedSamples, 6u);
+  EXPECT_EQ(a.timedNanoseconds(), 1001u + 2002u + 150u + 7u);
+}
+
+TEST(TechniqueCounters, RaysOfEachTechniqueAndWalk) {
+  RenderSession session(cornellBox(), bpt());
+  for (int i = 0; i < 4; ++i) session.renderPass();
+  const Counters& c = session.counters();
+  uint64_t shadow = 0;
+  for (int k = 1; k <= bpt().maxLength; ++k)
+    for (int s = 0; s <= k; ++s) {
+      const int t = k + 1 - s;
+      const TechniqueCounters& tc = c.technique(s, t);
+      shadow += tc.shadowRays;
+      if (s == 0) {
+        EXPECT_EQ(tc.shadowRays, 0u) << "(0," << t << ") traces no shadow ray";
+      } else {
+        // A connection traces its shadow ray only when it would contribute: it is then blocked or not.
+        EXPECT_EQ(tc.shadowRays, tc.blocked + tc.contributed) << "(" << s << "," << t << ")";
+        EXPECT_GT(tc.shadowRays, 0u) << "(" << s << "," << t << ")";
+      }
+    }
+  EXPECT_EQ(shadow, c.shadowRays);
+  EXPECT_EQ(c.cameraWalk.rays + c.lightWalk.rays, c.rays);
+  EXPECT_GT(c.cameraWalk.rays, 0u);
+  EXPECT_GT(c.lightWalk.rays, 0u);
+  // Timing is off by default: nothing measured.
+  EXPECT_EQ(c.timedNanoseconds(), 0u);
+  EXPECT_EQ(c.timedSamples, 0u);
+}
+
+TEST(TechniqueCounters, TimingWhenAskedChangesNoCount) {
+  RenderSession timed(cornellBox(), bpt()), untimed(cornellBox(), bpt());
+  timed.setTiming(true);
+  timed.renderPass();
+  untimed.renderPass();
+  const Counters& c = timed.counters();
+  // One sample in eight, picked at random: 384 samples, 48 expected, standard deviation 6.5.
+  EXPECT_GT(c.timedSamples, 16u);
+  EXPECT_LT(c.timedSamples, 80u);
+  EXPECT_GT(c.cameraWalk.nanoseconds, 0u);
+  EXPECT_GT(c.lightWalk.nanoseconds, 0u);
+  EXPECT_GT(c.technique(1, 2).nanoseconds, 0u);
+  EXPECT_GT(c.technique(0, 2).nanoseconds, 0u);
+  // The same samples: the same counts.
+  for (size_t i = 0; i < c.techniques.size(); ++i) {
+    EXPECT_EQ(c.techniques[i].tried, untimed.counters().techniques[i].tried);
+    EXPECT_EQ(c.techniques[i].shadowRays, untimed.counters().techniques[i].shadowRays);
+  }
+  EXPECT_EQ(c.rays, untimed.counters().rays);
+}
+
+TEST(TechniqueCounters, TimingIsNoNewGeneration) {
+  auto scene = std::make_shared<const Scene>(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
+  ProgressiveRenderer renderer(scene, bpt(), 2);
+  renderer.setTargetSpp(2);
+  ASSERT_TRUE(renderer.waitForSpp(2, 60.0));
+  const uint64_t generation = renderer.generation();
+  renderer.setTiming(true);
+  renderer.setTargetSpp(6);
+  ASSERT_TRUE(renderer.waitForSpp(6, 60.0));
+  EXPECT_EQ(renderer.generation(), generation);
+  RenderSnapshot snap;
+  ASSERT_TRUE(renderer.snapshot(snap));
+  // Passes 3..6 were timed, the previews and passes 1..2 not.
+  EXPECT_GT(snap.counters.timedSamples, 0u);
+  EXPECT_LT(snap.counters.timedSamples, snap.counters.cameraSamples);
+  EXPECT_GT(snap.counters.timedNanoseconds(), 0u);
+}
+
+}  // namespace
+}  // namespace pathlab

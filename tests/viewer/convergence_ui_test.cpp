@@ -1,0 +1,174 @@
+// The convergence panel's logic without ImGui: log axes and their labels, the technique table's
+// rows and sorting, and the error view's colour map and scale (the CPU mirror of the shader).
+#include "ui/display_settings.h"
+#include "ui/input_script.h"
+#include "ui/plot_axes.h"
+#include "ui/technique_table.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace pathlab::ui {
+namespace {
+
+TEST(LogAxis, WholeDecadesAroundTheData) {
+  const LogAxis a = LogAxis::fit(0.03, 47.0);
+  EXPECT_DOUBLE_EQ(a.lo(), 0.01);
+  EXPECT_DOUBLE_EQ(a.hi(), 100.0);
+  EXPECT_NEAR(a.position(0.01), 0.0, 1e-12);
+  EXPECT_NEAR(a.position(1.0), 0.5, 1e-12);
+  EXPECT_NEAR(a.position(100.0), 1.0, 1e-12);
+  // Within one decade: still a decade wide, and 2 and 5 are labelled.
+  const LogAxis b = LogAxis::fit(2.0, 3.0);
+  EXPECT_DOUBLE_EQ(b.lo(), 1.0);
+  EXPECT_DOUBLE_EQ(b.hi(), 10.0);
+  std::vector<std::string> labels;
+  for (const LogTick& t : b.ticks())
+    if (!t.label.empty()) labels.push_back(t.label);
+  EXPECT_EQ(labels, (std::vector<std::string>{"1", "2", "5", "10"}));
+  // Exactly a power of ten stays on its decade.
+  EXPECT_DOUBLE_EQ(LogAxis::fit(1e-3, 1e-1).lo(), 1e-3);
+  EXPECT_DOUBLE_EQ(LogAxis::fit(1e-3, 1e-1).hi(), 1e-1);
+  // Many decades: every other one labelled (the last always).
+  const LogAxis c = LogAxis::fit(1e-8, 1.0);
+  int labelled = 0;
+  for (const LogTick& t : c.ticks()) labelled += t.major && !t.label.empty();
+  EXPECT_EQ(labelled, 5);
+}
+
+TEST(LogAxis, ShortLabels) {
+  EXPECT_EQ(tickLabel(0.01), "0.01");
+  EXPECT_EQ(tickLabel(0.5), "0.5");
+  EXPECT_EQ(tickLabel(1.0), "1");
+  EXPECT_EQ(tickLabel(20.0), "20");
+  EXPECT_EQ(tickLabel(1000.0), "1000");
+  EXPECT_EQ(tickLabel(1e-5), "1e-5");
+  EXPECT_EQ(tickLabel(2e6), "2e6");
+  EXPECT_EQ(tickLabel(3.16e-4), "3e-4");
+  EXPECT_EQ(tickLabel(9.9e-4), "1e-3");
+}
+
+Counters sampleCounters() {
+  Counters c;
+  c.cameraSamples = 100;
+  c.timedSamples = 50;
+  c.rays = 300;
+  c.cameraWalk = {200, 4000};
+  c.lightWalk = {100, 2000};
+  TechniqueCounters& nee = c.technique(1, 2);
+  nee.tried = 100;
+  nee.shadowRays = 80;
+  nee.blocked = 30;
+  nee.contributed = 50;
+  nee.nanoseconds = 3000;
+  TechniqueCounters& lt = c.technique(2, 1);
+  lt.tried = 40;
+  lt.shadowRays = 20;
+  lt.blocked = 5;
+  lt.contributed = 15;
+  lt.nanoseconds = 1000;
+  c.shadowRays = 100;
+  return c;
+}
+
+TEST(TechniqueTable, SharesOfRaysAndTime) {
+  std::vector<TechniqueRow> rows = techniqueRows(sampleCounters(), 3, 2.0);
+  ASSERT_EQ(rows.size(), 4u);  // two walks and the two techniques tried
+  EXPECT_EQ(rows[0].name, "camera walks");
+  EXPECT_EQ(rows[1].name, "light walks");
+  EXPECT_EQ(rows[2].name, "(1,2)");
+  EXPECT_EQ(rows[3].name, "(2,1)");
+  const double allRays = 400.0, allTime = 10000.0;
+  EXPECT_DOUBLE_EQ(rows[0].rayShare, 200.0 / allRays);
+  EXPECT_DOUBLE_EQ(rows[2].rayShare, 80.0 / allRays);
+  EXPECT_DOUBLE_EQ(rows[2].timeShare, 3000.0 / allTime);
+  EXPECT_DOUBLE_EQ(rows[3].raysPerSecond, 10.0);
+  // Half the samples were timed: 3000 ns over 50 timed tries.
+  EXPECT_DOUBLE_EQ(rows[2].nanosecondsPerTry, 60.0);
+  double rayShares = 0.0, timeShares = 0.0;
+  for (const TechniqueRow& r : rows) rayShares += r.rayShare, timeShares += r.timeShare;
+  EXPECT_NEAR(rayShares, 1.0, 1e-12);
+  EXPECT_NEAR(timeShares, 1.0, 1e-12);
+
+  sortRows(rows, TechniqueColumn::TimeShare, true);
+  EXPECT_EQ(rows[0].name, "camera walks");
+  EXPECT_EQ(rows[1].name, "(1,2)");
+  sortRows(rows, TechniqueColumn::Rays, false);
+  EXPECT_EQ(rows[0].name, "(2,1)");
+  sortRows(rows, TechniqueColumn::Name, false);
+  EXPECT_EQ(rows[0].name, "camera walks");
+  EXPECT_EQ(rows[3].name, "(2,1)");
+}
+
+TEST(TechniqueTable, NoTimingNoShares) {
+  Counters c = sampleCounters();
+  c.timedSamples = 0;
+  c.cameraWalk.nanoseconds = c.lightWalk.nanoseconds = 0;
+  for (TechniqueCounters& t : c.techniques) t.nanoseconds = 0;
+  for (const TechniqueRow& r : techniqueRows(c, 3, 1.0)) {
+    EXPECT_EQ(r.timeShare, 0.0) << r.name;
+    EXPECT_EQ(r.nanosecondsPerTry, 0.0) << r.name;
+  }
+}
+
+TEST(ErrorView, ViridisEndsAndMonotoneLightness) {
+  // matplotlib's viridis: (0.267, 0.005, 0.329) at 0, (0.993, 0.906, 0.144) at 1.
+  const Vec3 lo = viridis(0.f), hi = viridis(1.f), mid = viridis(0.5f);
+  EXPECT_NEAR(lo.r, 0.267f, 0.02f);
+  EXPECT_NEAR(lo.g, 0.005f, 0.02f);
+  EXPECT_NEAR(lo.b, 0.329f, 0.02f);
+  EXPECT_NEAR(hi.r, 0.993f, 0.02f);
+  EXPECT_NEAR(hi.g, 0.906f, 0.02f);
+  EXPECT_NEAR(hi.b, 0.144f, 0.02f);
+  EXPECT_NEAR(mid.r, 0.128f, 0.02f);  // (0.128, 0.567, 0.551)
+  EXPECT_NEAR(mid.g, 0.567f, 0.02f);
+  float previous = -1.f;
+  for (float t = 0.f; t <= 1.f; t += 0.05f) {
+    const float luma = luminance(viridis(t));
+    EXPECT_GT(luma, previous) << t;
+    previous = luma;
+  }
+}
+
+TEST(ErrorView, ScaleAndColourOfAPixel) {
+  DisplaySettings d;
+  d.errorLogMin = -4.f;
+  d.errorLogMax = 0.f;
+  EXPECT_FLOAT_EQ(errorBarPosition(1e-2f, d), 0.5f);
+  EXPECT_FLOAT_EQ(errorBarPosition(0.f, d), 0.f);
+  EXPECT_FLOAT_EQ(errorBarPosition(1e3f, d), 1.f);
+  d.errorLog = false;
+  d.errorLinearMax = 0.5f;
+  EXPECT_FLOAT_EQ(errorBarPosition(0.25f, d), 0.5f);
+  // A pixel of (2, 1, 1) over a reference of 1: relative squared error (1/1.01)/3.
+  d.errorLog = true;
+  const float e = (1.f / 1.01f) / 3.f;
+  const Vec3 c = errorColour(Spectrum(2.f, 1.f, 1.f), Spectrum(1.f), d);
+  const Vec3 expected = viridis((std::log10(e) + 4.f) / 4.f);
+  EXPECT_NEAR(c.r, expected.r, 1e-5f);
+  EXPECT_NEAR(c.g, expected.g, 1e-5f);
+  // No error: the bottom of the scale.
+  const Vec3 z = errorColour(Spectrum(1.f), Spectrum(1.f), d);
+  EXPECT_NEAR(z.g, viridis(0.f).g, 1e-6f);
+  // Absolute error: exposure plays no part.
+  d.errorKind = PixelError::Absolute;
+  d.exposure = 5.f;
+  EXPECT_NEAR(errorColour(Spectrum(1.5f), Spectrum(1.f), d).g, viridis((std::log10(0.5f) + 4.f) / 4.f).g, 1e-5f);
+}
+
+// Scripts that compare configurations wait for a sample count instead of counting frames.
+TEST(InputScript, WaitForSamples) {
+  const std::vector<InputEvent> events = parseInputScript("20:wait=8;21:key=U");
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(inputAt(events, 20).waitSpp, std::optional<uint64_t>(8));
+  EXPECT_FALSE(inputAt(events, 21).waitSpp.has_value());
+  EXPECT_FALSE(inputAt(events, 19).waitSpp.has_value());
+  EXPECT_THROW(parseInputScript("3:wait=0"), std::invalid_argument);
+  EXPECT_THROW(parseInputScript("3:wait=x"), std::invalid_argument);
+  // The reference shortcuts are scriptable.
+  EXPECT_NO_THROW(parseInputScript("1:key=Ctrl+R;2:key=X;3:key=P"));
+}
+
+}  // namespace
+}  // namespace pathlab::ui

@@ -1,0 +1,104 @@
+// The viewer's reference plumbing: loading one (or taking the shown image), checking that it still
+// shows the rendered view, the display the error view gets, and exporting the error series.
+#include "ui/viewer.h"
+
+#include "core/film/image_io.h"
+#include "ui/output_names.h"
+#include "ui/technique_grid.h"
+
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace pathlab::ui {
+
+void Viewer::loadReference(const std::string& path) {
+  try {
+    Image reference = readImage(path);
+    const RenderSettings current = effectiveSettings(edited_);
+    if (!matchReferenceSize_ && (reference.width != current.width || reference.height != current.height))
+      throw std::invalid_argument(fmt::format(
+          "{} is {} x {} but the image is {} x {}: not loaded (tick \"render at the reference's size\")", path,
+          reference.width, reference.height, current.width, current.height));
+    const std::string size = fmt::format("{} x {}", reference.width, reference.height);
+    errors_->setReference(std::move(reference), viewOf(current, scene_.get()), path);
+    showConvergence_ = true;
+    showMessage(fmt::format("reference {} ({}): the error is measured from the next pass on", path, size));
+  } catch (const std::exception& e) {
+    showMessage(e.what(), true);
+  }
+}
+
+void Viewer::useImageAsReference() {
+  if (snapshot_.image.width <= 0 || snapshot_.preview) {
+    showMessage("nothing to take yet: wait for the first full-resolution pass", true);
+    return;
+  }
+  try {
+    // Its own generation is never compared with it: those samples are the reference's.
+    errors_->setReference(snapshot_.image, viewOf(snapshot_.settings, scene_.get()),
+                          fmt::format("the image of generation {} ({} spp, {})", snapshot_.generation,
+                                      snapshot_.samplesPerPixel, seriesLabel(snapshot_.settings)),
+                          snapshot_.generation);
+    showConvergence_ = true;
+    showMessage(fmt::format("reference: the current image ({} spp); change the configuration to measure another",
+                            snapshot_.samplesPerPixel));
+  } catch (const std::exception& e) {
+    showMessage(e.what(), true);
+  }
+}
+
+void Viewer::returnToReferenceView() {
+  const std::optional<ReferenceView> view = errors_->referenceView();
+  if (!view) return;
+  edited_.camera = view->camera;
+  edited_.lens = view->lens;
+  orbit_ = OrbitCamera(view->camera.value_or(scene_->cameraDesc()), scene_->boundsMin(), scene_->boundsMax());
+}
+
+void Viewer::updateReferenceState() {
+  std::string why;
+  const ReferenceStatus status = errors_->statusFor(effectiveSettings(edited_), scene_.get(), &why);
+  referenceValid_ = status == ReferenceStatus::Valid;
+  referenceStatus_ = status == ReferenceStatus::Valid || status == ReferenceStatus::None ? std::string() : why;
+  if (static_cast<int>(errors_->maxSeries()) != maxSeries_) errors_->setMaxSeries(static_cast<size_t>(maxSeries_));
+  if (const uint64_t v = errors_->version(); v != seriesVersion_) {
+    series_ = errors_->series();
+    seriesVersion_ = v;
+  }
+}
+
+DisplaySettings Viewer::shownDisplay() const {
+  DisplaySettings d = display_;
+  // The shown image (a preview included) must be of the reference's view, else its colours lie.
+  d.errorView = display_.errorView && errors_->statusFor(snapshot_.settings, scene_.get()) == ReferenceStatus::Valid;
+  return d;
+}
+
+void Viewer::writeErrorCsv(const std::string& path, bool force) const {
+  if (!force && std::filesystem::exists(path)) throw std::runtime_error(path + ": file exists (pass --force to overwrite it)");
+  const std::filesystem::path p(path);
+  if (!p.parent_path().empty() && !std::filesystem::is_directory(p.parent_path()))
+    throw std::runtime_error(path + ": the directory " + p.parent_path().string() + " does not exist");
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << errors_->csv();
+    if (!out) throw std::runtime_error(path + ": cannot write");
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+void Viewer::exportErrorCsv() {
+  try {
+    const std::string path = freshStem("out", "pathlab-error", {".csv"}) + ".csv";
+    writeErrorCsv(path, false);
+    showMessage("saved the error series as " + path);
+  } catch (const std::exception& e) {
+    showMessage(e.what(), true);
+  }
+}
+
+}  // namespace pathlab::ui
