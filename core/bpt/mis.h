@@ -47,6 +47,9 @@ struct PathDensities {
   int n = 0;
   std::vector<double> pFromLight, pFromCamera;
   std::vector<bool> delta;   // delta scattering at x_i
+  // |x(i+1) - x(i)|^2 of edge i, the connection edge of technique s' = i + 1; infinite toward a
+  // directional light.
+  std::vector<float> edgeLength2;
   bool x0CanBeHit = false;   // x0 is on an area light (technique s = 0 possible)
 };
 PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path);
@@ -55,5 +58,25 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
 
 // Whether technique s' (t' = n - s') can produce a path with these delta flags.
 bool techniquePossible(const PathDensities& d, int sPrime);
+
+// The techniques misWeight weighs for a path: those enabled and possible, less those whose
+// connection edge is shorter than minConnectionDistance when an enabled possible technique with a
+// longer (or no) connection edge remains (MisOptions::minConnection). The set depends on the
+// path alone, so the weights over it still sum to one and the estimate stays unbiased.
+class UsableTechniques {
+ public:
+  UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance);
+  bool operator()(int sPrime) const;
+
+ private:
+  const PathDensities& d_;
+  const TechniqueSet& techniques_;
+  float minDistance2_ = 0.f;  // 0 when nothing is excluded for this path
+  bool enabledAndPossible(int sPrime) const;
+  bool shortConnection(int sPrime) const;
+};
+
+// MisOptions::minConnection in scene units.
+float minConnectionDistance(const Scene& scene, const MisOptions& options);
 
 }  // namespace pathlab
