@@ -72,10 +72,11 @@ PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisP
 void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d) {
   const int s = path.s, t = path.t, n = s + t;
   d.n = n;
-  d.pFromLight.assign(static_cast<size_t>(n), 0.0);
-  d.pFromCamera.assign(static_cast<size_t>(n), 0.0);
-  d.delta.assign(static_cast<size_t>(n), false);
-  d.edgeLength2.assign(static_cast<size_t>(std::max(n - 1, 0)), 0.f);
+  // resize, not assign: the loops below write every entry exactly once.
+  d.pFromLight.resize(static_cast<size_t>(n));
+  d.pFromCamera.resize(static_cast<size_t>(n));
+  d.delta.resize(static_cast<size_t>(n));
+  d.edgeLength2.resize(static_cast<size_t>(std::max(n - 1, 0)));
   auto lightVertex = [&](int i) -> const PathVertex& {
     return (i == 0 && s == 1 && t >= 2 && path.sampled) ? *path.sampled : path.lightPath[i];
   };
@@ -139,12 +140,6 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   d.x0CanBeHit = !x0.isDeltaPosition && !x0.isInfinite && x0.light >= 0 && x0.type != VertexType::Camera;
 }
 
-bool techniquePossible(const PathDensities& d, int sp) {
-  if (sp < 0 || sp >= d.n) return false;  // t' >= 1
-  if (sp == 0) return d.x0CanBeHit && !d.delta[0];
-  // The connection joins x(s'-1) and x(s'): neither may scatter by a delta lobe.
-  return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
-}
 
 UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance)
     : d_(d), techniques_(techniques) {
