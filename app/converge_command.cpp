@@ -106,7 +106,7 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
                   "Reference image (.exr or .pfm); without it one is rendered with bpt (balance heuristic) and "
                   "cached in the output directory as reference-<hash>.exr");
   cmd->add_option("--configs", o.configs,
-                  "';'-separated configurations INTEGRATOR[:key=value,...], keys mis, beta, techniques, max-length "
+                  "';'-separated configurations INTEGRATOR[:key=value,...], keys mis, beta, min-connection, techniques, max-length "
                   "(e.g. \"bpt;pt;lt;bpt:mis=power;bpt:techniques=s=1;k=1\")")
       ->capture_default_str();
   auto* spp = cmd->add_option("--spp", o.spp, "Render each configuration for this many samples per pixel")

@@ -38,6 +38,10 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                                               {"uniform", MisHeuristic::Uniform}},
           CLI::ignore_case));
   cmd->add_option("--beta", s.mis.beta, "Exponent of the power heuristic")->check(CLI::Range(0.01f, 100.f));
+  cmd->add_option("--min-connection", s.mis.minConnection,
+                  "Connections shorter than this fraction of the scene's bounding radius are left to the techniques "
+                  "that sample that edge, when one is enabled (0: off)")
+      ->check(CLI::Range(0.f, 1.f));
   cmd->add_option("--techniques", s.techniques,
                   "Enabled (s,t) techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all");
   auto* isolate = cmd->add_option("--isolate", o.isolate,

@@ -86,7 +86,8 @@ void report(const test::AgreementRun& run, const std::string& what) {
 // (seed 7 gave z = -7.7 on the Cornell box's floor along the front edge, 33 % low, while 16384
 // passes of the caustic scene agree with the balance heuristic to z = 1.6). The uniform
 // heuristic is tested where every geometry term is bounded: the integrating sphere
-// (bpt_technique_agreement_test.cpp) and the delta scenes (bpt_delta_test.cpp).
+// (bpt_technique_agreement_test.cpp), the delta scenes (bpt_delta_test.cpp), and this room with
+// every connection shorter than 0.3 of its radius left out (bpt_short_connection_test.cpp).
 TEST(BundledAgreement, CornellBox) {
   Scene scene(loadGltf(assetPath("cornell-box.gltf")));
   const auto run = runEstimators(scene, sceneSettings(16, 16, 8), {768, 128, 128, 128}, 4,

@@ -61,15 +61,24 @@ FullPath densities(const Scene& scene, const Camera& camera, std::vector<PathVer
   return f;
 }
 
-// Brute force: p_s' = prod_{i < s'} pL_i * prod_{i >= s'} pE_i, then the heuristic directly.
-std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled, const MisOptions& o) {
+// Brute force: p_s' = prod_{i < s'} pL_i * prod_{i >= s'} pE_i, then the heuristic directly, over
+// the enabled techniques able to produce the path, less those whose connection edge
+// x(s'-1) -- x(s') is shorter than minDistance while a technique without a short one remains.
+std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled, const MisOptions& o,
+                                  double minDistance) {
   const int n = static_cast<int>(f.x.size());
   std::vector<double> p(static_cast<size_t>(n), 0.0), w(static_cast<size_t>(n), 0.0);
   const bool x0Hittable = !f.x[0].isDeltaPosition && !f.x[0].isInfinite;
+  auto candidate = [&](int sp) { return enabled.contains(sp, n - sp) && (sp != 0 || x0Hittable); };
+  auto shortEdge = [&](int sp) {
+    return sp >= 1 && glm::distance(f.x[static_cast<size_t>(sp - 1)].p, f.x[static_cast<size_t>(sp)].p) < minDistance;
+  };
+  bool longRemains = false;
+  for (int sp = 0; sp < n; ++sp) longRemains |= candidate(sp) && !shortEdge(sp);
   double sum = 0.0;
   int count = 0;
   for (int sp = 0; sp < n; ++sp) {
-    if (!enabled.contains(sp, n - sp) || (sp == 0 && !x0Hittable)) continue;
+    if (!candidate(sp) || (longRemains && shortEdge(sp))) continue;
     double prod = 1.0;
     for (int i = 0; i < n - 1; ++i) prod *= i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)];
     const double b = o.heuristic == MisHeuristic::Power ? o.beta : 1.0;
@@ -134,14 +143,16 @@ SceneDesc pointLight() {
   return desc;
 }
 
-void checkPartition(const Scene& scene, int maxLength, const char* name) {
+// minConnection: MisOptions::minConnection. The default leaves out a connection only at a corner;
+// a large value makes short connections common, the fallback (no long one left) included.
+void checkPartition(const Scene& scene, int maxLength, const char* name, float minConnection = kDefaultMinConnection) {
   const int size = 8;
   const Camera camera(scene.cameraDesc(), size, size);
   Pcg32 rng(1234, 5);
   CameraSubpath cp;
   LightSubpath lp;
   Counters counters;
-  int checked = 0;
+  int checked = 0, shortExcluded = 0;
   for (int sample = 0; sample < 400; ++sample) {
     const int nt = generateCameraSubpath(scene, camera, Vec2(rng.next1D() * size, rng.next1D() * size), rng.next2D(),
                                          rng, WalkOptions{maxLength + 1, false}, cp, counters);
@@ -158,12 +169,20 @@ void checkPartition(const Scene& scene, int maxLength, const char* name) {
         x[0].type = VertexType::Light;  // an emitter found by the camera walk is the light origin
         const FullPath f = densities(scene, camera, x);
         for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
-          const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f};
+          const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, minConnection};
           TechniqueSet enabled = TechniqueSet::all(maxLength);
           if (rng.next1D() < 0.7f)
             for (int sp = 0; sp < n; ++sp)
               if (sp != s && rng.next1D() < 0.4f) enabled.disable(sp, n - sp);
-          const std::vector<double> oracle = oracleWeights(f, enabled, o);
+          const std::vector<double> oracle = oracleWeights(f, enabled, o, minConnection * scene.bounds().radius);
+          shortExcluded += [&] {
+            int excluded = 0;
+            for (int sp = 0; sp < n; ++sp)
+              excluded += enabled.contains(sp, n - sp) && oracle[static_cast<size_t>(sp)] == 0.0 && sp >= 1 &&
+                          glm::distance(f.x[static_cast<size_t>(sp - 1)].p, f.x[static_cast<size_t>(sp)].p) <
+                              minConnection * scene.bounds().radius;
+            return excluded;
+          }();
           // The weight the tracer computes from the walks' own densities and the connection's.
           const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
           const float wReal = misWeight(scene, camera, real, enabled, o, lightTracingRatio());
@@ -190,6 +209,10 @@ void checkPartition(const Scene& scene, int maxLength, const char* name) {
     if (::testing::Test::HasFailure()) return;
   }
   EXPECT_GT(checked, 100) << name;
+  // A large minConnection must actually have left techniques out, or the case is untested.
+  if (minConnection >= 0.1f) {
+    EXPECT_GT(shortExcluded, 20) << name;
+  }
 }
 
 TEST(BptMis, PartitionOfUnityFurnace) { checkPartition(Scene(furnace()), 5, "furnace"); }
@@ -197,6 +220,15 @@ TEST(BptMis, PartitionOfUnitySquareEmitter) { checkPartition(Scene(squareEmitter
 TEST(BptMis, PartitionOfUnityPointLight) { checkPartition(Scene(pointLight()), 4, "point"); }
 TEST(BptMis, PartitionOfUnityCornellBox) {
   checkPartition(Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf")), 5, "cornell");
+}
+
+// Short connections left out (MisOptions::minConnection at 30 % of the bounding radius): the
+// weights over the remaining techniques still sum to one, also where every enabled technique's
+// connection is short and none is left out.
+TEST(BptMis, PartitionOfUnityShortConnectionsFurnace) { checkPartition(Scene(furnace()), 5, "furnace", 0.3f); }
+TEST(BptMis, PartitionOfUnityShortConnectionsPointLight) { checkPartition(Scene(pointLight()), 4, "point", 0.3f); }
+TEST(BptMis, PartitionOfUnityShortConnectionsCornellBox) {
+  checkPartition(Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf")), 5, "cornell", 0.3f);
 }
 
 }  // namespace

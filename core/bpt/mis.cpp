@@ -4,7 +4,9 @@
 
 #include "core/bsdf/bsdf.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pathlab {
 
@@ -70,9 +72,11 @@ PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisP
 void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d) {
   const int s = path.s, t = path.t, n = s + t;
   d.n = n;
-  d.pFromLight.assign(static_cast<size_t>(n), 0.0);
-  d.pFromCamera.assign(static_cast<size_t>(n), 0.0);
-  d.delta.assign(static_cast<size_t>(n), false);
+  // resize, not assign: the loops below write every entry exactly once.
+  d.pFromLight.resize(static_cast<size_t>(n));
+  d.pFromCamera.resize(static_cast<size_t>(n));
+  d.delta.resize(static_cast<size_t>(n));
+  d.edgeLength2.resize(static_cast<size_t>(std::max(n - 1, 0)));
   auto lightVertex = [&](int i) -> const PathVertex& {
     return (i == 0 && s == 1 && t >= 2 && path.sampled) ? *path.sampled : path.lightPath[i];
   };
@@ -124,24 +128,56 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   d.delta[static_cast<size_t>(s)] = false;
   if (s >= 1) d.delta[static_cast<size_t>(s - 1)] = false;
 
+  for (int i = 0; i + 1 < n; ++i) {
+    const PathVertex& a = vertex(i);
+    const PathVertex& b = vertex(i + 1);
+    const Vec3 e = b.p - a.p;
+    d.edgeLength2[static_cast<size_t>(i)] =
+        a.isInfinite || b.isInfinite ? std::numeric_limits<float>::infinity() : glm::dot(e, e);
+  }
+
   const PathVertex& x0 = vertex(0);
   d.x0CanBeHit = !x0.isDeltaPosition && !x0.isInfinite && x0.light >= 0 && x0.type != VertexType::Camera;
 }
 
-bool techniquePossible(const PathDensities& d, int sp) {
-  if (sp < 0 || sp >= d.n) return false;  // t' >= 1
-  if (sp == 0) return d.x0CanBeHit && !d.delta[0];
-  // The connection joins x(s'-1) and x(s'): neither may scatter by a delta lobe.
-  return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
+
+UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance)
+    : d_(d), techniques_(techniques) {
+  const float min2 = minConnectionDistance * minConnectionDistance;
+  if (!(min2 > 0.f)) return;
+  bool anyShort = false;
+  for (const float l2 : d.edgeLength2) anyShort |= l2 < min2;
+  if (!anyShort) return;
+  // Exclude short connections only when a technique without one can still produce the path:
+  // otherwise the path would have no technique at all and the estimate would lose it.
+  minDistance2_ = min2;
+  for (int sp = 0; sp < d.n; ++sp)
+    if (enabledAndPossible(sp) && !shortConnection(sp)) return;
+  minDistance2_ = 0.f;
+}
+
+bool UsableTechniques::enabledAndPossible(int sp) const {
+  return techniques_.contains(sp, d_.n - sp) && techniquePossible(d_, sp);
+}
+
+// Technique s' >= 1 joins x(s'-1) and x(s'), edge s' - 1; s' = 0 connects nothing.
+bool UsableTechniques::shortConnection(int sp) const {
+  return sp >= 1 && d_.edgeLength2[static_cast<size_t>(sp - 1)] < minDistance2_;
+}
+
+bool UsableTechniques::operator()(int sp) const { return enabledAndPossible(sp) && !shortConnection(sp); }
+
+float minConnectionDistance(const Scene& scene, const MisOptions& options) {
+  return options.minConnection * scene.bounds().radius;
 }
 
 namespace {
 
 // Weight of technique s among the usable ones for the path whose densities are d.
 double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& techniques, const MisOptions& options,
-                           float lightTracingRatio) {
+                           float lightTracingRatio, float minDistance) {
   const int n = d.n;
-  auto usable = [&](int sp) { return techniques.contains(sp, n - sp) && techniquePossible(d, sp); };
+  const UsableTechniques usable(d, techniques, minDistance);
   if (!usable(s)) return 0.0;
 
   if (options.heuristic == MisHeuristic::Uniform) {
@@ -186,7 +222,8 @@ float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, c
   // allocate; the result still depends only on the arguments.
   thread_local PathDensities d;
   pathDensities(scene, camera, path, d);
-  const double w = weightFromDensities(d, path.s, techniques, options, lightTracingRatio);
+  const double w =
+      weightFromDensities(d, path.s, techniques, options, lightTracingRatio, minConnectionDistance(scene, options));
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;
 }
 
@@ -194,8 +231,9 @@ double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& pat
                     const MisOptions& options, float lightTracingRatio) {
   thread_local PathDensities d;
   pathDensities(scene, camera, path, d);
+  const float minDistance = minConnectionDistance(scene, options);
   double sum = 0.0;
-  for (int sp = 0; sp < d.n; ++sp) sum += weightFromDensities(d, sp, techniques, options, lightTracingRatio);
+  for (int sp = 0; sp < d.n; ++sp) sum += weightFromDensities(d, sp, techniques, options, lightTracingRatio, minDistance);
   return sum;
 }
 

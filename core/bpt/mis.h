@@ -10,6 +10,7 @@
 #include "core/camera/camera.h"
 #include "core/scene/scene.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace pathlab {
@@ -46,14 +47,43 @@ double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& pat
 struct PathDensities {
   int n = 0;
   std::vector<double> pFromLight, pFromCamera;
-  std::vector<bool> delta;   // delta scattering at x_i
+  std::vector<uint8_t> delta;  // delta scattering at x_i (bytes: vector<bool>'s bit access is slow)
+  // |x(i+1) - x(i)|^2 of edge i, the connection edge of technique s' = i + 1; infinite toward a
+  // directional light.
+  std::vector<float> edgeLength2;
   bool x0CanBeHit = false;   // x0 is on an area light (technique s = 0 possible)
 };
 PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path);
 // The same into `d`, reusing its storage (no allocation once it has grown to the path length).
 void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d);
 
-// Whether technique s' (t' = n - s') can produce a path with these delta flags.
-bool techniquePossible(const PathDensities& d, int sPrime);
+// Whether technique s' (t' = n - s') can produce a path with these delta flags. Inline: the
+// weights ask it for every technique of every connection.
+inline bool techniquePossible(const PathDensities& d, int sp) {
+  if (sp < 0 || sp >= d.n) return false;  // t' >= 1
+  if (sp == 0) return d.x0CanBeHit && !d.delta[0];
+  // The connection joins x(s'-1) and x(s'): neither may scatter by a delta lobe.
+  return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
+}
+
+// The techniques misWeight weighs for a path: those enabled and possible, less those whose
+// connection edge is shorter than minConnectionDistance when an enabled possible technique with a
+// longer (or no) connection edge remains (MisOptions::minConnection). The set depends on the
+// path alone, so the weights over it still sum to one and the estimate stays unbiased.
+class UsableTechniques {
+ public:
+  UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance);
+  bool operator()(int sPrime) const;
+
+ private:
+  const PathDensities& d_;
+  const TechniqueSet& techniques_;
+  float minDistance2_ = 0.f;  // 0 when nothing is excluded for this path
+  bool enabledAndPossible(int sPrime) const;
+  bool shortConnection(int sPrime) const;
+};
+
+// MisOptions::minConnection in scene units.
+float minConnectionDistance(const Scene& scene, const MisOptions& options);
 
 }  // namespace pathlab

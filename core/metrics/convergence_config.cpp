@@ -14,7 +14,7 @@ namespace pathlab {
 namespace {
 
 constexpr std::array<std::string_view, 3> kIntegrators = {"bpt", "pt", "lt"};
-constexpr std::array<std::string_view, 4> kKeys = {"mis", "beta", "techniques", "max-length"};
+constexpr std::array<std::string_view, 5> kKeys = {"mis", "beta", "min-connection", "techniques", "max-length"};
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -82,7 +82,7 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
       const size_t eq = pair.find('=');
       if (eq == std::string_view::npos) fail(config, fmt::format("'{}' is not key=value", pair));
       const std::string_view key = trim(pair.substr(0, eq)), value = trim(pair.substr(eq + 1));
-      const bool estimatorKey = key == "mis" || key == "beta" || key == "techniques";
+      const bool estimatorKey = key == "mis" || key == "beta" || key == "min-connection" || key == "techniques";
       if (estimatorKey && s.integrator == IntegratorKind::Pt)
         fail(config, fmt::format("{} applies to bpt and lt, not pt", key));
       if (key == "mis") {
@@ -93,13 +93,16 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
       } else if (key == "beta") {
         s.mis.beta = parseNumber<float>(config, key, value);
         if (!(s.mis.beta >= 0.01f && s.mis.beta <= 100.f)) fail(config, "beta is outside 0.01..100");
+      } else if (key == "min-connection") {
+        s.mis.minConnection = parseNumber<float>(config, key, value);
+        if (!(s.mis.minConnection >= 0.f && s.mis.minConnection <= 1.f)) fail(config, "min-connection is outside 0..1");
       } else if (key == "techniques") {
         s.techniques = std::string(value);
       } else if (key == "max-length") {
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");
       } else {
-        fail(config, fmt::format("unknown key '{}' (mis, beta, techniques, max-length)", key));
+        fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length)", key));
       }
     }
   }

@@ -1,5 +1,5 @@
 // The configurations `pathlab converge` compares: a `;`-separated list of
-// INTEGRATOR[:key=value[,key=value...]] with keys mis, beta, techniques and max-length.
+// INTEGRATOR[:key=value[,key=value...]] with keys mis, beta, min-connection, techniques and max-length.
 #pragma once
 
 #include "core/render/render_settings.h"

@@ -75,9 +75,10 @@ void hashExternalFiles(const std::string& scenePath, const std::string& bytes, F
 std::string describe(const RenderSettings& s) {
   std::string text = fmt::format(
       "pathlab-reference-1 size={}x{} maxLength={} rr={} seed={} integrator={} techniques={} mis={} beta={} "
-      "aperture={} focus={} pyramid={}",
+      "minConnection={} aperture={} focus={} pyramid={}",
       s.width, s.height, s.maxLength, s.russianRoulette, s.seed, integratorName(s.integrator), s.techniques,
-      misHeuristicName(s.mis.heuristic), s.mis.beta, s.lens.apertureRadius, s.lens.focusDistance, s.pyramidLength);
+      misHeuristicName(s.mis.heuristic), s.mis.beta, s.mis.minConnection, s.lens.apertureRadius, s.lens.focusDistance,
+      s.pyramidLength);
   if (s.isolate) text += fmt::format(" isolate={},{},{}", s.isolate->s, s.isolate->t, s.isolate->unweighted);
   if (s.camera) {
     text += fmt::format(" yfov={} aspect={} camera=", s.camera->yfov, s.camera->aspectRatio.value_or(0.f));

@@ -55,7 +55,7 @@ Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTarget
 bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   tbb::enumerable_thread_specific<Counters> local;
   pixelsDone_.store(0, std::memory_order_relaxed);
-  const uint64_t pass = passes_;
+  const uint64_t pass = passes_.load(std::memory_order_relaxed);
   const SampleTargets shared{&film_, pyramid_.get(), nullptr, {}};
   std::atomic<bool> cancelled{false};
   tbb::parallel_for(
@@ -82,7 +82,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   for (const Counters& c : local) counters_ += c;
   if (cancelled.load()) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
-  ++passes_;
+  passes_.fetch_add(1, std::memory_order_relaxed);
   return true;
 }
 

@@ -42,7 +42,7 @@ class RenderSession {
   bool hasPyramid() const { return pyramid_ != nullptr; }
   Image techniqueImage(int s, int t, bool unweighted) const;
   const Counters& counters() const { return counters_; }
-  uint64_t passes() const { return passes_; }
+  uint64_t passes() const { return passes_.load(std::memory_order_relaxed); }
   const RenderSettings& settings() const { return settings_; }
   const Camera& camera() const { return camera_; }
   // Pixels finished in the current pass, for progress reporting from another thread.
@@ -59,7 +59,8 @@ class RenderSession {
   Film film_;
   std::unique_ptr<TechniqueFilms> pyramid_;
   Counters counters_;
-  uint64_t passes_ = 0;
+  // Atomic: a progress thread reads it while renderPass runs (`pathlab render`'s progress bar).
+  std::atomic<uint64_t> passes_{0};
   std::atomic<uint64_t> pixelsDone_{0};
 };
 
