@@ -16,7 +16,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-const std::set<std::string> kKeys = {"name", "integrator", "techniques", "mis", "beta", "maxLength",
+const std::set<std::string> kKeys = {"name", "integrator", "techniques", "mis", "beta", "minConnection", "maxLength",
                                      "isolate", "unweighted", "camera", "description"};
 
 Vec3 vec3Of(const Json& j, const std::string& what) {
@@ -57,6 +57,11 @@ NamedPreset parseOne(const Json& p) {
   if (p.contains("beta")) {
     out.mis.beta = typed(p, "beta", &Json::is_number, "a number").get<float>();
     if (!(out.mis.beta >= 0.01f && out.mis.beta <= 100.f)) throw std::invalid_argument("\"beta\" must be in [0.01, 100]");
+  }
+  if (p.contains("minConnection")) {
+    out.mis.minConnection = typed(p, "minConnection", &Json::is_number, "a number").get<float>();
+    if (!(out.mis.minConnection >= 0.f && out.mis.minConnection <= 1.f))
+      throw std::invalid_argument("\"minConnection\" must be in [0, 1]");
   }
   if (p.contains("maxLength")) {
     out.maxLength = typed(p, "maxLength", &Json::is_number_integer, "an integer").get<int>();

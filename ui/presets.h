@@ -2,12 +2,13 @@
 // heuristic, maximum length, isolation) and optionally a camera, read from a JSON file:
 //
 //   {"presets": [{"name": "path tracing", "integrator": "bpt", "techniques": "s=0;s=1",
-//                 "mis": "power", "beta": 2, "maxLength": 8, "isolate": [1, 2], "unweighted": true,
+//                 "mis": "power", "beta": 2, "minConnection": 0.001, "maxLength": 8, "isolate": [1, 2],
+//                 "unweighted": true,
 //                 "camera": {"eye": [0, 1, 3.9], "target": [0, 1, 0], "yfovDegrees": 39.6}}]}
 //
 // Only "name" is required. A field left out takes the default of `pathlab view` (bpt, all,
-// balance, beta 2, max length 10, no isolation), so a preset always means the same thing; the
-// camera is kept as it is when the preset has none.
+// balance, beta 2, min connection 0.001, max length 10, no isolation), so a preset always means
+// the same thing; the camera is kept as it is when the preset has none.
 #pragma once
 
 #include "core/render/render_settings.h"

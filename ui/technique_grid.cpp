@@ -126,6 +126,7 @@ std::string describe(const RenderSettings& s) {
     out += fmt::format(", MIS power (beta {:g})", s.mis.beta);
   else
     out += fmt::format(", MIS {}", misHeuristicName(s.mis.heuristic));
+  if (s.mis.minConnection != kDefaultMinConnection) out += fmt::format(", min connection {:g}", s.mis.minConnection);
   return out;
 }
 

@@ -38,7 +38,7 @@ if [ "$which" = thread ] || [ "$which" = all ]; then
   # uninstrumented libraries: TBB, Embree, Mesa's llvmpipe driver), never pathlab's own code.
   export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$supp/tsan.supp"
   build-tsan/tests/pathlab_tests \
-    --gtest_filter='ProgressiveRenderer*:RenderSession*:TechniquePyramid.WeightedShares*:Film*:RenderSettingsValidation*'
+    --gtest_filter='ProgressiveRenderer*:RenderSession*:TechniquePyramid.WeightedShares*:Film*:RenderSettingsValidation*:ErrorTracker.*:TechniqueCounters.Timing*'
   # The viewer's tests, headless (EGL on llvmpipe): its UI thread, render thread (TBB serial, also
   # in the pathlab binary) and scene loader thread. Not viewer.window: GLFW and Xvfb are the
   # release suite's. One at a time: as fast as two at once on these machines (about 45 s), and a

@@ -28,20 +28,22 @@ TEST(Presets, ShippedFileParsesAndEveryPresetIsRenderable) {
 TEST(Presets, FieldsAndDefaults) {
   const auto presets = parsePresets(R"({"presets": [
       {"name": "a"},
-      {"name": "b", "integrator": "lt", "techniques": "t=1", "mis": "power", "beta": 3, "maxLength": 4,
-       "isolate": [2, 1], "unweighted": true,
+      {"name": "b", "integrator": "lt", "techniques": "t=1", "mis": "power", "beta": 3, "minConnection": 0.05,
+       "maxLength": 4, "isolate": [2, 1], "unweighted": true,
        "camera": {"eye": [0, 1, 2], "target": [0, 1, 0], "yfovDegrees": 60}}]})",
                                     "p.json");
   ASSERT_EQ(presets.size(), 2u);
   EXPECT_EQ(presets[0].integrator, IntegratorKind::Bpt);
   EXPECT_EQ(presets[0].techniques, "all");
   EXPECT_EQ(presets[0].maxLength, 10);
+  EXPECT_EQ(presets[0].mis.minConnection, kDefaultMinConnection);
   EXPECT_FALSE(presets[0].isolate);
   EXPECT_FALSE(presets[0].camera);
   const NamedPreset& b = presets[1];
   EXPECT_EQ(b.integrator, IntegratorKind::Lt);
   EXPECT_EQ(b.mis.heuristic, MisHeuristic::Power);
   EXPECT_EQ(b.mis.beta, 3.f);
+  EXPECT_EQ(b.mis.minConnection, 0.05f);
   EXPECT_EQ(*b.isolate, (Isolation{2, 1, true}));
   ASSERT_TRUE(b.camera);
   EXPECT_NEAR(b.camera->yfov, glm::radians(60.f), 1e-6f);
@@ -85,6 +87,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{R"({"presets": [{"name": "x", "integrator": "mlt"}]})", "mlt"},
                     BadCase{R"({"presets": [{"name": "x", "mis": "max"}]})", "max"},
                     BadCase{R"({"presets": [{"name": "x", "maxLength": 0}]})", "maxLength"},
+                    BadCase{R"({"presets": [{"name": "x", "minConnection": -1}]})", "minConnection"},
                     BadCase{R"({"presets": [{"name": "x", "maxLength": "5"}]})", "an integer"},
                     BadCase{R"({"presets": [{"name": "x", "maxLength": 3, "isolate": [3, 3]}]})", "(3,3)"},
                     BadCase{R"({"presets": [{"name": "x", "isolate": [1]}]})", "[s, t]"},
