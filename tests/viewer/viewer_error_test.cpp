@@ -2,6 +2,8 @@
 // two configurations one after the other (a key switches the MIS heuristic), and the series the
 // viewer exported: two of them, each falling. The error view changes the picture; a broken
 // reference is one line and a non-zero exit.
+#include "tests/viewer/pathlab_process.h"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -23,21 +25,11 @@ namespace {
 const std::string kTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_error";
 const std::string kBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
 
-struct CommandRun {
-  int exitCode = -1;
-  std::string err;
-};
+using pathlab::test::CommandRun;
+using pathlab::test::Png;
+using pathlab::test::readPng;
 
-CommandRun run(const std::string& args) {
-  std::filesystem::create_directories(kTmp);
-  const std::string errFile = kTmp + "/stderr-" + std::to_string(getpid()) + ".txt";
-  const std::string command = std::string(PATHLAB_BINARY) + " " + args + " 2>" + errFile + " </dev/null";
-  const int status = std::system(command.c_str());
-  std::ifstream in(errFile);
-  std::stringstream err;
-  err << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), err.str()};
-}
+CommandRun run(const std::string& args) { return pathlab::test::runPathlab(kTmp, args); }
 
 // A small reference, rendered once for every test of this process (CTest runs each test in a
 // process of its own, in parallel) and removed when the process ends.
@@ -109,21 +101,6 @@ TEST(ViewerError, TwoConfigurationsTwoSeriesBothFalling) {
     EXPECT_LT(points.back().relMse, 0.5 * points.front().relMse)
         << "series " << id << ": " << points.front().relMse << " -> " << points.back().relMse;
   }
-}
-
-struct Png {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-};
-
-Png readPng(const std::string& path) {
-  Png png;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 3);
-  if (!data) return png;
-  png.rgb.assign(data, data + static_cast<size_t>(png.width) * static_cast<size_t>(png.height) * 3);
-  stbi_image_free(data);
-  return png;
 }
 
 // The error view shows viridis, whose colours have more blue than red below t = 0.6: the box's

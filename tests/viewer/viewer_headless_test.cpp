@@ -1,6 +1,8 @@
 // The whole viewer, panels included, drawn offscreen through EGL by `pathlab view --headless`:
 // the screenshot has the window's size and shows an image; a technique preset changes the image
 // and nothing else; existing files are kept; bad input is one line and a non-zero exit.
+#include "tests/viewer/pathlab_process.h"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -20,59 +22,11 @@ namespace {
 
 const std::string kTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_headless";
 
-struct ViewRun {
-  int exitCode = -1;
-  std::string err;
-};
+using pathlab::test::Png;
+using pathlab::test::readPng;
+using ViewRun = pathlab::test::CommandRun;
 
-ViewRun runView(const std::string& args) {
-  std::filesystem::create_directories(kTmp);
-  // One file per test process: CTest runs the tests of this binary in parallel.
-  const std::string errFile = kTmp + "/stderr-" + std::to_string(getpid()) + ".txt";
-  const std::string command = std::string(PATHLAB_BINARY) + " view " + args + " 2>" + errFile + " </dev/null";
-  const int status = std::system(command.c_str());
-  std::ifstream in(errFile);
-  std::stringstream err;
-  err << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), err.str()};
-}
-
-struct Png {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-  // Mean absolute difference of two equally sized regions, per channel value in [0,255].
-  double meanDifference(const Png& o, int x0, int y0, int x1, int y1) const {
-    double sum = 0.0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x)
-        for (int c = 0; c < 3; ++c) {
-          const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) + static_cast<size_t>(c);
-          sum += std::abs(static_cast<int>(rgb[i]) - static_cast<int>(o.rgb[i]));
-        }
-    return sum / (3.0 * (x1 - x0) * (y1 - y0));
-  }
-  double variance(int x0, int y0, int x1, int y1) const {
-    double s = 0.0, s2 = 0.0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        const double v = rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)) + 1];
-        s += v;
-        s2 += v * v;
-      }
-    const double n = static_cast<double>(x1 - x0) * (y1 - y0);
-    return s2 / n - (s / n) * (s / n);
-  }
-};
-
-Png readPng(const std::string& path) {
-  Png png;
-  int channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &png.width, &png.height, &channels, 3);
-  if (!data) return png;
-  png.rgb.assign(data, data + static_cast<size_t>(png.width) * static_cast<size_t>(png.height) * 3);
-  stbi_image_free(data);
-  return png;
-}
+ViewRun runView(const std::string& args) { return pathlab::test::runPathlab(kTmp, "view " + args); }
 
 const std::string kBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
 // Small and short, so a run takes about a second: 2 samples per pixel at a quarter resolution.
