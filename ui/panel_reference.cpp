@@ -101,23 +101,37 @@ void Viewer::drawReferenceSection() {
   ImGui::PopID();
 }
 
-void Viewer::drawErrorBar(const DisplaySettings& d) {
-  ImDrawList* draw = ImGui::GetWindowDrawList();
-  const ImVec2 p = ImGui::GetCursorScreenPos();
-  const float w = ImGui::GetContentRegionAvail().x, h = ImGui::GetTextLineHeight();
+namespace {
+
+// The viridis colour scale as a horizontal bar of w x h pixels at `origin`.
+void drawViridisBar(ImDrawList* draw, ImVec2 origin, float w, float h) {
   constexpr int kSegments = 32;
   for (int i = 0; i < kSegments; ++i) {
     const Vec3 a = viridis(static_cast<float>(i) / kSegments), b = viridis(static_cast<float>(i + 1) / kSegments);
     const ImU32 ca = ImGui::ColorConvertFloat4ToU32(ImVec4(a.r, a.g, a.b, 1.f));
     const ImU32 cb = ImGui::ColorConvertFloat4ToU32(ImVec4(b.r, b.g, b.b, 1.f));
-    draw->AddRectFilledMultiColor(ImVec2(p.x + w * static_cast<float>(i) / kSegments, p.y),
-                                  ImVec2(p.x + w * static_cast<float>(i + 1) / kSegments, p.y + h), ca, cb, cb, ca);
+    draw->AddRectFilledMultiColor(ImVec2(origin.x + w * static_cast<float>(i) / kSegments, origin.y),
+                                  ImVec2(origin.x + w * static_cast<float>(i + 1) / kSegments, origin.y + h), ca, cb,
+                                  cb, ca);
   }
+}
+
+// The per-pixel error at position t in [0, 1] of the colour scale.
+double errorScaleValue(const DisplaySettings& d, float t) {
+  return d.errorLog ? std::pow(10.0, d.errorLogMin + t * (d.errorLogMax - d.errorLogMin))
+                    : static_cast<double>(t * d.errorLinearMax);
+}
+
+}  // namespace
+
+void Viewer::drawErrorBar(const DisplaySettings& d) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const float w = ImGui::GetContentRegionAvail().x, h = ImGui::GetTextLineHeight();
+  drawViridisBar(draw, p, w, h);
   ImGui::Dummy(ImVec2(w, h));
   // Labels at both ends and the middle, in the error's own units.
-  const auto value = [&](float t) {
-    return d.errorLog ? std::pow(10.0, d.errorLogMin + t * (d.errorLogMax - d.errorLogMin)) : static_cast<double>(t * d.errorLinearMax);
-  };
+  const auto value = [&](float t) { return errorScaleValue(d, t); };
   const std::string lo = d.errorLog ? tickLabel(value(0.f)) : "0", mid = tickLabel(value(0.5f)), hi = tickLabel(value(1.f));
   const float x0 = ImGui::GetCursorPosX();
   ImGui::TextUnformatted(lo.c_str());
@@ -145,17 +159,8 @@ void Viewer::drawErrorBarOverlay(ImVec2 imageOrigin, ImVec2 imageSize) {
   draw->AddRectFilled(p0, p1, IM_COL32(0, 0, 0, 170), 4.f);
   draw->AddText(ImVec2(p0.x + pad, p0.y + pad), IM_COL32(235, 235, 235, 255), title.c_str());
   const ImVec2 b0(p0.x + pad, p0.y + line + 2.f * pad);
-  constexpr int kSegments = 32;
-  for (int i = 0; i < kSegments; ++i) {
-    const Vec3 a = viridis(static_cast<float>(i) / kSegments), b = viridis(static_cast<float>(i + 1) / kSegments);
-    const ImU32 ca = ImGui::ColorConvertFloat4ToU32(ImVec4(a.r, a.g, a.b, 1.f));
-    const ImU32 cb = ImGui::ColorConvertFloat4ToU32(ImVec4(b.r, b.g, b.b, 1.f));
-    draw->AddRectFilledMultiColor(ImVec2(b0.x + w * static_cast<float>(i) / kSegments, b0.y),
-                                  ImVec2(b0.x + w * static_cast<float>(i + 1) / kSegments, b0.y + h), ca, cb, cb, ca);
-  }
-  const auto value = [&](float t) {
-    return d.errorLog ? std::pow(10.0, d.errorLogMin + t * (d.errorLogMax - d.errorLogMin)) : static_cast<double>(t * d.errorLinearMax);
-  };
+  drawViridisBar(draw, b0, w, h);
+  const auto value = [&](float t) { return errorScaleValue(d, t); };
   const float ly = b0.y + h + pad;
   const ImU32 text = IM_COL32(220, 220, 220, 255);
   for (const float t : {0.f, 0.25f, 0.5f, 0.75f, 1.f}) {
