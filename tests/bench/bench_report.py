@@ -117,8 +117,9 @@ def main():
 
     if n > 1:
         print(f"\n### Thread scaling, 1 → {n} threads (rate at {n} ÷ rate at 1)\n")
-        print(f"These machines have {n} vCPUs that deliver about one core of throughput "
-              "(two threads of pure arithmetic take about 1.8× as long as one), so ≈1.1× is what to expect, not 2×.\n")
+        print(f"When the host is busy these {n} vCPUs deliver about one core of throughput (two threads of pure "
+              "arithmetic then take about 1.8× as long as one, ../shared/TOOLCHAIN.md) and ≈1.1× is what to expect; "
+              "on a quiet host they give close to 2×. Read this table with the load average above.\n")
         print("| scene | " + " | ".join(integrators) + " | rtcIntersect1 | rtcOccluded1 |")
         print("|---|" + "---:|" * (len(integrators) + 2))
         for s in scenes:
