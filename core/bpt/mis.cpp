@@ -140,7 +140,6 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   d.x0CanBeHit = !x0.isDeltaPosition && !x0.isInfinite && x0.light >= 0 && x0.type != VertexType::Camera;
 }
 
-
 UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance)
     : d_(d), techniques_(techniques) {
   const float min2 = minConnectionDistance * minConnectionDistance;
@@ -233,7 +232,8 @@ double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& pat
   pathDensities(scene, camera, path, d);
   const float minDistance = minConnectionDistance(scene, options);
   double sum = 0.0;
-  for (int sp = 0; sp < d.n; ++sp) sum += weightFromDensities(d, sp, techniques, options, lightTracingRatio, minDistance);
+  for (int sp = 0; sp < d.n; ++sp)
+    sum += weightFromDensities(d, sp, techniques, options, lightTracingRatio, minDistance);
   return sum;
 }
 
