@@ -1,7 +1,7 @@
-// Drawing of the live error plot: axes from ui/plot_axes, series as polylines with markers.
+// Drawing of the live error plot: axes from core/metrics/log_axis, series as polylines with markers.
 #include "ui/error_plot.h"
 
-#include "ui/plot_axes.h"
+#include "core/metrics/log_axis.h"
 
 #include <fmt/core.h>
 

@@ -3,7 +3,7 @@
 // colour bar.
 #include "ui/viewer.h"
 
-#include "ui/plot_axes.h"
+#include "core/metrics/log_axis.h"
 
 #include <fmt/core.h>
 #include <imgui.h>

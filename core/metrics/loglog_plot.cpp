@@ -1,6 +1,8 @@
 // SVG output of log-log plots: the axes span whole decades around the data.
 #include "core/metrics/loglog_plot.h"
 
+#include "core/metrics/log_axis.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -41,15 +43,10 @@ std::string decadeLabel(int e, double x, double y, const char* anchor) {
                      x, y, anchor, e);
 }
 
+// Decade exponents of an axis: the grid and labels are drawn at 10^lo .. 10^hi.
 struct Decades {
   int lo, hi;
 };
-
-Decades decadesOf(double lo, double hi) {
-  Decades d{static_cast<int>(std::floor(std::log10(lo) + 1e-9)), static_cast<int>(std::ceil(std::log10(hi) - 1e-9))};
-  if (d.hi <= d.lo) d.hi = d.lo + 1;
-  return d;
-}
 
 }  // namespace
 
@@ -62,10 +59,11 @@ std::string renderSvg(const LogLogPlot& plot) {
         yMin = std::min(yMin, y), yMax = std::max(yMax, y);
       }
   if (xMax == 0) throw std::invalid_argument("nothing to plot: no positive point");
-  const Decades dx = decadesOf(xMin, xMax), dy = decadesOf(yMin, yMax);
+  const LogAxis ax = LogAxis::fit(xMin, xMax), ay = LogAxis::fit(yMin, yMax);
+  const Decades dx{ax.loDecade(), ax.hiDecade()}, dy{ay.loDecade(), ay.hiDecade()};
   const double plotW = kWidth - kLeft - kRight, plotH = kHeight - kTop - kBottom;
-  auto px = [&](double x) { return kLeft + (std::log10(x) - dx.lo) / (dx.hi - dx.lo) * plotW; };
-  auto py = [&](double y) { return kTop + plotH - (std::log10(y) - dy.lo) / (dy.hi - dy.lo) * plotH; };
+  auto px = [&](double x) { return kLeft + ax.position(x) * plotW; };
+  auto py = [&](double y) { return kTop + plotH - ay.position(y) * plotH; };
 
   std::string svg = fmt::format(
       R"(<?xml version="1.0" encoding="UTF-8"?>

@@ -1,11 +1,11 @@
 // Log axes: decade ranges, tick positions and labels.
-#include "ui/plot_axes.h"
+#include "core/metrics/log_axis.h"
 
 #include <fmt/core.h>
 
 #include <cmath>
 
-namespace pathlab::ui {
+namespace pathlab {
 
 LogAxis LogAxis::fit(double lo, double hi) {
   LogAxis a;
@@ -56,4 +56,4 @@ std::string tickLabel(double v) {
   return fmt::format("{}e{}", mantissa, exponent);
 }
 
-}  // namespace pathlab::ui
+}  // namespace pathlab
