@@ -117,13 +117,13 @@ int runReplay(const RenderSession& session, const ReplayRequest& r) {
                            trace.lightVertices);
   std::cout << fmt::format("{:>8} {:>36} {:>10} {:>36} {:>16} {}\n", "(s,t)", "unweighted", "weight", "weighted",
                            "raster", "");
-  for (const TechniqueRecord& t : trace.records) {
+  for (const TechniqueResult& t : trace.records) {
     const Spectrum w = t.unweighted * t.weight;
     std::cout << fmt::format("{:>8} {:>36} {:>10.4g} {:>36} {:>16} {}\n", fmt::format("({},{})", t.s, t.t),
                              fmt::format("({:.4g}, {:.4g}, {:.4g})", t.unweighted.r, t.unweighted.g, t.unweighted.b),
                              t.weight, fmt::format("({:.4g}, {:.4g}, {:.4g})", w.r, w.g, w.b),
                              fmt::format("{:.1f},{:.1f}", t.pRaster.x, t.pRaster.y),
-                             t.blocked ? "blocked" : isBlack(t.unweighted) ? "zero" : t.inImage ? "" : "not in the image");
+                             t.blocked() ? "blocked" : isBlack(t.unweighted) ? "zero" : t.inImage ? "" : "not in the image");
   }
   return 0;
 }

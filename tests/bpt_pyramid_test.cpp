@@ -185,7 +185,7 @@ TEST(RenderSession, ReplayOfEverySampleRebuildsTheBidirectionalImage) {
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
       EXPECT_TRUE(replayed.addSample(x, y, session.replaySample(x, y, 0, c, &replayed, &trace)));
-      for (const TechniqueRecord& r : trace.records) EXPECT_LE(r.s + r.t - 1, 5);
+      for (const TechniqueResult& r : trace.records) EXPECT_LE(r.s + r.t - 1, 5);
     }
   replayed.finishPass(1, lightSubpathsPerPass(replayed.pixelCount()));
   expectImagesNear(replayed.readout(), session.image(), 1e-5, "replayed vs rendered");

@@ -1,126 +1,115 @@
-// BidirTracer: generate, connect, weigh, accumulate.
+// BidirTracer: generate both subpaths, evaluate every technique in use, hand the results on.
 #include "core/bpt/bidir_tracer.h"
 
 #include "core/bpt/connect.h"
+#include "core/metrics/technique_timer.h"
 
 #include <algorithm>
-#include <chrono>
-#include <thread>
-#if defined(__x86_64__)
-#include <x86intrin.h>
-#endif
 
 namespace pathlab {
 
-namespace {
-
-// Timing reads the time-stamp counter: 15 ns a read on the reference VM against 35 ns for
-// steady_clock, which halves what timing costs (constant_tsc: it ticks at one rate on every core).
-// Converted to nanoseconds with a factor measured once against steady_clock.
-#if defined(__x86_64__)
-uint64_t ticks() { return __rdtsc(); }
-double nanosecondsPerTick() {
-  static const double factor = [] {
-    const auto t0 = std::chrono::steady_clock::now();
-    const uint64_t c0 = __rdtsc();
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    const auto t1 = std::chrono::steady_clock::now();
-    const uint64_t c1 = __rdtsc();
-    return std::chrono::duration<double, std::nano>(t1 - t0).count() / static_cast<double>(std::max<uint64_t>(c1 - c0, 1));
-  }();
-  return factor;
-}
-#else
-uint64_t ticks() {
-  return static_cast<uint64_t>(
-      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count());
-}
-double nanosecondsPerTick() { return 1.0; }
-#endif
-
-// One camera sample in this many is timed, picked by the sample's own random key: the shares of
-// the walks and the techniques are estimated without bias from an eighth of the samples (tens of
-// thousands a pass at viewer resolutions), and timing costs an eighth of what timing every sample
-// would (about 11% of a bidirectional pass, measured; see docs/benchmarks.md).
-constexpr uint64_t kTimedSampleStride = 8;
-
-// Nanoseconds between two tick readings; 0 if the thread moved to a core whose counter lags.
-uint64_t elapsedNanoseconds(uint64_t start, uint64_t end) {
-  return end > start ? static_cast<uint64_t>(static_cast<double>(end - start) * nanosecondsPerTick()) : 0;
-}
-
-// Adds the time from construction to stop() (or to the end of the scope, for the early exits of a
-// technique) to `total`, only when timing is on.
-class TechniqueTimer {
- public:
-  TechniqueTimer(bool on, uint64_t& total) : total_(on ? &total : nullptr), start_(on ? ticks() : 0) {}
-  ~TechniqueTimer() { stop(); }
-  void stop() {
-    if (total_) *total_ += elapsedNanoseconds(start_, ticks());
-    total_ = nullptr;
-  }
-
- private:
-  uint64_t* total_;
-  uint64_t start_;
+// Per-thread buffers sized once: no allocation per sample.
+struct BidirTracer::Walks {
+  CameraSubpath camera;
+  LightSubpath light;
+  int cameraVertices = 0, lightVertices = 0;
+  SubpathMisSums cameraSums, lightSums;  // MisEvaluation::PartialSums only
+  Connection connection;                 // scratch reused by every technique
 };
 
-}  // namespace
-
-TechniqueSet techniquesOf(const RenderSettings& settings) {
-  TechniqueSet set = TechniqueSet::parse(settings.techniques, settings.maxLength);
-  if (settings.integrator == IntegratorKind::Lt)
-    for (int k = 1; k <= settings.maxLength; ++k)
-      for (int s = 0; s <= k; ++s)
-        if (k + 1 - s != 1) set.disable(s, k + 1 - s);
-  return set;
-}
-
-BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const RenderSettings& settings)
-    : scene_(scene),
-      camera_(camera),
-      maxLength_(settings.maxLength),
-      russianRoulette_(settings.russianRoulette),
-      techniques_(techniquesOf(settings)),
-      mis_(settings.mis),
-      isolate_(settings.isolate),
-      pyramidLength_(std::min(settings.pyramidLength, settings.maxLength)),
-      checkMis_(settings.checkMis) {
+BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOptions& options)
+    : scene_(scene), camera_(camera), options_(options), misPower_(options.mis) {
+  options_.pyramidLength = std::min(options_.pyramidLength, options_.maxLength);
+  // The partial sums weigh every technique of a path's length: exact only when all are enabled.
+  misEvaluation_ = options_.techniques == TechniqueSet::all(options_.maxLength) ? MisEvaluation::PartialSums
+                                                                              : MisEvaluation::Explicit;
+  minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
   // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
   // with t >= 2 samples its light vertex afresh (next-event estimation).
   auto need = [&](int s, int t) {
     cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, t);
     if (!(s == 1 && t >= 2)) lightVerticesNeeded_ = std::max(lightVerticesNeeded_, s);
   };
-  for (int k = 1; k <= maxLength_; ++k)
+  for (int k = 1; k <= options_.maxLength; ++k)
     for (int s = 0; s <= k; ++s)
-      if (techniques_.contains(s, k + 1 - s) || k <= pyramidLength_) need(s, k + 1 - s);
-  if (isolate_) need(isolate_->s, isolate_->t);
+      if (options_.techniques.contains(s, k + 1 - s) || k <= options_.pyramidLength) need(s, k + 1 - s);
+  if (options_.isolate) need(options_.isolate->s, options_.isolate->t);
+}
+
+float BidirTracer::weight(const MisPath& path, const Walks& walks, Counters& counters) const {
+  const float ratio = lightTracingRatio();
+  float w = 0.f;
+  std::optional<float> fast;
+  if (misEvaluation_ == MisEvaluation::PartialSums)
+    fast = misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
+                             minConnectionDistance_);
+  w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+  if (options_.checkMis) {
+    ++counters.misPartitionChecks;
+    const double sum = misWeightSum(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+    if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
+  }
+  return w;
+}
+
+void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInImage, uint64_t connectionKey, Walks& walks,
+                           const SampleOutputs& outputs, Counters& counters) const {
+  const int s = r.s, t = r.t;
+  // Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
+  // sample and (s, t): a technique's estimate does not depend on which other techniques are
+  // evaluated, so an isolated render, the pyramid and the full image see the same connections.
+  Pcg32 rng(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))), connectionKey);
+  Connection& c = walks.connection;
+  if (!formConnection(scene_, camera_, walks.light, s, walks.camera, t, rng, c)) return;
+
+  // The weight is computed over the enabled set (a disabled technique's share is zero) before the
+  // shadow ray, which is traced only when something will use the contribution.
+  if (enabled) {
+    const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
+    r.weight = weight(path, walks, counters);
+  }
+  r.imageWeight = !r.inImage ? 0.f : unweightedInImage ? 1.f : r.weight;
+  if (!(r.imageWeight > 0.f) && !r.inPyramid && !outputs.wantsEveryContribution()) {
+    r.weight = 0.f;
+    return;  // TechniqueOutcome::Zero: nothing would use it, so no shadow ray
+  }
+  if (needsShadowRay(s)) {
+    ++counters.shadowRays;
+    if (!unoccluded(scene_, c.shadowRay)) {
+      r.outcome = TechniqueOutcome::Blocked;
+      return;
+    }
+  }
+  r.outcome = TechniqueOutcome::Contributed;
+  r.unweighted = c.L;
+  if (t == 1) r.pRaster = c.pRaster;
 }
 
 Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
                              Counters& counters) const {
-  // Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
-  // sample and (s, t): a technique's estimate does not depend on which other techniques are
-  // evaluated, so an isolated render, the pyramid and the full image see the same connections.
-  // Drawn first, so that how long the walks below are allowed to grow changes nothing either.
+  // The connections' key is drawn first, so that how long the walks below are allowed to grow
+  // changes no connection's random numbers.
   const uint64_t keyHigh = cameraRng.nextU32();  // two statements: operand order is unspecified
   const uint64_t connectionKey = keyHigh << 32 | cameraRng.nextU32();
 
-  // Per-thread buffers sized once: no allocation per sample. Each walk stops at the longest
-  // prefix any technique in use needs (light tracing needs no camera walk at all).
-  thread_local CameraSubpath cameraPath;
-  thread_local LightSubpath lightPath;
+  // Each walk stops at the longest prefix any technique in use needs (light tracing needs no
+  // camera walk at all).
+  thread_local Walks walks;
   const bool timed = timing_ && connectionKey % kTimedSampleStride == 0;
   const uint64_t raysBefore = counters.rays;
   const uint64_t walkStart = timed ? ticks() : 0;
   const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, cameraRng,
-                                       WalkOptions{cameraVerticesNeeded_, russianRoulette_}, cameraPath, counters);
+                                       WalkOptions{cameraVerticesNeeded_, options_.russianRoulette}, walks.camera,
+                                       counters);
   const uint64_t cameraRays = counters.rays, cameraEnd = timed ? ticks() : 0;
   const int ns = lightVerticesNeeded_ > 0
-                     ? generateLightSubpath(scene_, lightRng, WalkOptions{lightVerticesNeeded_, russianRoulette_},
-                                            lightPath, counters)
+                     ? generateLightSubpath(scene_, lightRng, WalkOptions{lightVerticesNeeded_, options_.russianRoulette},
+                                            walks.light, counters)
                      : 0;
+  if (misEvaluation_ == MisEvaluation::PartialSums) {
+    accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums);
+    if (ns > 0) accumulateLightSums(walks.light, misPower_, walks.lightSums);
+  }
   counters.cameraWalk.rays += cameraRays - raysBefore;
   counters.lightWalk.rays += counters.rays - cameraRays;
   if (timed) {
@@ -129,73 +118,39 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
     ++counters.timedSamples;
   }
 
-  const int pyramidLength = targets.pyramid ? pyramidLength_ : 0;
+  const int pyramidLength = targets.pyramid ? options_.pyramidLength : 0;
   if (targets.trace) {
     targets.trace->cameraVertices = nt;
     targets.trace->lightVertices = ns;
     targets.trace->records.clear();
   }
-  auto discard = [&](const Spectrum& value, int s, int t, TechniqueCounters& tc) {
-    countDiscarded(value, tc.discarded);
-    counters.noteDiscard(DiscardExample{targets.id.x, targets.id.y, targets.id.sample, s, t, value});
-  };
-  Spectrum L(0.f);
-  const float ratio = lightTracingRatio();
+  SampleOutputs outputs(targets, counters);
   for (int t = 1; t <= nt; ++t)
     for (int s = 0; s <= std::max(ns, 1); ++s) {
       const int k = s + t - 1;
-      if (k < 1 || k > maxLength_) continue;
+      if (k < 1 || k > options_.maxLength) continue;
       if (s > ns && !(s == 1 && t >= 2)) continue;  // next-event estimation needs no light subpath
-      const bool enabled = techniques_.contains(s, t);
-      const bool isolated = isolate_ && isolate_->s == s && isolate_->t == t;
-      const bool inImage = isolate_ ? isolated && (enabled || isolate_->unweighted) : enabled;
-      const bool inPyramid = k <= pyramidLength;
-      if (!inImage && !inPyramid) continue;
+      const bool enabled = options_.techniques.contains(s, t);
+      const std::optional<Isolation>& isolate = options_.isolate;
+      const bool isolated = isolate && isolate->s == s && isolate->t == t;
+      TechniqueResult r;
+      r.s = s;
+      r.t = t;
+      r.pRaster = pRaster;
+      r.inImage = isolate ? isolated && (enabled || isolate->unweighted) : enabled;
+      r.inPyramid = k <= pyramidLength;
+      if (!r.inImage && !r.inPyramid) continue;
 
       TechniqueCounters& tc = counters.technique(s, t);
       ++tc.tried;
-      TechniqueTimer timer(timed, tc.nanoseconds);
-      Pcg32 connectionRng(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))),
-                          connectionKey);
       const uint64_t shadowBefore = counters.shadowRays;
-      const Connection c = connect(scene_, camera_, lightPath, s, cameraPath, t, connectionRng, counters);
+      ScopedTimer timer(timed, tc.nanoseconds);
+      evaluate(r, enabled, isolated && isolate->unweighted, connectionKey, walks, outputs, counters);
+      timer.stop();  // what follows is the outputs', not the technique's
       tc.shadowRays += counters.shadowRays - shadowBefore;
-      if (isBlack(c.L)) {
-        ++(c.blocked ? tc.blocked : tc.zero);
-        if (targets.trace) targets.trace->records.push_back({s, t, c.L, 0.f, pRaster, c.blocked, false});
-        continue;
-      }
-      ++tc.contributed;
-      if (!isValidContribution(c.L)) {
-        discard(c.L, s, t, tc);
-        continue;
-      }
-      // The weight is computed over the enabled set; a disabled technique's share is zero.
-      float w = 0.f;
-      if (enabled) {
-        const MisPath path{lightPath.data(), s, cameraPath.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-        w = misWeight(scene_, camera_, path, techniques_, mis_, ratio);
-        if (checkMis_) {
-          ++counters.misPartitionChecks;
-          const double sum = misWeightSum(scene_, camera_, path, techniques_, mis_, ratio);
-          if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
-        }
-      }
-      timer.stop();  // what follows is the film's and the pyramid's, not the technique's
-      if (targets.trace)
-        targets.trace->records.push_back({s, t, c.L, w, t == 1 ? c.pRaster : pRaster, false, inImage});
-      const Spectrum weighted = c.L * w;
-      if (inPyramid) targets.pyramid->add(s, t, t == 1 ? c.pRaster : pRaster, weighted, c.L);
-      if (!inImage) continue;
-      const Spectrum contribution = isolated && isolate_->unweighted ? c.L : weighted;
-      if (isBlack(contribution)) continue;
-      if (t == 1) {
-        if (targets.film && !targets.film->splat(c.pRaster, contribution)) discard(contribution, s, t, tc);
-      } else {
-        L += contribution;
-      }
+      outputs.add(r, tc);
     }
-  return L;
+  return outputs.cameraEstimate();
 }
 
 }  // namespace pathlab

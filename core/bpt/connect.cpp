@@ -24,26 +24,32 @@ Spectrum emittedOverOriginPdf(const Scene& scene, const PathVertex& x0, const Ve
   return Spectrum(0.f);
 }
 
-Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,
-                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters) {
-  Connection c;
-  if (t < 1 || s < 0) return c;
+bool unoccluded(const Scene& scene, const ShadowRay& r) {
+  return r.toInfinity ? scene.visibleToInfinity(r.a, r.na, r.ea, r.direction)
+                      : scene.visible(r.a, r.na, r.ea, r.b, r.nb, r.eb);
+}
+
+bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s, const Subpath& cameraPath,
+                    int t, Pcg32& rng, Connection& c) {
+  c.hasSampled = false;
+  c.pdfs.atLight = c.pdfs.atCamera = c.pdfs.atLens = false;
+  if (t < 1 || s < 0) return false;
 
   if (s == 0) {
     // The camera subpath found an emitter by itself (Veach's s = 0).
     const PathVertex& pt = cameraPath[t - 1];
-    if (t < 2 || pt.type != VertexType::Surface || pt.light < 0) return c;
+    if (t < 2 || pt.type != VertexType::Surface || pt.light < 0) return false;
     const Light& light = scene.lights()[static_cast<size_t>(pt.light)];
     c.L = pt.beta * light.radiance(pt.ng, pt.uv, pt.wo);
-    return c;
+    return !isBlack(c.L);
   }
 
   if (t == 1) {
     // Light tracing: the lens point is sampled afresh from the light vertex.
     const PathVertex& qs = lightPath[s - 1];
-    if (qs.isDelta || qs.isInfinite) return c;
+    if (qs.isDelta || qs.isInfinite) return false;
     const std::optional<CameraWiSample> cs = camera.sampleWi(qs.p, rng.next2D());
-    if (!cs) return c;
+    if (!cs) return false;
     Spectrum L;
     if (qs.type == VertexType::Light) {
       L = emittedOverOriginPdf(scene, qs, cs->wi) * (qs.onSurface() ? absDot(qs.ng, cs->wi) : 1.f);
@@ -54,25 +60,24 @@ Connection connect(const Scene& scene, const Camera& camera, const Subpath& ligh
       c.pdfs.qsToPt = ev.pdfFwdW;
       c.pdfs.qsToPrev = ev.pdfRevW;
     }
-    if (isBlack(L)) return c;
-    ++counters.shadowRays;
-    const Vec3 nq = qs.onSurface() ? qs.ng : Vec3(0.f);
-    if (!scene.visible(qs.p, nq, qs.pError, cs->pLens, Vec3(0.f), Vec3(0.f))) {
-      c.blocked = true;
-      return c;
-    }
+    if (isBlack(L)) return false;
+    c.shadowRay = ShadowRay{qs.p, qs.onSurface() ? qs.ng : Vec3(0.f), qs.pError, cs->pLens, Vec3(0.f), Vec3(0.f)};
     c.L = L * cs->We / cs->pdfW;
     c.pRaster = cs->pRaster;
-    c.sampled.type = VertexType::Camera;
-    c.sampled.p = cs->pLens;
-    c.sampled.beta = cs->We / cs->pdfW;
-    c.sampled.isDeltaPosition = camera.isPinhole();
+    c.pdfs.atLens = true;
+    c.pdfs.lensToQs = cs->pdfDirW;
+    PathVertex& v = c.sampled;
+    v = PathVertex{};
+    v.type = VertexType::Camera;
+    v.p = cs->pLens;
+    v.beta = cs->We / cs->pdfW;
+    v.isDeltaPosition = camera.isPinhole();
     c.hasSampled = true;
-    return c;
+    return true;
   }
 
   const PathVertex& pt = cameraPath[t - 1];
-  if (pt.isDelta || pt.type != VertexType::Surface) return c;
+  if (pt.isDelta || pt.type != VertexType::Surface) return false;
 
   if (s == 1) {
     // Next-event estimation: a fresh light sample instead of the light subpath's x0. The density
@@ -83,25 +88,20 @@ Connection connect(const Scene& scene, const Camera& camera, const Subpath& ligh
     const float uLight = rng.next1D();
     const Vec2 uPos = rng.next2D();
     const int li = scene.lights().sample(uLight, &pmf);
-    if (li < 0 || !(pmf > 0.f)) return c;
+    if (li < 0 || !(pmf > 0.f)) return false;
     const Light& light = scene.lights()[static_cast<size_t>(li)];
     const LightLiSample ls = light.sampleLi(pt.p, uPos);
-    if (!(ls.pdfW > 0.f) || isBlack(ls.Li)) return c;
+    if (!(ls.pdfW > 0.f) || isBlack(ls.Li)) return false;
     const BsdfEval ev = cameraPath.bsdf(t - 1).eval(pt.wo, ls.wi, TransportMode::Radiance);
     c.pdfs.atCamera = true;
     c.pdfs.ptToQs = ev.pdfFwdW;
     c.pdfs.ptToPrev = ev.pdfRevW;
-    const Spectrum L = pt.beta * ev.f * ls.Li * (absDot(ls.wi, pt.ns) / (pmf * ls.pdfW));
-    if (isBlack(L)) return c;
-    ++counters.shadowRays;
-    const bool unblocked = light.isInfinite() ? scene.visibleToInfinity(pt.p, pt.ng, pt.pError, ls.wi)
-                                              : scene.visible(pt.p, pt.ng, pt.pError, ls.pLight, ls.nLight, ls.pError);
-    if (!unblocked) {
-      c.blocked = true;
-      return c;
-    }
-    c.L = L;
+    c.L = pt.beta * ev.f * ls.Li * (absDot(ls.wi, pt.ns) / (pmf * ls.pdfW));
+    if (isBlack(c.L)) return false;
+    c.shadowRay = light.isInfinite() ? ShadowRay{pt.p, pt.ng, pt.pError, Vec3(0.f), Vec3(0.f), Vec3(0.f), ls.wi, true}
+                                     : ShadowRay{pt.p, pt.ng, pt.pError, ls.pLight, ls.nLight, ls.pError};
     PathVertex& v = c.sampled;
+    v = PathVertex{};
     v.type = VertexType::Light;
     v.p = ls.pLight;
     v.pError = ls.pError;
@@ -113,31 +113,44 @@ Connection connect(const Scene& scene, const Camera& camera, const Subpath& ligh
     v.pdfFwdA = v.isInfinite ? pmf : pmf * e.pdfPosA;
     v.beta = ls.Li / (pmf * ls.pdfW);
     c.hasSampled = true;
-    return c;
+    return true;
   }
 
   // s >= 2, t >= 2: both ends are surface vertices found by the walks.
   const PathVertex& qs = lightPath[s - 1];
-  if (qs.isDelta || qs.type != VertexType::Surface) return c;
+  if (qs.isDelta || qs.type != VertexType::Surface) return false;
   Vec3 d = qs.p - pt.p;
   const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.f)) return c;
+  if (!(dist2 > 0.f)) return false;
   d /= std::sqrt(dist2);
   const BsdfEval fq = lightPath.bsdf(s - 1).eval(qs.wo, -d, TransportMode::Importance);
-  if (isBlack(fq.f)) return c;
+  if (isBlack(fq.f)) return false;
   const BsdfEval fp = cameraPath.bsdf(t - 1).eval(pt.wo, d, TransportMode::Radiance);
-  if (isBlack(fp.f)) return c;
+  if (isBlack(fp.f)) return false;
   c.pdfs = ConnectionPdfs{true, fq.pdfFwdW, fq.pdfRevW, true, fp.pdfFwdW, fp.pdfRevW};
   // Geometry term with shading normals (pbrt-v4 G), matching the walks' |cos| with ns.
   const float G = absDot(qs.ns, d) * absDot(pt.ns, d) / dist2;
-  const Spectrum L = qs.beta * fq.f * fp.f * pt.beta * G;
-  if (isBlack(L)) return c;
-  ++counters.shadowRays;
-  if (!scene.visible(pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError)) {
-    c.blocked = true;
+  c.L = qs.beta * fq.f * fp.f * pt.beta * G;
+  if (isBlack(c.L)) return false;
+  c.shadowRay = ShadowRay{pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError};
+  return true;
+}
+
+Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,
+                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters, bool* blocked) {
+  Connection c;
+  if (blocked) *blocked = false;
+  if (!formConnection(scene, camera, lightPath, s, cameraPath, t, rng, c)) {
+    c.L = Spectrum(0.f);
     return c;
   }
-  c.L = L;
+  if (needsShadowRay(s)) {
+    ++counters.shadowRays;
+    if (!unoccluded(scene, c.shadowRay)) {
+      if (blocked) *blocked = true;
+      c.L = Spectrum(0.f);
+    }
+  }
   return c;
 }
 

@@ -22,23 +22,47 @@ struct ConnectionPdfs {
   bool atCamera = false;   // pt is a surface vertex connect() evaluated
   float ptToQs = 0.f;      // density at pt of the direction toward qs, arriving from its predecessor
   float ptToPrev = 0.f;    // density at pt of the direction toward its predecessor, arriving from qs
+  bool atLens = false;     // t = 1: pt is the lens point connect() sampled
+  float lensToQs = 0.f;    // the camera's directional density (pdfWe) toward qs from that lens point
 };
 
+// The visibility test a connection still needs: between two surface (or light, lens) points, or
+// from a point toward a directional light.
+struct ShadowRay {
+  Vec3 a{0.f}, na{0.f}, ea{0.f};  // first endpoint, its geometric normal and error bound
+  Vec3 b{0.f}, nb{0.f}, eb{0.f};  // second endpoint (unused toward infinity)
+  Vec3 direction{0.f};            // toward the directional light, when toInfinity
+  bool toInfinity = false;
+};
+// True when nothing lies between the endpoints (one Embree occlusion query).
+bool unoccluded(const Scene& scene, const ShadowRay& ray);
+
 struct Connection {
-  Spectrum L{0.f};     // unweighted contribution; zero when the technique cannot form the path
+  Spectrum L{0.f};     // unweighted contribution if the shadow ray is unoccluded
   Vec2 pRaster{0.f};   // t = 1: where it lands on the film (splat); otherwise unused
   // s = 1 and t = 1 draw a fresh endpoint (a light sample, a lens point). The estimator divides
   // by its density, so misWeight must see this vertex, not the subpath's own x0 (`hasSampled`).
   PathVertex sampled;
   bool hasSampled = false;
-  bool blocked = false;  // a non-zero contribution whose shadow ray was occluded
   ConnectionPdfs pdfs;
+  ShadowRay shadowRay;  // valid when formConnection returned true
 };
 
-// lightPath has at least s vertices, cameraPath at least t (t >= 1, s >= 0). Vertices flagged
-// isDelta cannot be connected: the contribution is then zero.
+// Technique (s, t) on one pair of prefixes up to the visibility test: lightPath has at least s
+// vertices, cameraPath at least t (t >= 1, s >= 0). Returns false when the technique cannot form
+// the path (a delta vertex at the connection, f = 0, off the film, ...). Otherwise c holds the
+// contribution the path makes if c.shadowRay is unoccluded (s = 0, the camera subpath's own hit
+// of an emitter, needs none: needsShadowRay). Only the fields the technique produces are written:
+// `c` is scratch reused across techniques, never zero-filled as a whole.
+bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s, const Subpath& cameraPath,
+                    int t, Pcg32& rng, Connection& c);
+inline bool needsShadowRay(int s) { return s >= 1; }
+
+// formConnection and the shadow ray: the unweighted contribution of (s, t), zero when it cannot
+// form the path or the shadow ray is occluded (*blocked then says which). For tests and replay;
+// the tracer traces the shadow ray only when the MIS weight asks for the contribution.
 Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,
-                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters);
+                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters, bool* blocked = nullptr);
 
 // Emission of light-subpath vertex x0 toward direction `w`, divided by the density with which x0
 // was chosen (light pmf x position pdf): Le / (pmf pdfPosA) or I / pmf; zero for a direction a

@@ -12,9 +12,6 @@ namespace pathlab {
 
 namespace {
 
-// pbrt's "remap zero to one": a delta density cancels between the techniques that share it.
-double remap0(double p) { return p != 0.0 ? p : 1.0; }
-
 // Area density at `next` of being sampled from light vertex (or emitting surface) `v`.
 float pdfLightToward(const Scene& scene, const PathVertex& v, const PathVertex& next) {
   if (v.light < 0) return 0.f;
@@ -69,6 +66,46 @@ PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisP
   return d;
 }
 
+ConnectionEnds connectionEnds(const MisPath& path) {
+  const int s = path.s, t = path.t;
+  ConnectionEnds e;
+  e.pt = &cameraVertex(path, t - 1);
+  if (t >= 2) e.ptMinus = &cameraVertex(path, t - 2);
+  if (s >= 1) e.qs = &lightVertex(path, s - 1);
+  if (s >= 2) e.qsMinus = &lightVertex(path, s - 2);
+  return e;
+}
+
+ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera, const MisPath& path,
+                                        const ConnectionEnds& e) {
+  const PathVertex& pt = *e.pt;
+  // Density at `next` of scattering at v (from prev): the connection's own evaluation when it
+  // made one at v (`known`), else a fresh one.
+  const ConnectionPdfs* given = path.pdfs;
+  const bool atLight = given && given->atLight && e.qs && e.qs->type == VertexType::Surface;
+  const bool atCamera = given && given->atCamera && pt.type == VertexType::Surface;
+  auto scatter = [&](const PathVertex& v, const PathVertex* prev, const PathVertex& next, TransportMode mode,
+                     bool known, float knownPdfW) {
+    return known ? convertDensity(knownPdfW, v, next) : pdfArea(scene, camera, v, prev, next, mode);
+  };
+  ConnectionDensities c;
+  c.ptFromLight = e.qs ? scatter(*e.qs, e.qsMinus, pt, TransportMode::Importance, atLight, atLight ? given->qsToPt : 0.f)
+                       : pdfLightOrigin(scene, pt);
+  if (e.ptMinus)
+    c.ptMinusFromLight =
+        e.qs ? scatter(pt, e.qs, *e.ptMinus, TransportMode::Importance, atCamera, atCamera ? given->ptToPrev : 0.f)
+             : pdfLightToward(scene, pt, *e.ptMinus);
+  if (e.qs) {
+    const bool atLens = given && given->atLens && pt.type == VertexType::Camera;
+    c.qsFromCamera = atLens ? convertDensity(given->lensToQs, pt, *e.qs)
+                            : scatter(pt, e.ptMinus, *e.qs, TransportMode::Radiance, atCamera, atCamera ? given->ptToQs : 0.f);
+  }
+  if (e.qsMinus)
+    c.qsMinusFromCamera =
+        scatter(*e.qs, &pt, *e.qsMinus, TransportMode::Radiance, atLight, atLight ? given->qsToPrev : 0.f);
+  return c;
+}
+
 void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d) {
   const int s = path.s, t = path.t, n = s + t;
   d.n = n;
@@ -77,67 +114,35 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   d.pFromCamera.resize(static_cast<size_t>(n));
   d.delta.resize(static_cast<size_t>(n));
   d.edgeLength2.resize(static_cast<size_t>(std::max(n - 1, 0)));
-  auto lightVertex = [&](int i) -> const PathVertex& {
-    return (i == 0 && s == 1 && t >= 2 && path.sampled) ? *path.sampled : path.lightPath[i];
+  auto vertex = [&](int i) -> const PathVertex& {
+    return i < s ? lightVertex(path, i) : cameraVertex(path, n - 1 - i);
   };
-  auto cameraVertex = [&](int j) -> const PathVertex& {
-    return (j == 0 && t == 1 && path.sampled) ? *path.sampled : path.cameraPath[j];
-  };
-  auto vertex = [&](int i) -> const PathVertex& { return i < s ? lightVertex(i) : cameraVertex(n - 1 - i); };
 
   for (int i = 0; i < s; ++i) {
-    const PathVertex& v = lightVertex(i);
+    const PathVertex& v = lightVertex(path, i);
     d.pFromLight[static_cast<size_t>(i)] = v.pdfFwdA;
     d.pFromCamera[static_cast<size_t>(i)] = v.pdfRevA;
     d.delta[static_cast<size_t>(i)] = v.isDelta;
   }
   for (int j = 0; j < t; ++j) {
-    const PathVertex& v = cameraVertex(j);
+    const PathVertex& v = cameraVertex(path, j);
     d.pFromCamera[static_cast<size_t>(n - 1 - j)] = v.pdfFwdA;
     d.pFromLight[static_cast<size_t>(n - 1 - j)] = v.pdfRevA;
     d.delta[static_cast<size_t>(n - 1 - j)] = v.isDelta;
   }
 
-  // The patches (pbrt-v4 MISWeight): qs = x(s-1), pt = x(s) are now connected.
-  const PathVertex& pt = vertex(s);
-  const PathVertex* ptMinus = t >= 2 ? &vertex(s + 1) : nullptr;
-  const PathVertex* qs = s >= 1 ? &vertex(s - 1) : nullptr;
-  const PathVertex* qsMinus = s >= 2 ? &vertex(s - 2) : nullptr;
-  // Density at `next` of scattering at v (from prev): the connection's own evaluation when it
-  // made one at v (`given`), else a fresh one.
-  const ConnectionPdfs* given = path.pdfs;
-  const bool atLight = given && given->atLight && qs && qs->type == VertexType::Surface;
-  const bool atCamera = given && given->atCamera && pt.type == VertexType::Surface;
-  auto scatter = [&](const PathVertex& v, const PathVertex* prev, const PathVertex& next, TransportMode mode,
-                     bool known, float knownPdfW) {
-    return known ? convertDensity(knownPdfW, v, next) : pdfArea(scene, camera, v, prev, next, mode);
-  };
-  d.pFromLight[static_cast<size_t>(s)] =
-      qs ? scatter(*qs, qsMinus, pt, TransportMode::Importance, atLight, atLight ? given->qsToPt : 0.f)
-         : pdfLightOrigin(scene, pt);
-  if (ptMinus)
-    d.pFromLight[static_cast<size_t>(s + 1)] =
-        qs ? scatter(pt, qs, *ptMinus, TransportMode::Importance, atCamera, atCamera ? given->ptToPrev : 0.f)
-           : pdfLightToward(scene, pt, *ptMinus);
-  if (qs)
-    d.pFromCamera[static_cast<size_t>(s - 1)] =
-        scatter(pt, ptMinus, *qs, TransportMode::Radiance, atCamera, atCamera ? given->ptToQs : 0.f);
-  if (qsMinus)
-    d.pFromCamera[static_cast<size_t>(s - 2)] =
-        scatter(*qs, &pt, *qsMinus, TransportMode::Radiance, atLight, atLight ? given->qsToPrev : 0.f);
+  // The patches: qs = x(s-1), pt = x(s) are now connected.
+  const ConnectionEnds ends = connectionEnds(path);
+  const ConnectionDensities c = connectionDensities(scene, camera, path, ends);
+  d.pFromLight[static_cast<size_t>(s)] = c.ptFromLight;
+  if (ends.ptMinus) d.pFromLight[static_cast<size_t>(s + 1)] = c.ptMinusFromLight;
+  if (ends.qs) d.pFromCamera[static_cast<size_t>(s - 1)] = c.qsFromCamera;
+  if (ends.qsMinus) d.pFromCamera[static_cast<size_t>(s - 2)] = c.qsMinusFromCamera;
   d.delta[static_cast<size_t>(s)] = false;
   if (s >= 1) d.delta[static_cast<size_t>(s - 1)] = false;
 
-  for (int i = 0; i + 1 < n; ++i) {
-    const PathVertex& a = vertex(i);
-    const PathVertex& b = vertex(i + 1);
-    const Vec3 e = b.p - a.p;
-    d.edgeLength2[static_cast<size_t>(i)] =
-        a.isInfinite || b.isInfinite ? std::numeric_limits<float>::infinity() : glm::dot(e, e);
-  }
-
-  const PathVertex& x0 = vertex(0);
-  d.x0CanBeHit = !x0.isDeltaPosition && !x0.isInfinite && x0.light >= 0 && x0.type != VertexType::Camera;
+  for (int i = 0; i + 1 < n; ++i) d.edgeLength2[static_cast<size_t>(i)] = edgeLength2(vertex(i), vertex(i + 1));
+  d.x0CanBeHit = canBeHitAsOrigin(vertex(0));
 }
 
 UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance)

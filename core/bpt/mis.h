@@ -28,6 +28,41 @@ struct MisPath {
   const ConnectionPdfs* pdfs = nullptr;
 };
 
+// Vertex i of the light prefix and j of the camera prefix as the weights see them: with the fresh
+// endpoint of the connection in place of x0 (s = 1, t >= 2) or of the lens vertex (t = 1).
+inline const PathVertex& lightVertex(const MisPath& path, int i) {
+  return (i == 0 && path.s == 1 && path.t >= 2 && path.sampled) ? *path.sampled : path.lightPath[i];
+}
+inline const PathVertex& cameraVertex(const MisPath& path, int j) {
+  return (j == 0 && path.t == 1 && path.sampled) ? *path.sampled : path.cameraPath[j];
+}
+
+// The four vertices around the connection of technique (s, t) with the fresh endpoint substituted:
+// qs = x(s-1) and its predecessor on the light side, pt = x(s) and its predecessor on the camera
+// side (null where the subpath is too short).
+struct ConnectionEnds {
+  const PathVertex* qsMinus = nullptr;
+  const PathVertex* qs = nullptr;
+  const PathVertex* pt = nullptr;
+  const PathVertex* ptMinus = nullptr;
+};
+ConnectionEnds connectionEnds(const MisPath& path);
+
+// The densities a connection changes (pbrt-v4 MISWeight's four ScopedAssignments; Veach 1997 sec.
+// 10.3.4), in area measure: the path's other vertices keep the densities their walks gave them.
+struct ConnectionDensities {
+  float ptFromLight = 0.f;        // pt sampled from qs, or as a light's origin (s = 0)
+  float ptMinusFromLight = 0.f;   // pt's predecessor sampled from pt having arrived from qs (t >= 2)
+  float qsFromCamera = 0.f;       // qs sampled from pt (s >= 1)
+  float qsMinusFromCamera = 0.f;  // qs's predecessor sampled from qs having arrived from pt (s >= 2)
+};
+// The connection's own BSDF densities (MisPath::pdfs) where it evaluated them, else fresh ones.
+ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera, const MisPath& path,
+                                        const ConnectionEnds& ends);
+
+// pbrt's "remap zero to one": a delta density cancels between the techniques that share it.
+inline double remap0(double p) { return p != 0.0 ? p : 1.0; }
+
 // Weight of technique (s, t) among the enabled techniques able to produce the same path.
 // `lightTracingRatio` = light subpaths per pass / camera samples per pass (the sample counts n_i
 // of Veach's multi-sample model for t = 1 against t >= 2); see bidir_tracer.h.
@@ -53,6 +88,11 @@ struct PathDensities {
   std::vector<float> edgeLength2;
   bool x0CanBeHit = false;   // x0 is on an area light (technique s = 0 possible)
 };
+// Whether vertex x0 of a path can be found by a camera subpath (technique s = 0 possible): on an
+// area light, not a point, spot or directional one.
+inline bool canBeHitAsOrigin(const PathVertex& x0) {
+  return !x0.isDeltaPosition && !x0.isInfinite && x0.light >= 0 && x0.type != VertexType::Camera;
+}
 PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path);
 // The same into `d`, reusing its storage (no allocation once it has grown to the path length).
 void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d);

@@ -4,6 +4,7 @@
 
 #include "core/math/types.h"
 
+#include <limits>
 #include <type_traits>
 
 namespace pathlab {
@@ -48,6 +49,13 @@ inline float convertDensity(float pdfW, const PathVertex& from, const PathVertex
   float pdf = pdfW / dist2;
   if (to.onSurface()) pdf *= absDot(to.ng, d) / std::sqrt(dist2);
   return pdf;
+}
+
+// |b - a|^2, the squared length of an edge; infinite toward a directional light.
+inline float edgeLength2(const PathVertex& a, const PathVertex& b) {
+  if (a.isInfinite || b.isInfinite) return std::numeric_limits<float>::infinity();
+  const Vec3 e = b.p - a.p;
+  return glm::dot(e, e);
 }
 
 }  // namespace pathlab

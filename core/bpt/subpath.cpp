@@ -2,7 +2,7 @@
 #include "core/bpt/subpath.h"
 
 #include "core/bsdf/bsdf.h"
-#include "core/render/render_settings.h"
+#include "core/sampling/russian_roulette.h"
 
 namespace pathlab {
 

@@ -38,7 +38,7 @@ struct LightSubpath : Subpath {};
 
 struct WalkOptions {
   int maxVertices = 0;         // camera subpath: maxLength + 1; light subpath: maxLength
-  bool russianRoulette = true;  // the path tracer's rule (render_settings.h), on the walk's own throughput
+  bool russianRoulette = true;  // the path tracer's rule (russian_roulette.h), on the walk's own throughput
 };
 
 // The camera subpath through film position pRaster (pixels). Returns the number of vertices.

@@ -84,26 +84,35 @@ Ray Camera::generateRay(Vec2 pRaster, Vec2 uLens) const {
   return ray;
 }
 
-Spectrum Camera::We(const Ray& ray, Vec2* pRaster) const {
+std::optional<Camera::RayImportance> Camera::importance(const Ray& ray) const {
   // ray.o is taken to lie on the lens (the origin for a pinhole), as every camera vertex does.
   const Vec3 dCam = glm::normalize(Mat3(worldToCamera_) * ray.d);
   const Vec3 oCam = isPinhole() ? Vec3(0.f) : Vec3(worldToCamera_ * Vec4(ray.o, 1.f));
   const std::optional<Vec2> raster = rasterOfCameraRay(oCam, dCam);
-  if (!raster) return Spectrum(0.f);
-  if (pRaster) *pRaster = *raster;
+  if (!raster) return std::nullopt;
   const float cos2 = dCam.z * dCam.z;
+  const float cosTheta = -dCam.z;
+  RayImportance r;
+  r.pRaster = *raster;
   // pbrt-v3 eq. 16.3: normalised so that the integral over film and lens of We cos is one.
-  return Spectrum(1.f / (filmArea_ * lensArea() * cos2 * cos2));
+  r.We = 1.f / (filmArea_ * lensArea() * cos2 * cos2);
+  // Uniform on the film plane at distance 1 (area A_film), converted to solid angle:
+  // dA = dw / cos^3 (distance 1/cos, foreshortening cos).
+  r.pdfDirW = 1.f / (filmArea_ * cosTheta * cosTheta * cosTheta);
+  return r;
+}
+
+Spectrum Camera::We(const Ray& ray, Vec2* pRaster) const {
+  const std::optional<RayImportance> r = importance(ray);
+  if (!r) return Spectrum(0.f);
+  if (pRaster) *pRaster = r->pRaster;
+  return Spectrum(r->We);
 }
 
 CameraPdf Camera::pdfWe(const Ray& ray) const {
-  const Vec3 dCam = glm::normalize(Mat3(worldToCamera_) * ray.d);
-  const Vec3 oCam = isPinhole() ? Vec3(0.f) : Vec3(worldToCamera_ * Vec4(ray.o, 1.f));
-  if (!rasterOfCameraRay(oCam, dCam)) return {};
-  const float cosTheta = -dCam.z;
-  // Uniform on the film plane at distance 1 (area A_film), converted to solid angle:
-  // dA = dw / cos^3 (distance 1/cos, foreshortening cos).
-  return {1.f / lensArea(), 1.f / (filmArea_ * cosTheta * cosTheta * cosTheta)};
+  const std::optional<RayImportance> r = importance(ray);
+  if (!r) return {};
+  return {1.f / lensArea(), r->pdfDirW};
 }
 
 std::optional<CameraWiSample> Camera::sampleWi(const Vec3& ref, Vec2 uLens) const {
@@ -117,8 +126,13 @@ std::optional<CameraWiSample> Camera::sampleWi(const Vec3& ref, Vec2 uLens) cons
   s.dist = std::sqrt(dist2);
   s.wi = toLens / s.dist;
   s.pLens = pLens;
-  s.We = We(Ray{pLens, -s.wi}, &s.pRaster);
-  if (isBlack(s.We)) return std::nullopt;
+  // One evaluation gives the importance, the raster position and the camera's own directional
+  // density of this ray, which the MIS weight of the t = 1 technique needs (pdfDirW).
+  const std::optional<RayImportance> r = importance(Ray{pLens, -s.wi});
+  if (!r) return std::nullopt;
+  s.We = Spectrum(r->We);
+  s.pRaster = r->pRaster;
+  s.pdfDirW = r->pdfDirW;
   const float cosTheta = glm::dot(-s.wi, forward_);
   // Lens area density to solid angle at ref (pbrt-v3 PerspectiveCamera::Sample_Wi); a pinhole
   // counts as a lens of area 1, so We / pdfW = We cos / dist^2 there.

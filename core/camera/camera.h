@@ -32,6 +32,7 @@ struct CameraWiSample {
   // Solid angle at the reference point: dist^2 / (cos theta * A_lens). A pinhole is a delta in
   // position and counts as a lens of area 1 (pbrt-v3), so We / pdfW = We cos theta / dist^2.
   float pdfW = 0.f;
+  float pdfDirW = 0.f;  // the camera's solid-angle density of the ray from pLens toward the reference (pdfWe)
 };
 
 struct CameraPdf {
@@ -68,7 +69,14 @@ class Camera {
   float filmArea_ = 1.f;                    // A_film at distance 1
   float lensRadius_ = 0.f, focusDistance_ = 1.f;
 
-  float lensArea() const;  // A_lens: pi r^2, or 1 for the pinhole's delta
+  float lensArea() const;
+  // We, the directional density and the raster position of a ray leaving the lens, in one
+  // evaluation; nullopt off the film.
+  struct RayImportance {
+    float We = 0.f, pdfDirW = 0.f;
+    Vec2 pRaster{0.f};
+  };
+  std::optional<RayImportance> importance(const Ray& ray) const;  // A_lens: pi r^2, or 1 for the pinhole's delta
   // Film plane at distance 1 (camera space x, y) <-> raster pixels.
   Vec2 filmToRaster(Vec2 pFilm) const;
   Vec2 rasterToFilm(Vec2 pRaster) const;

@@ -2,11 +2,12 @@
 #include "core/pt/path_tracer.h"
 
 #include "core/sampling/mis.h"
+#include "core/sampling/russian_roulette.h"
 
 namespace pathlab {
 
-PathTracer::PathTracer(const Scene& scene, const RenderSettings& settings)
-    : scene_(scene), maxLength_(settings.maxLength), russianRoulette_(settings.russianRoulette) {}
+PathTracer::PathTracer(const Scene& scene, const PathTracerOptions& options)
+    : scene_(scene), maxLength_(options.maxLength), russianRoulette_(options.russianRoulette) {}
 
 // One light sample for the vertex `hit`: the (s = 1) connection of the path tracer. Weighted
 // against BSDF sampling of the same path with the power heuristic.

@@ -6,14 +6,18 @@
 #include "core/bsdf/bsdf.h"
 #include "core/math/rng.h"
 #include "core/metrics/counters.h"
-#include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
 namespace pathlab {
 
+struct PathTracerOptions {
+  int maxLength = 10;           // edges
+  bool russianRoulette = true;  // sampling/russian_roulette.h
+};
+
 class PathTracer {
  public:
-  PathTracer(const Scene& scene, const RenderSettings& settings);
+  PathTracer(const Scene& scene, const PathTracerOptions& options);
   // Radiance arriving along a camera ray (the estimate of one camera sample, unfiltered).
   Spectrum Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) const;
 

@@ -20,9 +20,9 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
     : scene_(scene),
       settings_(validated(settings)),
       camera_(settings.camera.value_or(scene.cameraDesc()), settings.width, settings.height, settings.lens),
-      pathTracer_(scene, settings),
+      pathTracer_(scene, pathTracerOptions(settings)),
       film_(settings.width, settings.height) {
-  if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, settings);
+  if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength);
 }

@@ -20,6 +20,21 @@ const char* integratorName(IntegratorKind kind) {
   return "?";
 }
 
+TechniqueSet techniquesOf(const RenderSettings& settings) {
+  TechniqueSet set = TechniqueSet::parse(settings.techniques, settings.maxLength);
+  if (settings.integrator == IntegratorKind::Lt)
+    for (int k = 1; k <= settings.maxLength; ++k)
+      for (int s = 0; s <= k; ++s)
+        if (k + 1 - s != 1) set.disable(s, k + 1 - s);
+  return set;
+}
+
+BidirOptions bidirOptions(const RenderSettings& s) {
+  return BidirOptions{s.maxLength, s.russianRoulette, techniquesOf(s), s.mis, s.isolate, s.pyramidLength, s.checkMis};
+}
+
+PathTracerOptions pathTracerOptions(const RenderSettings& s) { return PathTracerOptions{s.maxLength, s.russianRoulette}; }
+
 void validateSettings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1)
     throw std::invalid_argument(fmt::format("image size {} x {} is not positive", s.width, s.height));

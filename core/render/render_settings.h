@@ -2,7 +2,10 @@
 // settings (defaulted operator==) starts a new generation of the film.
 #pragma once
 
+#include "core/bpt/bidir_options.h"
 #include "core/bpt/mis_options.h"
+#include "core/pt/path_tracer.h"
+#include "core/sampling/russian_roulette.h"
 #include "core/camera/camera.h"
 #include "core/scene/scene_desc.h"
 
@@ -14,15 +17,6 @@ namespace pathlab {
 
 // Pt: the path tracer; Bpt: bidirectional; Lt: bidirectional restricted to t = 1 (light tracing).
 enum class IntegratorKind { Pt, Bpt, Lt };
-
-// One technique shown alone (Bpt and Lt). Weighted: its MIS-weighted share among the enabled
-// techniques (the shares of all enabled techniques sum to the full image). Unweighted: its own
-// estimate of every path of length s + t - 1 it can sample (weight 1).
-struct Isolation {
-  int s = 0, t = 1;
-  bool unweighted = false;
-  bool operator==(const Isolation&) const = default;
-};
 
 struct RenderSettings {
   int width = 512;
@@ -50,7 +44,6 @@ struct RenderSettings {
   bool operator==(const RenderSettings&) const = default;
 };
 
-inline constexpr int kRussianRouletteStart = 3;
 inline constexpr int kMaxPyramidLength = 8;
 // The bidirectional tracers keep one bit per technique (about n^2 / 2) and connect O(n^2) prefix
 // pairs with O(n) weights each: beyond this many edges that is memory and time for nothing.
@@ -58,6 +51,12 @@ inline constexpr int kMaxBidirectionalLength = 4096;
 inline constexpr uint64_t kMaxPyramidBytes = 8ull << 30;
 
 const char* integratorName(IntegratorKind kind);
+
+// The TechniqueSet a RenderSettings asks for: its SPEC, restricted to t = 1 for light tracing.
+TechniqueSet techniquesOf(const RenderSettings& settings);
+// What each tracer needs of the settings.
+BidirOptions bidirOptions(const RenderSettings& settings);
+PathTracerOptions pathTracerOptions(const RenderSettings& settings);
 
 // Throws std::invalid_argument with a one-line message naming the setting when the settings
 // cannot be rendered: a bad technique SPEC, an isolated technique outside 1..maxLength or not a

@@ -1,0 +1,31 @@
+// What the bidirectional tracer needs to know of the render settings, and nothing else: the
+// estimator (techniques, heuristic, isolation, length) and which outputs it feeds.
+#pragma once
+
+#include "core/bpt/mis_options.h"
+#include "core/bpt/technique_set.h"
+
+#include <optional>
+
+namespace pathlab {
+
+// One technique shown alone. Weighted: its MIS-weighted share among the enabled techniques (the
+// shares of all enabled techniques sum to the full image). Unweighted: its own estimate of every
+// path of length s + t - 1 it can sample (weight 1).
+struct Isolation {
+  int s = 0, t = 1;
+  bool unweighted = false;
+  bool operator==(const Isolation&) const = default;
+};
+
+struct BidirOptions {
+  int maxLength = 10;           // edges
+  bool russianRoulette = true;  // sampling/russian_roulette.h
+  TechniqueSet techniques;      // the enabled set: MIS weights are normalised over it
+  MisOptions mis;
+  std::optional<Isolation> isolate;
+  int pyramidLength = 0;  // > 0: every technique up to this length also goes to the pyramid
+  bool checkMis = false;  // test every weighted path's partition of unity (Counters)
+};
+
+}  // namespace pathlab

@@ -1,0 +1,113 @@
+// Recursive MIS partial sums: accumulated along each walk, patched at the connection.
+#include "core/bpt/mis_partial_sums.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pathlab {
+
+namespace {
+
+constexpr float kNoEdge = std::numeric_limits<float>::infinity();
+
+double ratio(double numerator, double denominator) { return remap0(numerator) / remap0(denominator); }
+
+void accumulateShortestEdges(const Subpath& path, SubpathMisSums& sums) {
+  sums.shortestEdge2.resize(static_cast<size_t>(std::max(path.count, 1)));
+  sums.shortestEdge2[0] = kNoEdge;
+  for (int i = 1; i < path.count; ++i)
+    sums.shortestEdge2[static_cast<size_t>(i)] =
+        std::min(sums.shortestEdge2[static_cast<size_t>(i - 1)], edgeLength2(path[i - 1], path[i]));
+}
+
+}  // namespace
+
+void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisSums& sums) {
+  sums.sum.resize(static_cast<size_t>(path.count) + 1);
+  double left = 0.0;
+  sums.sum[0] = left;
+  for (int i = 0; i < path.count; ++i) {
+    const PathVertex& v = path[i];
+    // Technique s' = i connects x(i-1) and x(i); s' = 0 needs x0 on an area light.
+    const bool usable = i == 0 ? canBeHitAsOrigin(v) && !v.isDelta : !path[i - 1].isDelta && !v.isDelta;
+    left = power(ratio(v.pdfRevA, v.pdfFwdA)) * ((usable ? 1.0 : 0.0) + left);
+    sums.sum[static_cast<size_t>(i) + 1] = left;
+  }
+  accumulateShortestEdges(path, sums);
+}
+
+void accumulateCameraSums(const Subpath& path, const MisPower& power, float lightTracingRatio,
+                          SubpathMisSums& sums) {
+  sums.sum.resize(static_cast<size_t>(std::max(path.count, 1)) + 1);
+  // No technique has t' = 0: the prefixes of zero and one camera vertex have nothing to sum.
+  double right = 0.0;
+  sums.sum[0] = sums.sum[1] = right;
+  const double lightTracingCount = power(lightTracingRatio);
+  for (int j = 1; j < path.count; ++j) {
+    const PathVertex& v = path[j];
+    // Technique t' = j connects y(j) and y(j-1).
+    const bool usable = !v.isDelta && !path[j - 1].isDelta;
+    const double count = j == 1 ? lightTracingCount : 1.0;
+    right = power(ratio(v.pdfRevA, v.pdfFwdA)) * ((usable ? count : 0.0) + right);
+    sums.sum[static_cast<size_t>(j) + 1] = right;
+  }
+  accumulateShortestEdges(path, sums);
+}
+
+std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
+                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
+  const int s = path.s, t = path.t;
+  const ConnectionEnds e = connectionEnds(path);
+  const PathVertex& pt = *e.pt;
+
+  // The shortest edge of the whole path: the two prefixes' (the fresh endpoint of s = 1 or t = 1
+  // stands alone on its side) and the connection's.
+  const float minDistance2 = minConnectionDistance * minConnectionDistance;
+  if (minDistance2 > 0.f) {
+    float shortest = kNoEdge;
+    if (s >= 2) shortest = std::min(shortest, lightSums.shortestEdge2[static_cast<size_t>(s - 1)]);
+    if (t >= 2) shortest = std::min(shortest, cameraSums.shortestEdge2[static_cast<size_t>(t - 1)]);
+    if (e.qs) shortest = std::min(shortest, edgeLength2(*e.qs, pt));
+    if (shortest < minDistance2) return std::nullopt;
+  }
+
+  const ConnectionDensities c = connectionDensities(scene, camera, path, e);
+  // Light side: left(s) = T(r_{s-1}) (u(s-1) + T(r_{s-2}) (u(s-2) + left(s-2))). qs and pt count
+  // as non-delta (connect() formed the path through them).
+  double left = 0.0;
+  if (e.qs) {
+    double beyond = 0.0;
+    if (e.qsMinus) {
+      const bool usable = s == 2 ? canBeHitAsOrigin(*e.qsMinus) && !e.qsMinus->isDelta
+                                 : !path.lightPath[s - 3].isDelta && !e.qsMinus->isDelta;
+      beyond = power(ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA)) *
+               ((usable ? 1.0 : 0.0) + lightSums.sum[static_cast<size_t>(s - 2)]);
+    }
+    const bool usable = s == 1 ? canBeHitAsOrigin(*e.qs) : !e.qsMinus->isDelta;
+    left = power(ratio(c.qsFromCamera, e.qs->pdfFwdA)) * ((usable ? 1.0 : 0.0) + beyond);
+  }
+  // Camera side, the mirror image: technique t' weighs the ratios of y(t') .. y(t-1), and the
+  // t' = 1 techniques count lightTracingRatio samples (Veach's n_i).
+  const double lightTracingCount = power(lightTracingRatio);
+  auto count = [&](int tPrime) { return tPrime == 1 ? lightTracingCount : 1.0; };
+  double right = 0.0;
+  if (e.ptMinus) {
+    double beyond = 0.0;
+    if (t >= 3) {
+      const bool usable = !e.ptMinus->isDelta && !path.cameraPath[t - 3].isDelta;
+      beyond = power(ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA)) *
+               ((usable ? count(t - 2) : 0.0) + cameraSums.sum[static_cast<size_t>(t - 2)]);
+    }
+    const bool usable = !e.ptMinus->isDelta;
+    right = power(ratio(c.ptFromLight, pt.pdfFwdA)) * ((usable ? count(t - 1) : 0.0) + beyond);
+  }
+  // Veach eq. 10.9 relative to the technique's own (n_s p_s)^beta.
+  const double own = t == 1 ? lightTracingCount : 1.0;
+  const double w = 1.0 / (1.0 + (left + right) / own);
+  if (!std::isfinite(left + right) || !std::isfinite(w)) return std::nullopt;
+  return static_cast<float>(w);
+}
+
+}  // namespace pathlab

@@ -1,0 +1,40 @@
+// SampleOutputs: a technique's result into the counters, the trace, the pyramid and the image.
+#include "core/bpt/sample_outputs.h"
+
+namespace pathlab {
+
+void SampleOutputs::discard(const Spectrum& value, const TechniqueResult& r, TechniqueCounters& counters) {
+  countDiscarded(value, counters.discarded);
+  counters_.noteDiscard(DiscardExample{targets_.id.x, targets_.id.y, targets_.id.sample, r.s, r.t, value});
+}
+
+void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
+  if (r.outcome != TechniqueOutcome::Contributed) {
+    ++(r.blocked() ? counters.blocked : counters.zero);
+    if (targets_.trace) {
+      TechniqueResult record = r;
+      record.weight = 0.f;
+      record.inImage = false;
+      targets_.trace->records.push_back(record);
+    }
+    return;
+  }
+  ++counters.contributed;
+  // NaN, Inf and negative contributions are dropped one technique at a time, at the door.
+  if (!isValidContribution(r.unweighted)) {
+    discard(r.unweighted, r, counters);
+    return;
+  }
+  if (targets_.trace) targets_.trace->records.push_back(r);
+  if (r.inPyramid && targets_.pyramid) targets_.pyramid->add(r.s, r.t, r.pRaster, r.unweighted * r.weight, r.unweighted);
+  if (!r.inImage) return;
+  const Spectrum contribution = r.unweighted * r.imageWeight;
+  if (isBlack(contribution)) return;
+  if (r.t == 1) {
+    if (targets_.film && !targets_.film->splat(r.pRaster, contribution)) discard(contribution, r, counters);
+  } else {
+    cameraEstimate_ += contribution;
+  }
+}
+
+}  // namespace pathlab

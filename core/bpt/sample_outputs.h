@@ -1,0 +1,40 @@
+// Where one bidirectional sample's technique results go: the camera estimate of its pixel, the
+// t = 1 splats on the film, the technique pyramid, a replay trace, and the counters. The kernel
+// (bidir_tracer.h) evaluates techniques; new outputs are added here without touching it.
+#pragma once
+
+#include "core/bpt/technique_result.h"
+#include "core/film/film.h"
+#include "core/film/technique_films.h"
+#include "core/metrics/counters.h"
+
+namespace pathlab {
+
+// The outputs a sample feeds; each may be null.
+struct SampleTargets {
+  Film* film = nullptr;               // t = 1 splats of the image
+  TechniqueFilms* pyramid = nullptr;  // every technique of the pyramid's lengths, weighted and unweighted
+  SampleTrace* trace = nullptr;       // a record of every technique tried
+  SampleId id;
+};
+
+class SampleOutputs {
+ public:
+  SampleOutputs(const SampleTargets& targets, Counters& counters) : targets_(targets), counters_(counters) {}
+
+  // Whether an output wants a technique's contribution even where its image weight is zero (the
+  // pyramid's unweighted films, the replay trace): the kernel then still traces its shadow ray.
+  bool wantsEveryContribution() const { return targets_.trace != nullptr; }
+
+  void add(const TechniqueResult& result, TechniqueCounters& counters);
+  // The sum of the t >= 2 contributions: the sample's estimate for its own pixel.
+  const Spectrum& cameraEstimate() const { return cameraEstimate_; }
+
+ private:
+  void discard(const Spectrum& value, const TechniqueResult& result, TechniqueCounters& counters);
+  const SampleTargets& targets_;
+  Counters& counters_;
+  Spectrum cameraEstimate_{0.f};
+};
+
+}  // namespace pathlab

@@ -1,0 +1,44 @@
+// What one technique (s, t) gave for one camera sample: the bidirectional kernel's result, which
+// the outputs (film, pyramid, replay trace, counters) consume (sample_outputs.h).
+#pragma once
+
+#include "core/math/types.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace pathlab {
+
+enum class TechniqueOutcome : uint8_t {
+  Zero,         // cannot form the path (delta vertex, f = 0, off the film), or weight zero and not wanted
+  Blocked,      // a non-zero contribution whose shadow ray was occluded
+  Contributed,  // unoccluded, non-zero (possibly invalid: NaN, Inf, negative)
+};
+
+struct TechniqueResult {
+  int s = 0, t = 1;
+  TechniqueOutcome outcome = TechniqueOutcome::Zero;
+  Spectrum unweighted{0.f};  // connect(s, t)'s contribution (zero unless Contributed)
+  float weight = 0.f;        // its MIS weight among the enabled techniques (0 if disabled)
+  // The factor the image applies: weight, 1 for the isolated technique shown unweighted, 0 when
+  // the technique is not in the image.
+  float imageWeight = 0.f;
+  Vec2 pRaster{0.f};       // where it lands: the sample's own pixel, or the splat position (t = 1)
+  bool inImage = false;    // reaches the image (enabled, or the isolated technique)
+  bool inPyramid = false;  // goes to the technique pyramid
+  bool blocked() const { return outcome == TechniqueOutcome::Blocked; }
+};
+
+// Every technique of one replayed sample (`pathlab render --replay`).
+struct SampleTrace {
+  int cameraVertices = 0, lightVertices = 0;
+  std::vector<TechniqueResult> records;  // every technique tried, in evaluation order
+};
+
+// Which sample this is, for the discarded-sample report (Counters::discardExamples).
+struct SampleId {
+  int x = -1, y = -1;
+  uint64_t sample = 0;
+};
+
+}  // namespace pathlab

@@ -1,0 +1,112 @@
+// The O(1) MIS weights from the walks' partial sums (mis_partial_sums.h) against the explicit
+// O(n) misWeight, their oracle: on random subpaths of every bundled scene and of scenes with
+// delta lights, delta BSDFs, a pinhole and a thin lens, for every connectable (s, t), under every
+// heuristic, with one light subpath per camera sample and with another light-tracing ratio, they
+// agree to 1e-5 relative. Where the sums must not answer (a connection shorter than
+// MisOptions::minConnection) they decline and misWeight is used.
+#include "core/bpt/bidir_tracer.h"
+#include "core/bpt/connect.h"
+#include "core/bpt/mis_partial_sums.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/bpt_scenes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace pathlab {
+namespace {
+
+struct Tally {
+  int compared = 0, declined = 0;
+};
+
+// Every connectable technique of `samples` random subpath pairs, under each heuristic.
+Tally compare(const Scene& scene, const Camera& camera, int maxLength, float lightTracingRatio, float minConnection,
+              const std::string& name, int samples = 400) {
+  Pcg32 rng(2026, 12);
+  CameraSubpath cp;
+  LightSubpath lp;
+  SubpathMisSums cameraSums, lightSums;
+  Counters counters;
+  Tally tally;
+  const MisOptions options[] = {{MisHeuristic::Balance, 2.f, minConnection},
+                                {MisHeuristic::Power, 2.f, minConnection},
+                                {MisHeuristic::Power, 1.37f, minConnection},
+                                {MisHeuristic::Uniform, 2.f, minConnection}};
+  const TechniqueSet all = TechniqueSet::all(maxLength);
+  const float minDistance = minConnection * scene.bounds().radius;
+  for (int sample = 0; sample < samples; ++sample) {
+    const Vec2 pRaster(rng.next1D() * static_cast<float>(camera.width()), rng.next1D() * static_cast<float>(camera.height()));
+    const int nt = generateCameraSubpath(scene, camera, pRaster, rng.next2D(), rng, WalkOptions{maxLength + 1, true}, cp,
+                                         counters);
+    const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, true}, lp, counters);
+    for (const MisOptions& o : options) {
+      const MisPower power(o);
+      accumulateCameraSums(cp, power, lightTracingRatio, cameraSums);
+      accumulateLightSums(lp, power, lightSums);
+      for (int t = 1; t <= nt; ++t)
+        for (int s = 0; s <= std::max(ns, 1) && s + t - 1 <= maxLength; ++s) {
+          if (s + t < 2 || (s > ns && !(s == 1 && t >= 2))) continue;
+          Pcg32 connectionRng(static_cast<uint64_t>(sample), static_cast<uint64_t>(s * 64 + t));
+          Connection c;
+          if (!formConnection(scene, camera, lp, s, cp, t, connectionRng, c)) continue;
+          const MisPath path{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
+          const float explicitWeight = misWeight(scene, camera, path, all, o, lightTracingRatio);
+          const std::optional<float> fast =
+              misWeightFromSums(scene, camera, path, lightSums, cameraSums, power, lightTracingRatio, minDistance);
+          if (!fast) {
+            ++tally.declined;
+            continue;
+          }
+          ++tally.compared;
+          EXPECT_NEAR(*fast, explicitWeight, 1e-5f * std::max(explicitWeight, 1e-3f))
+              << name << " (" << s << "," << t << ") " << misHeuristicName(o.heuristic) << " beta " << o.beta
+              << " ratio " << lightTracingRatio;
+          if (::testing::Test::HasFailure()) return tally;
+        }
+    }
+  }
+  return tally;
+}
+
+Scene bundled(const std::string& name) {
+  return Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name + ".gltf"));
+}
+
+void checkScene(const Scene& scene, const std::string& name, int maxLength, const LensOptions& lens = {}) {
+  const Camera camera(scene.cameraDesc(), 16, 12, lens);
+  for (const float ratio : {1.f, 2.5f}) {
+    const Tally tally = compare(scene, camera, maxLength, ratio, kDefaultMinConnection, name);
+    // Enough weights compared to mean something, and the sums answered nearly always.
+    EXPECT_GT(tally.compared, 1000) << name << " ratio " << ratio;
+    EXPECT_LT(tally.declined, tally.compared / 100 + 1) << name;
+  }
+}
+
+TEST(MisPartialSums, EqualTheExplicitWeightsOnTheCornellBox) { checkScene(bundled("cornell-box"), "cornell-box", 8); }
+TEST(MisPartialSums, EqualTheExplicitWeightsOnVeachMis) { checkScene(bundled("veach-mis"), "veach-mis", 6); }
+TEST(MisPartialSums, EqualTheExplicitWeightsOnBidirLamp) { checkScene(bundled("bidir-lamp"), "bidir-lamp", 8); }
+TEST(MisPartialSums, EqualTheExplicitWeightsOnCaustic) { checkScene(bundled("caustic"), "caustic", 8); }
+// Delta BSDFs (mirror, glass) with an area light and with a point light, seen by a pinhole.
+TEST(MisPartialSums, EqualTheExplicitWeightsWithDeltaComponents) {
+  checkScene(Scene(test::deltaScene(test::DeltaLight::Area)), "delta/area", 7);
+  checkScene(Scene(test::deltaScene(test::DeltaLight::Point)), "delta/point", 7);
+}
+// A thin lens: the t = 1 technique's lens point and the camera subpath's differ in density.
+TEST(MisPartialSums, EqualTheExplicitWeightsThroughAThinLens) {
+  checkScene(bundled("cornell-box"), "cornell-box/lens", 6, LensOptions{0.05f, 3.f});
+}
+
+// With connections shorter than 30 % of the bounding radius left out, the sums decline those
+// paths (misWeight then applies the rule) and agree wherever they answer.
+TEST(MisPartialSums, DeclineNearCoincidentConnections) {
+  const Scene scene = bundled("cornell-box");
+  const Camera camera(scene.cameraDesc(), 16, 12);
+  const Tally tally = compare(scene, camera, 6, 1.f, 0.3f, "cornell-box/min-connection");
+  EXPECT_GT(tally.declined, 500);
+  EXPECT_GT(tally.compared, 500);
+}
+
+}  // namespace
+}  // namespace pathlab
