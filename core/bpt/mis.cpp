@@ -88,10 +88,14 @@ ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera
                      bool known, float knownPdfW) {
     return known ? convertDensity(knownPdfW, v, next) : pdfArea(scene, camera, v, prev, next, mode);
   };
+  // Only the densities some technique's ratio uses: pt's from the light side when a technique with
+  // fewer camera vertices exists (t >= 2), its predecessor's when one with t - 2 >= 1 does.
+  const int t = path.t;
   ConnectionDensities c;
-  c.ptFromLight = e.qs ? scatter(*e.qs, e.qsMinus, pt, TransportMode::Importance, atLight, atLight ? given->qsToPt : 0.f)
-                       : pdfLightOrigin(scene, pt);
-  if (e.ptMinus)
+  if (t >= 2)
+    c.ptFromLight = e.qs ? scatter(*e.qs, e.qsMinus, pt, TransportMode::Importance, atLight, atLight ? given->qsToPt : 0.f)
+                         : pdfLightOrigin(scene, pt);
+  if (t >= 3)
     c.ptMinusFromLight =
         e.qs ? scatter(pt, e.qs, *e.ptMinus, TransportMode::Importance, atCamera, atCamera ? given->ptToPrev : 0.f)
              : pdfLightToward(scene, pt, *e.ptMinus);
@@ -134,6 +138,8 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   // The patches: qs = x(s-1), pt = x(s) are now connected.
   const ConnectionEnds ends = connectionEnds(path);
   const ConnectionDensities c = connectionDensities(scene, camera, path, ends);
+  // pFromLight of the camera vertex (t = 1) and of the last before it (t = 2) would belong to a
+  // technique with t' = 0, which does not exist: they are never read.
   d.pFromLight[static_cast<size_t>(s)] = c.ptFromLight;
   if (ends.ptMinus) d.pFromLight[static_cast<size_t>(s + 1)] = c.ptMinusFromLight;
   if (ends.qs) d.pFromCamera[static_cast<size_t>(s - 1)] = c.qsFromCamera;

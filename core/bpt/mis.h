@@ -51,8 +51,8 @@ ConnectionEnds connectionEnds(const MisPath& path);
 // The densities a connection changes (pbrt-v4 MISWeight's four ScopedAssignments; Veach 1997 sec.
 // 10.3.4), in area measure: the path's other vertices keep the densities their walks gave them.
 struct ConnectionDensities {
-  float ptFromLight = 0.f;        // pt sampled from qs, or as a light's origin (s = 0)
-  float ptMinusFromLight = 0.f;   // pt's predecessor sampled from pt having arrived from qs (t >= 2)
+  float ptFromLight = 0.f;        // pt sampled from qs, or as a light's origin (s = 0) (t >= 2)
+  float ptMinusFromLight = 0.f;   // pt's predecessor sampled from pt having arrived from qs (t >= 3)
   float qsFromCamera = 0.f;       // qs sampled from pt (s >= 1)
   float qsMinusFromCamera = 0.f;  // qs's predecessor sampled from qs having arrived from pt (s >= 2)
 };

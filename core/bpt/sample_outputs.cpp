@@ -31,7 +31,9 @@ void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
   const Spectrum contribution = r.unweighted * r.imageWeight;
   if (isBlack(contribution)) return;
   if (r.t == 1) {
-    if (targets_.film && !targets_.film->splat(r.pRaster, contribution)) discard(contribution, r, counters);
+    const bool accepted = targets_.splats ? targets_.splats->splat(r.pRaster, contribution)
+                                          : !targets_.film || targets_.film->splat(r.pRaster, contribution);
+    if (!accepted) discard(contribution, r, counters);
   } else {
     cameraEstimate_ += contribution;
   }

@@ -5,6 +5,7 @@
 
 #include "core/bpt/technique_result.h"
 #include "core/film/film.h"
+#include "core/film/splat_buffer.h"
 #include "core/film/technique_films.h"
 #include "core/metrics/counters.h"
 
@@ -12,10 +13,11 @@ namespace pathlab {
 
 // The outputs a sample feeds; each may be null.
 struct SampleTargets {
-  Film* film = nullptr;               // t = 1 splats of the image
+  Film* film = nullptr;               // t = 1 splats of the image, atomically
   TechniqueFilms* pyramid = nullptr;  // every technique of the pyramid's lengths, weighted and unweighted
   SampleTrace* trace = nullptr;       // a record of every technique tried
   SampleId id;
+  SplatBuffer* splats = nullptr;  // the thread's own buffer of the t = 1 splats, instead of `film`
 };
 
 class SampleOutputs {

@@ -116,9 +116,10 @@ CameraPdf Camera::pdfWe(const Ray& ray) const {
 }
 
 std::optional<CameraWiSample> Camera::sampleWi(const Vec3& ref, Vec2 uLens) const {
-  Vec3 pLensCam(0.f);
-  if (!isPinhole()) pLensCam = Vec3(lensRadius_ * sampleUniformDiskConcentric(uLens), 0.f);
-  const Vec3 pLens = Vec3(cameraToWorld_ * Vec4(pLensCam, 1.f));
+  // A pinhole's lens point is the camera's origin: no transform.
+  const Vec3 pLens = isPinhole()
+                         ? origin_
+                         : Vec3(cameraToWorld_ * Vec4(lensRadius_ * sampleUniformDiskConcentric(uLens), 0.f, 1.f));
   const Vec3 toLens = pLens - ref;
   const float dist2 = glm::dot(toLens, toLens);
   if (!(dist2 > 0.f)) return std::nullopt;

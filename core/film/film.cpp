@@ -14,11 +14,15 @@ bool Film::addSample(int x, int y, const Spectrum& L) {
 
 bool Film::splat(Vec2 pRaster, const Spectrum& v) {
   if (!isValidContribution(v)) return false;
-  const int x = static_cast<int>(std::floor(pRaster.x)), y = static_cast<int>(std::floor(pRaster.y));
-  if (x < 0 || y < 0 || x >= width_ || y >= height_) return true;  // off the film: no pixel measures it
-  const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x));
+  const std::optional<size_t> pixel = filmPixel(pRaster, width_, height_);
+  if (!pixel) return true;  // off the film: no pixel measures it
+  const size_t i = 3 * *pixel;
   for (int c = 0; c < 3; ++c) std::atomic_ref<double>(splatSum_[i + static_cast<size_t>(c)]).fetch_add(v[c], std::memory_order_relaxed);
   return true;
+}
+
+void Film::addSplatSums(const std::vector<float>& rgb) {
+  for (size_t i = 0; i < splatSum_.size() && i < rgb.size(); ++i) splatSum_[i] += static_cast<double>(rgb[i]);
 }
 
 void Film::finishPass(uint64_t samplesPerPixel, uint64_t lightSubpaths) {

@@ -6,7 +6,9 @@
 #include "core/math/types.h"
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace pathlab {
@@ -20,6 +22,13 @@ struct Image {
   }
 };
 
+// The pixel (row-major index) a splat at raster position pRaster lands in; nullopt off the film.
+inline std::optional<size_t> filmPixel(Vec2 pRaster, int width, int height) {
+  const int x = static_cast<int>(std::floor(pRaster.x)), y = static_cast<int>(std::floor(pRaster.y));
+  if (x < 0 || y < 0 || x >= width || y >= height) return std::nullopt;
+  return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
+}
+
 class Film {
  public:
   Film(int width, int height);
@@ -32,6 +41,9 @@ class Film {
   // the caller counts as discarded samples.
   bool addSample(int x, int y, const Spectrum& L);
   bool splat(Vec2 pRaster, const Spectrum& v);
+  // Adds a whole buffer of splat sums (3 floats a pixel, this film's size): SplatBuffer's merge.
+  // Not concurrent with splat() or another merge.
+  void addSplatSums(const std::vector<float>& rgb);
 
   // Called once per completed pass: how many camera samples each pixel received and how many
   // light subpaths were traced in that pass (they set the splat normalisation, camera.h).

@@ -4,17 +4,28 @@
 #include <tbb/blocked_range2d.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace pathlab {
 
 namespace {
 constexpr int kTileSize = 16;
+// Per-thread splat buffers (SplatBuffer) up to this much memory for all threads together; beyond
+// it (many threads and a large image) splats go to the film atomically.
+constexpr size_t kMaxThreadSplatBytes = size_t{512} << 20;
 
 const RenderSettings& validated(const RenderSettings& settings) {
   validateSettings(settings);
   return settings;
 }
 }  // namespace
+
+struct RenderSession::ThreadSplats {
+  tbb::enumerable_thread_specific<SplatBuffer> buffers;
+  ThreadSplats(int width, int height) : buffers(width, height) {}
+};
+
+RenderSession::~RenderSession() = default;
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
     : scene_(scene),
@@ -23,6 +34,9 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
       pathTracer_(scene, pathTracerOptions(settings)),
       film_(settings.width, settings.height) {
   if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
+  const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
+  if (bidirTracer_ && threads * SplatBuffer::bytesFor(settings.width, settings.height) <= kMaxThreadSplatBytes)
+    threadSplats_ = std::make_unique<ThreadSplats>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength);
 }
@@ -66,10 +80,12 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
           return;
         }
         Counters& c = local.local();
+        SplatBuffer* splats = threadSplats_ ? &threadSplats_->buffers.local() : nullptr;
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
             SampleTargets targets = shared;
             targets.id = SampleId{x, y, pass};
+            targets.splats = splats;
             const Spectrum L = sampleAt(x, y, pass, targets, c);
             if (!film_.addSample(x, y, L)) {
               countDiscarded(L, c);
@@ -80,6 +96,11 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
                               std::memory_order_relaxed);
       });
   for (const Counters& c : local) counters_ += c;
+  if (threadSplats_)
+    for (SplatBuffer& b : threadSplats_->buffers) {
+      if (cancelled.load()) b.clear();
+      else b.mergeInto(film_);
+    }
   if (cancelled.load()) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
   passes_.fetch_add(1, std::memory_order_relaxed);

@@ -20,6 +20,7 @@ class RenderSession {
  public:
   // Throws std::invalid_argument for settings validateSettings refuses.
   RenderSession(const Scene& scene, const RenderSettings& settings);
+  ~RenderSession();
 
   // Renders one more pass over the whole film (blocking; uses the TBB arena of the caller).
   // When *cancel becomes true the pass stops between tiles and false is returned: the film then
@@ -57,6 +58,10 @@ class RenderSession {
 
   Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;
   Film film_;
+  // Each render thread's t = 1 splats of the current pass (SplatBuffer), merged into film_ when
+  // it ends; null (atomic splats into film_) when a buffer per thread would take too much memory.
+  struct ThreadSplats;
+  std::unique_ptr<ThreadSplats> threadSplats_;
   std::unique_ptr<TechniqueFilms> pyramid_;
   Counters counters_;
   // Atomic: a progress thread reads it while renderPass runs (`pathlab render`'s progress bar).
