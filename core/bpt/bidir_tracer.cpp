@@ -67,21 +67,12 @@ class TechniqueTimer {
 
 }  // namespace
 
-TechniqueSet techniquesOf(const RenderSettings& settings) {
-  TechniqueSet set = TechniqueSet::parse(settings.techniques, settings.maxLength);
-  if (settings.integrator == IntegratorKind::Lt)
-    for (int k = 1; k <= settings.maxLength; ++k)
-      for (int s = 0; s <= k; ++s)
-        if (k + 1 - s != 1) set.disable(s, k + 1 - s);
-  return set;
-}
-
 BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const RenderSettings& settings)
     : scene_(scene),
       camera_(camera),
       maxLength_(settings.maxLength),
       russianRoulette_(settings.russianRoulette),
-      techniques_(techniquesOf(settings)),
+      techniques_(enabledTechniques(settings)),
       mis_(settings.mis),
       isolate_(settings.isolate),
       pyramidLength_(std::min(settings.pyramidLength, settings.maxLength)),

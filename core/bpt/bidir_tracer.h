@@ -84,7 +84,4 @@ class BidirTracer {
   bool timing_ = false;
 };
 
-// The TechniqueSet a RenderSettings asks for: its SPEC, restricted to t = 1 for light tracing.
-TechniqueSet techniquesOf(const RenderSettings& settings);
-
 }  // namespace pathlab

@@ -2,7 +2,6 @@
 // every front end runs before any work.
 #include "core/render/render_settings.h"
 
-#include "core/bpt/technique_set.h"
 #include "core/film/technique_films.h"
 
 #include <fmt/core.h>
@@ -20,6 +19,11 @@ const char* integratorName(IntegratorKind kind) {
   return "?";
 }
 
+TechniqueSet enabledTechniques(const RenderSettings& settings) {
+  if (settings.integrator == IntegratorKind::Lt) return settings.techniques & TechniqueSet::lightTracing();
+  return settings.techniques;
+}
+
 void validateSettings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1)
     throw std::invalid_argument(fmt::format("image size {} x {} is not positive", s.width, s.height));
@@ -28,7 +32,7 @@ void validateSettings(const RenderSettings& s) {
   if (bidirectional && s.maxLength > kMaxBidirectionalLength)
     throw std::invalid_argument(fmt::format("maximum path length {} is more than the {} edges the {} integrator supports",
                                             s.maxLength, kMaxBidirectionalLength, integratorName(s.integrator)));
-  if (bidirectional) TechniqueSet::parse(s.techniques, s.maxLength);  // throws naming the bad item
+  if (bidirectional) s.techniques.checkFits(s.maxLength);  // throws naming the problem
   if (s.isolate) {
     const Isolation& i = *s.isolate;
     if (!bidirectional) throw std::invalid_argument("isolating a technique needs the bpt or lt integrator");
