@@ -154,7 +154,7 @@ int runConverge(ConvergeOptions o) {
   std::vector<ConvergenceConfig> configs = parseConvergenceConfigs(o.configs, base);
   for (const ConvergenceConfig& c : configs)
     if (c.settings.integrator != IntegratorKind::Pt)
-      for (int k : techniquesOf(c.settings).uncoveredLengths())
+      for (int k : enabledTechniques(c.settings).uncoveredLengths(c.settings.maxLength))
         std::cerr << fmt::format("pathlab: warning: '{}' has no enabled technique for paths of length {} (biased)\n",
                                  c.label, k);
   checkOutputDir(o);

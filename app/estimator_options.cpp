@@ -42,7 +42,7 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "Connections shorter than this fraction of the scene's bounding radius are left to the techniques "
                   "that sample that edge, when one is enabled (0: off)")
       ->check(CLI::Range(0.f, 1.f));
-  cmd->add_option("--techniques", s.techniques,
+  cmd->add_option("--techniques", o.techniques,
                   "Enabled (s,t) techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all");
   auto* isolate = cmd->add_option("--isolate", o.isolate,
                                   "Show technique S,T alone: its MIS-weighted share (or with --unweighted its own estimate)");
@@ -58,6 +58,7 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
 }
 
 void finishEstimatorOptions(EstimatorOptions& o) {
+  o.settings.techniques = TechniqueSet::parse(o.techniques);
   if (!o.isolate.empty()) {
     const size_t comma = o.isolate.find(',');
     if (comma == std::string::npos)

@@ -17,6 +17,7 @@ struct EstimatorOptions {
     s.integrator = IntegratorKind::Bpt;
     return s;
   }();
+  std::string techniques = "all";  // a TechniqueSet SPEC
   std::string isolate;      // "S,T" or empty
   bool unweighted = false;  // with --isolate
 };
@@ -24,7 +25,7 @@ struct EstimatorOptions {
 // Registers --max-length --integrator --mis --beta --min-connection --techniques --isolate --unweighted --rr/--no-rr
 // --seed --aperture --focus-distance on `cmd`.
 void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& options);
-// Turns the parsed strings into settings.isolate and checks the result with validateSettings
+// Turns the parsed strings into settings.techniques and settings.isolate and checks the result with validateSettings
 // (throws one-line std::invalid_argument / std::runtime_error messages naming the option).
 void finishEstimatorOptions(EstimatorOptions& options);
 

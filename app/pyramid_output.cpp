@@ -2,6 +2,7 @@
 #include "app/pyramid_output.h"
 
 #include "core/film/image_io.h"
+#include "core/sampling/technique.h"
 
 #include <fmt/core.h>
 
@@ -28,9 +29,8 @@ std::string mosaicPath(const std::filesystem::path& out, bool unweighted) {
 
 std::vector<std::string> pyramidPaths(const std::string& output, int length) {
   std::vector<std::string> paths;
-  for (int k = 1; k <= length; ++k)
-    for (int s = 0; s <= k; ++s)
-      for (bool unweighted : {false, true}) paths.push_back(techniquePath(output, s, k + 1 - s, unweighted));
+  for (const Technique x : techniquesUpTo(length))
+    for (bool unweighted : {false, true}) paths.push_back(techniquePath(output, x.s, x.t, unweighted));
   paths.push_back(mosaicPath(output, false));
   paths.push_back(mosaicPath(output, true));
   return paths;
@@ -43,19 +43,19 @@ Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap, floa
   m.width = (length + 1) * w + (length + 2) * gap;
   m.height = length * h + (length + 1) * gap;
   m.rgb.assign(3 * static_cast<size_t>(m.width) * static_cast<size_t>(m.height), background);
-  size_t i = 0;
-  for (int k = 1; k <= length; ++k)
-    for (int s = 0; s <= k && i < tiles.size(); ++s, ++i) {
-      const int x0 = gap + s * (w + gap), y0 = gap + (k - 1) * (h + gap);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-          const Vec3 v = tiles[i].at(x, y);
-          const size_t o = 3 * (static_cast<size_t>(y0 + y) * static_cast<size_t>(m.width) + static_cast<size_t>(x0 + x));
-          m.rgb[o] = v.r;
-          m.rgb[o + 1] = v.g;
-          m.rgb[o + 2] = v.b;
-        }
-    }
+  for (const Technique tx : techniquesUpTo(length)) {
+    if (tx.index() >= tiles.size()) break;
+    const Image& tile = tiles[tx.index()];
+    const int x0 = gap + tx.s * (w + gap), y0 = gap + (tx.length() - 1) * (h + gap);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const Vec3 v = tile.at(x, y);
+        const size_t o = 3 * (static_cast<size_t>(y0 + y) * static_cast<size_t>(m.width) + static_cast<size_t>(x0 + x));
+        m.rgb[o] = v.r;
+        m.rgb[o + 1] = v.g;
+        m.rgb[o + 2] = v.b;
+      }
+  }
   return m;
 }
 
@@ -64,12 +64,10 @@ void writePyramid(const std::string& output, const RenderSession& session, float
   const std::filesystem::path out(output);
   for (bool unweighted : {false, true}) {
     std::vector<Image> tiles;
-    for (int k = 1; k <= length; ++k)
-      for (int s = 0; s <= k; ++s) {
-        const int t = k + 1 - s;
-        tiles.push_back(session.techniqueImage(s, t, unweighted));
-        writeImage(techniquePath(out, s, t, unweighted), tiles.back(), exposure);
-      }
+    for (const Technique x : techniquesUpTo(length)) {
+      tiles.push_back(session.techniqueImage(x.s, x.t, unweighted));
+      writeImage(techniquePath(out, x.s, x.t, unweighted), tiles.back(), exposure);
+    }
     writeImage(mosaicPath(out, unweighted), techniqueMosaic(tiles, length), exposure);
   }
 }

@@ -79,8 +79,8 @@ void printTechniqueCounters(const Counters& c, int maxLength, bool all) {
                              t.blocked, t.contributed, t.discarded.total(), t.shadowRays,
                              100.0 * static_cast<double>(t.shadowRays) / rays, share(t.nanoseconds));
   };
-  for (int k = 1; k <= std::min(maxLength, kCountedLength); ++k)
-    for (int s = 0; s <= k; ++s) row(fmt::format("({},{})", s, k + 1 - s), c.technique(s, k + 1 - s));
+  for (const auto [s, t] : techniquesUpTo(std::min(maxLength, kCountedLength)))
+    row(fmt::format("({},{})", s, t), c.technique(s, t));
   if (maxLength > kCountedLength) row(fmt::format("k>{}", kCountedLength), c.techniques[kCountedTechniques]);
 }
 
@@ -168,8 +168,8 @@ int runRender(RenderOptions o) {
     throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", settings.width,
                                          settings.height, kMaxPixels));
   if (settings.integrator != IntegratorKind::Pt) {
-    const TechniqueSet techniques = techniquesOf(settings);
-    for (int k : techniques.uncoveredLengths())
+    const TechniqueSet techniques = enabledTechniques(settings);
+    for (int k : techniques.uncoveredLengths(settings.maxLength))
       std::cerr << fmt::format("pathlab: warning: no enabled technique samples paths of length {}\n", k);
     if (settings.isolate && !settings.isolate->unweighted &&
         !techniques.contains(settings.isolate->s, settings.isolate->t))

@@ -42,7 +42,7 @@ RenderSettings deltaSettings(int maxLength, IntegratorKind kind, MisHeuristic h,
   s.maxLength = maxLength;
   s.integrator = kind;
   s.mis.heuristic = h;
-  s.techniques = techniques;
+  s.techniques = TechniqueSet::parse(techniques);
   s.seed = 1000 * test::testSeedBase() + seed;
   return s;
 }
@@ -225,7 +225,7 @@ TEST(DeltaAgreement, PointLightSeenByThePinholeIsOnlyTheOneOneTechnique) {
     s.height = H;
     s.maxLength = 1;
     s.integrator = kind;
-    s.techniques = techniques;
+    s.techniques = TechniqueSet::parse(techniques);
     s.mis.heuristic = h;
     s.seed = 9;
     return s;

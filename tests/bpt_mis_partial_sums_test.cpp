@@ -34,7 +34,7 @@ Tally compare(const Scene& scene, const Camera& camera, int maxLength, float lig
                                 {MisHeuristic::Power, 2.f, minConnection},
                                 {MisHeuristic::Power, 1.37f, minConnection},
                                 {MisHeuristic::Uniform, 2.f, minConnection}};
-  const TechniqueSet all = TechniqueSet::all(maxLength);
+  const TechniqueSet all = TechniqueSet::all();
   const float minDistance = minConnection * scene.bounds().radius;
   for (int sample = 0; sample < samples; ++sample) {
     const Vec2 pRaster(rng.next1D() * static_cast<float>(camera.width()), rng.next1D() * static_cast<float>(camera.height()));

@@ -170,10 +170,10 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
         const FullPath f = densities(scene, camera, x);
         for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
           const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, minConnection};
-          TechniqueSet enabled = TechniqueSet::all(maxLength);
+          TechniqueSet enabled = TechniqueSet::all();
           if (rng.next1D() < 0.7f)
             for (int sp = 0; sp < n; ++sp)
-              if (sp != s && rng.next1D() < 0.4f) enabled.disable(sp, n - sp);
+              if (sp != s && rng.next1D() < 0.4f) enabled.disable({sp, n - sp}, maxLength);
           const std::vector<double> oracle = oracleWeights(f, enabled, o, minConnection * scene.bounds().radius);
           shortExcluded += [&] {
             int excluded = 0;

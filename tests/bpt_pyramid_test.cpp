@@ -53,16 +53,15 @@ TEST(TechniquePyramid, WeightedSharesSumToTheImage) {
                                         std::pair{MisHeuristic::Balance, "t=1;0,2;0,3;0,4"}}) {
     RenderSettings s = pyramidSettings(4, 4, 11);
     s.mis.heuristic = heuristic;
-    s.techniques = spec;
+    s.techniques = TechniqueSet::parse(spec);
     RenderSession session(cornellBox(), s);
     for (int i = 0; i < 3; ++i) session.renderPass();
     const Image full = session.image();
     Image sum{full.width, full.height, std::vector<float>(full.rgb.size(), 0.f)};
-    for (int k = 1; k <= 4; ++k)
-      for (int sl = 0; sl <= k; ++sl) {
-        const Image share = session.techniqueImage(sl, k + 1 - sl, false);
-        for (size_t i = 0; i < sum.rgb.size(); ++i) sum.rgb[i] += share.rgb[i];
-      }
+    for (const Technique x : techniquesUpTo(4)) {
+      const Image share = session.techniqueImage(x.s, x.t, false);
+      for (size_t i = 0; i < sum.rgb.size(); ++i) sum.rgb[i] += share.rgb[i];
+    }
     SCOPED_TRACE(spec);
     EXPECT_GT(imageSum(full), 0.0);
     expectImagesNear(full, sum, 1e-4, "sum of weighted shares vs image");
@@ -95,28 +94,26 @@ TEST(TechniquePyramid, IsolatedRenderEqualsItsPyramidBuffer) {
 // independent seeds: z = (mean difference) / (its standard error), each seed one sample.
 TEST(TechniquePyramid, UnweightedTechniquesOfOneLengthAgree) {
   constexpr int kLength = 3, kSeeds = 24, kPasses = 4;
-  // Per (k, s): the difference unweighted(s, k+1-s) - sum of weighted shares of length k.
-  std::vector<RunningStats> diff(static_cast<size_t>(kLength * (kLength + 3) / 2));
+  // Per technique (by index): the difference unweighted(s, t) - sum of weighted shares of its length.
+  std::vector<RunningStats> diff(Technique::countUpTo(kLength));
   for (int seed = 0; seed < kSeeds; ++seed) {
     RenderSession session(cornellBox(), pyramidSettings(kLength, kLength, 100 + static_cast<uint64_t>(seed)));
     for (int i = 0; i < kPasses; ++i) session.renderPass();
-    size_t slot = 0;
     for (int k = 1; k <= kLength; ++k) {
       double weightedSum = 0.0;
-      for (int s = 0; s <= k; ++s) weightedSum += imageSum(session.techniqueImage(s, k + 1 - s, false));
-      for (int s = 0; s <= k; ++s, ++slot) diff[slot].add(imageSum(session.techniqueImage(s, k + 1 - s, true)) - weightedSum);
+      for (const Technique x : techniquesOfLength(k)) weightedSum += imageSum(session.techniqueImage(x.s, x.t, false));
+      for (const Technique x : techniquesOfLength(k))
+        diff[x.index()].add(imageSum(session.techniqueImage(x.s, x.t, true)) - weightedSum);
     }
   }
   // 9 comparisons: |z| < 4 has a family-wise false-alarm rate below 9 x 6.3e-5.
-  size_t slot = 0;
-  for (int k = 1; k <= kLength; ++k)
-    for (int s = 0; s <= k; ++s, ++slot) {
-      const auto e = diff[slot].estimate();
-      SCOPED_TRACE(testing::Message() << "(" << s << "," << k + 1 - s << ") mean diff " << e.mean << " se "
-                                      << e.standardError);
-      ASSERT_GT(e.standardError, 0.0);
-      EXPECT_LT(std::abs(e.zScore(0.0)), 4.0);
-    }
+  for (const Technique x : techniquesUpTo(kLength)) {
+    const auto e = diff[x.index()].estimate();
+    SCOPED_TRACE(testing::Message() << "(" << x.s << "," << x.t << ") mean diff " << e.mean << " se "
+                                    << e.standardError);
+    ASSERT_GT(e.standardError, 0.0);
+    EXPECT_LT(std::abs(e.zScore(0.0)), 4.0);
+  }
 }
 
 // Every connection is tried and ends as zero, blocked or contributing; every shadow ray of a
@@ -128,14 +125,13 @@ TEST(TechniqueCounters, EveryConnectionIsAccountedFor) {
   session.renderPass();
   const Counters& c = session.counters();
   uint64_t shadowRays = 0, tried = 0;
-  for (int k = 1; k <= 5; ++k)
-    for (int sl = 0; sl <= k; ++sl) {
-      const TechniqueCounters& t = c.technique(sl, k + 1 - sl);
-      EXPECT_EQ(t.tried, t.zero + t.blocked + t.contributed) << "(" << sl << "," << k + 1 - sl << ")";
-      if (sl == 0) EXPECT_EQ(t.blocked, 0u);
-      else shadowRays += t.blocked + t.contributed;
-      tried += t.tried;
-    }
+  for (const Technique x : techniquesUpTo(5)) {
+    const TechniqueCounters& t = c.technique(x);
+    EXPECT_EQ(t.tried, t.zero + t.blocked + t.contributed) << "(" << x.s << "," << x.t << ")";
+    if (x.s == 0) EXPECT_EQ(t.blocked, 0u);
+    else shadowRays += t.blocked + t.contributed;
+    tried += t.tried;
+  }
   EXPECT_EQ(c.shadowRays, shadowRays);
   EXPECT_GT(c.technique(2, 2).blocked, 0u);  // the boxes occlude some connections
   EXPECT_GT(c.technique(1, 1).tried, 0u);
@@ -160,7 +156,9 @@ TEST(RenderSettingsValidation, RefusesWhatCannotBeRendered) {
   refused([](RenderSettings& s) { s.pyramidLength = 2; s.integrator = IntegratorKind::Pt; });
   refused([](RenderSettings& s) { s.maxLength = 12; s.pyramidLength = kMaxPyramidLength + 1; });
   refused([](RenderSettings& s) { s.width = s.height = 16384; s.pyramidLength = 4; });  // far beyond memory
-  refused([](RenderSettings& s) { s.techniques = "2,x"; });
+  refused([](RenderSettings& s) { s.techniques = TechniqueSet::parse("0,2;3,3"); });  // (3,3): length 5 > 4
+  refused([](RenderSettings& s) { s.techniques = TechniqueSet::withS(5); });  // no technique of length <= 4
+  refused([](RenderSettings& s) { s.techniques = TechniqueSet(); });
   refused([](RenderSettings& s) { s.maxLength = kMaxBidirectionalLength + 1; });
   RenderSettings ok = pyramidSettings(4, 4, 0);
   ok.isolate = Isolation{2, 3, true};

@@ -73,26 +73,24 @@ TEST(BptFurnace, EachUnweightedTechniqueGivesItsLength) {
   const float rho = 0.6f, Le = 0.7f;
   const int K = 4;
   Scene scene(furnace(rho, Le));
-  for (int k = 1; k <= K; ++k)
-    for (int s = 0; s <= k; ++s) {
-      const int t = k + 1 - s;
-      RenderSettings settings = bptSettings(12, K, 11 + static_cast<uint64_t>(10 * s + t));
-      settings.techniques = std::to_string(s) + "," + std::to_string(t);
-      const MeanEstimate m = passMeans(scene, settings, 128);
-      const double expected = Le * std::pow(rho, s + t - 2);
-      // Several techniques are exact in the furnace (every weight along the path is rho): then
-      // there is no standard error to test against, only float round-off.
-      if (m.standardError < 1e-6 * expected) {
-        EXPECT_NEAR(m.mean, expected, 1e-5 * expected) << "(" << s << "," << t << ")";
-        continue;
-      }
-      EXPECT_LT(std::abs(m.zScore(expected)), kMaxZ)
-          << "(" << s << "," << t << ") mean " << m.mean << " expected " << expected << " se " << m.standardError;
-      // Power to see a 40% bias. Not sharper: the connections' geometry term cos cos / d^2 has
-      // infinite variance at the box's corners (its square integrates like r^-3 dr), so the
-      // measured standard error itself swings by 2x between seeds.
-      EXPECT_LT(m.standardError, 0.10 * expected) << s << "," << t;
+  for (const auto [s, t] : techniquesUpTo(K)) {
+    RenderSettings settings = bptSettings(12, K, 11 + static_cast<uint64_t>(10 * s + t));
+    settings.techniques = TechniqueSet::parse(std::to_string(s) + "," + std::to_string(t));
+    const MeanEstimate m = passMeans(scene, settings, 128);
+    const double expected = Le * std::pow(rho, s + t - 2);
+    // Several techniques are exact in the furnace (every weight along the path is rho): then
+    // there is no standard error to test against, only float round-off.
+    if (m.standardError < 1e-6 * expected) {
+      EXPECT_NEAR(m.mean, expected, 1e-5 * expected) << "(" << s << "," << t << ")";
+      continue;
     }
+    EXPECT_LT(std::abs(m.zScore(expected)), kMaxZ)
+        << "(" << s << "," << t << ") mean " << m.mean << " expected " << expected << " se " << m.standardError;
+    // Power to see a 40% bias. Not sharper: the connections' geometry term cos cos / d^2 has
+    // infinite variance at the box's corners (its square integrates like r^-3 dr), so the
+    // measured standard error itself swings by 2x between seeds.
+    EXPECT_LT(m.standardError, 0.10 * expected) << s << "," << t;
+  }
 }
 
 
@@ -137,7 +135,7 @@ TEST_P(BptAgreementPunctual, Floor) {
   // Paths of length 2 only: the path tracer cannot see a point light directly, while the (1,1)
   // technique can (a punctual light seen by the camera is a legitimate, pixel-sized splat).
   RenderSettings s = bptSettings(16, 2, 7);
-  s.techniques = "k=2";
+  s.techniques = TechniqueSet::parse("k=2");
   expectAgreement(scene, s, 32, "punctual");
 }
 

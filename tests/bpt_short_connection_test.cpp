@@ -41,7 +41,7 @@ RenderSettings settings(IntegratorKind kind, MisHeuristic h, float minConnection
 TEST(ShortConnections, LeavingOutAThirdOfTheRoomKeepsEveryEstimatorUnbiased) {
   const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
   RenderSettings uniform = settings(IntegratorKind::Bpt, MisHeuristic::Uniform, 0.3f, 4);
-  uniform.techniques = "t=1;s=1;s=2;s=3;s=4;s=5;s=6";
+  uniform.techniques = TechniqueSet::parse("t=1;s=1;s=2;s=3;s=4;s=5;s=6");
   const std::vector<EstimatorSpec> estimators = {
       {"pt", settings(IntegratorKind::Pt, MisHeuristic::Balance, 0.f, 1), 768},
       {"balance", settings(IntegratorKind::Bpt, MisHeuristic::Balance, 0.3f, 2), 128},
@@ -76,14 +76,15 @@ TEST(ShortConnections, ThePathTracersTechniquesKeepEveryShortConnection) {
   RenderSettings s = settings(IntegratorKind::Pt, MisHeuristic::Balance, minConnection, 10);
   s.width = s.height = 12;
   s.maxLength = 3;
-  s.techniques = "k=2;k=3";  // the light itself (k = 1, the (1,1) splat) is no path the tracer finds
+  // The light itself (k = 1, the (1,1) splat) is no path the tracer finds.
+  s.techniques = TechniqueSet::parse("k=2;k=3");
   const test::MeanEstimate pt = test::seedMeans(scene, s, 8, 8, s.seed);
   ASSERT_GT(pt.mean, 0.0);
   s.integrator = IntegratorKind::Bpt;
   // The path tracer's techniques of lengths 2 and 3, then all of them.
   for (const char* techniques : {"0,3;1,2;0,4;1,3", "k=2;k=3"})
     for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Uniform}) {
-      s.techniques = techniques;
+      s.techniques = TechniqueSet::parse(techniques);
       s.mis.heuristic = h;
       const test::MeanEstimate bpt = test::seedMeans(scene, s, 8, 8, s.seed + 100);
       EXPECT_LT(std::abs(test::zDifference(bpt, pt)), 4.0)

@@ -55,7 +55,7 @@ RenderSettings bpt(int maxLength, uint64_t seed, const std::string& techniques =
   s.width = s.height = kSize;
   s.maxLength = maxLength;
   s.integrator = IntegratorKind::Bpt;
-  s.techniques = techniques;
+  s.techniques = TechniqueSet::parse(techniques);
   s.mis.heuristic = h;
   s.seed = 1000 * test::testSeedBase() + seed;
   return s;
@@ -90,7 +90,7 @@ double relativeDifference(const Image& a, const Image& b) {
 // The weighted shares of length k from the pyramid, summed.
 Image lengthImage(const RenderSession& session, int k) {
   std::vector<Image> shares;
-  for (int s = 0; s <= k; ++s) shares.push_back(session.techniqueImage(s, k + 1 - s, false));
+  for (const Technique x : techniquesOfLength(k)) shares.push_back(session.techniqueImage(x.s, x.t, false));
   return sumImages(shares);
 }
 
@@ -107,18 +107,16 @@ TEST(TechniqueAgreement, PyramidIsolationAndTechniqueSetsAreTheSameEstimates) {
   RenderSession session(scene, s);
   for (int i = 0; i < passes; ++i) session.renderPass();
   ASSERT_TRUE(session.hasPyramid());
-  const TechniqueSet set = TechniqueSet::parse(enabled, K);
+  const TechniqueSet set = TechniqueSet::parse(enabled);
 
   std::vector<Image> shares;
-  for (int k = 1; k <= K; ++k)
-    for (int sl = 0; sl <= k; ++sl) {
-      const int t = k + 1 - sl;
-      const Image weighted = session.techniqueImage(sl, t, false);
-      if (!set.contains(sl, t)) {
-        EXPECT_EQ(*std::max_element(weighted.rgb.begin(), weighted.rgb.end()), 0.f) << technique(sl, t);
-      }
-      shares.push_back(weighted);
+  for (const Technique x : techniquesUpTo(K)) {
+    const Image weighted = session.techniqueImage(x.s, x.t, false);
+    if (!set.contains(x)) {
+      EXPECT_EQ(*std::max_element(weighted.rgb.begin(), weighted.rgb.end()), 0.f) << technique(x.s, x.t);
     }
+    shares.push_back(weighted);
+  }
   EXPECT_LT(relativeDifference(sumImages(shares), session.image()), 1e-5);
 
   for (const auto& [sl, t] : std::vector<std::pair<int, int>>{{0, 3}, {1, 2}, {2, 1}, {1, 3}, {3, 2}, {4, 1}}) {
@@ -160,14 +158,12 @@ TEST(TechniqueAgreement, UnweightedTechniquesOfOneLengthAgree) {
   const PixelLabels grid = test::gridLabels(kSize, kSize, 2, 2);
   std::vector<test::ImageOf> images;
   std::vector<std::pair<int, int>> techniques;
-  for (int k = 1; k <= K; ++k)
-    for (int sl = 0; sl <= k; ++sl) {
-      const int t = k + 1 - sl;
-      images.push_back([=](const RenderSession& r) {
-        return test::imageDifference(r.techniqueImage(sl, t, true), lengthImage(r, k));
-      });
-      techniques.emplace_back(sl, t);
-    }
+  for (const Technique x : techniquesUpTo(K)) {
+    images.push_back([=](const RenderSession& r) {
+      return test::imageDifference(r.techniqueImage(x.s, x.t, true), lengthImage(r, x.length()));
+    });
+    techniques.emplace_back(x.s, x.t);
+  }
   for (int k = 1; k <= K; ++k) images.push_back([=](const RenderSession& r) { return lengthImage(r, k); });
   const auto means = test::renderRegionMeans(scene, s, 256, {grid}, images);
   int comparisons = 0;
@@ -295,11 +291,11 @@ TEST(TechniqueAgreement, CoveringSubsetsGiveTheFullImage) {
   for (int i = 0; i < 2; ++i) {
     std::string spec;
     for (int k = 1; k <= K; ++k) {
-      std::vector<int> chosen;
+      std::vector<Technique> chosen;
       while (chosen.empty())
-        for (int sl = 0; sl <= k; ++sl)
-          if (rng() % 2) chosen.push_back(sl);
-      for (int sl : chosen) spec += (spec.empty() ? "" : ";") + technique(sl, k + 1 - sl);
+        for (const Technique x : techniquesOfLength(k))
+          if (rng() % 2) chosen.push_back(x);
+      for (const Technique x : chosen) spec += (spec.empty() ? "" : ";") + technique(x.s, x.t);
     }
     subsets.emplace_back(spec, static_cast<MisHeuristic>(i % 3));
   }
@@ -308,7 +304,7 @@ TEST(TechniqueAgreement, CoveringSubsetsGiveTheFullImage) {
   for (const auto& [spec, h] : subsets) {
     // Without an s = 1 technique some lengths rest on hits of the light or on connections
     // alone, which are noisier: more passes.
-    const TechniqueSet set = TechniqueSet::parse(spec, K);
+    const TechniqueSet set = TechniqueSet::parse(spec);
     bool hasS1 = false;
     for (int t = 1; t <= K; ++t) hasS1 = hasS1 || set.contains(1, t);
     estimators.push_back({spec, bpt(K, seed++, spec, h), hasS1 ? 48 : 128});

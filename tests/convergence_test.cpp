@@ -35,14 +35,14 @@ TEST(ConvergenceConfig, TechniqueSpecsKeepTheirSeparators) {
   base.seed = 7;
   const auto c = parseConvergenceConfigs(" bpt:techniques=1,2;k=1,mis=power,beta=3 ; pt:max-length=4;", base);
   ASSERT_EQ(c.size(), 2u);
-  EXPECT_EQ(c[0].settings.techniques, "1,2;k=1");
+  EXPECT_EQ(c[0].settings.techniques, TechniqueSet::parse("1,2;k=1"));
   EXPECT_EQ(c[0].settings.mis.heuristic, MisHeuristic::Power);
   EXPECT_EQ(c[0].settings.mis.beta, 3.f);
   EXPECT_EQ(c[0].settings.seed, 7u);
   EXPECT_EQ(c[1].settings.maxLength, 4);
   const auto d = parseConvergenceConfigs("bpt:techniques=s=1;t=1;k=1;lt", base);
   ASSERT_EQ(d.size(), 2u);
-  EXPECT_EQ(d[0].settings.techniques, "s=1;t=1;k=1");
+  EXPECT_EQ(d[0].settings.techniques, TechniqueSet::parse("s=1;t=1;k=1"));
 }
 
 TEST(ConvergenceConfig, BadConfigsAreOneLineErrors) {

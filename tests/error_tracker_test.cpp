@@ -185,11 +185,11 @@ TEST(ErrorTracker, MetricsAndTheirMonteCarloRates) {
   EXPECT_EQ(monteCarloSlope(ErrorMetric::Rmse), -0.5);
   RenderSettings s;
   s.integrator = IntegratorKind::Bpt;
-  s.techniques = "s=0;s=1";
+  s.techniques = TechniqueSet::parse("s=0;s=1");
   s.maxLength = 6;
   EXPECT_EQ(seriesLabel(s), "bpt balance [s=0;s=1] L6");
   s.integrator = IntegratorKind::Lt;
-  s.techniques = "all";
+  s.techniques = TechniqueSet::all();
   EXPECT_EQ(seriesLabel(s), "lt L6");
   s.integrator = IntegratorKind::Pt;
   s.russianRoulette = false;

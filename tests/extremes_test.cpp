@@ -37,7 +37,7 @@ TEST(Extremes, AlbedoNearOneWithThousandEdgePaths) {
     s.maxLength = K;
     s.seed = 77;
     s.integrator = c.integrator;
-    s.techniques = c.techniques;
+    s.techniques = TechniqueSet::parse(c.techniques);
     s.mis.heuristic = c.heuristic;
     s.checkMis = c.integrator != IntegratorKind::Pt;
     const test::MeanEstimate m = test::passMeans(scene, s, 24);
@@ -128,7 +128,7 @@ TEST(Extremes, PointLightNextToASurface) {
     RenderSettings s;
     s.width = s.height = 12;
     s.maxLength = 3;
-    s.techniques = "k=2;k=3";
+    s.techniques = TechniqueSet::parse("k=2;k=3");
     s.integrator = IntegratorKind::Lt;
     const test::MeanEstimate lt = seedMeans(scene, s, 8, 4);
     ASSERT_GT(lt.mean, 0.0);
@@ -246,7 +246,7 @@ TEST(Extremes, LongRunsDoNotDrift) {
     s.width = s.height = 1;
     s.maxLength = 2;
     s.integrator = integrator;
-    s.techniques = spec;
+    s.techniques = TechniqueSet::parse(spec);
     RenderSession session(scene, s);
     for (int i = 0; i < 100000; ++i) session.renderPass();
     EXPECT_EQ(session.passes(), 100000u);

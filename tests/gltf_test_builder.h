@@ -1,5 +1,6 @@
-// Test support for gltf_loader_test.cpp: a builder of small glTF documents (JSON, embedded or
-// GLB buffer), a minimal PNG encoder, and checks on loaded scenes and on SceneError messages.
+// Test support for the glTF loader's tests (tests/gltf_*_test.cpp, material_test.cpp): a builder of small glTF
+// documents (JSON, embedded or GLB buffer), a minimal PNG encoder, and checks on loaded scenes and
+// on SceneError messages.
 #pragma once
 
 #include "core/scene/gltf_loader.h"
@@ -266,6 +267,32 @@ inline std::string oneTriangle(const std::string& name, const std::string& nodeM
   const int m = g.mesh({TestGltf::primitive(g.vec3(kTriangle), -1, g.vec3(kUp))});
   g.root(R"({"mesh":)" + str(m) + (nodeMembers.empty() ? "" : "," + nodeMembers) + "}");
   return g.write(name);
+}
+
+// One triangle (with uvs) using material 0 of `g`; `g.arrays["materials"]` is filled by the caller.
+inline void addTexturedTriangle(TestGltf& g, int material = 0) {
+  const std::vector<Vec2> uv = {{0, 0}, {1, 0}, {0, 1}};
+  g.root(
+      R"({"mesh":)" +
+      str(g.mesh({TestGltf::primitive(g.vec3(kTriangle), -1, g.vec3(kUp), g.vec2(uv), material)})) +
+      "}");
+}
+
+// `text` with the first occurrence of `from` replaced by `to` (a failure if there is none).
+inline std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// The world-space corners of every triangle, in order: equal for equal geometry however stored.
+inline std::vector<Vec3> corners(const SceneDesc& d) {
+  std::vector<Vec3> out;
+  for (const TriangleMesh& m : d.meshes) {
+    for (uint32_t i : m.indices) out.push_back(m.positions[i]);
+  }
+  return out;
 }
 
 inline void expectNear(const Vec3& a, const Vec3& b, float eps = 1e-5f) {

@@ -57,7 +57,8 @@ RenderSettings randomSettings(std::mt19937& rng, uint64_t seed) {
   s.width = 16 + 8 * pick(4);
   s.height = 16 + 8 * pick(3);
   if (s.integrator != IntegratorKind::Pt) {
-    s.techniques = std::array{"all", "s=0;s=1", "t=1", "k=2", "0,2;1,2"}[static_cast<size_t>(pick(5))];
+    const char* specs[] = {"all", "s=0;s=1", "t=1", "k=2", "0,2;1,2"};
+    s.techniques = TechniqueSet::parse(specs[static_cast<size_t>(pick(5))]);
     s.mis.heuristic = static_cast<MisHeuristic>(pick(3));
     if (pick(3) == 0) {
       const int k = 1 + pick(s.maxLength);

@@ -66,9 +66,12 @@ TEST(ProgressiveRenderer, AGenerationIsAStandaloneRender) {
     EXPECT_TRUE(renderer.setSettings(s));
   }
   RenderSettings last = small(IntegratorKind::Bpt, 99);
-  last.techniques = "s=0;s=1;t=1";
+  last.techniques = TechniqueSet::parse("s=0;s=1;t=1");
   EXPECT_TRUE(renderer.setSettings(last));
   EXPECT_FALSE(renderer.setSettings(last));  // unchanged: no new generation
+  RenderSettings same = last;  // the same techniques spelled another way: no new generation either
+  same.techniques = TechniqueSet::parse("t=1; 0,3; s=1; s=0; k=1");
+  EXPECT_FALSE(renderer.setSettings(same));
   const RenderSnapshot snap = settledSnapshot(renderer, 3);
   EXPECT_EQ(snap.generation, renderer.generation());
   EXPECT_GT(snap.generation, first.generation);
@@ -98,7 +101,7 @@ TEST(ProgressiveRenderer, RefusesBadSettingsAndKeepsTheOldOnes) {
   ProgressiveRenderer renderer(cornellBox(), small(IntegratorKind::Bpt, 3), 1);
   const uint64_t generation = renderer.generation();
   RenderSettings bad = small(IntegratorKind::Bpt, 3);
-  bad.techniques = "7,7";
+  bad.techniques = TechniqueSet::parse("7,7");
   EXPECT_THROW(renderer.setSettings(bad), std::invalid_argument);
   EXPECT_EQ(renderer.generation(), generation);
   EXPECT_EQ(renderer.settings(), small(IntegratorKind::Bpt, 3));

@@ -56,19 +56,17 @@ TEST(TechniqueCounters, RaysOfEachTechniqueAndWalk) {
   for (int i = 0; i < 4; ++i) session.renderPass();
   const Counters& c = session.counters();
   uint64_t shadow = 0;
-  for (int k = 1; k <= bpt().maxLength; ++k)
-    for (int s = 0; s <= k; ++s) {
-      const int t = k + 1 - s;
-      const TechniqueCounters& tc = c.technique(s, t);
-      shadow += tc.shadowRays;
-      if (s == 0) {
-        EXPECT_EQ(tc.shadowRays, 0u) << "(0," << t << ") traces no shadow ray";
-      } else {
-        // A connection traces its shadow ray only when it would contribute: it is then blocked or not.
-        EXPECT_EQ(tc.shadowRays, tc.blocked + tc.contributed) << "(" << s << "," << t << ")";
-        EXPECT_GT(tc.shadowRays, 0u) << "(" << s << "," << t << ")";
-      }
+  for (const auto [s, t] : techniquesUpTo(bpt().maxLength)) {
+    const TechniqueCounters& tc = c.technique(s, t);
+    shadow += tc.shadowRays;
+    if (s == 0) {
+      EXPECT_EQ(tc.shadowRays, 0u) << "(0," << t << ") traces no shadow ray";
+    } else {
+      // A connection traces its shadow ray only when it would contribute: it is then blocked or not.
+      EXPECT_EQ(tc.shadowRays, tc.blocked + tc.contributed) << "(" << s << "," << t << ")";
+      EXPECT_GT(tc.shadowRays, 0u) << "(" << s << "," << t << ")";
     }
+  }
   EXPECT_EQ(shadow, c.shadowRays);
   EXPECT_EQ(c.cameraWalk.rays + c.lightWalk.rays, c.rays);
   EXPECT_GT(c.cameraWalk.rays, 0u);

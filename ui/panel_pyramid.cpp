@@ -86,8 +86,7 @@ void Viewer::drawPyramid(bool unweighted) {
   const int rows = std::min(pyramidLength_, edited_.maxLength);
   const ImVec2 size(pyramidThumbnail_.x, pyramidThumbnail_.y);
   for (int k = 1; k <= rows; ++k) {
-    for (int s = 0; s <= k; ++s) {
-      const int t = k + 1 - s;
+    for (const auto [s, t] : techniquesOfLength(k)) {
       if (s > 0) ImGui::SameLine();
       ImGui::PushID(k * 100 + s);
       const Texture* texture = nullptr;

@@ -105,19 +105,14 @@ void Viewer::drawEstimatorSection() {
 }
 
 void Viewer::drawTechniqueGrid() {
-  TechniqueSet set(edited_.maxLength);
-  try {
-    set = parseOrEmpty(edited_.techniques, edited_.maxLength);
-  } catch (const std::exception&) {
-    // Only a bad SPEC typed below gets here; the grid shows nothing until it parses.
-  }
+  const TechniqueSet& set = edited_.techniques;
   const bool isolating = edited_.isolate.has_value();
   const bool lightTracing = edited_.integrator == IntegratorKind::Lt;
   const int rows = std::min(edited_.maxLength, kGridMaxLength);
 
   // Presets
   auto presetButton = [&](const char* label, TechniquePreset preset, const char* key) {
-    if (ImGui::SmallButton(label)) edited_.techniques = presetSpec(preset, oneLength_);
+    if (ImGui::SmallButton(label)) edited_.techniques = presetTechniques(preset, oneLength_);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (key %s)", presetLabel(preset), key);
   };
   presetButton("all", TechniquePreset::All, "1");
@@ -131,9 +126,9 @@ void Viewer::drawTechniqueGrid() {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
   // Moving the length while "only length" is active moves the selection with it.
-  const bool oneLengthActive = edited_.techniques == presetSpec(TechniquePreset::OneLength, oneLength_);
+  const bool oneLengthActive = edited_.techniques == presetTechniques(TechniquePreset::OneLength, oneLength_);
   if (ImGui::SliderInt("##onelength", &oneLength_, 1, edited_.maxLength, "k = %d") && oneLengthActive)
-    edited_.techniques = presetSpec(TechniquePreset::OneLength, oneLength_);
+    edited_.techniques = presetTechniques(TechniquePreset::OneLength, oneLength_);
 
   // The grid: one checkbox per (s,t); in the isolate modes a click picks the isolated technique.
   const ImGuiTableFlags flags = ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_NoHostExtendX;
@@ -145,12 +140,8 @@ void Viewer::drawTechniqueGrid() {
       ImGui::TableSetColumnIndex(s + 1);
       ImGui::PushID(1000 + s);
       // A column header switches every technique with this s.
-      if (ImGui::SmallButton(fmt::format("{}", s).c_str()) && !isolating) {
-        bool all = true;
-        for (int k = std::max(s, 1); k <= edited_.maxLength; ++k) all = all && set.contains(s, k + 1 - s);
-        for (int k = std::max(s, 1); k <= edited_.maxLength; ++k) all ? set.disable(s, k + 1 - s) : set.enable(s, k + 1 - s);
-        edited_.techniques = compactSpec(set);
-      }
+      if (ImGui::SmallButton(fmt::format("{}", s).c_str()) && !isolating)
+        edited_.techniques = toggleLightVertices(set, edited_.maxLength, s);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("s = %d: every technique with %d light vertices on/off", s, s);
       ImGui::PopID();
     }
@@ -159,16 +150,11 @@ void Viewer::drawTechniqueGrid() {
       ImGui::TableSetColumnIndex(0);
       ImGui::PushID(2000 + k);
       // A row label switches every technique of this length.
-      if (ImGui::SmallButton(fmt::format("{}", k).c_str()) && !isolating) {
-        bool all = true;
-        for (int s = 0; s <= k; ++s) all = all && set.contains(s, k + 1 - s);
-        for (int s = 0; s <= k; ++s) all ? set.disable(s, k + 1 - s) : set.enable(s, k + 1 - s);
-        edited_.techniques = compactSpec(set);
-      }
+      if (ImGui::SmallButton(fmt::format("{}", k).c_str()) && !isolating)
+        edited_.techniques = toggleLength(set, edited_.maxLength, k);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("length %d: every technique on/off", k);
       ImGui::PopID();
-      for (int s = 0; s <= k; ++s) {
-        const int t = k + 1 - s;
+      for (const auto [s, t] : techniquesOfLength(k)) {
         ImGui::TableSetColumnIndex(s + 1);
         ImGui::PushID(k * 100 + s);
         const bool isolated = isolating && s == isolateS_ && t == isolateT_;
@@ -181,8 +167,7 @@ void Viewer::drawTechniqueGrid() {
           if (isolating && !ImGui::GetIO().KeyCtrl) {
             setIsolateTarget(s, t);
           } else {
-            on ? set.enable(s, t) : set.disable(s, t);
-            edited_.techniques = compactSpec(set);
+            edited_.techniques = toggleTechnique(set, edited_.maxLength, {s, t});
           }
         }
         ImGui::EndDisabled();
@@ -203,12 +188,11 @@ void Viewer::drawTechniqueGrid() {
 
   // The SPEC as text (as --techniques takes it); applied on Enter.
   // A SPEC that does not parse never reaches the settings: its error shows under the field.
-  std::string spec = edited_.techniques;
+  std::string spec = edited_.techniques.toString();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.7f);
   if (ImGui::InputText("SPEC", &spec, ImGuiInputTextFlags_EnterReturnsTrue)) {
     try {
-      parseOrEmpty(spec, edited_.maxLength);
-      edited_.techniques = spec;
+      edited_.techniques = parseTypedSpec(spec, edited_.maxLength);
       specError_.clear();
     } catch (const std::invalid_argument& e) {
       specError_ = e.what();
@@ -222,19 +206,15 @@ void Viewer::drawTechniqueGrid() {
   }
 
   // Lengths no enabled technique can sample: their light is missing from the image.
-  if (lightTracing) {
-    TechniqueSet lt(edited_.maxLength);
-    for (int k = 1; k <= edited_.maxLength; ++k)
-      if (set.contains(k, 1)) lt.enable(k, 1);
-    set = lt;
-  }
-  if (const std::vector<int> uncovered = set.uncoveredLengths(); !uncovered.empty() && set.size() > 0) {
+  const TechniqueSet enabled = enabledTechniques(edited_);
+  if (const std::vector<int> uncovered = enabled.uncoveredLengths(edited_.maxLength);
+      !uncovered.empty() && enabled.anyUpTo(edited_.maxLength)) {
     std::string list;
     for (int k : uncovered) list += (list.empty() ? "" : ", ") + std::to_string(k);
     ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
     ImGui::TextWrapped("no enabled technique samples paths of length %s: that light is missing", list.c_str());
     ImGui::PopStyleColor();
-  } else if (set.size() == 0) {
+  } else if (!enabled.anyUpTo(edited_.maxLength)) {
     ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
     ImGui::TextWrapped("no technique enabled: nothing is rendered");
     ImGui::PopStyleColor();

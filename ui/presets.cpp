@@ -46,7 +46,8 @@ NamedPreset parseOne(const Json& p) {
     else if (v == "lt") out.integrator = IntegratorKind::Lt;
     else throw std::invalid_argument(fmt::format("integrator \"{}\" is not bpt, pt or lt", v));
   }
-  if (p.contains("techniques")) out.techniques = typed(p, "techniques", &Json::is_string, "a string").get<std::string>();
+  if (p.contains("techniques"))
+    out.techniques = TechniqueSet::parse(typed(p, "techniques", &Json::is_string, "a string").get<std::string>());
   if (p.contains("mis")) {
     const std::string v = typed(p, "mis", &Json::is_string, "a string").get<std::string>();
     if (v == "balance") out.mis.heuristic = MisHeuristic::Balance;
@@ -67,7 +68,7 @@ NamedPreset parseOne(const Json& p) {
     out.maxLength = typed(p, "maxLength", &Json::is_number_integer, "an integer").get<int>();
     if (out.maxLength < 1 || out.maxLength > 1000) throw std::invalid_argument("\"maxLength\" must be in [1, 1000]");
   }
-  TechniqueSet::parse(out.techniques, out.maxLength);  // throws "techniques: ..." on a bad SPEC
+  out.techniques.checkFits(out.maxLength);  // throws "techniques: ..." on a set that does not fit
   if (p.contains("isolate")) {
     const Json& v = p.at("isolate");
     if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())

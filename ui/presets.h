@@ -1,4 +1,4 @@
-// Named presets of the lecture mode: a saved estimator state (integrator, technique SPEC, MIS
+// Named presets of the lecture mode: a saved estimator state (integrator, technique set, MIS
 // heuristic, maximum length, isolation) and optionally a camera, read from a JSON file:
 //
 //   {"presets": [{"name": "path tracing", "integrator": "bpt", "techniques": "s=0;s=1",
@@ -28,7 +28,7 @@ class PresetError : public std::runtime_error {
 struct NamedPreset {
   std::string name;
   IntegratorKind integrator = IntegratorKind::Bpt;
-  std::string techniques = "all";
+  TechniqueSet techniques = TechniqueSet::all();
   MisOptions mis;
   int maxLength = 10;
   std::optional<Isolation> isolate;

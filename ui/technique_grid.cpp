@@ -18,40 +18,59 @@ const char* presetLabel(TechniquePreset preset) {
   return "?";
 }
 
-std::string presetSpec(TechniquePreset preset, int length) {
+TechniqueSet presetTechniques(TechniquePreset preset, int length) {
   switch (preset) {
-    case TechniquePreset::All: return "all";
-    case TechniquePreset::PathTracing: return "s=0;s=1";
-    case TechniquePreset::LightTracing: return "t=1";
-    case TechniquePreset::OneLength: return "k=" + std::to_string(length);
-    case TechniquePreset::Clear: return "";
+    case TechniquePreset::All: return TechniqueSet::all();
+    case TechniquePreset::PathTracing: return TechniqueSet::pathTracing();
+    case TechniquePreset::LightTracing: return TechniqueSet::lightTracing();
+    case TechniquePreset::OneLength: return TechniqueSet::ofLength(std::max(length, 1));
+    case TechniquePreset::Clear: return TechniqueSet();
   }
-  return "all";
+  return TechniqueSet::all();
 }
 
-TechniqueSet parseOrEmpty(const std::string& spec, int maxLength) {
-  if (spec.find_first_not_of(" \t;") == std::string::npos) return TechniqueSet(maxLength);
-  return TechniqueSet::parse(spec, maxLength);
+TechniqueSet parseTypedSpec(const std::string& spec, int maxLength) {
+  if (spec.find_first_not_of(" \t;") == std::string::npos) return TechniqueSet();
+  const TechniqueSet set = TechniqueSet::parse(spec);
+  set.checkFits(maxLength);
+  return set;
 }
 
-std::string compactSpec(const TechniqueSet& set) {
-  return set == TechniqueSet::all(set.maxLength()) ? "all" : set.toString();
+namespace {
+
+// Every technique up to the maximum: "all", so that it keeps growing with the maximum.
+TechniqueSet compact(TechniqueSet set, int maxLength) {
+  return set.containsAllUpTo(maxLength) ? TechniqueSet::all() : set;
 }
 
-std::string toggleTechnique(const std::string& spec, int maxLength, int s, int t) {
-  TechniqueSet set = parseOrEmpty(spec, maxLength);  // throws on a bad SPEC
-  if (set.contains(s, t)) set.disable(s, t);
-  else set.enable(s, t);
-  return compactSpec(set);
+// All of `group` off when all of it up to maxLength is on, else all of it on.
+TechniqueSet toggleGroup(TechniqueSet set, int maxLength, const TechniqueSet& group) {
+  const TechniqueRange upTo = techniquesUpTo(maxLength);
+  if (std::all_of(upTo.begin(), upTo.end(), [&](Technique x) { return !group.contains(x) || set.contains(x); })) {
+    set.disable(group, maxLength);
+    return set;
+  }
+  return compact(set | group, maxLength);
+}
+
+}  // namespace
+
+TechniqueSet toggleTechnique(const TechniqueSet& set, int maxLength, Technique x) {
+  TechniqueSet one;
+  one.enable(x);
+  return toggleGroup(set, maxLength, one);
+}
+
+TechniqueSet toggleLength(const TechniqueSet& set, int maxLength, int k) {
+  return toggleGroup(set, maxLength, TechniqueSet::ofLength(k));
+}
+
+TechniqueSet toggleLightVertices(const TechniqueSet& set, int maxLength, int s) {
+  return toggleGroup(set, maxLength, TechniqueSet::withS(s));
 }
 
 bool noTechniqueEnabled(const RenderSettings& settings) {
-  if (settings.integrator == IntegratorKind::Pt) return false;
-  try {
-    return parseOrEmpty(settings.techniques, settings.maxLength).size() == 0;
-  } catch (const std::invalid_argument&) {
-    return false;  // a bad SPEC is the renderer's to refuse, with its message
-  }
+  return settings.integrator != IntegratorKind::Pt && !settings.techniques.anyUpTo(settings.maxLength);
 }
 
 const char* modeLabel(EstimatorMode mode) {
@@ -75,23 +94,8 @@ void setMode(RenderSettings& settings, EstimatorMode mode, int s, int t) {
 
 void setMaxLength(RenderSettings& settings, int maxLength) {
   maxLength = std::max(maxLength, 1);
-  const int oldMax = settings.maxLength;
   settings.maxLength = maxLength;
-  try {
-    parseOrEmpty(settings.techniques, maxLength);
-  } catch (const std::invalid_argument&) {
-    // An explicit list with techniques longer than the new maximum: keep the ones that fit.
-    try {
-      const TechniqueSet old = parseOrEmpty(settings.techniques, oldMax);
-      TechniqueSet fitted(maxLength);
-      for (int k = 1; k <= std::min(oldMax, maxLength); ++k)
-        for (int s = 0; s <= k; ++s)
-          if (old.contains(s, k + 1 - s)) fitted.enable(s, k + 1 - s);
-      settings.techniques = compactSpec(fitted);
-    } catch (const std::invalid_argument&) {
-      // Not valid before either: left for the renderer to refuse.
-    }
-  }
+  settings.techniques = settings.techniques.fittedTo(maxLength);
   if (settings.isolate && settings.isolate->s + settings.isolate->t - 1 > maxLength) {
     settings.isolate->s = std::min(settings.isolate->s, maxLength);
     settings.isolate->t = maxLength + 1 - settings.isolate->s;
@@ -100,11 +104,7 @@ void setMaxLength(RenderSettings& settings, int maxLength) {
 
 bool isolatedTechniqueDisabled(const RenderSettings& s) {
   if (s.integrator == IntegratorKind::Pt || !s.isolate || s.isolate->unweighted) return false;
-  try {
-    return !parseOrEmpty(s.techniques, s.maxLength).contains(s.isolate->s, s.isolate->t);
-  } catch (const std::invalid_argument&) {
-    return false;
-  }
+  return !s.techniques.contains(s.isolate->s, s.isolate->t);
 }
 
 RenderSettings effectiveSettings(const RenderSettings& edited) {
@@ -119,7 +119,7 @@ RenderSettings effectiveSettings(const RenderSettings& edited) {
 std::string describe(const RenderSettings& s) {
   std::string out = fmt::format("{}, max length {}", integratorName(s.integrator), s.maxLength);
   if (s.integrator == IntegratorKind::Pt) return out;
-  out += fmt::format(", techniques {}", s.techniques.empty() ? "(none)" : s.techniques);
+  out += fmt::format(", techniques {}", s.techniques.empty() ? "(none)" : s.techniques.toString());
   if (s.isolate)
     out += fmt::format(", isolate ({},{}) {}", s.isolate->s, s.isolate->t, s.isolate->unweighted ? "unweighted" : "weighted");
   else if (s.mis.heuristic == MisHeuristic::Power)

@@ -10,21 +10,25 @@
 
 namespace pathlab::ui {
 
-// The grid's presets. PathTracing: s <= 1 (camera subpaths, with and without a light sample, the
-// path tracer's two techniques). LightTracing: t = 1. OneLength: every technique of one length.
+// The grid's presets: TechniqueSet::all, pathTracing (s <= 1), lightTracing (t = 1), ofLength
+// (every technique of one length) and the empty set.
 enum class TechniquePreset { All, PathTracing, LightTracing, OneLength, Clear };
 
 const char* presetLabel(TechniquePreset preset);
-// The SPEC of a preset; `length` is the length for OneLength. Clear gives "" (no technique).
-std::string presetSpec(TechniquePreset preset, int length = 1);
+// The set of a preset; `length` is the length for OneLength.
+TechniqueSet presetTechniques(TechniquePreset preset, int length = 1);
 
-// A SPEC that may be empty (no technique enabled, which TechniqueSet::parse refuses).
-TechniqueSet parseOrEmpty(const std::string& spec, int maxLength);
-// "all" when every technique up to maxLength is enabled, the explicit "S,T;..." list otherwise.
-std::string compactSpec(const TechniqueSet& set);
-// The SPEC with (s,t) switched on or off.
-std::string toggleTechnique(const std::string& spec, int maxLength, int s, int t);
-// True when the settings enable no technique at all (Bpt and Lt): the renderer cannot run them.
+// What the SPEC field accepts: the SPEC of --techniques, or nothing (the empty set). Throws
+// std::invalid_argument on a bad SPEC or one that does not fit maxLength (TechniqueSet::checkFits).
+TechniqueSet parseTypedSpec(const std::string& spec, int maxLength);
+// The set with the technique switched on or off (a click in the grid), and with a whole length or
+// a whole s switched: on when some of it is off, else off. A set that then holds every technique
+// up to maxLength becomes TechniqueSet::all, which keeps growing with the maximum.
+TechniqueSet toggleTechnique(const TechniqueSet& set, int maxLength, Technique x);
+TechniqueSet toggleLength(const TechniqueSet& set, int maxLength, int k);
+TechniqueSet toggleLightVertices(const TechniqueSet& set, int maxLength, int s);
+// True when the settings enable no technique up to their maximum length (Bpt and Lt): the
+// renderer cannot run them.
 bool noTechniqueEnabled(const RenderSettings& settings);
 
 // How the enabled techniques make the image: all combined with MIS, or one technique alone.
@@ -34,10 +38,10 @@ EstimatorMode modeOf(const RenderSettings& settings);
 // Isolating uses `target` (s,t); Combine drops the isolation.
 void setMode(RenderSettings& settings, EstimatorMode mode, int s, int t);
 
-// A new maximum length: the SPEC is kept when it still parses ("all", "s=0;s=1" grow with it);
-// an explicit list loses the techniques that no longer fit; an isolated technique that no longer
-// fits is shortened to the longest one with the same s (s = maxLength, t = 1 when s alone
-// is too long).
+// A new maximum length: the technique set is kept ("all", "s=0;s=1" grow with it) less the listed
+// techniques that no longer fit (TechniqueSet::fittedTo); an isolated technique that no longer
+// fits is shortened to the longest one with the same s (s = maxLength, t = 1 when s alone is too
+// long).
 void setMaxLength(RenderSettings& settings, int maxLength);
 
 // True when a weighted isolation shows a technique the set does not enable: its MIS share, and so

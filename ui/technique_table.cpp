@@ -44,8 +44,8 @@ std::vector<TechniqueRow> techniqueRows(const Counters& c, int maxLength, double
     r.discarded = tc.discarded.total();
     finish(r, tc.nanoseconds);
   };
-  for (int k = 1; k <= std::min(maxLength, kCountedLength); ++k)
-    for (int s = 0; s <= k; ++s) add(fmt::format("({},{})", s, k + 1 - s), s, k + 1 - s, c.technique(s, k + 1 - s));
+  for (const auto [s, t] : techniquesUpTo(std::min(maxLength, kCountedLength)))
+    add(fmt::format("({},{})", s, t), s, t, c.technique(s, t));
   if (maxLength > kCountedLength) add(fmt::format("k>{}", kCountedLength), -1, -1, c.techniques[kCountedTechniques]);
   return rows;
 }

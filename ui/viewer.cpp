@@ -66,7 +66,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
   // The first frame sets the real image size; start small so nothing big is rendered in vain.
   applied_.width = applied_.height = 64;
   RenderSettings initial = applied_;
-  if (noTechniqueEnabled(initial)) initial.techniques = "all";
+  if (noTechniqueEnabled(initial)) initial.techniques = TechniqueSet::all();
   if (!options.reference.empty()) {
     // From the command line a bad reference is an error of the command, not a message.
     errors_->setReference(readImage(options.reference), viewOf(effectiveSettings(edited_), scene_.get()),
@@ -257,7 +257,7 @@ void Viewer::pollSceneLoad() {
     edited_.camera.reset();
   }
   applied_ = effectiveSettings(edited_);
-  if (noTechniqueEnabled(applied_)) applied_.techniques = "all";
+  if (noTechniqueEnabled(applied_)) applied_.techniques = TechniqueSet::all();
   try {
     renderer_->setScene(scene_, applied_);
     settingsError_.clear();

@@ -31,7 +31,7 @@ void Viewer::setIsolateTarget(int s, int t) {
 void Viewer::perform(Action action) {
   auto setTechniques = [&](TechniquePreset preset) {
     if (edited_.integrator == IntegratorKind::Pt) edited_.integrator = IntegratorKind::Bpt;
-    edited_.techniques = presetSpec(preset, oneLength_);
+    edited_.techniques = presetTechniques(preset, oneLength_);
   };
   switch (action) {
     case Action::TogglePause:

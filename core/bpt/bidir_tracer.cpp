@@ -21,8 +21,8 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
     : scene_(scene), camera_(camera), options_(options), misPower_(options.mis) {
   options_.pyramidLength = std::min(options_.pyramidLength, options_.maxLength);
   // The partial sums weigh every technique of a path's length: exact only when all are enabled.
-  misEvaluation_ = options_.techniques == TechniqueSet::all(options_.maxLength) ? MisEvaluation::PartialSums
-                                                                              : MisEvaluation::Explicit;
+  misEvaluation_ = options_.techniques.containsAllUpTo(options_.maxLength) ? MisEvaluation::PartialSums
+                                                                          : MisEvaluation::Explicit;
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
   // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
   // with t >= 2 samples its light vertex afresh (next-event estimation).
@@ -30,9 +30,8 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
     cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, t);
     if (!(s == 1 && t >= 2)) lightVerticesNeeded_ = std::max(lightVerticesNeeded_, s);
   };
-  for (int k = 1; k <= options_.maxLength; ++k)
-    for (int s = 0; s <= k; ++s)
-      if (options_.techniques.contains(s, k + 1 - s) || k <= options_.pyramidLength) need(s, k + 1 - s);
+  for (const Technique x : techniquesUpTo(options_.maxLength))
+    if (options_.techniques.contains(x) || x.length() <= options_.pyramidLength) need(x.s, x.t);
   if (options_.isolate) need(options_.isolate->s, options_.isolate->t);
 }
 

@@ -1,6 +1,8 @@
-// TechniqueSet: enable mask over (s, t) and its SPEC parser.
+// TechniqueSet: rules and listed techniques kept canonical, the SPEC parser and printer.
 #include "core/bpt/technique_set.h"
 
+#include <algorithm>
+#include <bit>
 #include <charconv>
 #include <stdexcept>
 
@@ -8,7 +10,35 @@ namespace pathlab {
 
 namespace {
 
-std::string trim(const std::string& s) {
+using Bits = std::vector<uint64_t>;
+
+void setBit(Bits& bits, size_t i) {
+  if (bits.size() <= i / 64) bits.resize(i / 64 + 1, 0);
+  bits[i / 64] |= uint64_t{1} << (i % 64);
+}
+
+void clearBit(Bits& bits, size_t i) {
+  if (i / 64 < bits.size()) bits[i / 64] &= ~(uint64_t{1} << (i % 64));
+}
+
+void trim(Bits& bits) {
+  while (!bits.empty() && bits.back() == 0) bits.pop_back();
+}
+
+// Calls fn(i) for every set bit, ascending.
+template <typename Fn>
+void forEachBit(const Bits& bits, Fn&& fn) {
+  for (size_t w = 0; w < bits.size(); ++w)
+    for (uint64_t word = bits[w]; word != 0; word &= word - 1)
+      fn(w * 64 + static_cast<size_t>(std::countr_zero(word)));
+}
+
+// The highest set bit + 1 (0 when none).
+size_t bitEnd(const Bits& bits) {
+  return bits.empty() ? 0 : (bits.size() - 1) * 64 + static_cast<size_t>(64 - std::countl_zero(bits.back()));
+}
+
+std::string trimmed(const std::string& s) {
   const size_t b = s.find_first_not_of(" \t");
   if (b == std::string::npos) return {};
   const size_t e = s.find_last_not_of(" \t");
@@ -16,7 +46,7 @@ std::string trim(const std::string& s) {
 }
 
 int parseInt(const std::string& text, const std::string& item) {
-  const std::string t = trim(text);
+  const std::string t = trimmed(text);
   int v = 0;
   const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (t.empty() || ec != std::errc() || ptr != t.data() + t.size())
@@ -24,88 +54,251 @@ int parseInt(const std::string& text, const std::string& item) {
   return v;
 }
 
-}  // namespace
+std::string name(Technique x) { return "(" + std::to_string(x.s) + "," + std::to_string(x.t) + ")"; }
 
-TechniqueSet::TechniqueSet(int maxLength) : maxLength_(maxLength) {
-  if (maxLength < 1) throw std::invalid_argument("techniques: maximum length must be >= 1");
-  bits_.assign(static_cast<size_t>(maxLength) * static_cast<size_t>(maxLength + 3) / 2, false);
+void checkRange(int v, int lo, const char* what, const std::string& item) {
+  if (v < lo || v > kMaxTechniqueLength)
+    throw std::invalid_argument("techniques: '" + item + "': need " + std::to_string(lo) + " <= " + what +
+                                " <= " + std::to_string(kMaxTechniqueLength));
 }
 
-TechniqueSet TechniqueSet::all(int maxLength) {
-  TechniqueSet set(maxLength);
-  set.bits_.assign(set.bits_.size(), true);
+}  // namespace
+
+TechniqueSet TechniqueSet::all() {
+  TechniqueSet set;
+  set.all_ = true;
   return set;
 }
 
-void TechniqueSet::enable(int s, int t) {
-  if (!valid(s, t))
-    throw std::invalid_argument("techniques: (" + std::to_string(s) + "," + std::to_string(t) +
-                                ") is not a technique of length 1.." + std::to_string(maxLength_));
-  bits_[index(s, t)] = true;
+TechniqueSet TechniqueSet::withS(int s) {
+  checkRange(s, 0, "s", "s=" + std::to_string(s));
+  TechniqueSet set;
+  setBit(set.sRule_, static_cast<size_t>(s));
+  return set;
 }
 
-void TechniqueSet::disable(int s, int t) {
-  if (valid(s, t)) bits_[index(s, t)] = false;
+TechniqueSet TechniqueSet::withT(int t) {
+  checkRange(t, 1, "t", "t=" + std::to_string(t));
+  TechniqueSet set;
+  setBit(set.tRule_, static_cast<size_t>(t));
+  return set;
 }
 
-int TechniqueSet::size() const {
+TechniqueSet TechniqueSet::ofLength(int k) {
+  checkRange(k, 1, "k", "k=" + std::to_string(k));
+  TechniqueSet set;
+  for (Technique x : techniquesOfLength(k)) setBit(set.listed_, x.index());
+  return set;
+}
+
+TechniqueSet TechniqueSet::pathTracing() { return withS(0) | withS(1); }
+
+TechniqueSet TechniqueSet::lightTracing() { return withT(1); }
+
+void TechniqueSet::normalise() {
+  if (all_) {
+    sRule_.clear(), tRule_.clear(), listed_.clear();
+    return;
+  }
+  trim(sRule_), trim(tRule_);
+  if (!sRule_.empty() || !tRule_.empty())
+    forEachBit(listed_, [&](size_t i) {
+      if (coveredByRule(Technique::fromIndex(i))) clearBit(listed_, i);
+    });
+  trim(listed_);
+}
+
+void TechniqueSet::enable(Technique x) {
+  if (!x.valid() || x.length() > kMaxTechniqueLength)
+    throw std::invalid_argument("techniques: " + name(x) + " is not a technique of length 1.." +
+                                std::to_string(kMaxTechniqueLength));
+  if (!coveredByRule(x)) setBit(listed_, x.index());
+}
+
+void TechniqueSet::disable(Technique x, int maxLength) {
+  if (!contains(x)) return;
+  if (coveredByRule(x)) *this = upTo(maxLength);
+  clearBit(listed_, x.index());
+  trim(listed_);
+}
+
+void TechniqueSet::disable(const TechniqueSet& group, int maxLength) {
+  if (group.all_) {
+    *this = TechniqueSet();
+    return;
+  }
+  if (all_ && !group.empty()) *this = upTo(maxLength);
+  forEachBit(group.sRule_, [&](size_t s) { clearBit(sRule_, s); });
+  forEachBit(group.tRule_, [&](size_t t) { clearBit(tRule_, t); });
+  normalise();
+  for (const Technique x : techniquesUpTo(maxLength))
+    if (group.contains(x)) disable(x, maxLength);
+}
+
+TechniqueSet& TechniqueSet::operator|=(const TechniqueSet& o) {
+  all_ = all_ || o.all_;
+  auto unite = [](Bits& a, const Bits& b) {
+    if (a.size() < b.size()) a.resize(b.size(), 0);
+    for (size_t i = 0; i < b.size(); ++i) a[i] |= b[i];
+  };
+  unite(sRule_, o.sRule_);
+  unite(tRule_, o.tRule_);
+  unite(listed_, o.listed_);
+  normalise();
+  return *this;
+}
+
+TechniqueSet operator&(const TechniqueSet& a, const TechniqueSet& b) {
+  if (a.all_) return b;
+  if (b.all_) return a;
+  TechniqueSet r;
+  auto intersect = [](const TechniqueSet::Bits& x, const TechniqueSet::Bits& y) {
+    TechniqueSet::Bits out(std::min(x.size(), y.size()));
+    for (size_t i = 0; i < out.size(); ++i) out[i] = x[i] & y[i];
+    return out;
+  };
+  r.sRule_ = intersect(a.sRule_, b.sRule_);
+  r.tRule_ = intersect(a.tRule_, b.tRule_);
+  // An s = S line and a t = T line meet in the one technique (S, T).
+  auto cross = [&](const TechniqueSet& p, const TechniqueSet& q) {
+    forEachBit(p.sRule_, [&](size_t s) {
+      forEachBit(q.tRule_, [&](size_t t) {
+        const Technique x{static_cast<int>(s), static_cast<int>(t)};
+        if (x.valid() && x.length() <= kMaxTechniqueLength) setBit(r.listed_, x.index());
+      });
+    });
+    forEachBit(p.listed_, [&](size_t i) {
+      if (q.contains(Technique::fromIndex(i))) setBit(r.listed_, i);
+    });
+  };
+  cross(a, b);
+  cross(b, a);
+  r.normalise();
+  return r;
+}
+
+TechniqueSet TechniqueSet::upTo(int maxLength) const {
+  TechniqueSet r;
+  if (maxLength < 1) return r;
+  const size_t end = Technique::countUpTo(maxLength);
+  if (all_) {
+    r.listed_.assign((end + 63) / 64, ~uint64_t{0});
+    if (end % 64) r.listed_.back() = (uint64_t{1} << (end % 64)) - 1;
+    return r;
+  }
+  forEachBit(listed_, [&](size_t i) {
+    if (i < end) setBit(r.listed_, i);
+  });
+  // The s = S line starts at length max(S, 1), the t = T line at max(T - 1, 1).
+  forEachBit(sRule_, [&](size_t s) {
+    for (int k = std::max(static_cast<int>(s), 1); k <= maxLength; ++k)
+      setBit(r.listed_, Technique{static_cast<int>(s), k + 1 - static_cast<int>(s)}.index());
+  });
+  forEachBit(tRule_, [&](size_t t) {
+    for (int k = std::max(static_cast<int>(t) - 1, 1); k <= maxLength; ++k)
+      setBit(r.listed_, Technique{k + 1 - static_cast<int>(t), static_cast<int>(t)}.index());
+  });
+  trim(r.listed_);
+  return r;
+}
+
+TechniqueSet TechniqueSet::fittedTo(int maxLength) const {
+  TechniqueSet r = *this;
+  const size_t end = Technique::countUpTo(std::max(maxLength, 0));
+  for (size_t i = end; i < bitEnd(r.listed_); ++i) clearBit(r.listed_, i);
+  trim(r.listed_);
+  return r;
+}
+
+void TechniqueSet::checkFits(int maxLength) const {
+  if (const size_t end = bitEnd(listed_); end > Technique::countUpTo(maxLength)) {
+    const Technique x = Technique::fromIndex(end - 1);
+    throw std::invalid_argument("techniques: " + name(x) + " has length " + std::to_string(x.length()) +
+                                ", more than the maximum length " + std::to_string(maxLength));
+  }
+  if (!anyUpTo(maxLength))
+    throw std::invalid_argument("techniques: no technique of length 1.." + std::to_string(maxLength) + " is enabled");
+}
+
+int TechniqueSet::count(int maxLength) const {
+  if (all_) return static_cast<int>(Technique::countUpTo(std::max(maxLength, 0)));
   int n = 0;
-  for (bool b : bits_) n += b ? 1 : 0;
+  for (uint64_t word : upTo(maxLength).listed_) n += std::popcount(word);
   return n;
 }
 
-std::vector<int> TechniqueSet::uncoveredLengths() const {
+bool TechniqueSet::anyUpTo(int maxLength) const {
+  if (maxLength < 1) return false;
+  if (all_) return true;
+  bool any = false;
+  forEachBit(listed_, [&](size_t i) { any = any || i < Technique::countUpTo(maxLength); });
+  forEachBit(sRule_, [&](size_t s) { any = any || std::max(static_cast<int>(s), 1) <= maxLength; });
+  forEachBit(tRule_, [&](size_t t) { any = any || std::max(static_cast<int>(t) - 1, 1) <= maxLength; });
+  return any;
+}
+
+bool TechniqueSet::containsAllUpTo(int maxLength) const {
+  return all_ || count(maxLength) == static_cast<int>(Technique::countUpTo(std::max(maxLength, 0)));
+}
+
+std::vector<int> TechniqueSet::uncoveredLengths(int maxLength) const {
   std::vector<int> out;
-  for (int k = 1; k <= maxLength_; ++k) {
-    bool any = false;
-    for (int s = 0; s <= k && !any; ++s) any = contains(s, k + 1 - s);
-    if (!any) out.push_back(k);
+  if (all_) return out;
+  for (int k = 1; k <= maxLength; ++k) {
+    const TechniqueRange row = techniquesOfLength(k);
+    if (std::none_of(row.begin(), row.end(), [&](Technique x) { return contains(x); })) out.push_back(k);
   }
   return out;
 }
 
 std::string TechniqueSet::toString() const {
+  if (all_) return "all";
   std::string out;
-  for (int k = 1; k <= maxLength_; ++k)
-    for (int s = 0; s <= k; ++s)
-      if (contains(s, k + 1 - s)) out += (out.empty() ? "" : ";") + std::to_string(s) + "," + std::to_string(k + 1 - s);
+  auto item = [&](const std::string& text) { out += (out.empty() ? "" : ";") + text; };
+  forEachBit(sRule_, [&](size_t s) { item("s=" + std::to_string(s)); });
+  forEachBit(tRule_, [&](size_t t) { item("t=" + std::to_string(t)); });
+  const size_t end = bitEnd(listed_);
+  for (int k = 1; end > 0 && k <= Technique::fromIndex(end - 1).length(); ++k) {
+    const TechniqueRange row = techniquesOfLength(k);
+    if (std::none_of(row.begin(), row.end(), [&](Technique x) { return test(listed_, x.index()); })) continue;
+    if (std::all_of(row.begin(), row.end(), [&](Technique x) { return contains(x); })) {
+      item("k=" + std::to_string(k));
+      continue;
+    }
+    for (Technique x : row)
+      if (test(listed_, x.index())) item(std::to_string(x.s) + "," + std::to_string(x.t));
+  }
   return out;
 }
 
-TechniqueSet TechniqueSet::parse(const std::string& spec, int maxLength) {
-  TechniqueSet set(maxLength);
-  if (trim(spec).empty()) throw std::invalid_argument("techniques: empty specification");
+TechniqueSet TechniqueSet::parse(const std::string& spec) {
+  if (trimmed(spec).empty()) throw std::invalid_argument("techniques: empty specification");
+  TechniqueSet set;
   size_t start = 0;
   while (start <= spec.size()) {
     const size_t end = std::min(spec.find(';', start), spec.size());
-    const std::string item = trim(spec.substr(start, end - start));
+    const std::string item = trimmed(spec.substr(start, end - start));
     start = end + 1;
     if (item.empty()) throw std::invalid_argument("techniques: empty item in '" + spec + "'");
     if (item == "all") {
-      set.bits_.assign(set.bits_.size(), true);
+      set.all_ = true;
     } else if (item.size() > 2 && item[1] == '=' && (item[0] == 's' || item[0] == 't' || item[0] == 'k')) {
       const int v = parseInt(item.substr(2), item);
-      int added = 0;
-      for (int k = 1; k <= maxLength; ++k)
-        for (int s = 0; s <= k; ++s) {
-          const int t = k + 1 - s;
-          if ((item[0] == 's' && s == v) || (item[0] == 't' && t == v) || (item[0] == 'k' && k == v)) {
-            set.enable(s, t);
-            ++added;
-          }
-        }
-      if (added == 0)
-        throw std::invalid_argument("techniques: '" + item + "' names no technique of length 1.." +
-                                    std::to_string(maxLength));
+      checkRange(v, item[0] == 's' ? 0 : 1, item.substr(0, 1).c_str(), item);
+      set |= item[0] == 's' ? withS(v) : item[0] == 't' ? withT(v) : ofLength(v);
     } else if (const size_t comma = item.find(','); comma != std::string::npos) {
-      const int s = parseInt(item.substr(0, comma), item), t = parseInt(item.substr(comma + 1), item);
-      if (s < 0 || t < 1) throw std::invalid_argument("techniques: '" + item + "': need s >= 0 and t >= 1");
-      set.enable(s, t);
+      const Technique x{parseInt(item.substr(0, comma), item), parseInt(item.substr(comma + 1), item)};
+      if (x.s < 0 || x.t < 1) throw std::invalid_argument("techniques: '" + item + "': need s >= 0 and t >= 1");
+      if (!x.valid() || x.length() > kMaxTechniqueLength)
+        throw std::invalid_argument("techniques: '" + item + "' is not a technique of length 1.." +
+                                    std::to_string(kMaxTechniqueLength));
+      set.enable(x);
     } else {
       throw std::invalid_argument("techniques: '" + item + "' is not S,T, s=S, t=T, k=K or all");
     }
     if (end == spec.size()) break;
   }
+  set.normalise();
   return set;
 }
 

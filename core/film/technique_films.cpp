@@ -6,23 +6,19 @@
 
 namespace pathlab {
 
-namespace {
-size_t techniqueCount(int maxLength) { return static_cast<size_t>(maxLength) * static_cast<size_t>(maxLength + 3) / 2; }
-}  // namespace
-
 uint64_t TechniqueFilms::bytesFor(int width, int height, int maxLength) {
-  return 2 * techniqueCount(maxLength) * 3 * sizeof(double) * static_cast<uint64_t>(width) * static_cast<uint64_t>(height);
+  return 2 * Technique::countUpTo(maxLength) * 3 * sizeof(double) * static_cast<uint64_t>(width) *
+         static_cast<uint64_t>(height);
 }
 
 TechniqueFilms::TechniqueFilms(int width, int height, int maxLength)
     : width_(width), height_(height), maxLength_(maxLength) {
   const size_t values = 3 * static_cast<size_t>(width) * static_cast<size_t>(height);
-  buffers_.assign(2 * techniqueCount(maxLength), std::vector<double>(values, 0.0));
+  buffers_.assign(2 * Technique::countUpTo(maxLength), std::vector<double>(values, 0.0));
 }
 
 size_t TechniqueFilms::buffer(int s, int t, bool unweighted) const {
-  const int k = s + t - 1;
-  return 2 * (static_cast<size_t>((k - 1) * (k + 2) / 2 + s)) + (unweighted ? 1 : 0);
+  return 2 * Technique{s, t}.index() + (unweighted ? 1 : 0);
 }
 
 void TechniqueFilms::add(int s, int t, Vec2 pRaster, const Spectrum& weighted, const Spectrum& unweighted) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/film/film.h"
+#include "core/sampling/technique.h"
 
 #include <cstdint>
 #include <vector>
@@ -18,7 +19,7 @@ class TechniqueFilms {
   TechniqueFilms(int width, int height, int maxLength);
 
   int maxLength() const { return maxLength_; }
-  bool covers(int s, int t) const { return s >= 0 && t >= 1 && s + t - 1 >= 1 && s + t - 1 <= maxLength_; }
+  bool covers(int s, int t) const { return Technique{s, t}.valid() && s + t - 1 <= maxLength_; }
   // Bytes the buffers of a width x height pyramid up to maxLength take (checked before allocating).
   static uint64_t bytesFor(int width, int height, int maxLength);
 

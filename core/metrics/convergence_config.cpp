@@ -97,7 +97,11 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
         s.mis.minConnection = parseNumber<float>(config, key, value);
         if (!(s.mis.minConnection >= 0.f && s.mis.minConnection <= 1.f)) fail(config, "min-connection is outside 0..1");
       } else if (key == "techniques") {
-        s.techniques = std::string(value);
+        try {
+          s.techniques = TechniqueSet::parse(std::string(value));
+        } catch (const std::invalid_argument& e) {
+          fail(config, e.what());
+        }
       } else if (key == "max-length") {
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/math/types.h"
+#include "core/sampling/technique.h"
 
 #include <array>
 #include <cstdint>
@@ -13,7 +14,7 @@ namespace pathlab {
 
 // Techniques of length <= kCountedLength get counters of their own; longer ones share a bucket.
 inline constexpr int kCountedLength = 12;
-inline constexpr size_t kCountedTechniques = kCountedLength * (kCountedLength + 3) / 2;
+inline constexpr size_t kCountedTechniques = Technique::countUpTo(kCountedLength);
 
 struct DiscardCounts {
   uint64_t nan = 0, inf = 0, negative = 0;
@@ -28,7 +29,8 @@ struct DiscardCounts {
 
 struct TechniqueCounters {
   uint64_t tried = 0;        // connect(s, t) called with both prefixes present
-  uint64_t zero = 0;         // no contribution before any visibility test (delta vertex, f = 0, ...)
+  uint64_t zero = 0;         // no contribution before any visibility test (delta vertex, f = 0, ...), or an
+                             // MIS weight of zero with nothing else using it (no shadow ray traced)
   uint64_t blocked = 0;      // the shadow ray was occluded
   uint64_t contributed = 0;  // a non-zero unweighted contribution
   DiscardCounts discarded;   // contributions refused as NaN, Inf or negative
@@ -48,13 +50,9 @@ struct TechniqueCounters {
   }
 };
 
-// Slot of technique (s, t) of length k = s + t - 1 >= 1: lengths up to kCountedLength in the
-// TechniqueSet order, every longer technique in the last slot.
-inline size_t techniqueSlot(int s, int t) {
-  const int k = s + t - 1;
-  if (k > kCountedLength) return kCountedTechniques;
-  return static_cast<size_t>((k - 1) * (k + 2) / 2 + s);
-}
+// Slot of a valid technique: lengths up to kCountedLength by Technique::index(), every longer
+// technique in the last slot.
+inline size_t techniqueSlot(Technique x) { return x.length() > kCountedLength ? kCountedTechniques : x.index(); }
 
 // The random walks that build the subpaths: closest-hit rays always, time while timing is on.
 struct WalkCounters {
@@ -110,8 +108,10 @@ struct Counters {
     for (const TechniqueCounters& t : techniques) ns += t.nanoseconds;
     return ns;
   }
-  TechniqueCounters& technique(int s, int t) { return techniques[techniqueSlot(s, t)]; }
-  const TechniqueCounters& technique(int s, int t) const { return techniques[techniqueSlot(s, t)]; }
+  TechniqueCounters& technique(Technique x) { return techniques[techniqueSlot(x)]; }
+  const TechniqueCounters& technique(Technique x) const { return techniques[techniqueSlot(x)]; }
+  TechniqueCounters& technique(int s, int t) { return technique(Technique{s, t}); }
+  const TechniqueCounters& technique(int s, int t) const { return technique(Technique{s, t}); }
 
   Counters& operator+=(const Counters& o) {
     cameraSamples += o.cameraSamples;

@@ -76,7 +76,7 @@ std::string describe(const RenderSettings& s) {
   std::string text = fmt::format(
       "pathlab-reference-1 size={}x{} maxLength={} rr={} seed={} integrator={} techniques={} mis={} beta={} "
       "minConnection={} aperture={} focus={} pyramid={}",
-      s.width, s.height, s.maxLength, s.russianRoulette, s.seed, integratorName(s.integrator), s.techniques,
+      s.width, s.height, s.maxLength, s.russianRoulette, s.seed, integratorName(s.integrator), s.techniques.toString(),
       misHeuristicName(s.mis.heuristic), s.mis.beta, s.mis.minConnection, s.lens.apertureRadius, s.lens.focusDistance,
       s.pyramidLength);
   if (s.isolate) text += fmt::format(" isolate={},{},{}", s.isolate->s, s.isolate->t, s.isolate->unweighted);

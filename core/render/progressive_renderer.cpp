@@ -150,12 +150,9 @@ void ProgressiveRenderer::State::run() {
         side = thumbnailSide;
       }
       std::vector<TechniqueThumbnail> thumbs;
-      for (int k = 1; k <= set.pyramidLength; ++k)
-        for (int s = 0; s <= k; ++s) {
-          const int t = k + 1 - s;
-          thumbs.push_back({s, t, downsample(session->techniqueImage(s, t, false), side),
-                            downsample(session->techniqueImage(s, t, true), side)});
-        }
+      for (const Technique x : techniquesUpTo(set.pyramidLength))
+        thumbs.push_back({x.s, x.t, downsample(session->techniqueImage(x.s, x.t, false), side),
+                          downsample(session->techniqueImage(x.s, x.t, true), side)});
       std::lock_guard lock(mutex);
       if (generation == gen) {
         thumbnails = std::move(thumbs);

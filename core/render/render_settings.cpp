@@ -2,7 +2,6 @@
 // every front end runs before any work.
 #include "core/render/render_settings.h"
 
-#include "core/bpt/technique_set.h"
 #include "core/film/technique_films.h"
 
 #include <fmt/core.h>
@@ -20,17 +19,13 @@ const char* integratorName(IntegratorKind kind) {
   return "?";
 }
 
-TechniqueSet techniquesOf(const RenderSettings& settings) {
-  TechniqueSet set = TechniqueSet::parse(settings.techniques, settings.maxLength);
-  if (settings.integrator == IntegratorKind::Lt)
-    for (int k = 1; k <= settings.maxLength; ++k)
-      for (int s = 0; s <= k; ++s)
-        if (k + 1 - s != 1) set.disable(s, k + 1 - s);
-  return set;
+TechniqueSet enabledTechniques(const RenderSettings& settings) {
+  if (settings.integrator == IntegratorKind::Lt) return settings.techniques & TechniqueSet::lightTracing();
+  return settings.techniques;
 }
 
 BidirOptions bidirOptions(const RenderSettings& s) {
-  return BidirOptions{s.maxLength, s.russianRoulette, techniquesOf(s), s.mis, s.isolate, s.pyramidLength, s.checkMis};
+  return BidirOptions{s.maxLength, s.russianRoulette, enabledTechniques(s), s.mis, s.isolate, s.pyramidLength, s.checkMis};
 }
 
 PathTracerOptions pathTracerOptions(const RenderSettings& s) { return PathTracerOptions{s.maxLength, s.russianRoulette}; }
@@ -43,7 +38,7 @@ void validateSettings(const RenderSettings& s) {
   if (bidirectional && s.maxLength > kMaxBidirectionalLength)
     throw std::invalid_argument(fmt::format("maximum path length {} is more than the {} edges the {} integrator supports",
                                             s.maxLength, kMaxBidirectionalLength, integratorName(s.integrator)));
-  if (bidirectional) TechniqueSet::parse(s.techniques, s.maxLength);  // throws naming the bad item
+  if (bidirectional) s.techniques.checkFits(s.maxLength);  // throws naming the problem
   if (s.isolate) {
     const Isolation& i = *s.isolate;
     if (!bidirectional) throw std::invalid_argument("isolating a technique needs the bpt or lt integrator");

@@ -4,6 +4,7 @@
 
 #include "core/bpt/bidir_options.h"
 #include "core/bpt/mis_options.h"
+#include "core/bpt/technique_set.h"
 #include "core/pt/path_tracer.h"
 #include "core/sampling/russian_roulette.h"
 #include "core/camera/camera.h"
@@ -27,7 +28,7 @@ struct RenderSettings {
   IntegratorKind integrator = IntegratorKind::Pt;
   LensOptions lens;
   std::optional<CameraDesc> camera;  // overrides the scene's camera (the viewer's orbit/fly)
-  std::string techniques = "all";  // TechniqueSet SPEC (core/bpt/technique_set.h), Bpt and Lt only
+  TechniqueSet techniques = TechniqueSet::all();  // Bpt and Lt only; see enabledTechniques
   MisOptions mis;
   std::optional<Isolation> isolate;  // Bpt and Lt only
   // > 0: also accumulate every technique (s, t) of length <= pyramidLength, weighted and
@@ -45,23 +46,25 @@ struct RenderSettings {
 };
 
 inline constexpr int kMaxPyramidLength = 8;
-// The bidirectional tracers keep one bit per technique (about n^2 / 2) and connect O(n^2) prefix
-// pairs with O(n) weights each: beyond this many edges that is memory and time for nothing.
-inline constexpr int kMaxBidirectionalLength = 4096;
+// The bidirectional tracers connect O(n^2) prefix pairs with O(n) weights each and their technique
+// tables hold about n^2 / 2 entries: beyond this many edges that is memory and time for nothing.
+inline constexpr int kMaxBidirectionalLength = kMaxTechniqueLength;
 inline constexpr uint64_t kMaxPyramidBytes = 8ull << 30;
 
 const char* integratorName(IntegratorKind kind);
 
-// The TechniqueSet a RenderSettings asks for: its SPEC, restricted to t = 1 for light tracing.
-TechniqueSet techniquesOf(const RenderSettings& settings);
+// The techniques the bidirectional tracer weighs and adds to the image: settings.techniques, less
+// every t >= 2 under `lt` (light tracing, TechniqueSet::lightTracing). The path tracer ignores them.
+TechniqueSet enabledTechniques(const RenderSettings& settings);
 // What each tracer needs of the settings.
 BidirOptions bidirOptions(const RenderSettings& settings);
 PathTracerOptions pathTracerOptions(const RenderSettings& settings);
 
 // Throws std::invalid_argument with a one-line message naming the setting when the settings
-// cannot be rendered: a bad technique SPEC, an isolated technique outside 1..maxLength or not a
-// light-tracing one under `lt`, isolation or a pyramid asked of the path tracer, a pyramid
-// longer than maxLength or kMaxPyramidLength or too large for memory.
+// cannot be rendered: no technique of length 1..maxLength enabled or one listed beyond it, an
+// isolated technique outside 1..maxLength or not a light-tracing one under `lt`, isolation or a
+// pyramid asked of the path tracer, a pyramid longer than maxLength or kMaxPyramidLength or too
+// large for memory.
 void validateSettings(const RenderSettings& settings);
 
 }  // namespace pathlab

@@ -55,7 +55,7 @@ const bool registered = [] {
       {"heuristic", [](RenderSettings& s) { s.mis.heuristic = MisHeuristic::Power; }},
       {"max-length", [](RenderSettings& s) { s.maxLength = 5; }},
       {"integrator", [](RenderSettings& s) { s.integrator = IntegratorKind::Pt; }},
-      {"techniques", [](RenderSettings& s) { s.techniques = "s=0;s=1;t=1"; }},
+      {"techniques", [](RenderSettings& s) { s.techniques = TechniqueSet::parse("s=0;s=1;t=1"); }},
   };
   for (const auto& [name, change] : changes)
     benchmark::RegisterBenchmark(fmt::format("ToggleLatency/cornell-box/640x480/{}", name).c_str(),

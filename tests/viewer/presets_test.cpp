@@ -22,7 +22,7 @@ TEST(Presets, ShippedFileParsesAndEveryPresetIsRenderable) {
     EXPECT_NO_THROW(validateSettings(s)) << p.name;
     EXPECT_EQ(s.width, 320) << p.name;  // the image size is the window's, never the preset's
   }
-  EXPECT_EQ(findPreset(presets, "light tracing (t = 1)", kShipped).techniques, "t=1");
+  EXPECT_EQ(findPreset(presets, "light tracing (t = 1)", kShipped).techniques, TechniqueSet::lightTracing());
 }
 
 TEST(Presets, FieldsAndDefaults) {
@@ -34,7 +34,7 @@ TEST(Presets, FieldsAndDefaults) {
                                     "p.json");
   ASSERT_EQ(presets.size(), 2u);
   EXPECT_EQ(presets[0].integrator, IntegratorKind::Bpt);
-  EXPECT_EQ(presets[0].techniques, "all");
+  EXPECT_EQ(presets[0].techniques, TechniqueSet::all());
   EXPECT_EQ(presets[0].maxLength, 10);
   EXPECT_EQ(presets[0].mis.minConnection, kDefaultMinConnection);
   EXPECT_FALSE(presets[0].isolate);
@@ -84,6 +84,8 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{R"({"presets": [{"techniques": "all"}]})", "no \"name\""},
                     BadCase{R"({"presets": [{"name": "x", "colour": 1}]})", "unknown key \"colour\""},
                     BadCase{R"({"presets": [{"name": "x", "techniques": "9;x"}]})", "preset 0 (\"x\"): techniques"},
+                    BadCase{R"({"presets": [{"name": "x", "techniques": "4,4", "maxLength": 6}]})",
+                            "(4,4) has length 7"},
                     BadCase{R"({"presets": [{"name": "x", "integrator": "mlt"}]})", "mlt"},
                     BadCase{R"({"presets": [{"name": "x", "mis": "max"}]})", "max"},
                     BadCase{R"({"presets": [{"name": "x", "maxLength": 0}]})", "maxLength"},

@@ -1,4 +1,4 @@
-// The technique grid's logic: presets give the SPECs they promise, toggles and a new maximum
+// The technique grid's logic: presets give the sets they promise, toggles and a new maximum
 // length keep the settings renderable, the path tracer gets no isolation or pyramid.
 #include "ui/technique_grid.h"
 
@@ -7,63 +7,73 @@
 namespace pathlab::ui {
 namespace {
 
-TechniqueSet setOf(TechniquePreset preset, int maxLength, int length = 1) {
-  return parseOrEmpty(presetSpec(preset, length), maxLength);
-}
-
 TEST(TechniqueGrid, PresetsEnableExactlyTheirTechniques) {
   const int K = 6;
-  const TechniqueSet all = setOf(TechniquePreset::All, K), pt = setOf(TechniquePreset::PathTracing, K),
-                     lt = setOf(TechniquePreset::LightTracing, K), one = setOf(TechniquePreset::OneLength, K, 3),
-                     none = setOf(TechniquePreset::Clear, K);
-  for (int k = 1; k <= K; ++k)
-    for (int s = 0; s <= k; ++s) {
-      const int t = k + 1 - s;
-      EXPECT_TRUE(all.contains(s, t));
-      EXPECT_EQ(pt.contains(s, t), s <= 1) << s << "," << t;
-      EXPECT_EQ(lt.contains(s, t), t == 1) << s << "," << t;
-      EXPECT_EQ(one.contains(s, t), k == 3) << s << "," << t;
-      EXPECT_FALSE(none.contains(s, t));
-    }
-  EXPECT_EQ(none.size(), 0);
+  const TechniqueSet all = presetTechniques(TechniquePreset::All);
+  const TechniqueSet pt = presetTechniques(TechniquePreset::PathTracing);
+  const TechniqueSet lt = presetTechniques(TechniquePreset::LightTracing);
+  const TechniqueSet one = presetTechniques(TechniquePreset::OneLength, 3);
+  const TechniqueSet none = presetTechniques(TechniquePreset::Clear);
+  for (const Technique x : techniquesUpTo(K)) {
+    EXPECT_TRUE(all.contains(x));
+    EXPECT_EQ(pt.contains(x), x.s <= 1) << x.s << "," << x.t;
+    EXPECT_EQ(lt.contains(x), x.t == 1) << x.s << "," << x.t;
+    EXPECT_EQ(one.contains(x), x.length() == 3) << x.s << "," << x.t;
+    EXPECT_FALSE(none.contains(x));
+  }
+  EXPECT_TRUE(none.empty());
   // Path tracing and light tracing cover every length; one length leaves the others uncovered.
-  EXPECT_TRUE(pt.uncoveredLengths().empty());
-  EXPECT_TRUE(lt.uncoveredLengths().empty());
-  EXPECT_EQ(one.uncoveredLengths(), (std::vector<int>{1, 2, 4, 5, 6}));
+  EXPECT_TRUE(pt.uncoveredLengths(K).empty());
+  EXPECT_TRUE(lt.uncoveredLengths(K).empty());
+  EXPECT_EQ(one.uncoveredLengths(K), (std::vector<int>{1, 2, 4, 5, 6}));
+  // The SPEC field's words for them.
+  EXPECT_EQ(all.toString(), "all");
+  EXPECT_EQ(pt.toString(), "s=0;s=1");
+  EXPECT_EQ(lt.toString(), "t=1");
+  EXPECT_EQ(one.toString(), "k=3");
 }
 
-TEST(TechniqueGrid, ToggleRoundTripsThroughTheSpec) {
-  std::string spec = "all";
-  spec = toggleTechnique(spec, 4, 2, 2);
-  TechniqueSet set = TechniqueSet::parse(spec, 4);
+TEST(TechniqueGrid, TogglesRoundTrip) {
+  TechniqueSet set = TechniqueSet::all();
+  set = toggleTechnique(set, 4, {2, 2});
   EXPECT_FALSE(set.contains(2, 2));
-  EXPECT_EQ(set.size(), TechniqueSet::all(4).size() - 1);
-  spec = toggleTechnique(spec, 4, 2, 2);
-  EXPECT_EQ(spec, "all");  // compact again once everything is back on
-  EXPECT_EQ(toggleTechnique("", 3, 1, 1), "1,1");
-  EXPECT_EQ(toggleTechnique("1,1", 3, 1, 1), "");
+  EXPECT_EQ(set.count(4), TechniqueSet::all().count(4) - 1);
+  set = toggleTechnique(set, 4, {2, 2});
+  EXPECT_EQ(set, TechniqueSet::all());  // "all" again once everything is back on
+  EXPECT_EQ(toggleTechnique(TechniqueSet(), 3, {1, 1}), TechniqueSet::parse("1,1"));
+  EXPECT_TRUE(toggleTechnique(TechniqueSet::parse("1,1"), 3, {1, 1}).empty());
+  // A length and a column: on when some of it is off, off when all of it is on.
+  set = toggleLength(TechniqueSet::parse("1,2"), 4, 2);
+  EXPECT_EQ(set, TechniqueSet::ofLength(2));
+  EXPECT_TRUE(toggleLength(set, 4, 2).empty());
+  set = toggleLightVertices(TechniqueSet::parse("1,2"), 4, 1);
+  EXPECT_EQ(set, TechniqueSet::withS(1));  // a column switched on grows with the maximum
+  EXPECT_EQ(toggleLightVertices(TechniqueSet::pathTracing(), 4, 1), TechniqueSet::withS(0));  // still a rule
+  set = toggleLightVertices(TechniqueSet::all(), 3, 1);  // a hole in "all": listed up to the maximum
+  EXPECT_EQ(set, TechniqueSet::parse("0,2;0,3;2,1;0,4;2,2;3,1"));
+}
+
+TEST(TechniqueGrid, TheSpecFieldTakesNothingOrASpecThatFits) {
+  EXPECT_TRUE(parseTypedSpec(" ; ", 4).empty());
+  EXPECT_EQ(parseTypedSpec("k=1", 4), TechniqueSet::parse("0,2;1,1"));
+  EXPECT_THROW(parseTypedSpec("1;x", 4), std::invalid_argument);
+  EXPECT_THROW(parseTypedSpec("3,3", 4), std::invalid_argument);  // length 5
+  EXPECT_THROW(parseTypedSpec("s=6", 4), std::invalid_argument);  // nothing up to length 4
 }
 
 TEST(TechniqueGrid, EmptySetMeansNothingToRender) {
   RenderSettings s;
   s.integrator = IntegratorKind::Bpt;
-  s.techniques = presetSpec(TechniquePreset::Clear);
+  s.techniques = presetTechniques(TechniquePreset::Clear);
   EXPECT_TRUE(noTechniqueEnabled(s));
   s.integrator = IntegratorKind::Pt;  // the path tracer ignores the set
   EXPECT_FALSE(noTechniqueEnabled(s));
   s.integrator = IntegratorKind::Bpt;
-  s.techniques = "0,2";
+  s.techniques = TechniqueSet::parse("0,2");
   EXPECT_FALSE(noTechniqueEnabled(s));
-}
-
-TEST(TechniqueGrid, ABadSpecNeverThrowsOutOfTheEdits) {
-  RenderSettings s;
-  s.integrator = IntegratorKind::Bpt;
-  s.techniques = "1;x";
-  EXPECT_FALSE(noTechniqueEnabled(s));  // the renderer refuses it, with its message
-  EXPECT_NO_THROW(setMaxLength(s, 3));
-  EXPECT_EQ(s.techniques, "1;x");
-  EXPECT_THROW(validateSettings(s), std::invalid_argument);
+  s.maxLength = 3;
+  s.techniques = TechniqueSet::withS(4);  // none of length <= 3
+  EXPECT_TRUE(noTechniqueEnabled(s));
 }
 
 TEST(TechniqueGrid, ModesSetAndDropTheIsolation) {
@@ -83,20 +93,24 @@ TEST(TechniqueGrid, ShorterMaximumKeepsTheSettingsValid) {
   RenderSettings s;
   s.integrator = IntegratorKind::Bpt;
   s.maxLength = 6;
-  s.techniques = "0,2;2,4;5,2";  // lengths 1, 5, 6
+  s.techniques = TechniqueSet::parse("0,2;2,4;5,2");  // lengths 1, 5, 6
   s.isolate = Isolation{3, 3, false};  // length 5
   setMaxLength(s, 4);
-  EXPECT_EQ(s.techniques, "0,2");
+  EXPECT_EQ(s.techniques, TechniqueSet::parse("0,2"));
   ASSERT_TRUE(s.isolate);
   EXPECT_EQ(s.isolate->s, 3);
   EXPECT_EQ(s.isolate->s + s.isolate->t - 1, 4);
   EXPECT_NO_THROW(validateSettings(s));
   // Presets grow and shrink with the maximum.
-  s.techniques = "s=0;s=1";
+  s.techniques = TechniqueSet::pathTracing();
   setMaxLength(s, 2);
-  EXPECT_EQ(s.techniques, "s=0;s=1");
+  EXPECT_EQ(s.techniques, TechniqueSet::pathTracing());
   setMaxLength(s, 9);
-  EXPECT_TRUE(TechniqueSet::parse(s.techniques, 9).contains(1, 8));
+  EXPECT_TRUE(s.techniques.contains(1, 8));
+  s.techniques = TechniqueSet::all();
+  setMaxLength(s, 1);
+  setMaxLength(s, 12);
+  EXPECT_EQ(s.techniques, TechniqueSet::all());
   // s alone too long: the longest light-tracing technique.
   s.isolate = Isolation{7, 1, true};
   setMaxLength(s, 3);
@@ -106,7 +120,7 @@ TEST(TechniqueGrid, ShorterMaximumKeepsTheSettingsValid) {
 TEST(TechniqueGrid, WarnsWhenTheWeightedIsolatedTechniqueIsOff) {
   RenderSettings s;
   s.integrator = IntegratorKind::Bpt;
-  s.techniques = "t=1";
+  s.techniques = TechniqueSet::lightTracing();
   s.isolate = Isolation{1, 2, false};
   EXPECT_TRUE(isolatedTechniqueDisabled(s));
   s.isolate->unweighted = true;  // its own estimate does not depend on the set
