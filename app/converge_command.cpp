@@ -4,11 +4,11 @@
 
 #include "app/progress.h"
 #include "core/bpt/bidir_tracer.h"
+#include "core/converge/convergence.h"
+#include "core/converge/convergence_report.h"
+#include "core/converge/reference_key.h"
 #include "core/film/image_io.h"
-#include "core/metrics/convergence.h"
-#include "core/metrics/convergence_report.h"
 #include "core/metrics/loglog_plot.h"
-#include "core/metrics/reference_key.h"
 #include "core/scene/gltf_loader.h"
 
 #include <fmt/core.h>

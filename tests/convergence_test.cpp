@@ -1,10 +1,10 @@
 // `pathlab converge` machinery: configuration parsing, the converge loop on a tiny render, CSV,
 // efficiency table and the SVG plot.
-#include "core/metrics/convergence.h"
-#include "core/metrics/convergence_config.h"
-#include "core/metrics/convergence_report.h"
+#include "core/converge/convergence.h"
+#include "core/converge/convergence_config.h"
+#include "core/converge/convergence_report.h"
+#include "core/converge/reference_key.h"
 #include "core/metrics/loglog_plot.h"
-#include "core/metrics/reference_key.h"
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
 

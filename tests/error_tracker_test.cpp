@@ -1,7 +1,7 @@
 // The viewer's live error measurement without the viewer: geometric checkpoints, one series per
 // generation kept across generations (capped, clearable), a reference refused when it is broken
 // and not compared when the view or size changed, and the observer of a real progressive renderer.
-#include "core/metrics/error_tracker.h"
+#include "core/converge/error_tracker.h"
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
 

@@ -3,7 +3,7 @@
 // rate as a dashed reference slope, and the nearest point under the mouse in a tooltip.
 #pragma once
 
-#include "core/metrics/error_tracker.h"
+#include "core/converge/error_tracker.h"
 
 #include <imgui.h>
 

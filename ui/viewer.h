@@ -4,7 +4,7 @@
 // the UI thread, between ImGui::NewFrame and ImGui::Render except drawImage.
 #pragma once
 
-#include "core/metrics/error_tracker.h"
+#include "core/converge/error_tracker.h"
 #include "core/render/progressive_renderer.h"
 #include "ui/display_settings.h"
 #include "ui/image_view.h"

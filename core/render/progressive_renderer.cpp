@@ -2,7 +2,6 @@
 // publish each finished image; a new generation cancels the pass in flight (between tiles).
 #include "core/render/progressive_renderer.h"
 
-#include "core/film/downsample.h"
 #include "core/render/render_session.h"
 
 #include <tbb/task_arena.h>
@@ -149,10 +148,8 @@ void ProgressiveRenderer::State::run() {
         std::lock_guard lock(mutex);
         side = thumbnailSide;
       }
-      std::vector<TechniqueThumbnail> thumbs;
-      for (const Technique x : techniquesUpTo(set.pyramidLength))
-        thumbs.push_back({x.s, x.t, downsample(session->techniqueImage(x.s, x.t, false), side),
-                          downsample(session->techniqueImage(x.s, x.t, true), side)});
+      std::vector<TechniqueThumbnail> thumbs = techniqueThumbnails(
+          set.pyramidLength, side, [&](Technique x, bool unweighted) { return session->techniqueImage(x.s, x.t, unweighted); });
       std::lock_guard lock(mutex);
       if (generation == gen) {
         thumbnails = std::move(thumbs);

@@ -8,6 +8,7 @@
 // within a few tens of milliseconds; full-resolution passes then accumulate.
 #pragma once
 
+#include "core/film/downsample.h"
 #include "core/film/film.h"
 #include "core/metrics/counters.h"
 #include "core/render/render_settings.h"
@@ -32,12 +33,6 @@ struct RenderSnapshot {
   double renderSeconds = 0.0;     // time spent in its passes (previews included): pauses excluded
   Counters counters;              // of this generation (full passes and previews)
   RenderSettings settings;        // the settings this image was rendered with
-};
-
-// The technique pyramid of the current generation, downsampled to thumbnails.
-struct TechniqueThumbnail {
-  int s = 0, t = 1;
-  Image weighted, unweighted;
 };
 
 // What the pass observer sees after every full-resolution pass, on the render thread.

@@ -1,7 +1,7 @@
 // What `pathlab converge` writes: the checkpoints as CSV and the efficiency table as Markdown.
 #pragma once
 
-#include "core/metrics/convergence.h"
+#include "core/converge/convergence.h"
 
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 // Live error series against a reference (see the header).
-#include "core/metrics/error_tracker.h"
+#include "core/converge/error_tracker.h"
 
 #include <fmt/core.h>
 

@@ -1,5 +1,5 @@
 // FNV-1a hashing of the reference's inputs.
-#include "core/metrics/reference_key.h"
+#include "core/converge/reference_key.h"
 
 #include <fmt/core.h>
 #include <tiny_gltf.h>

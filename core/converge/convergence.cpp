@@ -1,6 +1,6 @@
 // The converge loop: passes of one RenderSession, per-pass images split into even and odd
 // buffers, metrics at geometric checkpoints.
-#include "core/metrics/convergence.h"
+#include "core/converge/convergence.h"
 
 #include "core/render/render_session.h"
 

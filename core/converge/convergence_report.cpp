@@ -1,5 +1,5 @@
 // CSV and Markdown output of convergence runs.
-#include "core/metrics/convergence_report.h"
+#include "core/converge/convergence_report.h"
 
 #include <fmt/core.h>
 

@@ -1,5 +1,5 @@
 // Parsing of `pathlab converge --configs` (grammar in the header).
-#include "core/metrics/convergence_config.h"
+#include "core/converge/convergence_config.h"
 
 #include <fmt/core.h>
 

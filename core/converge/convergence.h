@@ -2,7 +2,7 @@
 // checkpoints: the measurement behind `pathlab converge` (and, later, the viewer's live plot).
 #pragma once
 
-#include "core/metrics/convergence_config.h"
+#include "core/converge/convergence_config.h"
 #include "core/metrics/counters.h"
 #include "core/metrics/error_metrics.h"
 #include "core/scene/scene.h"
