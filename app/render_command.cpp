@@ -5,6 +5,7 @@
 #include "app/progress.h"
 #include "app/pyramid_output.h"
 #include "core/film/image_io.h"
+#include "core/metrics/technique_table.h"
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
 
@@ -52,36 +53,13 @@ std::string humanCount(double v) {
   return fmt::format("{:.0f}", v);
 }
 
-// Per-technique counters: all of them with --stats, otherwise only the techniques that discarded
-// contributions (so a NaN source is named without asking). With --stats the walks and every
-// technique also get their shadow rays and their share of the timed work (connect + MIS weight).
-void printTechniqueCounters(const Counters& c, int maxLength, bool all) {
-  bool header = false;
-  const double timed = static_cast<double>(c.timedNanoseconds());
-  const double rays = static_cast<double>(std::max<uint64_t>(c.totalRays(), 1));
-  auto share = [&](uint64_t ns) { return timed > 0.0 ? fmt::format("{:.1f}%", 100.0 * static_cast<double>(ns) / timed) : std::string("-"); };
-  auto printHeader = [&] {
-    if (header) return;
-    std::cerr << fmt::format("{:>12} {:>12} {:>12} {:>12} {:>12} {:>10} {:>12} {:>7} {:>7}\n", "technique", "tried",
-                             "zero", "blocked", "contributed", "discarded", "rays", "rays%", "time%");
-    header = true;
-  };
-  if (all && c.cameraWalk.rays + c.lightWalk.rays > 0) {
-    printHeader();
-    for (const auto& [name, w] : {std::pair{"camera walks", c.cameraWalk}, std::pair{"light walks", c.lightWalk}})
-      std::cerr << fmt::format("{:>12} {:>12} {:>12} {:>12} {:>12} {:>10} {:>12} {:>6.1f}% {:>7}\n", name, c.cameraSamples,
-                               "", "", "", "", w.rays, 100.0 * static_cast<double>(w.rays) / rays, share(w.nanoseconds));
-  }
-  auto row = [&](const std::string& name, const TechniqueCounters& t) {
-    if (!all && t.discarded.total() == 0) return;
-    printHeader();
-    std::cerr << fmt::format("{:>12} {:>12} {:>12} {:>12} {:>12} {:>10} {:>12} {:>6.1f}% {:>7}\n", name, t.tried, t.zero,
-                             t.blocked, t.contributed, t.discarded.total(), t.shadowRays,
-                             100.0 * static_cast<double>(t.shadowRays) / rays, share(t.nanoseconds));
-  };
-  for (const auto [s, t] : techniquesUpTo(std::min(maxLength, kCountedLength)))
-    row(fmt::format("({},{})", s, t), c.technique(s, t));
-  if (maxLength > kCountedLength) row(fmt::format("k>{}", kCountedLength), c.techniques[kCountedTechniques]);
+// Per-technique counters (core/metrics/technique_table.h, the viewer's table): every walk and
+// technique with --stats, otherwise only the techniques that discarded contributions (so a NaN
+// source is named without asking).
+void printTechniqueCounters(const Counters& c, int maxLength, double seconds, bool all) {
+  std::vector<TechniqueRow> rows = techniqueRows(c, maxLength, seconds);
+  if (!all) std::erase_if(rows, [](const TechniqueRow& r) { return r.discarded == 0; });
+  if (!rows.empty()) std::cerr << techniqueTableText(rows, c.timedSamples > 0);
 }
 
 struct ReplayRequest {
@@ -219,7 +197,7 @@ int runRender(RenderOptions o) {
       o.output, session.passes(), integratorName(settings.integrator), seconds,
       humanCount(static_cast<double>(c.cameraSamples) / seconds), humanCount(static_cast<double>(c.totalRays()) / seconds),
       c.discarded(), c.discardedCounts().nan, c.discardedCounts().inf, c.discardedCounts().negative);
-  if (settings.integrator != IntegratorKind::Pt) printTechniqueCounters(c, settings.maxLength, o.stats);
+  if (settings.integrator != IntegratorKind::Pt) printTechniqueCounters(c, settings.maxLength, seconds, o.stats);
   if (settings.checkMis)
     std::cerr << fmt::format("MIS check: {} of {} paths whose weights do not sum to one\n", c.misPartitionFailures,
                              c.misPartitionChecks);

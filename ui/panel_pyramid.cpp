@@ -1,9 +1,7 @@
 // The live technique pyramid (Veach 1997, fig. 10.3 as it converges): a thumbnail of every (s,t) up
 // to the chosen length, laid out like the technique grid, each with its own exposure. A click
 // isolates the technique in the main image.
-#include "ui/viewer.h"
-
-#include "ui/technique_grid.h"
+#include "ui/panels.h"
 
 #include <fmt/core.h>
 #include <algorithm>
@@ -11,9 +9,18 @@
 
 namespace pathlab::ui {
 
-float Viewer::pyramidPanelWidth(float availableWidth, float height) {
+const Texture* PyramidImages::texture(Technique x, bool unweighted) const {
+  for (size_t i = 0; i < thumbnails.size(); ++i)
+    if (thumbnails[i].s == x.s && thumbnails[i].t == x.t && 2 * i + 1 < textures.size()) {
+      const Texture& t = textures[2 * i + (unweighted ? 1 : 0)];
+      return t.empty() ? nullptr : &t;
+    }
+  return nullptr;
+}
+
+float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale) {
   const ImGuiStyle& style = ImGui::GetStyle();
-  const int rows = std::max(1, std::min(pyramidLength_, edited_.maxLength));
+  const int rows = std::max(1, std::min(view.length, maxLength));
   const float n = static_cast<float>(rows + 1);  // thumbnails in the longest row
   // Rows of thumbnails fill the height below the header, at most 100 pixels (x UI scale) tall.
   const float frame = 2.f * 2.f;  // image button padding
@@ -21,11 +28,11 @@ float Viewer::pyramidPanelWidth(float availableWidth, float height) {
   // of them with a switch.
   const float line = ImGui::GetFrameHeightWithSpacing();
   const float rowSpace = frame + style.ItemSpacing.y;
-  pyramidBoth_ = (height - 6.f * line - 2.f * style.WindowPadding.y) / static_cast<float>(2 * rows) - rowSpace >=
-                 48.f * uiScale_;
-  const float header = (pyramidBoth_ ? 6.f : 4.f) * line + 2.f * style.WindowPadding.y;
-  const int stacked = pyramidBoth_ ? 2 * rows : rows;
-  float h = std::clamp((height - header) / static_cast<float>(stacked) - rowSpace, 16.f, 100.f * uiScale_);
+  view.both = (height - 6.f * line - 2.f * style.WindowPadding.y) / static_cast<float>(2 * rows) - rowSpace >=
+              48.f * uiScale;
+  const float header = (view.both ? 6.f : 4.f) * line + 2.f * style.WindowPadding.y;
+  const int stacked = view.both ? 2 * rows : rows;
+  float h = std::clamp((height - header) / static_cast<float>(stacked) - rowSpace, 16.f, 100.f * uiScale);
   // The thumbnails have the image's aspect, and the image gets what the panel leaves:
   // width = n (h a + c) + p with a = (W - width) / H, solved for width (no feedback through the
   // rendered image, which would restart the render until it settled).
@@ -41,62 +48,28 @@ float Viewer::pyramidPanelWidth(float availableWidth, float height) {
     width = widthFor(h);
   }
   // Never narrower than its header text needs (small windows), nor wider than half the space.
-  width = std::max(width, std::min(220.f * uiScale_, 0.5f * availableWidth));
-  pyramidThumbnail_ = {h * (availableWidth - width) / height, h};
+  width = std::max(width, std::min(220.f * uiScale, 0.5f * availableWidth));
+  view.thumbnail = {h * (availableWidth - width) / height, h};
   return width;
 }
 
-void Viewer::drawPyramidWindow(float x, float width, float height) {
-  ImGui::SetNextWindowPos(ImVec2(x, 0.f));
-  ImGui::SetNextWindowSize(ImVec2(width, height));
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus;
-  if (!ImGui::Begin("Technique pyramid (G)", &showPyramid_, flags)) {
-    ImGui::End();
-    return;
-  }
-  if (!pyramidBoth_) {
-    ImGui::Checkbox("unweighted", &pyramidUnweighted_);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("weighted: each technique's MIS share (the shares sum to the image)\n"
-                        "unweighted: each technique's own estimate of its whole length");
-  }
-  ImGui::Checkbox("own exposure each", &pyramidOwnExposure_);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("on: every thumbnail auto-exposed (all visible)\n"
-                      "off: all at the image's exposure (the weighted shares compare directly)");
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-  ImGui::TextWrapped("%s", thumbnails_.empty() ? "waiting for the first full pass ..."
-                                                : "rows: length k; columns: s; click to isolate");
-  ImGui::PopStyleColor();
-  if (pyramidBoth_) {
-    ImGui::TextWrapped("weighted: MIS shares, they sum to the image");
-    drawPyramid(false);
-    ImGui::TextWrapped("unweighted: each technique alone");
-    drawPyramid(true);
-  } else {
-    drawPyramid(pyramidUnweighted_);
-  }
-  if (edited_.isolate && ImGui::Button("show all combined (MIS)")) setMode(edited_, EstimatorMode::Combine, 0, 0);
-  ImGui::End();
-}
+namespace {
 
-void Viewer::drawPyramid(bool unweighted) {
+// One pyramid, weighted or unweighted, laid out like the technique grid.
+void drawPyramid(const PyramidView& view, const PyramidImages& images, EstimatorState& estimator, bool unweighted,
+                 float uiScale) {
   ImGui::PushID(unweighted ? "unweighted" : "weighted");
-  const int rows = std::min(pyramidLength_, edited_.maxLength);
-  const ImVec2 size(pyramidThumbnail_.x, pyramidThumbnail_.y);
+  const int rows = std::min(view.length, estimator.settings.maxLength);
+  const ImVec2 size(view.thumbnail.x, view.thumbnail.y);
+  const EstimatorMode shownMode = unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
   for (int k = 1; k <= rows; ++k) {
     for (const auto [s, t] : techniquesOfLength(k)) {
       if (s > 0) ImGui::SameLine();
       ImGui::PushID(k * 100 + s);
-      const Texture* texture = nullptr;
-      for (size_t i = 0; i < thumbnails_.size(); ++i)
-        if (thumbnails_[i].s == s && thumbnails_[i].t == t && 2 * i + 1 < thumbnailTextures_.size())
-          texture = &thumbnailTextures_[2 * i + (unweighted ? 1 : 0)];
-      const bool isolated = edited_.isolate && edited_.isolate->s == s && edited_.isolate->t == t &&
-                            edited_.isolate->unweighted == unweighted;
+      const Texture* texture = images.texture({s, t}, unweighted);
+      const bool isolated = estimator.mode == shownMode && estimator.isolated == Technique{s, t};
       bool clicked = false;
-      if (texture && !texture->empty()) {
+      if (texture) {
         clicked = ImGui::ImageButton(texture->imguiId(), size, ImVec2(0, 0), ImVec2(1, 1), 2,
                                      isolated ? ImVec4(0.9f, 0.6f, 0.15f, 1.f) : ImVec4(0, 0, 0, 0));
       } else {
@@ -104,20 +77,54 @@ void Viewer::drawPyramid(bool unweighted) {
       }
       if (isolated)  // the technique the main image shows, framed so the back row sees it too
         ImGui::GetWindowDrawList()->AddRect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
-                                            IM_COL32(240, 160, 40, 255), 0.f, 0, 3.f * uiScale_);
+                                            IM_COL32(240, 160, 40, 255), 0.f, 0, 3.f * uiScale);
       if (ImGui::IsItemHovered())
         ImGui::SetTooltip("(s,t) = (%d,%d), length %d, %s: click to isolate it", s, t, k,
                           unweighted ? "unweighted" : "weighted");
-      if (clicked) {
-        if (edited_.integrator == IntegratorKind::Pt) edited_.integrator = IntegratorKind::Bpt;
-        isolateS_ = s;
-        isolateT_ = t;
-        setMode(edited_, unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted, s, t);
-      }
+      if (clicked) isolate(estimator, {s, t}, unweighted);
       ImGui::PopID();
     }
   }
   ImGui::PopID();
+}
+
+}  // namespace
+
+void drawPyramidWindow(PyramidView& view, const PyramidImages& images, EstimatorState& estimator, PanelRect rect,
+                       float uiScale) {
+  ImGui::SetNextWindowPos(ImVec2(rect.x, rect.y));
+  ImGui::SetNextWindowSize(ImVec2(rect.width, rect.height));
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus;
+  if (!ImGui::Begin("Technique pyramid (G)", &view.show, flags)) {
+    ImGui::End();
+    return;
+  }
+  if (!view.both) {
+    ImGui::Checkbox("unweighted", &view.unweighted);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("weighted: each technique's MIS share (the shares sum to the image)\n"
+                        "unweighted: each technique's own estimate of its whole length");
+  }
+  ImGui::Checkbox("own exposure each", &view.ownExposure);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("on: every thumbnail auto-exposed (all visible)\n"
+                      "off: all at the image's exposure (the weighted shares compare directly)");
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%s", images.thumbnails.empty() ? "waiting for the first full pass ..."
+                                                : "rows: length k; columns: s; click to isolate");
+  ImGui::PopStyleColor();
+  if (view.both) {
+    ImGui::TextWrapped("weighted: MIS shares, they sum to the image");
+    drawPyramid(view, images, estimator, false, uiScale);
+    ImGui::TextWrapped("unweighted: each technique alone");
+    drawPyramid(view, images, estimator, true, uiScale);
+  } else {
+    drawPyramid(view, images, estimator, view.unweighted, uiScale);
+  }
+  if (estimator.mode != EstimatorMode::Combine && ImGui::Button("show all combined (MIS)"))
+    estimator.mode = EstimatorMode::Combine;
+  ImGui::End();
 }
 
 }  // namespace pathlab::ui

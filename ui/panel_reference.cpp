@@ -1,7 +1,7 @@
 // The side panel's reference section: load a reference (or take the current image), whether it
 // still matches the rendered view, the newest error, and the false-colour error view with its
 // colour bar.
-#include "ui/viewer.h"
+#include "ui/panels.h"
 
 #include "core/metrics/log_axis.h"
 
@@ -20,83 +20,85 @@ const ImVec4 kWarning(1.f, 0.7f, 0.2f, 1.f);
 
 }  // namespace
 
-void Viewer::drawReferenceSection() {
+void drawReferenceSection(ReferenceState& state, ConvergenceState& convergence, DisplaySettings& display,
+                          const RenderSettings& edited, const Image& shown, PanelRequests& requests) {
   ImGui::PushID("reference");
-  const std::shared_ptr<const Image> reference = errors_->reference();
+  ErrorTracker& errors = *state.errors;
+  const std::shared_ptr<const Image> reference = errors.reference();
   if (reference)
-    ImGui::TextWrapped("reference: %s, %d x %d", errors_->referenceSource().c_str(), reference->width, reference->height);
+    ImGui::TextWrapped("reference: %s, %d x %d", errors.referenceSource().c_str(), reference->width, reference->height);
   else
     ImGui::TextDisabled("no reference: load an EXR / PFM or take the current image");
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.62f);
-  const bool entered = ImGui::InputTextWithHint("##path", "REF.exr or .pfm", &typedReferencePath_,
+  const bool entered = ImGui::InputTextWithHint("##path", "REF.exr or .pfm", &state.typedPath,
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  if ((ImGui::Button("Load") || entered) && !typedReferencePath_.empty()) loadReference(typedReferencePath_);
+  if ((ImGui::Button("Load") || entered) && !state.typedPath.empty()) requests.loadReference = state.typedPath;
   if (reference) {
     ImGui::SameLine();
-    if (ImGui::Button("Drop")) errors_->dropReference();
+    if (ImGui::Button("Drop")) errors.dropReference();
   }
-  if (ImGui::Button("Use current image (Ctrl+R)")) useImageAsReference();
+  if (ImGui::Button("Use current image (Ctrl+R)")) requests.actions.push_back(Action::UseImageAsReference);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("the image as it is now becomes the reference; render it long first.\n"
                       "Its own run is not plotted: change the configuration to measure another.");
-  ImGui::Checkbox("render at the reference's size", &matchReferenceSize_);
+  ImGui::Checkbox("render at the reference's size", &state.matchSize);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the error needs the same pixels: off, the image follows the window");
 
-  if (!referenceStatus_.empty()) {
+  if (!state.status.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
-    ImGui::TextWrapped("%s", referenceStatus_.c_str());
+    ImGui::TextWrapped("%s", state.status.c_str());
     ImGui::PopStyleColor();
-    if (const auto view = errors_->referenceView();
-        view && (edited_.camera != view->camera || !(edited_.lens == view->lens)) && ImGui::SmallButton("back to the reference's view"))
-      returnToReferenceView();
+    if (const auto view = errors.referenceView();
+        view && (edited.camera != view->camera || !(edited.lens == view->lens)) && ImGui::SmallButton("back to the reference's view"))
+      requests.returnToReferenceView = true;
   }
-  if (reference && !series_.empty() && !series_.back().points.empty()) {
-    const ErrorSeries& sr = series_.back();
+  if (reference && !convergence.series.empty() && !convergence.series.back().points.empty()) {
+    const ErrorSeries& sr = convergence.series.back();
     const ErrorPoint& p = sr.points.back();
     ImGui::Text("relMSE %.3g   RMSE %.3g   MAPE %.3g", p.error.relMse, p.error.rmse, p.error.mape);
     ImGui::TextDisabled("run %d at %.1f s, %llu spp (metrics %.1f ms, render thread)", sr.id, p.seconds,
-                        static_cast<unsigned long long>(p.spp), errors_->lastMetricMilliseconds());
+                        static_cast<unsigned long long>(p.spp), errors.lastMetricMilliseconds());
   }
-  ImGui::Checkbox("convergence plot and technique table (P)", &showConvergence_);
+  ImGui::Checkbox("convergence plot and technique table (P)", &convergence.show);
 
   ImGui::BeginDisabled(!reference);
-  ImGui::Checkbox("error view (X)", &display_.errorView);
+  ImGui::Checkbox("error view (X)", &display.errorView);
   ImGui::EndDisabled();
-  if (display_.errorView && reference) {
+  if (display.errorView && reference) {
     ImGui::SameLine();
-    int kind = static_cast<int>(display_.errorKind);
+    int kind = static_cast<int>(display.errorKind);
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x);
     if (ImGui::Combo("##kind", &kind, "relative squared\0absolute\0")) {
-      display_.errorKind = static_cast<PixelError>(kind);
+      display.errorKind = static_cast<PixelError>(kind);
       // Relative squared errors span many decades more than absolute ones.
-      if (display_.errorKind == PixelError::Absolute) display_.errorLogMin = -3.f, display_.errorLogMax = 0.f;
-      else display_.errorLogMin = -4.f, display_.errorLogMax = 0.f;
+      if (display.errorKind == PixelError::Absolute) display.errorLogMin = -3.f, display.errorLogMax = 0.f;
+      else display.errorLogMin = -4.f, display.errorLogMax = 0.f;
     }
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("relative squared: (x - r)^2 / (r^2 + 0.01), its mean is relMSE\nabsolute: |x - r|");
-    ImGui::Checkbox("log scale", &display_.errorLog);
+    ImGui::Checkbox("log scale", &display.errorLog);
     ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
-    if (display_.errorLog) {
-      ImGui::DragFloatRange2("##range", &display_.errorLogMin, &display_.errorLogMax, 0.05f, -12.f, 6.f, "1e%.1f", "1e%.1f");
-      display_.errorLogMax = std::max(display_.errorLogMax, display_.errorLogMin + 0.1f);
+    if (display.errorLog) {
+      ImGui::DragFloatRange2("##range", &display.errorLogMin, &display.errorLogMax, 0.05f, -12.f, 6.f, "1e%.1f", "1e%.1f");
+      display.errorLogMax = std::max(display.errorLogMax, display.errorLogMin + 0.1f);
     } else {
-      ImGui::DragFloat("##max", &display_.errorLinearMax, 0.005f, 1e-6f, 1e6f, "max %.3g", ImGuiSliderFlags_Logarithmic);
-      display_.errorLinearMax = std::max(display_.errorLinearMax, 1e-6f);
+      ImGui::DragFloat("##max", &display.errorLinearMax, 0.005f, 1e-6f, 1e6f, "max %.3g", ImGuiSliderFlags_Logarithmic);
+      display.errorLinearMax = std::max(display.errorLinearMax, 1e-6f);
     }
     ImGui::SameLine();
-    if (ImGui::SmallButton("auto") && snapshot_.image.width == reference->width && snapshot_.image.height == reference->height) {
+    if (ImGui::SmallButton("auto") && shown.width == reference->width && shown.height == reference->height) {
       // The 2% and 99.5% quantiles: a few fireflies do not stretch the scale.
-      const auto [lo, hi] = positiveQuantiles(pixelErrors(snapshot_.image, *reference, display_.errorKind), 0.02, 0.995);
+      const auto [lo, hi] = positiveQuantiles(pixelErrors(shown, *reference, display.errorKind), 0.02, 0.995);
       if (hi > 0.f) {
-        display_.errorLogMin = std::floor(std::log10(lo) * 2.f) / 2.f;
-        display_.errorLogMax = std::max(std::ceil(std::log10(hi) * 2.f) / 2.f, display_.errorLogMin + 0.5f);
-        display_.errorLinearMax = hi;
+        display.errorLogMin = std::floor(std::log10(lo) * 2.f) / 2.f;
+        display.errorLogMax = std::max(std::ceil(std::log10(hi) * 2.f) / 2.f, display.errorLogMin + 0.5f);
+        display.errorLinearMax = hi;
       }
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("fit the scale to the image's 2%% .. 99.5%% quantiles");
-    drawErrorBar(display_);
+    drawErrorBar(display);
   }
   ImGui::PopID();
 }
@@ -124,7 +126,7 @@ double errorScaleValue(const DisplaySettings& d, float t) {
 
 }  // namespace
 
-void Viewer::drawErrorBar(const DisplaySettings& d) {
+void drawErrorBar(const DisplaySettings& d) {
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 p = ImGui::GetCursorScreenPos();
   const float w = ImGui::GetContentRegionAvail().x, h = ImGui::GetTextLineHeight();
@@ -145,16 +147,15 @@ void Viewer::drawErrorBar(const DisplaySettings& d) {
   ImGui::PopStyleColor();
 }
 
-void Viewer::drawErrorBarOverlay(ImVec2 imageOrigin, ImVec2 imageSize) {
+void drawErrorBarOverlay(const DisplaySettings& d, ImVec2 imageOrigin, ImVec2 imageSize, float uiScale) {
   // The scale beside the picture it explains, top right of the image area.
   ImDrawList* draw = ImGui::GetForegroundDrawList();
-  const DisplaySettings& d = display_;
-  const float line = ImGui::GetTextLineHeight(), pad = 6.f * uiScale_;
+  const float line = ImGui::GetTextLineHeight(), pad = 6.f * uiScale;
   const std::string title = d.errorKind == PixelError::RelativeSquared ? "(x - r)^2 / (r^2 + 0.01)" : "|x - r|";
-  const float w = std::max(std::min(260.f * uiScale_, 0.45f * imageSize.x), ImGui::CalcTextSize(title.c_str()).x);
+  const float w = std::max(std::min(260.f * uiScale, 0.45f * imageSize.x), ImGui::CalcTextSize(title.c_str()).x);
   const float h = 0.8f * line;
-  const ImVec2 p0(std::max(imageOrigin.x, imageOrigin.x + imageSize.x - w - 2.f * pad - 8.f * uiScale_),
-                  imageOrigin.y + 8.f * uiScale_);
+  const ImVec2 p0(std::max(imageOrigin.x, imageOrigin.x + imageSize.x - w - 2.f * pad - 8.f * uiScale),
+                  imageOrigin.y + 8.f * uiScale);
   const ImVec2 p1(p0.x + w + 2.f * pad, p0.y + 2.f * line + h + 3.f * pad);
   draw->AddRectFilled(p0, p1, IM_COL32(0, 0, 0, 170), 4.f);
   draw->AddText(ImVec2(p0.x + pad, p0.y + pad), IM_COL32(235, 235, 235, 255), title.c_str());
@@ -170,9 +171,9 @@ void Viewer::drawErrorBarOverlay(ImVec2 imageOrigin, ImVec2 imageSize) {
     }
     const std::string label = tickLabel(value(t));
     const float lw = ImGui::CalcTextSize(label.c_str()).x;
-    if ((t == 0.25f || t == 0.75f) && w < 200.f * uiScale_) continue;  // room for three labels only
+    if ((t == 0.25f || t == 0.75f) && w < 200.f * uiScale) continue;  // room for three labels only
     const float x = std::clamp(b0.x + t * w - 0.5f * lw, b0.x, b0.x + w - lw);
-    draw->AddLine(ImVec2(b0.x + t * w, b0.y + h), ImVec2(b0.x + t * w, b0.y + h + 3.f * uiScale_), text);
+    draw->AddLine(ImVec2(b0.x + t * w, b0.y + h), ImVec2(b0.x + t * w, b0.y + h + 3.f * uiScale), text);
     draw->AddText(ImVec2(x, ly), text, label.c_str());
   }
 }

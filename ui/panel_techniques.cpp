@@ -1,7 +1,7 @@
 // The estimator section: integrator, maximum length, MIS heuristic, the combine / isolate mode and
 // the technique grid laid out like Veach 1997, fig. 10.3 (rows: path length k = s + t - 1 edges;
 // columns: s, the number of light subpath vertices).
-#include "ui/viewer.h"
+#include "ui/panels.h"
 
 #include "ui/technique_grid.h"
 
@@ -30,89 +30,18 @@ std::string techniqueTooltip(int s, int t) {
   return fmt::format("(s,t) = ({},{}): {} light and {} camera vertices, path length {}\n{}", s, t, s, t, k, what);
 }
 
-}  // namespace
-
-void Viewer::drawEstimatorSection() {
-  ImGui::PushID("estimator");
-  // Integrator
-  int integrator = edited_.integrator == IntegratorKind::Bpt ? 0 : edited_.integrator == IntegratorKind::Pt ? 1 : 2;
-  ImGui::TextUnformatted("integrator");
-  ImGui::SameLine();
-  ImGui::RadioButton("bpt", &integrator, 0);
-  ImGui::SameLine();
-  ImGui::RadioButton("pt", &integrator, 1);
-  ImGui::SameLine();
-  ImGui::RadioButton("lt", &integrator, 2);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("light tracing: only the t = 1 techniques");
-  edited_.integrator = integrator == 0 ? IntegratorKind::Bpt : integrator == 1 ? IntegratorKind::Pt : IntegratorKind::Lt;
-
-  int maxLength = edited_.maxLength;
-  if (ImGui::SliderInt("max length", &maxLength, 1, 32)) {
-    setMaxLength(edited_, maxLength);
-    oneLength_ = std::min(oneLength_, edited_.maxLength);
-    if (edited_.isolate) isolateS_ = edited_.isolate->s, isolateT_ = edited_.isolate->t;
-  }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("maximum path length in edges: 1 shows emitters, 2 adds direct light");
-
-  const bool bidirectional = edited_.integrator != IntegratorKind::Pt;
-  ImGui::BeginDisabled(!bidirectional);
-
-  // MIS heuristic
-  int heuristic = static_cast<int>(edited_.mis.heuristic);
-  ImGui::TextUnformatted("MIS");
-  ImGui::SameLine();
-  ImGui::RadioButton("balance", &heuristic, static_cast<int>(MisHeuristic::Balance));
-  ImGui::SameLine();
-  ImGui::RadioButton("power", &heuristic, static_cast<int>(MisHeuristic::Power));
-  ImGui::SameLine();
-  ImGui::RadioButton("uniform", &heuristic, static_cast<int>(MisHeuristic::Uniform));
-  edited_.mis.heuristic = static_cast<MisHeuristic>(heuristic);
-  if (edited_.mis.heuristic == MisHeuristic::Power) ImGui::SliderFloat("beta", &edited_.mis.beta, 0.5f, 8.f, "%.2f");
-  ImGui::SliderFloat("min connection", &edited_.mis.minConnection, 0.f, 0.3f, "%.4f", ImGuiSliderFlags_Logarithmic);
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("connections shorter than this fraction of the scene's radius are left to the techniques\n"
-                      "that sample that edge (1/d^2 near corners); unbiased at any value, 0 turns it off.\n"
-                      "Uniform weights gain most; balance and power barely notice.");
-
-  // Mode
-  int mode = static_cast<int>(modeOf(edited_));
-  for (int m = 0; m < 3; ++m)
-    if (ImGui::RadioButton(modeLabel(static_cast<EstimatorMode>(m)), &mode, m))
-      setMode(edited_, static_cast<EstimatorMode>(m), isolateS_, isolateT_);
-  if (edited_.isolate) {
-    ImGui::Text("isolated technique (s,t) = (%d,%d), length %d", isolateS_, isolateT_, isolateS_ + isolateT_ - 1);
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("click a cell of the grid or a pyramid thumbnail; arrow keys move it");
-    if (isolatedTechniqueDisabled(edited_)) {
-      ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
-      ImGui::TextWrapped("(%d,%d) is not enabled: its weighted share is zero (Ctrl+click enables it)", isolateS_,
-                         isolateT_);
-      ImGui::PopStyleColor();
-    }
-  }
-
-  ImGui::Separator();
-  drawTechniqueGrid();
-  ImGui::EndDisabled();
-  if (!bidirectional) ImGui::TextDisabled("the path tracer ignores the technique set");
-
-  if (!settingsError_.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, kError);
-    ImGui::TextWrapped("refused: %s", settingsError_.c_str());
-    ImGui::PopStyleColor();
-  }
-  ImGui::PopID();
-}
-
-void Viewer::drawTechniqueGrid() {
-  const TechniqueSet& set = edited_.techniques;
-  const bool isolating = edited_.isolate.has_value();
-  const bool lightTracing = edited_.integrator == IntegratorKind::Lt;
-  const int rows = std::min(edited_.maxLength, kGridMaxLength);
+// The grid: one checkbox per (s,t), rows by length, columns by s; its presets and the SPEC field.
+void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, const Counters& counters) {
+  RenderSettings& edited = estimator.settings;
+  const TechniqueSet& set = edited.techniques;
+  const bool isolating = estimator.mode != EstimatorMode::Combine;
+  const int oneLength = std::min(grid.oneLength, edited.maxLength);
+  const bool lightTracing = edited.integrator == IntegratorKind::Lt;
+  const int rows = std::min(edited.maxLength, kGridMaxLength);
 
   // Presets
   auto presetButton = [&](const char* label, TechniquePreset preset, const char* key) {
-    if (ImGui::SmallButton(label)) edited_.techniques = presetTechniques(preset, oneLength_);
+    if (ImGui::SmallButton(label)) edited.techniques = presetTechniques(preset, oneLength);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (key %s)", presetLabel(preset), key);
   };
   presetButton("all", TechniquePreset::All, "1");
@@ -126,9 +55,10 @@ void Viewer::drawTechniqueGrid() {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
   // Moving the length while "only length" is active moves the selection with it.
-  const bool oneLengthActive = edited_.techniques == presetTechniques(TechniquePreset::OneLength, oneLength_);
-  if (ImGui::SliderInt("##onelength", &oneLength_, 1, edited_.maxLength, "k = %d") && oneLengthActive)
-    edited_.techniques = presetTechniques(TechniquePreset::OneLength, oneLength_);
+  const bool oneLengthActive = edited.techniques == presetTechniques(TechniquePreset::OneLength, oneLength);
+  grid.oneLength = oneLength;
+  if (ImGui::SliderInt("##onelength", &grid.oneLength, 1, edited.maxLength, "k = %d") && oneLengthActive)
+    edited.techniques = presetTechniques(TechniquePreset::OneLength, grid.oneLength);
 
   // The grid: one checkbox per (s,t); in the isolate modes a click picks the isolated technique.
   const ImGuiTableFlags flags = ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_NoHostExtendX;
@@ -141,7 +71,7 @@ void Viewer::drawTechniqueGrid() {
       ImGui::PushID(1000 + s);
       // A column header switches every technique with this s.
       if (ImGui::SmallButton(fmt::format("{}", s).c_str()) && !isolating)
-        edited_.techniques = toggleLightVertices(set, edited_.maxLength, s);
+        edited.techniques = toggleLightVertices(set, edited.maxLength, s);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("s = %d: every technique with %d light vertices on/off", s, s);
       ImGui::PopID();
     }
@@ -151,13 +81,13 @@ void Viewer::drawTechniqueGrid() {
       ImGui::PushID(2000 + k);
       // A row label switches every technique of this length.
       if (ImGui::SmallButton(fmt::format("{}", k).c_str()) && !isolating)
-        edited_.techniques = toggleLength(set, edited_.maxLength, k);
+        edited.techniques = toggleLength(set, edited.maxLength, k);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("length %d: every technique on/off", k);
       ImGui::PopID();
       for (const auto [s, t] : techniquesOfLength(k)) {
         ImGui::TableSetColumnIndex(s + 1);
         ImGui::PushID(k * 100 + s);
-        const bool isolated = isolating && s == isolateS_ && t == isolateT_;
+        const bool isolated = isolating && estimator.isolated == Technique{s, t};
         if (isolated) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(230, 160, 40, 200));
         ImGui::BeginDisabled(lightTracing && t != 1);
         bool on = set.contains(s, t);
@@ -165,14 +95,14 @@ void Viewer::drawTechniqueGrid() {
           // Isolating, a click picks the technique shown; Ctrl+click still switches it on or off
           // (a weighted share depends on which techniques are enabled).
           if (isolating && !ImGui::GetIO().KeyCtrl) {
-            setIsolateTarget(s, t);
+            setIsolated(estimator, {s, t});
           } else {
-            edited_.techniques = toggleTechnique(set, edited_.maxLength, {s, t});
+            edited.techniques = toggleTechnique(set, edited.maxLength, {s, t});
           }
         }
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-          const TechniqueCounters& c = snapshot_.counters.technique(s, t);
+          const TechniqueCounters& c = counters.technique(s, t);
           ImGui::SetTooltip("%s\nthis generation: %llu connections tried, %llu blocked, %llu contributed, %llu discarded",
                             techniqueTooltip(s, t).c_str(), static_cast<unsigned long long>(c.tried),
                             static_cast<unsigned long long>(c.blocked), static_cast<unsigned long long>(c.contributed),
@@ -183,42 +113,113 @@ void Viewer::drawTechniqueGrid() {
     }
     ImGui::EndTable();
   }
-  if (edited_.maxLength > kGridMaxLength)
-    ImGui::TextDisabled("lengths %d..%d: edit the SPEC", kGridMaxLength + 1, edited_.maxLength);
+  if (edited.maxLength > kGridMaxLength)
+    ImGui::TextDisabled("lengths %d..%d: edit the SPEC", kGridMaxLength + 1, edited.maxLength);
 
   // The SPEC as text (as --techniques takes it); applied on Enter.
   // A SPEC that does not parse never reaches the settings: its error shows under the field.
-  std::string spec = edited_.techniques.toString();
+  std::string spec = edited.techniques.toString();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.7f);
   if (ImGui::InputText("SPEC", &spec, ImGuiInputTextFlags_EnterReturnsTrue)) {
     try {
-      edited_.techniques = parseTypedSpec(spec, edited_.maxLength);
-      specError_.clear();
+      edited.techniques = parseTypedSpec(spec, edited.maxLength);
+      grid.specError.clear();
     } catch (const std::invalid_argument& e) {
-      specError_ = e.what();
+      grid.specError = e.what();
     }
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("';'-separated S,T | s=S | t=T | k=K | all; Enter applies");
-  if (!specError_.empty()) {
+  if (!grid.specError.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, kError);
-    ImGui::TextWrapped("%s", specError_.c_str());
+    ImGui::TextWrapped("%s", grid.specError.c_str());
     ImGui::PopStyleColor();
   }
 
   // Lengths no enabled technique can sample: their light is missing from the image.
-  const TechniqueSet enabled = enabledTechniques(edited_);
-  if (const std::vector<int> uncovered = enabled.uncoveredLengths(edited_.maxLength);
-      !uncovered.empty() && enabled.anyUpTo(edited_.maxLength)) {
+  const TechniqueSet enabled = enabledTechniques(edited);
+  if (const std::vector<int> uncovered = enabled.uncoveredLengths(edited.maxLength);
+      !uncovered.empty() && enabled.anyUpTo(edited.maxLength)) {
     std::string list;
     for (int k : uncovered) list += (list.empty() ? "" : ", ") + std::to_string(k);
     ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
     ImGui::TextWrapped("no enabled technique samples paths of length %s: that light is missing", list.c_str());
     ImGui::PopStyleColor();
-  } else if (!enabled.anyUpTo(edited_.maxLength)) {
+  } else if (!enabled.anyUpTo(edited.maxLength)) {
     ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
     ImGui::TextWrapped("no technique enabled: nothing is rendered");
     ImGui::PopStyleColor();
   }
+}
+
+}  // namespace
+
+void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
+                          const Counters& counters) {
+  RenderSettings& edited = estimator.settings;
+  ImGui::PushID("estimator");
+  // Integrator
+  int integrator = edited.integrator == IntegratorKind::Bpt ? 0 : edited.integrator == IntegratorKind::Pt ? 1 : 2;
+  ImGui::TextUnformatted("integrator");
+  ImGui::SameLine();
+  ImGui::RadioButton("bpt", &integrator, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("pt", &integrator, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("lt", &integrator, 2);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("light tracing: only the t = 1 techniques");
+  edited.integrator = integrator == 0 ? IntegratorKind::Bpt : integrator == 1 ? IntegratorKind::Pt : IntegratorKind::Lt;
+
+  int maxLength = edited.maxLength;
+  if (ImGui::SliderInt("max length", &maxLength, 1, 32)) setMaxLength(estimator, maxLength);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("maximum path length in edges: 1 shows emitters, 2 adds direct light");
+
+  const bool bidirectional = edited.integrator != IntegratorKind::Pt;
+  ImGui::BeginDisabled(!bidirectional);
+
+  // MIS heuristic
+  int heuristic = static_cast<int>(edited.mis.heuristic);
+  ImGui::TextUnformatted("MIS");
+  ImGui::SameLine();
+  ImGui::RadioButton("balance", &heuristic, static_cast<int>(MisHeuristic::Balance));
+  ImGui::SameLine();
+  ImGui::RadioButton("power", &heuristic, static_cast<int>(MisHeuristic::Power));
+  ImGui::SameLine();
+  ImGui::RadioButton("uniform", &heuristic, static_cast<int>(MisHeuristic::Uniform));
+  edited.mis.heuristic = static_cast<MisHeuristic>(heuristic);
+  if (edited.mis.heuristic == MisHeuristic::Power) ImGui::SliderFloat("beta", &edited.mis.beta, 0.5f, 8.f, "%.2f");
+  ImGui::SliderFloat("min connection", &edited.mis.minConnection, 0.f, 0.3f, "%.4f", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("connections shorter than this fraction of the scene's radius are left to the techniques\n"
+                      "that sample that edge (1/d^2 near corners); unbiased at any value, 0 turns it off.\n"
+                      "Uniform weights gain most; balance and power barely notice.");
+
+  // Mode
+  int mode = static_cast<int>(estimator.mode);
+  for (int m = 0; m < 3; ++m) ImGui::RadioButton(modeLabel(static_cast<EstimatorMode>(m)), &mode, m);
+  estimator.mode = static_cast<EstimatorMode>(mode);
+  if (estimator.mode != EstimatorMode::Combine) {
+    const Technique x = estimator.isolated;
+    ImGui::Text("isolated technique (s,t) = (%d,%d), length %d", x.s, x.t, x.length());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("click a cell of the grid or a pyramid thumbnail; arrow keys move it");
+    if (isolatedTechniqueDisabled(renderSettings(estimator))) {
+      ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
+      ImGui::TextWrapped("(%d,%d) is not enabled: its weighted share is zero (Ctrl+click enables it)", x.s, x.t);
+      ImGui::PopStyleColor();
+    }
+  }
+
+  ImGui::Separator();
+  drawTechniqueGrid(estimator, grid, counters);
+  ImGui::EndDisabled();
+  if (!bidirectional) ImGui::TextDisabled("the path tracer ignores the technique set");
+
+  if (!settingsError.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kError);
+    ImGui::TextWrapped("refused: %s", settingsError.c_str());
+    ImGui::PopStyleColor();
+  }
+  ImGui::PopID();
 }
 
 }  // namespace pathlab::ui

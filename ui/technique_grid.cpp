@@ -1,7 +1,5 @@
-// Technique grid logic: presets, toggles, mode and maximum length over RenderSettings.
+// Technique grid logic: presets, the SPEC field and toggles of the technique set.
 #include "ui/technique_grid.h"
-
-#include <fmt/core.h>
 
 #include <algorithm>
 
@@ -71,63 +69,6 @@ TechniqueSet toggleLightVertices(const TechniqueSet& set, int maxLength, int s) 
 
 bool noTechniqueEnabled(const RenderSettings& settings) {
   return settings.integrator != IntegratorKind::Pt && !settings.techniques.anyUpTo(settings.maxLength);
-}
-
-const char* modeLabel(EstimatorMode mode) {
-  switch (mode) {
-    case EstimatorMode::Combine: return "combine with MIS";
-    case EstimatorMode::IsolateWeighted: return "isolate, weighted";
-    case EstimatorMode::IsolateUnweighted: return "isolate, unweighted";
-  }
-  return "?";
-}
-
-EstimatorMode modeOf(const RenderSettings& settings) {
-  if (!settings.isolate) return EstimatorMode::Combine;
-  return settings.isolate->unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
-}
-
-void setMode(RenderSettings& settings, EstimatorMode mode, int s, int t) {
-  if (mode == EstimatorMode::Combine) settings.isolate.reset();
-  else settings.isolate = Isolation{s, t, mode == EstimatorMode::IsolateUnweighted};
-}
-
-void setMaxLength(RenderSettings& settings, int maxLength) {
-  maxLength = std::max(maxLength, 1);
-  settings.maxLength = maxLength;
-  settings.techniques = settings.techniques.fittedTo(maxLength);
-  if (settings.isolate && settings.isolate->s + settings.isolate->t - 1 > maxLength) {
-    settings.isolate->s = std::min(settings.isolate->s, maxLength);
-    settings.isolate->t = maxLength + 1 - settings.isolate->s;
-  }
-}
-
-bool isolatedTechniqueDisabled(const RenderSettings& s) {
-  if (s.integrator == IntegratorKind::Pt || !s.isolate || s.isolate->unweighted) return false;
-  return !s.techniques.contains(s.isolate->s, s.isolate->t);
-}
-
-RenderSettings effectiveSettings(const RenderSettings& edited) {
-  RenderSettings s = edited;
-  if (s.integrator == IntegratorKind::Pt) {
-    s.isolate.reset();
-    s.pyramidLength = 0;
-  }
-  return s;
-}
-
-std::string describe(const RenderSettings& s) {
-  std::string out = fmt::format("{}, max length {}", integratorName(s.integrator), s.maxLength);
-  if (s.integrator == IntegratorKind::Pt) return out;
-  out += fmt::format(", techniques {}", s.techniques.empty() ? "(none)" : s.techniques.toString());
-  if (s.isolate)
-    out += fmt::format(", isolate ({},{}) {}", s.isolate->s, s.isolate->t, s.isolate->unweighted ? "unweighted" : "weighted");
-  else if (s.mis.heuristic == MisHeuristic::Power)
-    out += fmt::format(", MIS power (beta {:g})", s.mis.beta);
-  else
-    out += fmt::format(", MIS {}", misHeuristicName(s.mis.heuristic));
-  if (s.mis.minConnection != kDefaultMinConnection) out += fmt::format(", min connection {:g}", s.mis.minConnection);
-  return out;
 }
 
 }  // namespace pathlab::ui

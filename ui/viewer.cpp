@@ -1,4 +1,5 @@
-// The viewer's plumbing: settings to the renderer, snapshots to the texture, scenes, presets, saving.
+// The viewer's frame and plumbing: panels and their requests, settings to the renderer, snapshots
+// to the textures, scenes, presets, saving.
 #include "ui/viewer.h"
 
 #include "core/film/image_io.h"
@@ -29,6 +30,8 @@ constexpr double kRefreshSeconds = 0.25;
 constexpr double kPyramidRefreshSeconds = 0.5;
 // Render threads yield to the UI thread and llvmpipe's rasteriser threads (thread_priority.h).
 constexpr int kRenderThreadNice = 10;
+// An ordinary message fades after this long; an error stays until dismissed.
+constexpr double kMessageSeconds = 12.0;
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -37,58 +40,53 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene, std::vector<NamedPreset> presets)
-    : scene_(std::move(scene)),
-      scenePath_(options.scene),
-      edited_(options.settings),
-      targetSpp_(options.spp),
-      presets_(std::move(presets)),
-      presetsPath_(options.presetsFile),
-      imageView_(std::make_unique<ImageView>()),
-      errors_(std::make_shared<ErrorTracker>()),
-      showUi_(!options.hideUi) {
-  display_.exposure = options.exposure;
-  resolutionScale_ = options.renderScale;
-  if (options.pyramidLength > 0) {
-    showPyramid_ = true;
-    pyramidLength_ = options.pyramidLength;
-  }
-  if (edited_.isolate) isolateS_ = edited_.isolate->s, isolateT_ = edited_.isolate->t;
-  oneLength_ = std::min(oneLength_, edited_.maxLength);
-  orbit_ = OrbitCamera(scene_->cameraDesc(), scene_->boundsMin(), scene_->boundsMax());
+    : estimator_(EstimatorState::from(options.settings)), imageView_(std::make_unique<ImageView>()) {
+  scene_.scene = std::move(scene);
+  scene_.path = options.scene;
+  // A preset's camera: orbit from there.
+  scene_.orbit = OrbitCamera(estimator_.settings.camera.value_or(scene_.scene->cameraDesc()), scene_.scene->boundsMin(),
+                             scene_.scene->boundsMax());
+  presets_.presets = std::move(presets);
+  presets_.path = options.presetsFile;
   if (!options.preset.empty())
-    for (size_t i = 0; i < presets_.size(); ++i)
-      if (presets_[i].name == options.preset) currentPreset_ = static_cast<int>(i);
-  if (edited_.camera) {
-    // A preset's camera: orbit from there.
-    orbit_ = OrbitCamera(*edited_.camera, scene_->boundsMin(), scene_->boundsMax());
+    for (size_t i = 0; i < presets_.presets.size(); ++i)
+      if (presets_.presets[i].name == options.preset) presets_.current = static_cast<int>(i);
+  run_.targetSpp = targetApplied_ = options.spp;
+  run_.resolutionScale = options.renderScale;
+  display_.exposure = options.exposure;
+  display_.errorView = options.errorView;
+  ui_.showUi = !options.hideUi;
+  if (options.pyramidLength > 0) {
+    pyramid_.show = true;
+    pyramid_.length = options.pyramidLength;
   }
-  applied_ = effectiveSettings(edited_);
+  applied_ = renderSettings(estimator_);
   // The first frame sets the real image size; start small so nothing big is rendered in vain.
   applied_.width = applied_.height = 64;
   RenderSettings initial = applied_;
   if (noTechniqueEnabled(initial)) initial.techniques = TechniqueSet::all();
   if (!options.reference.empty()) {
     // From the command line a bad reference is an error of the command, not a message.
-    errors_->setReference(readImage(options.reference), viewOf(effectiveSettings(edited_), scene_.get()),
-                          options.reference);
-    showConvergence_ = true;
+    reference_.errors->setReference(readImage(options.reference), viewOf(renderSettings(estimator_), scene_.scene.get()),
+                                    options.reference);
+    convergence_.show = true;
   }
-  showConvergence_ = showConvergence_ || options.convergencePanel;
-  display_.errorView = options.errorView;
-  renderer_ = std::make_unique<ProgressiveRenderer>(scene_, initial, options.threads);
-  renderer_->setTargetSpp(targetSpp_);
+  convergence_.show = convergence_.show || options.convergencePanel;
+  renderer_ = std::make_unique<ProgressiveRenderer>(scene_.scene, initial, options.threads);
+  renderer_->setTargetSpp(targetApplied_);
   // Errors are measured on the render thread after each full pass (no copy of the image, no wait
   // for the UI's refresh); the tracker outlives the renderer through this shared pointer.
-  renderer_->setPassObserver([errors = errors_](const PassInfo& info, const Image& mean) { errors->observe(info, mean); });
+  renderer_->setPassObserver(
+      [errors = reference_.errors](const PassInfo& info, const Image& mean) { errors->observe(info, mean); });
   refreshSceneFiles();
 }
 
 Viewer::~Viewer() = default;  // the renderer cancels its pass and joins its worker
 
 void Viewer::showMessage(const std::string& text, bool error) {
-  message_ = text;
-  messageIsError_ = error;
-  messageTime_ = std::chrono::steady_clock::now();
+  ui_.message = text;
+  ui_.messageIsError = error;
+  ui_.messageTime = std::chrono::steady_clock::now();
 }
 
 void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std::vector<std::string>& droppedPaths) {
@@ -99,43 +97,101 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   handleShortcuts();
   // Panels beside the image, never over it: the controls on the left, the pyramid on the right,
   // the convergence plot and technique table along the bottom.
-  const float bottom = showUi_ && showConvergence_ ? convergencePanelHeight(io.DisplaySize.y) : 0.f;
+  const float scale = ui_.scale;
+  const float bottom = ui_.showUi && convergence_.show ? convergencePanelHeight(io.DisplaySize.y, scale) : 0.f;
   const float upper = io.DisplaySize.y - bottom;
-  const float panelWidth = showUi_ ? std::min(380.f * uiScale_, io.DisplaySize.x * 0.6f) : 0.f;
-  const float pyramidWidth = showUi_ && showPyramid_ ? pyramidPanelWidth(io.DisplaySize.x - panelWidth, upper) : 0.f;
+  const float panelWidth = ui_.showUi ? std::min(380.f * scale, io.DisplaySize.x * 0.6f) : 0.f;
+  const float pyramidWidth =
+      ui_.showUi && pyramid_.show
+          ? pyramidPanelWidth(pyramid_, estimator_.settings.maxLength, io.DisplaySize.x - panelWidth, upper, scale)
+          : 0.f;
   imageOrigin_ = {static_cast<int>(panelWidth * framebufferScale), 0};
   imageSize_ = {std::max(framebufferSize.x - imageOrigin_.x - static_cast<int>(pyramidWidth * framebufferScale), 0),
                 std::max(framebufferSize.y - static_cast<int>(bottom * framebufferScale), 0)};
   handleCamera(framebufferScale);
   updateReferenceState();
 
-  if (showUi_) {
-    drawSidePanel(panelWidth, upper);
-    if (showPyramid_) drawPyramidWindow(io.DisplaySize.x - pyramidWidth, pyramidWidth, upper);
-    if (showConvergence_) drawConvergenceWindow(upper, io.DisplaySize.x, bottom);
+  PanelRequests requests;
+  if (ui_.showUi) {
+    drawSidePanel(panelWidth, upper, requests);
+    if (pyramid_.show)
+      drawPyramidWindow(pyramid_, pyramidImages_, estimator_, {io.DisplaySize.x - pyramidWidth, 0.f, pyramidWidth, upper},
+                        scale);
+    if (convergence_.show)
+      drawConvergenceWindow(convergence_, reference_, snapshot_, {0.f, upper, io.DisplaySize.x, bottom}, scale, requests);
   }
-  if (showHelp_) drawHelpWindow();
-  drawImageOverlay();
+  if (ui_.showHelp) drawHelpWindow(ui_.showHelp);
+  const float fbScale = io.DisplayFramebufferScale.x > 0.f ? io.DisplayFramebufferScale.x : 1.f;
+  drawImageOverlay(ImageOverlay{
+      ImVec2(static_cast<float>(imageOrigin_.x) / fbScale, static_cast<float>(imageOrigin_.y) / fbScale),
+      ImVec2(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale), &snapshot_,
+      renderSettings(estimator_), shownDisplay(), errorViewProblem(), run_.idleForNoTechnique, run_.userPaused, scale});
+  carryOut(requests);
 
+  RenderSettings& edited = estimator_.settings;
   // The image follows its area of the window (a resize is a new generation, like any other change).
   // ... unless a reference sets it: an error needs the same pixels.
-  if (const std::optional<ReferenceView> view = errors_->referenceView(); view && matchReferenceSize_) {
-    edited_.width = view->width;
-    edited_.height = view->height;
+  if (const std::optional<ReferenceView> view = reference_.errors->referenceView(); view && reference_.matchSize) {
+    edited.width = view->width;
+    edited.height = view->height;
   } else {
-    edited_.width = std::max(1, static_cast<int>(static_cast<float>(imageSize_.x) * resolutionScale_));
-    edited_.height = std::max(1, static_cast<int>(static_cast<float>(imageSize_.y) * resolutionScale_));
+    edited.width = std::max(1, static_cast<int>(static_cast<float>(imageSize_.x) * run_.resolutionScale));
+    edited.height = std::max(1, static_cast<int>(static_cast<float>(imageSize_.y) * run_.resolutionScale));
   }
-  // Per-technique timing costs two clock reads a connection: only while its table is shown.
-  const bool timing = showUi_ && showConvergence_;
-  if (timing != timingOn_) renderer_->setTiming(timingOn_ = timing);
-  edited_.pyramidLength = showPyramid_ ? std::min(pyramidLength_, edited_.maxLength) : 0;
-  if (showPyramid_) {
+  edited.pyramidLength = pyramid_.show ? std::min(pyramid_.length, edited.maxLength) : 0;
+  if (pyramid_.show) {
     // Thumbnails as large as they are shown (no blocky upscaling on a projector), from the next pass.
-    const int side = std::clamp(static_cast<int>(std::max(pyramidThumbnail_.x, pyramidThumbnail_.y) * framebufferScale), 32, 256);
-    if (side != thumbnailSide_) renderer_->setThumbnailSide(thumbnailSide_ = side);
+    const int side =
+        std::clamp(static_cast<int>(std::max(pyramid_.thumbnail.x, pyramid_.thumbnail.y) * framebufferScale), 32, 256);
+    if (side != pyramidImages_.side) renderer_->setThumbnailSide(pyramidImages_.side = side);
   }
   if (imageSize_.x > 0 && imageSize_.y > 0) applySettings();  // a minimised window keeps rendering the old size
+  syncRenderer();
+}
+
+void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
+  ImGui::SetNextWindowPos(ImVec2(0.f, 0.f));
+  ImGui::SetNextWindowSize(ImVec2(width, height));
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoBringToFrontOnFocus;
+  ImGui::Begin("pathlab", nullptr, flags);
+  const std::string title = "pathlab  " + std::filesystem::path(scene_.path).filename().string();
+  ImGui::TextUnformatted(title.c_str());
+  const float helpWidth = ImGui::CalcTextSize("Help (F1)").x + 2.f * ImGui::GetStyle().FramePadding.x;
+  const float right = ImGui::GetWindowContentRegionMax().x - helpWidth;
+  if (ImGui::GetItemRectSize().x + ImGui::GetStyle().ItemSpacing.x < right - ImGui::GetStyle().WindowPadding.x)
+    ImGui::SameLine(right);
+  if (ImGui::SmallButton("Help (F1)")) ui_.showHelp = !ui_.showHelp;
+  if (!ui_.message.empty() && (ui_.messageIsError || secondsSince(ui_.messageTime) < kMessageSeconds)) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ui_.messageIsError ? ImVec4(1.f, 0.35f, 0.35f, 1.f) : ImVec4(0.6f, 0.9f, 0.6f, 1.f));
+    ImGui::TextWrapped("%s", ui_.message.c_str());
+    ImGui::PopStyleColor();
+    if (ui_.messageIsError && ImGui::SmallButton("dismiss")) ui_.message.clear();
+  }
+  if (ImGui::CollapsingHeader("Status", ImGuiTreeNodeFlags_DefaultOpen))
+    drawStatusSection(snapshot_, run_, ui_.frameMs, requests);
+  if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
+    drawEstimatorSection(estimator_, grid_, run_.settingsError, snapshot_.counters);
+  if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
+    drawDisplaySection(display_, run_, pyramid_, snapshot_.image);
+  if (ImGui::CollapsingHeader("Reference and error", convergence_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+    drawReferenceSection(reference_, convergence_, display_, estimator_.settings, snapshot_.image, requests);
+  if (ImGui::CollapsingHeader("Scene and camera"))
+    drawSceneSection(scene_, estimator_.settings.camera.has_value(), requests);
+  if (ImGui::CollapsingHeader("Presets", presets_.presets.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+    drawPresetSection(presets_, requests);
+  ImGui::End();
+}
+
+void Viewer::carryOut(const PanelRequests& requests) {
+  for (const Action action : requests.actions) perform(action);
+  if (requests.openScene) openScene(*requests.openScene);
+  if (requests.loadReference) loadReference(*requests.loadReference);
+  if (requests.preset) applyPreset(*requests.preset);
+  if (requests.rescanScenes) refreshSceneFiles();
+  if (requests.returnToReferenceView) returnToReferenceView();
+  if (requests.exportErrorCsv) exportErrorCsv();
 }
 
 bool Viewer::pollImage() {
@@ -144,38 +200,42 @@ bool Viewer::pollImage() {
     lowerRenderThreadPriority(kRenderThreadNice);
     lastPriorityCheck_ = std::chrono::steady_clock::now();
   }
-  const bool pyramid = showPyramid_ && updatePyramid();
+  const bool pyramid = pyramid_.show && updatePyramid();
   const bool image = updateImage();
   bool reference = false;
-  if (errors_->referenceVersion() != uploadedReference_) {
-    uploadedReference_ = errors_->referenceVersion();
-    const std::shared_ptr<const Image> r = errors_->reference();
+  if (reference_.errors->referenceVersion() != reference_.uploadedVersion) {
+    reference_.uploadedVersion = reference_.errors->referenceVersion();
+    const std::shared_ptr<const Image> r = reference_.errors->reference();
     imageView_->setReference(r.get());
     reference = true;
   }
   // New points arrive on the render thread; the plot redraws when they do.
-  const bool points = showConvergence_ && errors_->version() != seriesVersion_;
+  const bool points = convergence_.show && reference_.errors->version() != convergence_.seriesVersion;
   return image || pyramid || reference || points;
 }
 
 void Viewer::applySettings() {
   // The renderer cannot run an empty technique set: idle and show black until one is enabled.
-  const bool nothing = noTechniqueEnabled(edited_);
-  if (nothing != idleForNoTechnique_) {
-    idleForNoTechnique_ = nothing;
-    renderer_->setPaused(nothing || userPaused_);
-  }
-  const RenderSettings wanted = effectiveSettings(edited_);
-  if (nothing || wanted == applied_) return;
+  run_.idleForNoTechnique = noTechniqueEnabled(estimator_.settings);
+  const RenderSettings wanted = renderSettings(estimator_);
+  if (run_.idleForNoTechnique || wanted == applied_) return;
   applied_ = wanted;
   try {
     renderer_->setSettings(wanted);
-    settingsError_.clear();
+    run_.settingsError.clear();
     forceRefresh_ = true;
   } catch (const std::exception& e) {
     // The renderer keeps its previous settings; the panel shows why until the next change.
-    settingsError_ = e.what();
+    run_.settingsError = e.what();
   }
+}
+
+void Viewer::syncRenderer() {
+  if (run_.paused() != pausedApplied_) renderer_->setPaused(pausedApplied_ = run_.paused());
+  if (run_.targetSpp != targetApplied_) renderer_->setTargetSpp(targetApplied_ = run_.targetSpp);
+  // Per-technique timing costs two clock reads a connection: only while its table is shown.
+  const bool timing = ui_.showUi && convergence_.show;
+  if (timing != timingApplied_) renderer_->setTiming(timingApplied_ = timing);
 }
 
 bool Viewer::updateImage() {
@@ -190,35 +250,36 @@ bool Viewer::updateImage() {
 }
 
 bool Viewer::updatePyramid() {
-  const bool due = forceRefresh_ || secondsSince(lastPyramidPoll_) >= kPyramidRefreshSeconds;
-  if (due) lastPyramidPoll_ = std::chrono::steady_clock::now();
-  const bool fresh = due && renderer_->pyramid(thumbnails_, pyramidVersion_);
+  PyramidImages& p = pyramidImages_;
+  const bool due = forceRefresh_ || secondsSince(p.lastPoll) >= kPyramidRefreshSeconds;
+  if (due) p.lastPoll = std::chrono::steady_clock::now();
+  const bool fresh = due && renderer_->pyramid(p.thumbnails, p.version);
   // Re-tone the thumbnails we have when their display changes (exposure mode, tone map, ...).
-  const bool retone = !(thumbnailDisplay_ == display_) || thumbnailOwnExposure_ != pyramidOwnExposure_;
+  const bool retone = !(p.toned == display_) || p.tonedOwnExposure != pyramid_.ownExposure;
   if (!fresh && !retone) return false;
-  thumbnailDisplay_ = display_;
-  thumbnailOwnExposure_ = pyramidOwnExposure_;
-  thumbnailTextures_.resize(2 * thumbnails_.size());
-  for (size_t i = 0; i < thumbnails_.size(); ++i) {
-    const Image* images[2] = {&thumbnails_[i].weighted, &thumbnails_[i].unweighted};
+  p.toned = display_;
+  p.tonedOwnExposure = pyramid_.ownExposure;
+  p.textures.resize(2 * p.thumbnails.size());
+  for (size_t i = 0; i < p.thumbnails.size(); ++i) {
+    const Image* images[2] = {&p.thumbnails[i].weighted, &p.thumbnails[i].unweighted};
     for (int u = 0; u < 2; ++u) {
       if (images[u]->width <= 0) continue;
       // Own exposure: every technique visible although their magnitudes differ by orders of
       // magnitude. Common exposure (the image's): the weighted shares compare directly.
       DisplaySettings d = display_;
-      if (pyramidOwnExposure_) d.exposure = autoExposure(*images[u]);
+      if (pyramid_.ownExposure) d.exposure = autoExposure(*images[u]);
       const std::vector<uint8_t> rgba = toRgba8(*images[u], d);
-      thumbnailTextures_[2 * i + static_cast<size_t>(u)].uploadRgba8(images[u]->width, images[u]->height, rgba.data());
+      p.textures[2 * i + static_cast<size_t>(u)].uploadRgba8(images[u]->width, images[u]->height, rgba.data());
     }
   }
   return true;
 }
 
 void Viewer::waitForPyramid(double seconds) {
-  if (!showPyramid_ || effectiveSettings(edited_).pyramidLength == 0) return;
+  if (!pyramid_.show || renderSettings(estimator_).pyramidLength == 0) return;
   const auto start = std::chrono::steady_clock::now();
   std::vector<TechniqueThumbnail> probe;
-  uint64_t version = pyramidVersion_;
+  uint64_t version = pyramidImages_.version;
   // The renderer publishes the thumbnails of a pass just after its image.
   while (secondsSince(start) < seconds) {
     if (renderer_->pyramid(probe, version) && !probe.empty()) break;
@@ -228,54 +289,53 @@ void Viewer::waitForPyramid(double seconds) {
 }
 
 void Viewer::drawImage(Vec2i framebufferSize) {
-  if (idleForNoTechnique_) return;  // black: nothing is estimated
+  if (run_.idleForNoTechnique) return;  // black: nothing is estimated
   imageView_->draw(imageOrigin_, imageSize_, framebufferSize.y, shownDisplay());
 }
 
 void Viewer::openScene(const std::string& path) {
-  loader_.start(path);
+  scene_.loader.start(path);
   showMessage("loading " + path + " ...");
 }
 
 void Viewer::pollSceneLoad() {
-  std::optional<SceneLoadResult> r = loader_.poll();
+  std::optional<SceneLoadResult> r = scene_.loader.poll();
   if (!r) return;
   if (!r->scene) {
     showMessage(r->error + " (the previous scene is kept)", true);
     return;
   }
   // A reload keeps the view (the file is being edited); another scene starts at its own camera.
-  const bool reload = r->path == scenePath_;
+  const bool reload = r->path == scene_.path;
   // The error against a reference of another scene (or of the file before it was edited) is
   // meaningless: drop it (the plot keeps what was measured against it).
-  const bool hadReference = errors_->reference() != nullptr;
-  errors_->dropReference();
-  scene_ = r->scene;
-  scenePath_ = r->path;
-  if (!reload) {
-    orbit_ = OrbitCamera(scene_->cameraDesc(), scene_->boundsMin(), scene_->boundsMax());
-    edited_.camera.reset();
-  }
-  applied_ = effectiveSettings(edited_);
+  const bool hadReference = reference_.errors->reference() != nullptr;
+  reference_.errors->dropReference();
+  scene_.scene = r->scene;
+  scene_.path = r->path;
+  if (!reload) resetCamera();
+  applied_ = renderSettings(estimator_);
   if (noTechniqueEnabled(applied_)) applied_.techniques = TechniqueSet::all();
   try {
-    renderer_->setScene(scene_, applied_);
-    settingsError_.clear();
+    renderer_->setScene(scene_.scene, applied_);
+    run_.settingsError.clear();
   } catch (const std::exception& e) {
-    settingsError_ = e.what();
+    run_.settingsError = e.what();
   }
   forceRefresh_ = true;
   refreshSceneFiles();
-  std::string text = fmt::format("loaded {}: {} triangles, {} lights", scenePath_, scene_->triangleCount(),
-                                 scene_->lights().size());
-  for (const std::string& w : scene_->warnings()) text += "; warning: " + w;
+  const Scene& scene = *scene_.scene;
+  std::string text =
+      fmt::format("loaded {}: {} triangles, {} lights", scene_.path, scene.triangleCount(), scene.lights().size());
+  for (const std::string& w : scene.warnings()) text += "; warning: " + w;
   if (hadReference) text += "; the reference was dropped (it showed the previous scene)";
   showMessage(text);
 }
 
 void Viewer::refreshSceneFiles() {
-  sceneFiles_.clear();
-  std::vector<std::filesystem::path> dirs = {std::filesystem::path(scenePath_).parent_path(), PATHLAB_ASSETS_DIR};
+  std::vector<std::string>& files = scene_.files;
+  files.clear();
+  std::vector<std::filesystem::path> dirs = {std::filesystem::path(scene_.path).parent_path(), PATHLAB_ASSETS_DIR};
   for (const auto& dir : dirs) {
     std::error_code ec;
     if (dir.empty() || !std::filesystem::is_directory(dir, ec)) continue;
@@ -284,26 +344,24 @@ void Viewer::refreshSceneFiles() {
       if (ext != ".gltf" && ext != ".glb") continue;
       std::string p = std::filesystem::relative(entry.path(), ec).string();
       if (ec || p.empty() || p.starts_with("../../")) p = entry.path().string();
-      if (std::find(sceneFiles_.begin(), sceneFiles_.end(), p) == sceneFiles_.end()) sceneFiles_.push_back(p);
+      if (std::find(files.begin(), files.end(), p) == files.end()) files.push_back(p);
     }
   }
-  std::sort(sceneFiles_.begin(), sceneFiles_.end());
+  std::sort(files.begin(), files.end());
 }
 
 void Viewer::resetCamera() {
-  orbit_ = OrbitCamera(scene_->cameraDesc(), scene_->boundsMin(), scene_->boundsMax());
-  edited_.camera.reset();
+  scene_.orbit = OrbitCamera(scene_.scene->cameraDesc(), scene_.scene->boundsMin(), scene_.scene->boundsMax());
+  estimator_.settings.camera.reset();
 }
 
 void Viewer::applyPreset(int index) {
-  if (presets_.empty()) return;
-  index = (index % static_cast<int>(presets_.size()) + static_cast<int>(presets_.size())) % static_cast<int>(presets_.size());
-  currentPreset_ = index;
-  const NamedPreset& p = presets_[static_cast<size_t>(index)];
-  edited_ = p.applyTo(edited_);
-  if (p.camera) orbit_ = OrbitCamera(*p.camera, scene_->boundsMin(), scene_->boundsMax());
-  if (p.isolate) isolateS_ = p.isolate->s, isolateT_ = p.isolate->t;
-  oneLength_ = std::min(oneLength_, edited_.maxLength);
+  const int n = static_cast<int>(presets_.presets.size());
+  if (n == 0) return;
+  presets_.current = (index % n + n) % n;
+  const NamedPreset& p = presets_.presets[static_cast<size_t>(presets_.current)];
+  ui::applyPreset(estimator_, p);
+  if (p.camera) scene_.orbit = OrbitCamera(*p.camera, scene_.scene->boundsMin(), scene_.scene->boundsMax());
   showMessage("preset: " + p.name);
 }
 

@@ -4,7 +4,6 @@
 
 #include "core/film/image_io.h"
 #include "ui/output_names.h"
-#include "ui/technique_grid.h"
 
 #include <fmt/core.h>
 
@@ -17,14 +16,14 @@ namespace pathlab::ui {
 void Viewer::loadReference(const std::string& path) {
   try {
     Image reference = readImage(path);
-    const RenderSettings current = effectiveSettings(edited_);
-    if (!matchReferenceSize_ && (reference.width != current.width || reference.height != current.height))
+    const RenderSettings current = renderSettings(estimator_);
+    if (!reference_.matchSize && (reference.width != current.width || reference.height != current.height))
       throw std::invalid_argument(fmt::format(
           "{} is {} x {} but the image is {} x {}: not loaded (tick \"render at the reference's size\")", path,
           reference.width, reference.height, current.width, current.height));
     const std::string size = fmt::format("{} x {}", reference.width, reference.height);
-    errors_->setReference(std::move(reference), viewOf(current, scene_.get()), path);
-    showConvergence_ = true;
+    reference_.errors->setReference(std::move(reference), viewOf(current, scene_.scene.get()), path);
+    convergence_.show = true;
     showMessage(fmt::format("reference {} ({}): the error is measured from the next pass on", path, size));
   } catch (const std::exception& e) {
     showMessage(e.what(), true);
@@ -38,11 +37,11 @@ void Viewer::useImageAsReference() {
   }
   try {
     // Its own generation is never compared with it: those samples are the reference's.
-    errors_->setReference(snapshot_.image, viewOf(snapshot_.settings, scene_.get()),
+    reference_.errors->setReference(snapshot_.image, viewOf(snapshot_.settings, scene_.scene.get()),
                           fmt::format("the image of generation {} ({} spp, {})", snapshot_.generation,
                                       snapshot_.samplesPerPixel, seriesLabel(snapshot_.settings)),
                           snapshot_.generation);
-    showConvergence_ = true;
+    convergence_.show = true;
     showMessage(fmt::format("reference: the current image ({} spp); change the configuration to measure another",
                             snapshot_.samplesPerPixel));
   } catch (const std::exception& e) {
@@ -51,30 +50,40 @@ void Viewer::useImageAsReference() {
 }
 
 void Viewer::returnToReferenceView() {
-  const std::optional<ReferenceView> view = errors_->referenceView();
+  const std::optional<ReferenceView> view = reference_.errors->referenceView();
   if (!view) return;
-  edited_.camera = view->camera;
-  edited_.lens = view->lens;
-  orbit_ = OrbitCamera(view->camera.value_or(scene_->cameraDesc()), scene_->boundsMin(), scene_->boundsMax());
+  estimator_.settings.camera = view->camera;
+  estimator_.settings.lens = view->lens;
+  const Scene& scene = *scene_.scene;
+  scene_.orbit = OrbitCamera(view->camera.value_or(scene.cameraDesc()), scene.boundsMin(), scene.boundsMax());
 }
 
 void Viewer::updateReferenceState() {
+  ErrorTracker& errors = *reference_.errors;
   std::string why;
-  const ReferenceStatus status = errors_->statusFor(effectiveSettings(edited_), scene_.get(), &why);
-  referenceValid_ = status == ReferenceStatus::Valid;
-  referenceStatus_ = status == ReferenceStatus::Valid || status == ReferenceStatus::None ? std::string() : why;
-  if (static_cast<int>(errors_->maxSeries()) != maxSeries_) errors_->setMaxSeries(static_cast<size_t>(maxSeries_));
-  if (const uint64_t v = errors_->version(); v != seriesVersion_) {
-    series_ = errors_->series();
-    seriesVersion_ = v;
+  const ReferenceStatus status = errors.statusFor(renderSettings(estimator_), scene_.scene.get(), &why);
+  reference_.status = status == ReferenceStatus::Valid || status == ReferenceStatus::None ? std::string() : why;
+  if (static_cast<int>(errors.maxSeries()) != convergence_.maxSeries)
+    errors.setMaxSeries(static_cast<size_t>(convergence_.maxSeries));
+  if (const uint64_t v = errors.version(); v != convergence_.seriesVersion) {
+    convergence_.series = errors.series();
+    convergence_.seriesVersion = v;
   }
 }
 
 DisplaySettings Viewer::shownDisplay() const {
   DisplaySettings d = display_;
   // The shown image (a preview included) must be of the reference's view, else its colours lie.
-  d.errorView = display_.errorView && errors_->statusFor(snapshot_.settings, scene_.get()) == ReferenceStatus::Valid;
+  d.errorView = display_.errorView &&
+                reference_.errors->statusFor(snapshot_.settings, scene_.scene.get()) == ReferenceStatus::Valid;
   return d;
+}
+
+std::string Viewer::errorViewProblem() const {
+  if (!display_.errorView || shownDisplay().errorView) return {};
+  if (!reference_.status.empty()) return reference_.status;
+  return reference_.errors->reference() ? "waiting for an image of the reference's view"
+                                        : "no reference (load one, or Ctrl+R)";
 }
 
 void Viewer::writeErrorCsv(const std::string& path, bool force) const {
@@ -85,7 +94,7 @@ void Viewer::writeErrorCsv(const std::string& path, bool force) const {
   const std::string temporary = path + ".tmp";
   {
     std::ofstream out(temporary, std::ios::binary);
-    out << errors_->csv();
+    out << reference_.errors->csv();
     if (!out) throw std::runtime_error(path + ": cannot write");
   }
   std::filesystem::rename(temporary, path);

@@ -1,7 +1,8 @@
-// The convergence panel's logic without ImGui: the technique table's rows and sorting, and the error view's colour map and scale (the CPU mirror of the shader).
+// The convergence panel's logic without ImGui: the error view's colour map and scale (the CPU
+// mirror of the shader). The technique table's rows are tested with the core
+// (tests/technique_table_test.cpp).
 #include "ui/display_settings.h"
 #include "ui/input_script.h"
-#include "ui/technique_table.h"
 
 #include <gtest/gtest.h>
 
@@ -9,69 +10,6 @@
 
 namespace pathlab::ui {
 namespace {
-
-Counters sampleCounters() {
-  Counters c;
-  c.cameraSamples = 100;
-  c.timedSamples = 50;
-  c.rays = 300;
-  c.cameraWalk = {200, 4000};
-  c.lightWalk = {100, 2000};
-  TechniqueCounters& nee = c.technique(1, 2);
-  nee.tried = 100;
-  nee.shadowRays = 80;
-  nee.blocked = 30;
-  nee.contributed = 50;
-  nee.nanoseconds = 3000;
-  TechniqueCounters& lt = c.technique(2, 1);
-  lt.tried = 40;
-  lt.shadowRays = 20;
-  lt.blocked = 5;
-  lt.contributed = 15;
-  lt.nanoseconds = 1000;
-  c.shadowRays = 100;
-  return c;
-}
-
-TEST(TechniqueTable, SharesOfRaysAndTime) {
-  std::vector<TechniqueRow> rows = techniqueRows(sampleCounters(), 3, 2.0);
-  ASSERT_EQ(rows.size(), 4u);  // two walks and the two techniques tried
-  EXPECT_EQ(rows[0].name, "camera walks");
-  EXPECT_EQ(rows[1].name, "light walks");
-  EXPECT_EQ(rows[2].name, "(1,2)");
-  EXPECT_EQ(rows[3].name, "(2,1)");
-  const double allRays = 400.0, allTime = 10000.0;
-  EXPECT_DOUBLE_EQ(rows[0].rayShare, 200.0 / allRays);
-  EXPECT_DOUBLE_EQ(rows[2].rayShare, 80.0 / allRays);
-  EXPECT_DOUBLE_EQ(rows[2].timeShare, 3000.0 / allTime);
-  EXPECT_DOUBLE_EQ(rows[3].raysPerSecond, 10.0);
-  // Half the samples were timed: 3000 ns over 50 timed tries.
-  EXPECT_DOUBLE_EQ(rows[2].nanosecondsPerTry, 60.0);
-  double rayShares = 0.0, timeShares = 0.0;
-  for (const TechniqueRow& r : rows) rayShares += r.rayShare, timeShares += r.timeShare;
-  EXPECT_NEAR(rayShares, 1.0, 1e-12);
-  EXPECT_NEAR(timeShares, 1.0, 1e-12);
-
-  sortRows(rows, TechniqueColumn::TimeShare, true);
-  EXPECT_EQ(rows[0].name, "camera walks");
-  EXPECT_EQ(rows[1].name, "(1,2)");
-  sortRows(rows, TechniqueColumn::Rays, false);
-  EXPECT_EQ(rows[0].name, "(2,1)");
-  sortRows(rows, TechniqueColumn::Name, false);
-  EXPECT_EQ(rows[0].name, "camera walks");
-  EXPECT_EQ(rows[3].name, "(2,1)");
-}
-
-TEST(TechniqueTable, NoTimingNoShares) {
-  Counters c = sampleCounters();
-  c.timedSamples = 0;
-  c.cameraWalk.nanoseconds = c.lightWalk.nanoseconds = 0;
-  for (TechniqueCounters& t : c.techniques) t.nanoseconds = 0;
-  for (const TechniqueRow& r : techniqueRows(c, 3, 1.0)) {
-    EXPECT_EQ(r.timeShare, 0.0) << r.name;
-    EXPECT_EQ(r.nanosecondsPerTry, 0.0) << r.name;
-  }
-}
 
 TEST(ErrorView, ViridisEndsAndMonotoneLightness) {
   // matplotlib's viridis: (0.267, 0.005, 0.329) at 0, (0.993, 0.906, 0.144) at 1.

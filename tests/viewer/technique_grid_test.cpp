@@ -1,5 +1,5 @@
-// The technique grid's logic: presets give the sets they promise, toggles and a new maximum
-// length keep the settings renderable, the path tracer gets no isolation or pyramid.
+// The technique grid's logic: presets give the sets they promise, the SPEC field takes what fits,
+// toggles of a cell, a length or a column round-trip.
 #include "ui/technique_grid.h"
 
 #include <gtest/gtest.h>
@@ -74,83 +74,6 @@ TEST(TechniqueGrid, EmptySetMeansNothingToRender) {
   s.maxLength = 3;
   s.techniques = TechniqueSet::withS(4);  // none of length <= 3
   EXPECT_TRUE(noTechniqueEnabled(s));
-}
-
-TEST(TechniqueGrid, ModesSetAndDropTheIsolation) {
-  RenderSettings s;
-  EXPECT_EQ(modeOf(s), EstimatorMode::Combine);
-  setMode(s, EstimatorMode::IsolateUnweighted, 2, 2);
-  ASSERT_TRUE(s.isolate);
-  EXPECT_EQ(*s.isolate, (Isolation{2, 2, true}));
-  EXPECT_EQ(modeOf(s), EstimatorMode::IsolateUnweighted);
-  setMode(s, EstimatorMode::IsolateWeighted, 1, 2);
-  EXPECT_EQ(*s.isolate, (Isolation{1, 2, false}));
-  setMode(s, EstimatorMode::Combine, 1, 2);
-  EXPECT_FALSE(s.isolate);
-}
-
-TEST(TechniqueGrid, ShorterMaximumKeepsTheSettingsValid) {
-  RenderSettings s;
-  s.integrator = IntegratorKind::Bpt;
-  s.maxLength = 6;
-  s.techniques = TechniqueSet::parse("0,2;2,4;5,2");  // lengths 1, 5, 6
-  s.isolate = Isolation{3, 3, false};  // length 5
-  setMaxLength(s, 4);
-  EXPECT_EQ(s.techniques, TechniqueSet::parse("0,2"));
-  ASSERT_TRUE(s.isolate);
-  EXPECT_EQ(s.isolate->s, 3);
-  EXPECT_EQ(s.isolate->s + s.isolate->t - 1, 4);
-  EXPECT_NO_THROW(validateSettings(s));
-  // Presets grow and shrink with the maximum.
-  s.techniques = TechniqueSet::pathTracing();
-  setMaxLength(s, 2);
-  EXPECT_EQ(s.techniques, TechniqueSet::pathTracing());
-  setMaxLength(s, 9);
-  EXPECT_TRUE(s.techniques.contains(1, 8));
-  s.techniques = TechniqueSet::all();
-  setMaxLength(s, 1);
-  setMaxLength(s, 12);
-  EXPECT_EQ(s.techniques, TechniqueSet::all());
-  // s alone too long: the longest light-tracing technique.
-  s.isolate = Isolation{7, 1, true};
-  setMaxLength(s, 3);
-  EXPECT_EQ(*s.isolate, (Isolation{3, 1, true}));
-}
-
-TEST(TechniqueGrid, WarnsWhenTheWeightedIsolatedTechniqueIsOff) {
-  RenderSettings s;
-  s.integrator = IntegratorKind::Bpt;
-  s.techniques = TechniqueSet::lightTracing();
-  s.isolate = Isolation{1, 2, false};
-  EXPECT_TRUE(isolatedTechniqueDisabled(s));
-  s.isolate->unweighted = true;  // its own estimate does not depend on the set
-  EXPECT_FALSE(isolatedTechniqueDisabled(s));
-  s.isolate = Isolation{2, 1, false};
-  EXPECT_FALSE(isolatedTechniqueDisabled(s));
-}
-
-TEST(TechniqueGrid, PathTracerGetsNoIsolationOrPyramid) {
-  RenderSettings s;
-  s.integrator = IntegratorKind::Pt;
-  s.isolate = Isolation{1, 2, false};
-  s.pyramidLength = 3;
-  const RenderSettings e = effectiveSettings(s);
-  EXPECT_FALSE(e.isolate);
-  EXPECT_EQ(e.pyramidLength, 0);
-  EXPECT_NO_THROW(validateSettings(e));
-  s.integrator = IntegratorKind::Bpt;
-  EXPECT_EQ(effectiveSettings(s), s);
-}
-
-TEST(TechniqueGrid, DescriptionNamesTheEstimator) {
-  RenderSettings s;
-  s.integrator = IntegratorKind::Bpt;
-  s.maxLength = 5;
-  s.isolate = Isolation{2, 2, true};
-  EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, isolate (2,2) unweighted");
-  s.isolate.reset();
-  s.mis.heuristic = MisHeuristic::Power;
-  EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS power (beta 2)");
 }
 
 }  // namespace

@@ -1,0 +1,137 @@
+// The estimator state the viewer's panels edit: the isolation kept once (mode and technique), a
+// new maximum length keeps the settings renderable, presets, and what the renderer gets.
+#include "ui/estimator_state.h"
+
+#include <gtest/gtest.h>
+
+namespace pathlab::ui {
+namespace {
+
+EstimatorState bidirectional(int maxLength = 10) {
+  RenderSettings s;
+  s.integrator = IntegratorKind::Bpt;
+  s.maxLength = maxLength;
+  return EstimatorState::from(s);
+}
+
+TEST(EstimatorState, ModesIsolateTheOneRememberedTechnique) {
+  EstimatorState e = bidirectional();
+  EXPECT_EQ(e.mode, EstimatorMode::Combine);
+  EXPECT_FALSE(renderSettings(e).isolate);
+  EXPECT_TRUE(setIsolated(e, {2, 2}));
+  EXPECT_FALSE(renderSettings(e).isolate);  // remembered while combining
+  cycleMode(e);
+  EXPECT_EQ(e.mode, EstimatorMode::IsolateWeighted);
+  EXPECT_EQ(*renderSettings(e).isolate, (Isolation{2, 2, false}));
+  cycleMode(e);
+  EXPECT_EQ(*renderSettings(e).isolate, (Isolation{2, 2, true}));
+  EXPECT_FALSE(setIsolated(e, {0, 12}));  // length 11 > 10: ignored
+  EXPECT_FALSE(setIsolated(e, {0, 1}));
+  EXPECT_EQ(e.isolated, (Technique{2, 2}));
+  cycleMode(e);
+  EXPECT_EQ(e.mode, EstimatorMode::Combine);
+  EXPECT_FALSE(renderSettings(e).isolate);
+  // A click on a pyramid thumbnail: that technique alone, bpt when the path tracer was on.
+  e.settings.integrator = IntegratorKind::Pt;
+  isolate(e, {1, 2}, true);
+  EXPECT_EQ(e.settings.integrator, IntegratorKind::Bpt);
+  EXPECT_EQ(*renderSettings(e).isolate, (Isolation{1, 2, true}));
+  // Settings with an isolation become the mode and the technique, and come back out unchanged.
+  RenderSettings s = renderSettings(e);
+  s.isolate = Isolation{3, 1, false};
+  e = EstimatorState::from(s);
+  EXPECT_EQ(e.mode, EstimatorMode::IsolateWeighted);
+  EXPECT_FALSE(e.settings.isolate);
+  EXPECT_EQ(renderSettings(e), s);
+}
+
+TEST(EstimatorState, ShorterMaximumKeepsTheSettingsValid) {
+  EstimatorState e = bidirectional(6);
+  e.settings.techniques = TechniqueSet::parse("0,2;2,4;5,2");  // lengths 1, 5, 6
+  e.isolated = {3, 3};                                           // length 5
+  e.mode = EstimatorMode::IsolateWeighted;
+  setMaxLength(e, 4);
+  EXPECT_EQ(e.settings.techniques, TechniqueSet::parse("0,2"));
+  EXPECT_EQ(e.isolated.s, 3);
+  EXPECT_EQ(e.isolated.length(), 4);
+  EXPECT_NO_THROW(validateSettings(renderSettings(e)));
+  // Presets grow and shrink with the maximum.
+  e.settings.techniques = TechniqueSet::pathTracing();
+  setMaxLength(e, 2);
+  EXPECT_EQ(e.settings.techniques, TechniqueSet::pathTracing());
+  setMaxLength(e, 9);
+  EXPECT_TRUE(e.settings.techniques.contains(1, 8));
+  e.settings.techniques = TechniqueSet::all();
+  setMaxLength(e, 1);
+  setMaxLength(e, 12);
+  EXPECT_EQ(e.settings.techniques, TechniqueSet::all());
+  // s alone too long: the longest light-tracing technique.
+  e.isolated = {7, 1};
+  e.mode = EstimatorMode::IsolateUnweighted;
+  setMaxLength(e, 3);
+  EXPECT_EQ(*renderSettings(e).isolate, (Isolation{3, 1, true}));
+  // Settings whose isolated technique is the default (1,2) at maximum length 1.
+  RenderSettings one;
+  one.maxLength = 1;
+  EXPECT_EQ(EstimatorState::from(one).isolated.length(), 1);
+}
+
+TEST(EstimatorState, PresetsSetTheIsolationOrKeepTheTechnique) {
+  EstimatorState e = bidirectional();
+  setIsolated(e, {2, 3});
+  e.mode = EstimatorMode::IsolateWeighted;
+  NamedPreset p;
+  p.techniques = TechniqueSet::lightTracing();
+  p.maxLength = 6;
+  applyPreset(e, p);
+  EXPECT_EQ(e.mode, EstimatorMode::Combine);
+  EXPECT_EQ(e.isolated, (Technique{2, 3}));  // kept for the isolate modes
+  EXPECT_EQ(e.settings.techniques, TechniqueSet::lightTracing());
+  EXPECT_EQ(e.settings.maxLength, 6);
+  p.isolate = Isolation{4, 1, true};
+  applyPreset(e, p);
+  EXPECT_EQ(e.mode, EstimatorMode::IsolateUnweighted);
+  EXPECT_EQ(e.isolated, (Technique{4, 1}));
+}
+
+TEST(EstimatorState, WarnsWhenTheWeightedIsolatedTechniqueIsOff) {
+  RenderSettings s;
+  s.integrator = IntegratorKind::Bpt;
+  s.techniques = TechniqueSet::lightTracing();
+  s.isolate = Isolation{1, 2, false};
+  EXPECT_TRUE(isolatedTechniqueDisabled(s));
+  s.isolate->unweighted = true;  // its own estimate does not depend on the set
+  EXPECT_FALSE(isolatedTechniqueDisabled(s));
+  s.isolate = Isolation{2, 1, false};
+  EXPECT_FALSE(isolatedTechniqueDisabled(s));
+}
+
+TEST(EstimatorState, PathTracerGetsNoIsolationOrPyramid) {
+  EstimatorState e = bidirectional();
+  e.settings.integrator = IntegratorKind::Pt;
+  e.mode = EstimatorMode::IsolateWeighted;
+  e.settings.pyramidLength = 3;
+  const RenderSettings r = renderSettings(e);
+  EXPECT_FALSE(r.isolate);
+  EXPECT_EQ(r.pyramidLength, 0);
+  EXPECT_NO_THROW(validateSettings(r));
+  e.settings.integrator = IntegratorKind::Bpt;
+  EXPECT_EQ(renderSettings(e).pyramidLength, 3);
+  EXPECT_TRUE(renderSettings(e).isolate);
+}
+
+TEST(EstimatorState, DescriptionNamesTheEstimator) {
+  RenderSettings s;
+  s.integrator = IntegratorKind::Bpt;
+  s.maxLength = 5;
+  s.isolate = Isolation{2, 2, true};
+  EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, isolate (2,2) unweighted");
+  s.isolate.reset();
+  s.mis.heuristic = MisHeuristic::Power;
+  EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS power (beta 2)");
+  s.techniques = TechniqueSet::parse("1,2;s=0;2,1");
+  EXPECT_EQ(describe(s), "bpt, max length 5, techniques s=0;k=2, MIS power (beta 2)");
+}
+
+}  // namespace
+}  // namespace pathlab::ui

@@ -1,0 +1,78 @@
+// The viewer's panels as functions over the state they edit (ui/viewer_state.h). What a panel
+// cannot do by editing its state (open a scene, save, load a reference, ...) it asks of the viewer
+// through PanelRequests, which the viewer carries out after the panels are drawn. All between
+// ImGui::NewFrame and ImGui::Render.
+#pragma once
+
+#include "ui/estimator_state.h"
+#include "ui/shortcuts.h"
+#include "ui/viewer_state.h"
+
+#include <imgui.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pathlab::ui {
+
+struct PanelRequests {
+  std::vector<Action> actions;  // as if their key had been pressed
+  std::optional<std::string> openScene;
+  std::optional<std::string> loadReference;
+  std::optional<int> preset;
+  bool rescanScenes = false;
+  bool returnToReferenceView = false;
+  bool exportErrorCsv = false;
+};
+
+// An area of the window in ImGui coordinates.
+struct PanelRect {
+  float x = 0.f, y = 0.f, width = 0.f, height = 0.f;
+};
+
+// Side panel sections (panel_side.cpp, panel_techniques.cpp, panel_reference.cpp).
+void drawStatusSection(const RenderSnapshot& snapshot, RunState& run, double frameMs, PanelRequests& requests);
+// Integrator, maximum length, MIS, the combine / isolate mode and the technique grid; `counters`
+// (of the shown image) for the cells' tooltips.
+void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
+                          const Counters& counters);
+void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
+void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
+void drawPresetSection(const PresetState& presets, PanelRequests& requests);
+// `estimator` (its camera and lens) to offer a way back to the reference's view.
+void drawReferenceSection(ReferenceState& reference, ConvergenceState& convergence, DisplaySettings& display,
+                          const RenderSettings& edited, const Image& shown, PanelRequests& requests);
+
+// The convergence panel along the bottom (panel_convergence.cpp): error plot and technique table.
+float convergencePanelHeight(float windowHeight, float uiScale);
+void drawConvergenceWindow(ConvergenceState& convergence, ReferenceState& reference, const RenderSnapshot& snapshot,
+                           PanelRect rect, float uiScale, PanelRequests& requests);
+// The per-technique table (core/metrics/technique_table.h) of the shown image, sortable.
+void drawTechniqueTable(const RenderSnapshot& snapshot);
+
+// The technique pyramid on the right (panel_pyramid.cpp). pyramidPanelWidth sets view.thumbnail
+// and view.both for the space left of the window; a click on a thumbnail isolates its technique.
+float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale);
+void drawPyramidWindow(PyramidView& view, const PyramidImages& images, EstimatorState& estimator, PanelRect rect,
+                       float uiScale);
+
+// panel_help.cpp: every shortcut; and the captions drawn over the image.
+void drawHelpWindow(bool& show);
+// What the captions over the image say.
+struct ImageOverlay {
+  ImVec2 origin, size;             // the image area, ImGui coordinates
+  const RenderSnapshot* shown;     // the image shown (settings.width is 0 before the first)
+  RenderSettings edited;           // the settings the panels ask for (renderSettings)
+  DisplaySettings display;         // as the image is drawn: errorView only while the reference is valid
+  std::string errorViewProblem;    // why the error view is not shown although asked for ("" otherwise)
+  bool idleForNoTechnique = false, paused = false;
+  float uiScale = 1.f;
+};
+void drawImageOverlay(const ImageOverlay& overlay);
+// The error view's colour bar with its scale, in the side panel (panel_reference.cpp).
+void drawErrorBar(const DisplaySettings& display);
+// The same, over the image's top right corner.
+void drawErrorBarOverlay(const DisplaySettings& display, ImVec2 imageOrigin, ImVec2 imageSize, float uiScale);
+
+}  // namespace pathlab::ui
