@@ -1,7 +1,7 @@
 // Tests of Texture sampling (filtering, wrap modes, sRGB transfer) and of material evaluation
 // (factors times texture channels, emission).
 #include "core/scene/material.h"
-#include "core/scene/texture.h"
+#include "core/texture/texture.h"
 #include "tests/gltf_test_builder.h"
 
 #include <gtest/gtest.h>

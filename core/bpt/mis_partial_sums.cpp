@@ -105,7 +105,7 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
   }
   // Veach eq. 10.9 relative to the technique's own (n_s p_s)^beta.
   const double own = t == 1 ? lightTracingCount : 1.0;
-  const double w = 1.0 / (1.0 + (left + right) / own);
+  const double w = own / (own + left + right);
   if (!std::isfinite(left + right) || !std::isfinite(w)) return std::nullopt;
   return static_cast<float>(w);
 }

@@ -103,6 +103,16 @@ inline std::optional<Bsdf::Oriented> Bsdf::orient(const Vec3& w) const {
   return Oriented{local * side, side};
 }
 
+// orient() for the lobes that read only the cosine to the shading normal (the diffuse lobe): the
+// same z and side, bit for bit, without the two tangent components (left zero).
+inline std::optional<Bsdf::Oriented> Bsdf::orientCosine(const Vec3& w) const {
+  const float z = glm::dot(w, frame_.n);
+  const float cosG = glm::dot(w, ng_);
+  if (std::abs(z) < kMinCos || std::abs(cosG) < kMinCos || z * cosG <= 0.f) return std::nullopt;
+  const float side = cosG > 0.f ? 1.f : -1.f;
+  return Oriented{Vec3(0.f, 0.f, z * side), side};
+}
+
 float Bsdf::transmissionFresnel(float cosTheta, float etap) const {
   const float f = fresnelDielectric(cosTheta, etap);
   return f >= 1.f ? 1.f : m_.specularFactor * f;
@@ -234,8 +244,9 @@ float Bsdf::shadingCorrection(const Vec3& wo, const Vec3& wi, TransportMode mode
 
 BsdfEval Bsdf::eval(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
   if (!hasNonDelta_) return BsdfEval{};
-  const std::optional<Oriented> o = orient(wo);
-  const std::optional<Oriented> i = orient(wi);
+  // A Lambertian surface's value and densities read only the cosines (evalOriented).
+  const std::optional<Oriented> o = lambertian_ ? orientCosine(wo) : orient(wo);
+  const std::optional<Oriented> i = lambertian_ ? orientCosine(wi) : orient(wi);
   if (!o || !i) return BsdfEval{};
   return evalOriented(*o, *i, wo, wi, mode);
 }
@@ -274,8 +285,9 @@ BsdfEval Bsdf::evalOriented(const Oriented& o, const Oriented& i, const Vec3& wo
 
 BsdfDensities Bsdf::densities(const Vec3& wo, const Vec3& wi) const {
   if (!hasNonDelta_) return BsdfDensities{};
-  const std::optional<Oriented> o = orient(wo);
-  const std::optional<Oriented> i = orient(wi);
+  // The diffuse lobe's densities read only the cosines (densitiesOriented).
+  const std::optional<Oriented> o = diffuseOnly_ ? orientCosine(wo) : orient(wo);
+  const std::optional<Oriented> i = diffuseOnly_ ? orientCosine(wi) : orient(wi);
   if (!o || !i) return BsdfDensities{};
   return densitiesOriented(*o, *i);
 }

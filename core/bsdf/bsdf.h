@@ -109,6 +109,7 @@ class Bsdf {
     float side;  // +1 outside (the side ng points to), -1 inside
   };
   std::optional<Oriented> orient(const Vec3& w) const;
+  std::optional<Oriented> orientCosine(const Vec3& w) const;
   // eval and densities once both directions are oriented (o for wo, i for wi): each direction is
   // oriented once per call, and sample() passes on the orientations it has made already.
   BsdfEval evalOriented(const Oriented& o, const Oriented& i, const Vec3& wo, const Vec3& wi, TransportMode mode) const;

@@ -10,8 +10,8 @@
 #pragma once
 
 #include "core/math/frame.h"
-#include "core/scene/ray.h"
-#include "core/scene/scene_desc.h"
+#include "core/math/ray.h"
+#include "core/camera/camera_desc.h"
 
 #include <optional>
 

@@ -1,7 +1,7 @@
 // Image file formats through tinyexr and stb_image_write, plus a hand-written PFM codec.
 #include "core/film/image_io.h"
 
-#include "core/scene/texture.h"
+#include "core/texture/texture.h"
 
 #include <stb/stb_image_write.h>
 #include <tinyexr.h>

@@ -16,6 +16,13 @@ class SplatBuffer {
 
   // The same door and the same pixel as Film::splat.
   bool splat(Vec2 pRaster, const Spectrum& v);
+  // Asks the cache for the pixel a splat at pRaster will land in: a t = 1 connection knows it
+  // before its shadow ray and weight, and the buffer is larger than the cache (a miss here was
+  // most of the splat's cost).
+  void prefetch(Vec2 pRaster) const {
+    if (const std::optional<size_t> pixel = filmPixel(pRaster, width_, height_))
+      __builtin_prefetch(&rgb_[3 * *pixel], 1);
+  }
   // Adds this pass's splats to `film` (of the same size) and clears them.
   void mergeInto(Film& film);
   void clear();

@@ -9,8 +9,8 @@
 
 #include "core/math/frame.h"
 #include "core/math/types.h"
-#include "core/scene/ray.h"
-#include "core/scene/texture.h"
+#include "core/math/ray.h"
+#include "core/texture/texture.h"
 
 namespace pathlab {
 

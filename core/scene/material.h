@@ -3,7 +3,7 @@
 #pragma once
 
 #include "core/bsdf/bsdf.h"
-#include "core/scene/texture.h"
+#include "core/texture/texture.h"
 
 #include <string>
 #include <vector>

@@ -4,7 +4,7 @@
 
 #include "core/bsdf/bsdf.h"
 #include "core/lights/light_set.h"
-#include "core/scene/ray.h"
+#include "core/math/ray.h"
 #include "core/scene/scene_desc.h"
 
 #include <cstdint>

@@ -2,6 +2,7 @@
 // Scene::build consumes. World-space triangles, materials, textures, punctual lights, camera.
 #pragma once
 
+#include "core/camera/camera_desc.h"
 #include "core/scene/material.h"
 
 #include <optional>
@@ -34,15 +35,6 @@ struct PunctualLightDesc {
   Vec3 direction{0.f, 0.f, -1.f};  // direction the light travels (the node's -z)
   float innerConeAngle = 0.f;
   float outerConeAngle = kPi / 4.f;
-};
-
-// glTF perspective camera, camera-to-world with the camera looking down its -z, +y up.
-struct CameraDesc {
-  Mat4 cameraToWorld{1.f};
-  float yfov = 0.6911f;           // radians
-  std::optional<float> aspectRatio;
-  std::string name;
-  bool operator==(const CameraDesc&) const = default;
 };
 
 struct SceneDesc {

@@ -1,6 +1,6 @@
 // Texture lookup with glTF sampler semantics (wrap modes, NEAREST or bilinear magnification)
 // and the sRGB transfer functions used to decode colour textures at load time.
-#include "core/scene/texture.h"
+#include "core/texture/texture.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Robust ray-origin offsetting from floating-point error bounds (Pharr, Jakob, Humphreys, pbrt-v4,
 // sec. 6.8).
-#include "core/scene/ray.h"
+#include "core/math/ray.h"
 
 #include <bit>
 #include <cmath>
