@@ -9,10 +9,14 @@ import json
 import sys
 from collections import defaultdict
 
-# Samples/s reported for the same scenario (all-diffuse Cornell box, 512², at most 10 segments) on
-# machines of this kind, quoted from the issue brief; not measured here.
-SMALLVCM_BPT = 410e3
-PBRT_V4_BDPT = 120e3
+# Samples/s of the same scenario (all-diffuse Cornell box, 512², at most 10 segments, 2 threads)
+# on machines of this kind, measured by the issue brief (issue 11, 2026-12-01); not measured here.
+SMALLVCM_BPT = 444e3
+PBRT_V4_BDPT = 102e3
+# The same brief's 20 s equal-time runs: pathlab's relMSE per sample is 0.81 of SmallVCM's (19 %
+# lower) on that scene. The estimator is unchanged since, so equal-time efficiency
+# 1/(relMSE x time) relative to SmallVCM's BPT is (rate / SMALLVCM_BPT) / ERROR_PER_SAMPLE_RATIO.
+ERROR_PER_SAMPLE_RATIO = 0.81
 
 
 def load(path):
@@ -37,7 +41,7 @@ def human(v):
 
 def main():
     context, r = load(sys.argv[1])
-    threads = sorted({int(k[-1].split(":")[1]) for k in r})
+    threads = sorted({int(k[-1].split(":")[1]) for k in r if k[-1].startswith("threads:")})
     n = threads[-1]
     scenes = sorted({k[1] for k in r if k[0] in ("Render", "Ceiling")})
     integrators = ["bpt", "pt", "lt"]
@@ -142,6 +146,22 @@ def main():
             print(f"| pathlab bpt, {t} thread{'s' if t > 1 else ''}, wall clock (measured) | {human(b['samples_per_s'])} |")
     print(f"| SmallVCM bpt (quoted) | {human(SMALLVCM_BPT)} |")
     print(f"| pbrt-v4 bdpt (quoted) | {human(PBRT_V4_BDPT)} |")
+    b = get("SmallVCM", "cornell-box", "bpt", "512", f"threads:{n}")
+    if b:
+        rate = b["samples_per_s"]
+        print(f"\nAt {n} threads: {rate / SMALLVCM_BPT:.2f}× SmallVCM's and {rate / PBRT_V4_BDPT:.1f}× pbrt-v4's camera "
+              f"samples/s; with pathlab's error per sample ({ERROR_PER_SAMPLE_RATIO} of SmallVCM's) an equal-time "
+              f"efficiency of {rate / SMALLVCM_BPT / ERROR_PER_SAMPLE_RATIO:.2f}× SmallVCM's BPT (target 1.5×).")
+
+    toggles = sorted(k for k in r if k[0] == "ToggleLatency")
+    if toggles:
+        print("\n### Toggle latency: settings change to the first image of the new generation (640×480, bpt, all threads)\n")
+        print("| change | mean | worst of the iterations |")
+        print("|---|---:|---:|")
+        for k in toggles:
+            b = r[k]
+            unit = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b.get("time_unit", "ns")]
+            print(f"| {k[3]} | {b['real_time'] * unit:.1f} ms | {b['worst_ms']:.1f} ms |")
 
 
 if __name__ == "__main__":
