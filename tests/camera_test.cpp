@@ -194,6 +194,9 @@ TEST(CameraWi, SampleWiAgreesWithWe) {
       Vec2 pRaster;
       const Spectrum we = camera.We(Ray{s->pLens, -s->wi}, &pRaster);
       EXPECT_NEAR(s->We.r, we.r, 1e-5f * we.r);
+      // The directional density the t = 1 technique's MIS weight takes from the same evaluation.
+      const float pdfDirW = camera.pdfWe(Ray{s->pLens, -s->wi}).pdfDirW;
+      EXPECT_NEAR(s->pdfDirW, pdfDirW, 1e-5f * pdfDirW);
       EXPECT_NEAR(s->pRaster.x, pRaster.x, 1e-3f);
       EXPECT_NEAR(s->pRaster.y, pRaster.y, 1e-3f);
       const float cosTheta = glm::dot(-s->wi, camera.forward());

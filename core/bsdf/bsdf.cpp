@@ -48,6 +48,7 @@ void Bsdf::setFrame(const Vec3& ns, const Vec3& ng) {
   if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = ng_;
   if (glm::dot(n, ng_) < 0.f) n = -n;
   frame_ = Frame(n);
+  flatShading_ = frame_.n == ng_;
 }
 
 Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, const Bsdf& lobes) : Bsdf(lobes) { setFrame(ns, ng); }
@@ -237,6 +238,9 @@ float Bsdf::pdfWorld(const Vec3& wo, const Vec3& wi) const {
 // Veach 1997, eq. 5.19 (pbrt-v3's CorrectShadingNormal): the adjoint BSDF with shading normals.
 float Bsdf::shadingCorrection(const Vec3& wo, const Vec3& wi, TransportMode mode) const {
   if (mode == TransportMode::Radiance) return 1.f;
+  // Flat shading (ns = ng bit for bit): num and den below are the same product, and den > 0 for
+  // every direction orient() accepted, so the ratio is exactly one.
+  if (flatShading_) return 1.f;
   const float num = absDot(wo, frame_.n) * absDot(wi, ng_);
   const float den = absDot(wo, ng_) * absDot(wi, frame_.n);
   return den > 0.f ? num / den : 0.f;
@@ -298,6 +302,25 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi, TransportMode /*mode*/) const {
 
 std::optional<BsdfSample> Bsdf::sample(const Vec3& wo, Vec2 u, float uLobe,
                                        TransportMode mode) const {
+  if (lambertian_) {
+    // The Lambertian case alone (every surface of the Cornell box): the lobe choice below is
+    // certain and only cosines are read, so this gives the general path's bits without its lobe
+    // selection and tangent components.
+    const std::optional<Oriented> oo = orientCosine(wo);
+    if (!oo) return std::nullopt;
+    const Vec3 i = sampleCosineHemisphere(u);
+    if (!(i.z > 0.f)) return std::nullopt;
+    BsdfSample s;
+    s.wi = glm::normalize(frame_.toWorld(i * oo->side));
+    const std::optional<Oriented> oi = orientCosine(s.wi);
+    if (!oi || oi->side != oo->side) return std::nullopt;
+    const BsdfEval e = evalOriented(*oo, *oi, wo, s.wi, mode);
+    s.f = e.f;
+    s.pdfFwdW = e.pdfFwdW;
+    s.pdfRevW = e.pdfRevW;
+    if (!(s.pdfFwdW > 0.f) || isBlack(s.f)) return std::nullopt;
+    return s;
+  }
   const std::optional<Oriented> oo = orient(wo);
   if (!oo) return std::nullopt;
   const Vec3 o = oo->local;

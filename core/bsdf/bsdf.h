@@ -120,6 +120,7 @@ class Bsdf {
   MaterialPoint m_;
   float alpha_ = 0.f;
   bool hasNonDelta_ = true;
+  bool flatShading_ = false;        // the shading normal is the geometric one (shadingCorrection = 1)
   bool diffuseOnly_ = false;        // only the diffuse lobe is active: densities are cosine's
   bool lambertian_ = false;         // diffuse only, without a dielectric layer: f is lambertianF_
   Spectrum lambertianF_{0.f};

@@ -124,17 +124,33 @@ std::optional<CameraWiSample> Camera::sampleWi(const Vec3& ref, Vec2 uLens) cons
   const float dist2 = glm::dot(toLens, toLens);
   if (!(dist2 > 0.f)) return std::nullopt;
   CameraWiSample s;
-  s.dist = std::sqrt(dist2);
-  s.wi = toLens / s.dist;
+  const float invDist = 1.f / std::sqrt(dist2);
+  s.dist = dist2 * invDist;
+  s.wi = toLens * invDist;
   s.pLens = pLens;
-  // One evaluation gives the importance, the raster position and the camera's own directional
-  // density of this ray, which the MIS weight of the t = 1 technique needs (pdfDirW).
-  const std::optional<RayImportance> r = importance(Ray{pLens, -s.wi});
-  if (!r) return std::nullopt;
-  s.We = Spectrum(r->We);
-  s.pRaster = r->pRaster;
-  s.pdfDirW = r->pdfDirW;
-  const float cosTheta = glm::dot(-s.wi, forward_);
+  float cosTheta = 0.f;
+  if (isPinhole()) {
+    // The pinhole in one pass (light tracing evaluates it for every light vertex): the camera
+    // space direction toward ref is a rotation of the unit -wi (cameraToWorld_ is rigid), and
+    // its film point, We and pdfWe share one cosine; the same quantities as importance().
+    const Vec3 dCam = Mat3(worldToCamera_) * -s.wi;
+    cosTheta = -dCam.z;
+    if (!(cosTheta > 0.f)) return std::nullopt;
+    s.pRaster = filmToRaster(Vec2(dCam) * (1.f / cosTheta));
+    if (!onFilm(s.pRaster)) return std::nullopt;
+    const float We = 1.f / (filmArea_ * (cosTheta * cosTheta) * (cosTheta * cosTheta));  // lens area 1
+    s.We = Spectrum(We);
+    s.pdfDirW = We * cosTheta;  // 1 / (A_film cos^3)
+  } else {
+    // One evaluation gives the importance, the raster position and the camera's own directional
+    // density of this ray, which the MIS weight of the t = 1 technique needs (pdfDirW).
+    const std::optional<RayImportance> r = importance(Ray{pLens, -s.wi});
+    if (!r) return std::nullopt;
+    s.We = Spectrum(r->We);
+    s.pRaster = r->pRaster;
+    s.pdfDirW = r->pdfDirW;
+    cosTheta = glm::dot(-s.wi, forward_);
+  }
   // Lens area density to solid angle at ref (pbrt-v3 PerspectiveCamera::Sample_Wi); a pinhole
   // counts as a lens of area 1, so We / pdfW = We cos / dist^2 there.
   s.pdfW = dist2 / (cosTheta * lensArea());
