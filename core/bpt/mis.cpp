@@ -92,6 +92,20 @@ ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera
   // fewer camera vertices exists (t >= 2), its predecessor's when one with t - 2 >= 1 does.
   const int t = path.t;
   ConnectionDensities c;
+  if (atLight && atCamera) {
+    // Both ends are surface vertices the connection evaluated (s, t >= 2): the two conversions
+    // across the connection edge share its geometry, and each end's conversion toward its own
+    // predecessor was stored by its walk (PathVertex::areaToPrev). convertDensity's arithmetic,
+    // regrouped.
+    const Vec3 d = e.qs->p - pt.p;
+    const float dist2 = glm::dot(d, d);
+    const float invDist3 = 1.f / (dist2 * std::sqrt(dist2));
+    c.qsFromCamera = given->ptToQs * (absDot(e.qs->ng, d) * invDist3);
+    c.ptFromLight = given->qsToPt * (absDot(pt.ng, d) * invDist3);
+    if (e.qsMinus) c.qsMinusFromCamera = given->qsToPrev * e.qs->areaToPrev;
+    if (t >= 3) c.ptMinusFromLight = given->ptToPrev * pt.areaToPrev;
+    return c;
+  }
   if (t >= 2)
     c.ptFromLight = e.qs ? scatter(*e.qs, e.qsMinus, pt, TransportMode::Importance, atLight, atLight ? given->qsToPt : 0.f)
                          : pdfLightOrigin(scene, pt);

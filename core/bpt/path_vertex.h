@@ -27,6 +27,10 @@ struct PathVertex {
   // as one (pbrt's "remap zero to one"), applied where the ratios are formed.
   float pdfFwdA = 0.f;
   float pdfRevA = 0.f;
+  // convertDensity(1, this, predecessor): a solid-angle density at this vertex toward the vertex
+  // before it on its own subpath, times this, is an area density there. Set by the walks; the
+  // O(1) MIS weight uses it for the predecessor of each connection end (mis.cpp).
+  float areaToPrev = 0.f;
   bool isDelta = false;          // a delta BSDF lobe was sampled here: cannot be connected
   bool isDeltaPosition = false;  // point / spot light, pinhole: cannot be hit by a ray
   bool isInfinite = false;       // directional light: densities toward it are planar, not 1/d^2

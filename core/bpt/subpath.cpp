@@ -49,6 +49,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       pdfFwdW = scene.lights()[static_cast<size_t>(prev.light)].pdfLe(prev.p, prev.ng, dirGeom).pdfDirW;
     }
     v.pdfFwdA = convertDensity(pdfFwdW, prev, v);
+    v.areaToPrev = convertDensity(1.f, v, prev);
     // Every surface vertex, the last included, gets its BSDF: connect() evaluates it.
     Bsdf& bsdf = path.bsdfs[static_cast<size_t>(path.count)];
     bsdf = scene.bsdf(v.material, v.uv, v.ns, v.ng);
