@@ -12,7 +12,6 @@ namespace pathlab {
 struct BidirTracer::Walks {
   CameraSubpath camera;
   LightSubpath light;
-  int cameraVertices = 0, lightVertices = 0;
   SubpathMisSums cameraSums, lightSums;  // MisEvaluation::PartialSums only
   Connection connection;                 // scratch reused by every technique
 };
@@ -37,12 +36,14 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
 
 float BidirTracer::weight(const MisPath& path, const Walks& walks, Counters& counters) const {
   const float ratio = lightTracingRatio();
-  float w = 0.f;
-  std::optional<float> fast;
-  if (misEvaluation_ == MisEvaluation::PartialSums)
-    fast = misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
-                             minConnectionDistance_);
-  w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+  // The partial sums decline (nullopt) a path with a near-coincident connection: misWeight then
+  // applies MisOptions::minConnection.
+  const std::optional<float> fast =
+      misEvaluation_ == MisEvaluation::PartialSums
+          ? misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
+                              minConnectionDistance_)
+          : std::nullopt;
+  const float w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
   if (options_.checkMis) {
     ++counters.misPartitionChecks;
     const double sum = misWeightSum(scene_, camera_, path, options_.techniques, options_.mis, ratio);
