@@ -137,19 +137,15 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
 }
 
 Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,
-                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters, bool* blocked) {
+                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters) {
   Connection c;
-  if (blocked) *blocked = false;
   if (!formConnection(scene, camera, lightPath, s, cameraPath, t, rng, c)) {
     c.L = Spectrum(0.f);
     return c;
   }
   if (needsShadowRay(s)) {
     ++counters.shadowRays;
-    if (!unoccluded(scene, c.shadowRay)) {
-      if (blocked) *blocked = true;
-      c.L = Spectrum(0.f);
-    }
+    if (!unoccluded(scene, c.shadowRay)) c.L = Spectrum(0.f);
   }
   return c;
 }

@@ -59,10 +59,10 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
 inline bool needsShadowRay(int s) { return s >= 1; }
 
 // formConnection and the shadow ray: the unweighted contribution of (s, t), zero when it cannot
-// form the path or the shadow ray is occluded (*blocked then says which). For tests and replay;
-// the tracer traces the shadow ray only when the MIS weight asks for the contribution.
+// form the path or the shadow ray is occluded. For tests; the tracer traces the shadow ray only
+// when the MIS weight asks for the contribution.
 Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,
-                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters, bool* blocked = nullptr);
+                   const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters);
 
 // Emission of light-subpath vertex x0 toward direction `w`, divided by the density with which x0
 // was chosen (light pmf x position pdf): Le / (pmf pdfPosA) or I / pmf; zero for a direction a
