@@ -61,7 +61,6 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   Pcg32 rng(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))), connectionKey);
   Connection& c = walks.connection;
   if (!formConnection(scene_, camera_, walks.light, s, walks.camera, t, rng, c)) return;
-  if (t == 1) outputs.prefetchSplat(c.pRaster);
 
   // The weight is computed over the enabled set (a disabled technique's share is zero) before the
   // shadow ray, which is traced only when something will use the contribution.

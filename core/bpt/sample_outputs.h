@@ -29,10 +29,6 @@ class SampleOutputs {
   bool wantsEveryContribution() const { return targets_.trace != nullptr; }
 
   void add(const TechniqueResult& result, TechniqueCounters& counters);
-  // A t = 1 contribution will likely land at pRaster: fetch its pixel while the kernel works on.
-  void prefetchSplat(Vec2 pRaster) const {
-    if (targets_.splats) targets_.splats->prefetch(pRaster);
-  }
   // The sum of the t >= 2 contributions: the sample's estimate for its own pixel.
   const Spectrum& cameraEstimate() const { return cameraEstimate_; }
 
