@@ -61,7 +61,7 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
       c.pdfs.qsToPrev = ev.pdfRevW;
     }
     if (isBlack(L)) return false;
-    c.shadowRay = ShadowRay{qs.p, qs.onSurface() ? qs.ng : Vec3(0.f), qs.pError, cs->pLens, Vec3(0.f), Vec3(0.f)};
+    c.shadowRay.between(qs.p, qs.onSurface() ? qs.ng : Vec3(0.f), qs.pError, cs->pLens, Vec3(0.f), Vec3(0.f));
     c.L = L * cs->We / cs->pdfW;
     c.pRaster = cs->pRaster;
     c.pdfs.atLens = true;
@@ -98,8 +98,10 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     c.pdfs.ptToPrev = ev.pdfRevW;
     c.L = pt.beta * ev.f * ls.Li * (absDot(ls.wi, pt.ns) / (pmf * ls.pdfW));
     if (isBlack(c.L)) return false;
-    c.shadowRay = light.isInfinite() ? ShadowRay{pt.p, pt.ng, pt.pError, Vec3(0.f), Vec3(0.f), Vec3(0.f), ls.wi, true}
-                                     : ShadowRay{pt.p, pt.ng, pt.pError, ls.pLight, ls.nLight, ls.pError};
+    if (light.isInfinite())
+      c.shadowRay.toward(pt.p, pt.ng, pt.pError, ls.wi);
+    else
+      c.shadowRay.between(pt.p, pt.ng, pt.pError, ls.pLight, ls.nLight, ls.pError);
     PathVertex& v = c.sampled;
     v = PathVertex{};
     v.type = VertexType::Light;
@@ -132,7 +134,7 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
   const float G = absDot(qs.ns, d) * absDot(pt.ns, d) / dist2;
   c.L = qs.beta * fq.f * fp.f * pt.beta * G;
   if (isBlack(c.L)) return false;
-  c.shadowRay = ShadowRay{pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError};
+  c.shadowRay.between(pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError);
   return true;
 }
 

@@ -33,6 +33,18 @@ struct ShadowRay {
   Vec3 b{0.f}, nb{0.f}, eb{0.f};  // second endpoint (unused toward infinity)
   Vec3 direction{0.f};            // toward the directional light, when toInfinity
   bool toInfinity = false;
+
+  // Set in place, field by field: assigning a braced temporary made the compiler build it on the
+  // stack and copy it in wider pieces than it was written in, a store-forwarding stall per field
+  // on every connection.
+  void between(const Vec3& pa, const Vec3& nA, const Vec3& eA, const Vec3& pb, const Vec3& nB, const Vec3& eB) {
+    a = pa, na = nA, ea = eA, b = pb, nb = nB, eb = eB;
+    toInfinity = false;
+  }
+  void toward(const Vec3& pa, const Vec3& nA, const Vec3& eA, const Vec3& dir) {
+    a = pa, na = nA, ea = eA, direction = dir;
+    toInfinity = true;
+  }
 };
 // True when nothing lies between the endpoints (one Embree occlusion query).
 bool unoccluded(const Scene& scene, const ShadowRay& ray);
