@@ -87,7 +87,7 @@ Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, const MaterialPoint& material) : m_(m
   // base are exactly zero: the diffuse lobe is the constant below, the same expression evalLocal
   // forms with (1 - 0) (1 - 0), so the same bits.
   lambertian_ = diffuseOnly_ && f0DielectricMax_ == 0.f && f90Dielectric_ == 0.f;
-  lambertianF_ = weight_[kDiffuse] * m_.baseColor * (kInvPi * (1.f - 0.f) * (1.f - 0.f));
+  lambertianF_ = sanitize(weight_[kDiffuse] * m_.baseColor * (kInvPi * (1.f - 0.f) * (1.f - 0.f)));
   hasNonDelta_ = active_[kDiffuse] ||
                  (!reflectionDelta_ && (active_[kMetal] || active_[kSpecular])) ||
                  (!transmissionDelta_ && active_[kTransmission]);
@@ -273,14 +273,31 @@ BsdfDensities Bsdf::densitiesOriented(const Oriented& o, const Oriented& i) cons
                        sanitize(pdfLocal(i.local, o.local * flip, etapI))};
 }
 
+// The Lambertian case of evalOriented, the same bits without its guards: f is lambertianF_ (valid
+// by construction) or zero and the densities are |cos| / pi with |cos| in [kMinCos, 1], so every
+// sanitize() there is the identity, and the shading correction of a flat-shaded surface is one.
+BsdfEval Bsdf::evalLambertian(const Oriented& o, const Oriented& i, const Vec3& wo, const Vec3& wi,
+                              TransportMode mode) const {
+  const float flip = o.side * i.side;
+  const float iz = i.local.z * flip, oz = o.local.z * flip;
+  BsdfEval result;
+  if (iz > 0.f) {
+    result.f = lambertianF_;
+    result.pdfFwdW = cosineHemispherePdf(iz);
+  }
+  if (oz > 0.f) result.pdfRevW = cosineHemispherePdf(oz);
+  if (mode == TransportMode::Importance && !flatShading_) result.f = sanitize(result.f * shadingCorrection(wo, wi, mode));
+  return result;
+}
+
 BsdfEval Bsdf::evalOriented(const Oriented& o, const Oriented& i, const Vec3& wo, const Vec3& wi,
                             TransportMode mode) const {
+  if (lambertian_) return evalLambertian(o, i, wo, wi, mode);
   const BsdfDensities d = densitiesOriented(o, i);
   BsdfEval result;
   const Vec3 iLocal = i.local * (o.side * i.side);
   // evalLocal's Lambertian case inline; etap is needed only by the other lobes.
-  const Spectrum f = lambertian_ ? (iLocal.z > 0.f ? lambertianF_ : Spectrum(0.f))
-                                 : evalLocal(o.local, iLocal, o.side > 0.f ? m_.ior : 1.f / m_.ior, mode);
+  const Spectrum f = evalLocal(o.local, iLocal, o.side > 0.f ? m_.ior : 1.f / m_.ior, mode);
   result.f = sanitize(mode == TransportMode::Radiance ? f : f * shadingCorrection(wo, wi, mode));
   result.pdfFwdW = d.pdfFwdW;
   result.pdfRevW = d.pdfRevW;

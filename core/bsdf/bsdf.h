@@ -113,6 +113,7 @@ class Bsdf {
   // eval and densities once both directions are oriented (o for wo, i for wi): each direction is
   // oriented once per call, and sample() passes on the orientations it has made already.
   BsdfEval evalOriented(const Oriented& o, const Oriented& i, const Vec3& wo, const Vec3& wi, TransportMode mode) const;
+  BsdfEval evalLambertian(const Oriented& o, const Oriented& i, const Vec3& wo, const Vec3& wi, TransportMode mode) const;
   BsdfDensities densitiesOriented(const Oriented& o, const Oriented& i) const;
 
   Frame frame_;
