@@ -24,7 +24,7 @@ bool isNumber(const CLI::Option& option) {
   return hasType(option, "INT") || hasType(option, "UINT") || hasType(option, "FLOAT");
 }
 
-// Every setting is stored as float or narrower: a value beyond float's range is as unusable as inf.
+// No option needs a value beyond float's range, and most are stored as float, where it becomes inf.
 // CLI11 reads "-1" into an unsigned option as 2^64 - 1: a negative value is refused there too.
 CLI::Validator finiteNumber(bool isUnsigned) {
   return CLI::Validator(

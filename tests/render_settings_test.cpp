@@ -22,7 +22,7 @@ std::string refusal(const RenderSettings& s) {
   return {};
 }
 
-TEST(RenderSettings, NonFiniteFloatSettingsAreRefused) {
+TEST(RenderSettingsValidation, NonFiniteFloatSettingsAreRefused) {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   const std::pair<const char*, std::function<void(RenderSettings&, float)>> settings[] = {
       {"MIS beta", [](RenderSettings& s, float v) { s.mis.beta = v; }},
@@ -44,7 +44,7 @@ TEST(RenderSettings, NonFiniteFloatSettingsAreRefused) {
     }
 }
 
-TEST(RenderSettings, OutOfRangeFloatSettingsAreRefused) {
+TEST(RenderSettingsValidation, OutOfRangeFloatSettingsAreRefused) {
   RenderSettings s;
   s.mis.beta = 1000.f;
   EXPECT_NE(refusal(s).find("MIS beta 1000"), std::string::npos);
