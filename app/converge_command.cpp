@@ -2,6 +2,7 @@
 // cached by hash), the configurations rendered one after another, the results written.
 #include "app/converge_command.h"
 
+#include "app/output_check.h"
 #include "app/progress.h"
 #include "core/bpt/bidir_tracer.h"
 #include "core/converge/convergence.h"
@@ -48,20 +49,19 @@ void writeTextAtomically(const fs::path& path, const std::string& text) {
   fs::rename(tmp, path);
 }
 
+// Before any work: the directory can be created or written (so can the cached reference), and
+// each result can be written into it.
 void checkOutputDir(const ConvergeOptions& o) {
+  checkOutputDirectory(o.outputDir);
   const fs::path dir(o.outputDir);
-  if (fs::exists(dir) && !fs::is_directory(dir))
-    throw std::runtime_error(o.outputDir + ": exists and is not a directory");
-  if (!fs::exists(dir)) {
-    if (!dir.parent_path().empty() && !fs::is_directory(dir.parent_path()))
-      throw std::runtime_error(o.outputDir + ": the directory " + dir.parent_path().string() + " does not exist");
-    return;
+  if (!fs::is_directory(dir)) return;
+  for (const char* name : kOutputs) {
+    const fs::path path = dir / name;
+    checkOutputWritable(path.string());
+    if (!o.force && fs::exists(path))
+      throw std::runtime_error(path.string() + ": file exists (pass --force to overwrite the results in " + o.outputDir +
+                               ")");
   }
-  if (o.force) return;
-  for (const char* name : kOutputs)
-    if (fs::exists(dir / name))
-      throw std::runtime_error((dir / name).string() + ": file exists (pass --force to overwrite the results in " +
-                               o.outputDir + ")");
 }
 
 std::string humanCount(double v) {

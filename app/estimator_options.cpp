@@ -37,11 +37,11 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
           std::map<std::string, MisHeuristic>{{"balance", MisHeuristic::Balance}, {"power", MisHeuristic::Power},
                                               {"uniform", MisHeuristic::Uniform}},
           CLI::ignore_case));
-  cmd->add_option("--beta", s.mis.beta, "Exponent of the power heuristic")->check(CLI::Range(0.01f, 100.f));
+  cmd->add_option("--beta", s.mis.beta, "Exponent of the power heuristic")->check(CLI::Range(kMinBeta, kMaxBeta));
   cmd->add_option("--min-connection", s.mis.minConnection,
                   "Connections shorter than this fraction of the scene's bounding radius are left to the techniques "
                   "that sample that edge, when one is enabled (0: off)")
-      ->check(CLI::Range(0.f, 1.f));
+      ->check(CLI::Range(0.f, kMaxMinConnection));
   cmd->add_option("--techniques", o.techniques,
                   "Enabled (s,t) techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all");
   auto* isolate = cmd->add_option("--isolate", o.isolate,
@@ -52,9 +52,9 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
   cmd->add_flag("--rr,!--no-rr", s.russianRoulette, "Russian roulette from the third edge on (default on)");
   cmd->add_option("--seed", s.seed, "Seed of every random stream (samples are keyed by seed, pixel, index)");
   cmd->add_option("--aperture", s.lens.apertureRadius, "Thin-lens aperture radius in scene units (0: pinhole)")
-      ->check(CLI::Range(0.f, 1e6f));
+      ->check(CLI::Range(0.f, kMaxAperture));
   cmd->add_option("--focus-distance", s.lens.focusDistance, "Thin-lens focus distance in scene units")
-      ->check(CLI::Range(1e-6f, 1e9f));
+      ->check(CLI::Range(kMinFocusDistance, kMaxFocusDistance));
 }
 
 void finishEstimatorOptions(EstimatorOptions& o) {

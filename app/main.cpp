@@ -1,7 +1,5 @@
 // pathlab: one executable, subcommands wired to the core. Every error becomes one line and exit 1.
-#include "app/converge_command.h"
-#include "app/render_command.h"
-#include "app/view_command.h"
+#include "app/cli.h"
 
 #include <exception>
 #include <iostream>
@@ -11,21 +9,17 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   // One line per error, as for every other failure (CLI11's default adds a second line).
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return "pathlab: " + std::string(e.what()) + "\n"; });
-  pathlab::app::RenderOptions render;
-  pathlab::app::addRenderCommand(app, render);
-  pathlab::app::ConvergeOptions converge;
-  pathlab::app::addConvergeCommand(app, converge);
-  pathlab::app::ViewOptions view;
-  pathlab::app::addViewCommand(app, view);
+  pathlab::app::CliOptions options;
+  pathlab::app::addCommands(app, options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
   try {
-    if (app.got_subcommand("render")) return pathlab::app::runRender(render);
-    if (app.got_subcommand("converge")) return pathlab::app::runConverge(converge);
-    if (app.got_subcommand("view")) return pathlab::app::runView(view);
+    if (app.got_subcommand("render")) return pathlab::app::runRender(options.render);
+    if (app.got_subcommand("converge")) return pathlab::app::runConverge(options.converge);
+    if (app.got_subcommand("view")) return pathlab::app::runView(options.view);
   } catch (const std::exception& e) {
     std::cerr << "pathlab: " << e.what() << "\n";
     return 1;

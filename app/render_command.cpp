@@ -2,6 +2,7 @@
 // time budget is spent, write the image atomically, print a summary.
 #include "app/render_command.h"
 
+#include "app/output_check.h"
 #include "app/progress.h"
 #include "app/pyramid_output.h"
 #include "core/film/image_io.h"
@@ -31,11 +32,9 @@ constexpr int kMaxSpp = 1 << 24;
 constexpr int kDefaultSpp = 64;
 
 // Nothing the user made is overwritten without asking: ask on a terminal, refuse otherwise.
-void checkOutputWritable(const std::string& output, bool force) {
+void checkOutput(const std::string& output, bool force) {
+  checkOutputWritable(output);
   imageFormatOf(output);  // fails early on an unknown extension
-  const std::filesystem::path dir = std::filesystem::path(output).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw std::runtime_error(output + ": the directory " + dir.string() + " does not exist");
   if (force || !std::filesystem::exists(output)) return;
   if (isatty(STDIN_FILENO)) {
     std::cerr << output << " exists. Overwrite? [y/N] " << std::flush;
@@ -156,9 +155,9 @@ int runRender(RenderOptions o) {
   }
   std::optional<ReplayRequest> replay;
   if (!o.replay.empty()) replay = parseReplay(o.replay, settings);
-  if (!replay) checkOutputWritable(o.output, o.force);
+  if (!replay) checkOutput(o.output, o.force);
   if (!replay && settings.pyramidLength > 0)
-    for (const std::string& path : pyramidPaths(o.output, settings.pyramidLength)) checkOutputWritable(path, o.force);
+    for (const std::string& path : pyramidPaths(o.output, settings.pyramidLength)) checkOutput(path, o.force);
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 

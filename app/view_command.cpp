@@ -1,6 +1,7 @@
 // `pathlab view [SCENE]`: registers the viewer's options and hands them to ui::runViewer.
 #include "app/view_command.h"
 
+#include "app/output_check.h"
 #include "ui/run_viewer.h"
 
 #include <tbb/global_control.h>
@@ -61,6 +62,9 @@ int runView(ViewOptions o) {
   finishEstimatorOptions(o.estimator);
   if (o.viewer.headless && o.viewer.frames == 0) o.viewer.frames = 60;
   o.viewer.settings = o.estimator.settings;
+  // Before the viewer loads the scene; it checks the extension and --force itself.
+  if (!o.viewer.screenshot.empty()) checkOutputWritable(o.viewer.screenshot);
+  if (!o.viewer.errorCsv.empty()) checkOutputWritable(o.viewer.errorCsv);
   if (o.viewer.scene == kDefaultScene && !std::filesystem::exists(o.viewer.scene))
     o.viewer.scene = PATHLAB_ASSETS_DIR "/cornell-box.gltf";
   // The render threads get every core; the UI thread still runs at its own bounded frame rate.

@@ -3,12 +3,35 @@
 #include "core/render/render_settings.h"
 
 #include "core/film/technique_films.h"
+#include "core/math/types.h"
 
 #include <fmt/core.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace pathlab {
+
+namespace {
+
+// NaN fails both comparisons, so a NaN setting is refused with the same line as one out of range.
+void checkRange(const char* what, float v, float lo, float hi) {
+  if (!(v >= lo && v <= hi))
+    throw std::invalid_argument(fmt::format("{} {} is not a finite number in {:g}..{:g}", what, v, lo, hi));
+}
+
+void checkCamera(const CameraDesc& c) {
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row)
+      if (!std::isfinite(c.cameraToWorld[col][row]))
+        throw std::invalid_argument(fmt::format("camera transform entry {} is not finite", c.cameraToWorld[col][row]));
+  if (!(c.yfov > 0.f && c.yfov < kPi))
+    throw std::invalid_argument(fmt::format("camera field of view {} is not in (0, pi)", c.yfov));
+  if (c.aspectRatio && !(*c.aspectRatio > 0.f && std::isfinite(*c.aspectRatio)))
+    throw std::invalid_argument(fmt::format("camera aspect ratio {} is not a positive finite number", *c.aspectRatio));
+}
+
+}  // namespace
 
 const char* integratorName(IntegratorKind kind) {
   switch (kind) {
@@ -33,6 +56,11 @@ PathTracerOptions pathTracerOptions(const RenderSettings& s) { return PathTracer
 void validateSettings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1)
     throw std::invalid_argument(fmt::format("image size {} x {} is not positive", s.width, s.height));
+  checkRange("MIS beta", s.mis.beta, kMinBeta, kMaxBeta);
+  checkRange("minimum connection", s.mis.minConnection, 0.f, kMaxMinConnection);
+  checkRange("lens aperture", s.lens.apertureRadius, 0.f, kMaxAperture);
+  checkRange("focus distance", s.lens.focusDistance, kMinFocusDistance, kMaxFocusDistance);
+  if (s.camera) checkCamera(*s.camera);
   if (s.maxLength < 1) throw std::invalid_argument(fmt::format("maximum path length {} is less than 1", s.maxLength));
   const bool bidirectional = s.integrator != IntegratorKind::Pt;
   if (bidirectional && s.maxLength > kMaxBidirectionalLength)

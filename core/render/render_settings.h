@@ -50,6 +50,11 @@ inline constexpr int kMaxPyramidLength = 8;
 // tables hold about n^2 / 2 entries: beyond this many edges that is memory and time for nothing.
 inline constexpr int kMaxBidirectionalLength = kMaxTechniqueLength;
 inline constexpr uint64_t kMaxPyramidBytes = 8ull << 30;
+// Ranges of the float settings, shared by the CLI's checks and validateSettings.
+inline constexpr float kMinBeta = 0.01f, kMaxBeta = 100.f;
+inline constexpr float kMaxMinConnection = 1.f;
+inline constexpr float kMaxAperture = 1e6f;
+inline constexpr float kMinFocusDistance = 1e-6f, kMaxFocusDistance = 1e9f;
 
 const char* integratorName(IntegratorKind kind);
 
@@ -64,7 +69,9 @@ PathTracerOptions pathTracerOptions(const RenderSettings& settings);
 // cannot be rendered: no technique of length 1..maxLength enabled or one listed beyond it, an
 // isolated technique outside 1..maxLength or not a light-tracing one under `lt`, isolation or a
 // pyramid asked of the path tracer, a pyramid longer than maxLength or kMaxPyramidLength or too
-// large for memory.
+// large for memory; a float setting that is not finite or outside its range (MIS beta and minimum
+// connection, lens aperture and focus distance, an override camera's transform and field of view),
+// whichever route it came by (CLI, converge configurations, viewer presets).
 void validateSettings(const RenderSettings& settings);
 
 }  // namespace pathlab

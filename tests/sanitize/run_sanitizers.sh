@@ -20,7 +20,7 @@ configure() {  # DIR SANITIZER
 
 if [ "$which" = address ] || [ "$which" = all ]; then
   configure build-asan address
-  cmake --build build-asan -j "$jobs" --target pathlab pathlab_tests pathlab_viewer_tests
+  cmake --build build-asan -j "$jobs" --target pathlab pathlab_tests pathlab_viewer_tests pathlab_cli_tests
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   slow='bench_smoke|converge_cli|BundledAgreement|TechniqueAgreement|DeltaAgreement|Extremes|ScaleInvariance|ChiSquare'
   ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$slow|^viewer[.]"
