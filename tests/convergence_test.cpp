@@ -59,6 +59,16 @@ TEST(ConvergenceConfig, BadConfigsAreOneLineErrors) {
   }
 }
 
+// A number too large for its type is named as an overflow, not as "not a number".
+TEST(ConvergenceConfig, OverflowIsNamedAsSuch) {
+  try {
+    parseConvergenceConfigs("bpt:mis=power,beta=1e999", RenderSettings{});
+    ADD_FAILURE() << "accepted beta=1e999";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("beta=1e999 is out of range"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ReferenceKey, ChangesWithSettingsAndBudget) {
   RenderSettings s;
   const std::string a = referenceKey(kBox, s, "time=10");

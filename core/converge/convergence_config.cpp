@@ -61,6 +61,8 @@ template <typename T>
 T parseNumber(std::string_view config, std::string_view key, std::string_view text) {
   T v{};
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec == std::errc::result_out_of_range && ptr == text.data() + text.size())
+    fail(config, fmt::format("{}={} is out of range (overflows)", key, text));
   if (ec != std::errc() || ptr != text.data() + text.size() || text.empty())
     fail(config, fmt::format("{}={} is not a number", key, text));
   return v;
