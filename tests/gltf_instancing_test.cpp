@@ -109,6 +109,11 @@ TEST(GltfScenes, DefaultSceneIndexWithNoScenesIsRefused) {
   noArray.members.push_back(R"("scene":2)");
   EXPECT_NE(loadError(noArray.write("no-scenes.gltf")).find("default scene 2 does not exist"),
             std::string::npos);
+  TestGltf negative = g;
+  negative.withScenes = true;
+  negative.members.push_back(R"("scene":-3)");
+  EXPECT_NE(loadError(negative.write("negative-scene.gltf")).find("default scene -3 does not exist"),
+            std::string::npos);
   // Without "scene" nor "scenes", every root node is rendered (the loader's documented choice).
   EXPECT_EQ(totalTriangles(loadGltf(g.write("no-scene-at-all.gltf"))), 1u);
 }

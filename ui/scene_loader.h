@@ -29,7 +29,7 @@ class SceneLoader {
   // The result once the load has finished (then the loader is idle again).
   std::optional<SceneLoadResult> poll();
   // Loads synchronously (the first scene, before the window opens).
-  static SceneLoadResult load(const std::string& path, const LoadOptions& options);
+  static SceneLoadResult load(const std::string& path, const LoadOptions& options = {});
 
  private:
   LoadOptions options_;

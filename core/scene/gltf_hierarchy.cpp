@@ -9,6 +9,10 @@ namespace pathlab::gltf {
 namespace {
 
 std::vector<int> rootNodes(const tinygltf::Model& model) {
+  // tinygltf stores an absent "scene" as -1; any other negative index was written in the file.
+  if (model.defaultScene < -1) {
+    throw LoadError("default scene " + std::to_string(model.defaultScene) + " does not exist");
+  }
   const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (model.scenes.empty()) {
     // "scene" indexes "scenes": with none, any index is out of range, not a request for all.
