@@ -2,6 +2,8 @@
 // error against a reference recorded over time, an efficiency table and a log-log plot.
 #pragma once
 
+#include "core/scene/gltf_loader.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
@@ -26,6 +28,7 @@ struct ConvergeOptions {
   uint64_t seed = 0;
   int threads = 0;
   bool force = false;
+  LoadOptions load;
 };
 
 void addConvergeCommand(CLI::App& app, ConvergeOptions& options);

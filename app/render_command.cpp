@@ -128,6 +128,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "(rows: length, columns: s) next to the output")
       ->check(CLI::Range(1, kMaxPyramidLength));
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
@@ -162,11 +164,12 @@ int runRender(RenderOptions o) {
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 
   const auto loadStart = std::chrono::steady_clock::now();
-  Scene scene(loadGltf(o.scene));
+  Scene scene(loadGltf(o.scene, o.load));
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
-  std::cerr << fmt::format("{}: {} triangles, {} lights, loaded in {:.2f} s\n", o.scene, scene.triangleCount(),
-                           scene.lights().size(), loadSeconds);
+  std::cerr << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene,
+                           scene.triangleCount(), scene.lights().size(), double(scene.geometryBytes()) / 1e6,
+                           loadSeconds);
 
   RenderSession session(scene, settings);
   if (replay) return runReplay(session, *replay);

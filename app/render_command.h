@@ -2,6 +2,7 @@
 #pragma once
 
 #include "app/estimator_options.h"
+#include "core/scene/gltf_loader.h"
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +21,7 @@ struct RenderOptions {
   bool force = false;
   bool stats = false;   // print the per-technique counters
   std::string replay;   // "X,Y,SAMPLE": print that one sample's techniques instead of rendering
+  LoadOptions load;
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& options);

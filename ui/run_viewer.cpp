@@ -141,7 +141,7 @@ int runViewer(const ViewerOptions& o) {
   }
   const std::vector<InputEvent> script = parseInputScript(o.script);
   std::vector<int> scriptKeys;
-  SceneLoadResult loaded = SceneLoader::load(o.scene);
+  SceneLoadResult loaded = SceneLoader::load(o.scene, o.load);
   if (!loaded.scene) throw std::runtime_error(loaded.error);
   for (const std::string& w : loaded.scene->warnings()) std::cerr << "pathlab: warning: " << w << "\n";
 

@@ -7,10 +7,10 @@
 
 namespace pathlab::ui {
 
-SceneLoadResult SceneLoader::load(const std::string& path) {
+SceneLoadResult SceneLoader::load(const std::string& path, const LoadOptions& options) {
   SceneLoadResult r{path, nullptr, {}};
   try {
-    r.scene = std::make_shared<const Scene>(loadGltf(path));
+    r.scene = std::make_shared<const Scene>(loadGltf(path, options));
   } catch (const std::exception& e) {
     // The loader's messages already name the file; others (bad_alloc, ...) get it here.
     const std::string what = e.what();
@@ -22,7 +22,7 @@ SceneLoadResult SceneLoader::load(const std::string& path) {
 void SceneLoader::start(const std::string& path) {
   if (pending_.valid()) pending_.wait();
   pendingPath_ = path;
-  pending_ = std::async(std::launch::async, [path] { return load(path); });
+  pending_ = std::async(std::launch::async, [path, options = options_] { return load(path, options); });
 }
 
 std::optional<SceneLoadResult> SceneLoader::poll() {

@@ -3,6 +3,7 @@
 // it and keeps the previous scene.
 #pragma once
 
+#include "core/scene/gltf_loader.h"
 #include "core/scene/scene.h"
 
 #include <future>
@@ -20,6 +21,7 @@ struct SceneLoadResult {
 
 class SceneLoader {
  public:
+  explicit SceneLoader(LoadOptions options = {}) : options_(options) {}
   // Starts loading `path`; a load still running is waited for and its result dropped.
   void start(const std::string& path);
   bool busy() const { return pending_.valid(); }
@@ -27,9 +29,10 @@ class SceneLoader {
   // The result once the load has finished (then the loader is idle again).
   std::optional<SceneLoadResult> poll();
   // Loads synchronously (the first scene, before the window opens).
-  static SceneLoadResult load(const std::string& path);
+  static SceneLoadResult load(const std::string& path, const LoadOptions& options = {});
 
  private:
+  LoadOptions options_;
   std::future<SceneLoadResult> pending_;
   std::string pendingPath_;
 };

@@ -43,6 +43,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
     : estimator_(EstimatorState::from(options.settings)), imageView_(std::make_unique<ImageView>()) {
   scene_.scene = std::move(scene);
   scene_.path = options.scene;
+  scene_.loader = SceneLoader(options.load);
   // A preset's camera: orbit from there.
   scene_.orbit = OrbitCamera(estimator_.settings.camera.value_or(scene_.scene->cameraDesc()), scene_.scene->boundsMin(),
                              scene_.scene->boundsMax());
@@ -326,7 +327,8 @@ void Viewer::pollSceneLoad() {
   refreshSceneFiles();
   const Scene& scene = *scene_.scene;
   std::string text =
-      fmt::format("loaded {}: {} triangles, {} lights", scene_.path, scene.triangleCount(), scene.lights().size());
+      fmt::format("loaded {}: {} triangles, {} lights, {:.1f} MB of geometry", scene_.path, scene.triangleCount(),
+                  scene.lights().size(), double(scene.geometryBytes()) / 1e6);
   for (const std::string& w : scene.warnings()) text += "; warning: " + w;
   if (hadReference) text += "; the reference was dropped (it showed the previous scene)";
   showMessage(text);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/render/render_settings.h"
+#include "core/scene/gltf_loader.h"
 
 #include <cstdint>
 #include <string>
@@ -11,6 +12,7 @@ namespace pathlab::ui {
 
 struct ViewerOptions {
   std::string scene;
+  LoadOptions load;  // for this scene and every scene opened from the viewer
   // The initial estimator (width and height are ignored: the image follows the window).
   RenderSettings settings;
   int threads = 0;  // render threads, 0: all hardware threads

@@ -2,6 +2,7 @@
 #include "core/scene/gltf_internal.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <type_traits>
@@ -107,27 +108,37 @@ float toFloat(const unsigned char* p, bool normalized) {
 }
 
 template <class T>
-void readTyped(const AccessorView& view, int take, float* out) {
+void readTyped(const AccessorView& view, int take, float* out, const std::string& name) {
   for (size_t i = 0; i < view.count; ++i) {
     const unsigned char* element = view.data + i * view.stride;
     for (int c = 0; c < take; ++c) {
-      out[i * size_t(take) + size_t(c)] =
-          toFloat<T>(element + size_t(c) * sizeof(T), view.normalized);
+      float& f = out[i * size_t(take) + size_t(c)];
+      f = toFloat<T>(element + size_t(c) * sizeof(T), view.normalized);
+      if constexpr (std::is_same_v<T, double>) {
+        // Only a double can be finite and still not fit; a non-finite value stays for the
+        // caller's own check (positions refused, normals and uvs repaired).
+        double v;
+        std::memcpy(&v, element + size_t(c) * sizeof(T), sizeof(T));
+        if (std::isfinite(v) && !std::isfinite(f)) {
+          throw LoadError(name + ": element " + std::to_string(i) + " component " +
+                          std::to_string(c) + ", " + formatNumber(v) + ", " + overflowText());
+        }
+      }
     }
   }
 }
 
 // Converts `take` components of every element to float, row after row into `out`.
-void readFloats(const AccessorView& view, int take, float* out) {
+void readFloats(const AccessorView& view, int take, float* out, const std::string& name) {
   switch (view.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: readTyped<float>(view, take, out); break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: readTyped<uint8_t>(view, take, out); break;
-    case TINYGLTF_COMPONENT_TYPE_BYTE: readTyped<int8_t>(view, take, out); break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: readTyped<uint16_t>(view, take, out); break;
-    case TINYGLTF_COMPONENT_TYPE_SHORT: readTyped<int16_t>(view, take, out); break;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: readTyped<uint32_t>(view, take, out); break;
-    case TINYGLTF_COMPONENT_TYPE_INT: readTyped<int32_t>(view, take, out); break;
-    case TINYGLTF_COMPONENT_TYPE_DOUBLE: readTyped<double>(view, take, out); break;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: readTyped<float>(view, take, out, name); break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: readTyped<uint8_t>(view, take, out, name); break;
+    case TINYGLTF_COMPONENT_TYPE_BYTE: readTyped<int8_t>(view, take, out, name); break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: readTyped<uint16_t>(view, take, out, name); break;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: readTyped<int16_t>(view, take, out, name); break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: readTyped<uint32_t>(view, take, out, name); break;
+    case TINYGLTF_COMPONENT_TYPE_INT: readTyped<int32_t>(view, take, out, name); break;
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: readTyped<double>(view, take, out, name); break;
     default: break;  // rejected by viewAccessor
   }
 }
@@ -141,7 +152,7 @@ std::vector<V> readVectors(const tinygltf::Model& model, int index, const std::s
   }
   static_assert(sizeof(V) == sizeof(float) * V::length());
   std::vector<V> out(view.count);
-  if (view.count > 0) readFloats(view, components, &out[0][0]);
+  if (view.count > 0) readFloats(view, components, &out[0][0], accessorName(index, what));
   return out;
 }
 

@@ -1,14 +1,11 @@
-// Reading a .gltf / .glb file through tinygltf, with the GLB layout checked first, and the small
+// Parsing a .gltf / .glb file through tinygltf, with the GLB layout checked first, and the small
 // message helpers the loader's files share.
 #include "core/scene/gltf_internal.h"
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <limits>
 #include <new>
 
 namespace pathlab::gltf {
@@ -79,28 +76,6 @@ std::string oneLine(const std::string& text) {
 std::string quoted(const std::string& name) { return name.empty() ? "" : " '" + name + "'"; }
 
 namespace {
-
-std::vector<unsigned char> readFile(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw LoadError("file not found");
-  if (fs::is_directory(status)) throw LoadError("is a directory, not a glTF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw LoadError(std::string("cannot open file (") + std::strerror(errno) + ")");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) throw LoadError("cannot read file");
-  if (uint64_t(size) > std::numeric_limits<uint32_t>::max()) {
-    throw LoadError("file is larger than 4 GiB (the glTF binary limit)");
-  }
-  in.seekg(0, std::ios::beg);
-  std::vector<unsigned char> bytes(static_cast<size_t>(size));
-  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) {
-    throw LoadError("cannot read file");
-  }
-  return bytes;
-}
 
 uint32_t readU32(const std::vector<unsigned char>& bytes, size_t offset) {
   return uint32_t(bytes[offset]) | uint32_t(bytes[offset + 1]) << 8 |
@@ -174,7 +149,7 @@ void checkJsonNesting(const unsigned char* json, size_t size) {
 }  // namespace
 
 tinygltf::Model parseFile(const std::string& path, Warnings& warnings) {
-  const std::vector<unsigned char> bytes = readFile(path);
+  const std::vector<unsigned char> bytes = readRegularFile(path);
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -185,8 +160,10 @@ tinygltf::Model parseFile(const std::string& path, Warnings& warnings) {
   tinygltf::Model model;
   tinygltf::TinyGLTF context;
   context.SetImageLoader(&loadImageChecked, &model);
-  std::string err, warn;
   const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  ExternalFiles files(baseDir);
+  context.SetFsCallbacks(files.callbacks());
+  std::string err, warn;
   bool ok = false;
   try {
     if (binary) {
@@ -207,6 +184,15 @@ tinygltf::Model parseFile(const std::string& path, Warnings& warnings) {
     // tinygltf 2.7 can throw from inside (e.g. vector::at on a zero-length GLB buffer).
     throw LoadError(std::string("cannot load glTF: tinygltf failed on malformed input (") +
                     e.what() + ")");
+  }
+  // A buffer is required (its refusal fails the load and is in err); an image is not (tinygltf
+  // only warns and goes on), but a scene referencing a special file is refused all the same.
+  for (const ExternalFiles::Refusal& r : files.refusals()) {
+    const bool buffer = !ok && err.find("File read error : " + r.path + " :") != std::string::npos;
+    if (ok || buffer) {
+      throw LoadError(std::string(buffer ? "buffer" : "image") + " '" + r.relative + "' " +
+                      r.problem);
+    }
   }
   if (!ok) {
     std::string reason = oneLine(elideDataUris(err));

@@ -196,8 +196,8 @@ LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int 
   return out;
 }
 
-size_t instantiatePrimitive(const LocalPrimitive& local, const glm::dmat4& toWorld,
-                            TriangleMesh& out) {
+DroppedTriangles instantiatePrimitive(const LocalPrimitive& local, const glm::dmat4& toWorld,
+                                     const std::string& label, TriangleMesh& out) {
   const size_t n = local.positions.size();
   const glm::dmat3 linear(toWorld);
   const double det = glm::determinant(linear);
@@ -215,9 +215,10 @@ size_t instantiatePrimitive(const LocalPrimitive& local, const glm::dmat4& toWor
   out.positions.resize(n);
   out.normals.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    out.positions[i] = Vec3(toWorld * glm::dvec4(glm::dvec3(local.positions[i]), 1.0));
-    if (!isFinite(out.positions[i])) {
-      throw LoadError(local.name + ": the node transform makes vertex positions non-finite");
+    const glm::dvec4 p = toWorld * glm::dvec4(glm::dvec3(local.positions[i]), 1.0);
+    for (int k = 0; k < 3; ++k) {
+      out.positions[i][k] = toFiniteFloat(
+          p[k], label + ": after the node transform, vertex " + std::to_string(i) + " coordinate");
     }
     const glm::dvec3 nw = normalMatrix * glm::dvec3(local.normals[i]);
     const double len = glm::length(nw);
@@ -227,15 +228,26 @@ size_t instantiatePrimitive(const LocalPrimitive& local, const glm::dmat4& toWor
 
   out.indices.clear();
   out.indices.reserve(local.indices.size());
-  size_t dropped = 0;
+  DroppedTriangles dropped;
   for (size_t t = 0; t + 2 < local.indices.size(); t += 3) {
     uint32_t i0 = local.indices[t], i1 = local.indices[t + 1], i2 = local.indices[t + 2];
     if (flip) std::swap(i1, i2);
+    // The renderer's geometric normal and area light, exactly: normalize(cross(p1 - p0, p2 - p0))
+    // in float, whose squared length overflows long before the corners do.
     const Vec3& p0 = out.positions[i0];
     const Vec3 ng = glm::cross(out.positions[i1] - p0, out.positions[i2] - p0);
     const float len2 = glm::dot(ng, ng);
-    if (!(len2 > 0.f) || !std::isfinite(len2)) {
-      ++dropped;
+    if (!std::isfinite(len2)) {
+      const double edge = std::max({glm::length(glm::dvec3(out.positions[i1]) - glm::dvec3(p0)),
+                                    glm::length(glm::dvec3(out.positions[i2]) - glm::dvec3(p0))});
+      throw LoadError(label + ": triangle " + std::to_string(t / 3) + " (an edge of " +
+                      formatNumber(edge) + ") is too large: its area " + overflowText());
+    }
+    if (!(len2 > 0.f)) {
+      const uint32_t* idx = &local.indices[t];
+      const Vec3 q0 = local.positions[idx[0]];
+      const Vec3 localNg = glm::cross(local.positions[idx[1]] - q0, local.positions[idx[2]] - q0);
+      ++(glm::dot(localNg, localNg) > 0.f ? dropped.collapsed : dropped.zeroArea);
       continue;
     }
     for (uint32_t i : {i0, i1, i2}) {
@@ -245,7 +257,7 @@ size_t instantiatePrimitive(const LocalPrimitive& local, const glm::dmat4& toWor
     out.indices.push_back(i1);
     out.indices.push_back(i2);
   }
-  if (dropped > 0) {
+  if (dropped.zeroArea + dropped.collapsed > 0) {
     // Drop the vertices only dropped triangles used: they would widen the scene's bounds.
     std::vector<uint32_t> remap(n, AttributeCache::kUnused);
     uint32_t kept = 0;

@@ -40,8 +40,72 @@ std::string elideDataUris(const std::string& text);
 std::string quoted(const std::string& name);  // " 'name'", or "" for an unnamed object
 
 // Reads and parses `path` (.gltf or .glb, told apart by the magic bytes); tinygltf's warnings are
-// added to `warnings`. Throws LoadError for a missing, unreadable, truncated or invalid file.
+// added to `warnings`. Throws LoadError for a missing, unreadable, truncated or invalid file, and
+// for a buffer or image file that is not a regular file.
 tinygltf::Model parseFile(const std::string& path, Warnings& warnings);
+
+// ---- file access (gltf_fs.cpp) ---------------------------------------------------------------
+// The most pathlab reads from one file: a GLB cannot be larger (its length field is 32 bits), and
+// an external buffer this large already holds more triangles than the default limit admits.
+constexpr uint64_t kMaxFileBytes = uint64_t(1) << 32;
+
+// The whole of `path` if it is a regular file (symlinks followed) of at most kMaxFileBytes;
+// otherwise LoadError saying what it is ("is a FIFO, not a regular file"), without the path.
+std::vector<unsigned char> readRegularFile(const std::string& path);
+
+// tinygltf's file-system callbacks for the files a scene references, resolved in its directory
+// `baseDir` and read with readRegularFile; each refused file is kept for parseFile's message.
+class ExternalFiles {
+ public:
+  struct Refusal {
+    std::string path;      // as tinygltf asked for it
+    std::string relative;  // to the scene's directory, for the message
+    std::string problem;   // readRegularFile's message
+  };
+  explicit ExternalFiles(std::string baseDir);
+  tinygltf::FsCallbacks callbacks();  // valid while this object lives
+  const std::vector<Refusal>& refusals() const { return refusals_; }
+
+ private:
+  std::string relative(const std::string& path) const;
+  static bool exists(const std::string& path, void* self);
+  static std::string expand(const std::string& path, void* self);
+  static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void* self);
+  static bool write(std::string* err, const std::string& path,
+                    const std::vector<unsigned char>& contents, void* self);
+
+  std::string baseDir_;
+  std::vector<Refusal> refusals_;
+};
+
+// ---- numbers (gltf_numbers.cpp) --------------------------------------------------------------
+std::string formatNumber(double value);  // shortest readable form, e.g. "1e+39"
+std::string overflowText();              // "overflows a 32-bit float (largest 3.40282e+38)"
+// `value` as the float the renderer will use; LoadError "WHAT VALUE is not a finite number" or
+// "WHAT VALUE overflows a 32-bit float (...)". `what` names the value, e.g. "material 0: ior".
+float toFiniteFloat(double value, const std::string& what);
+
+// ---- node hierarchy (gltf_hierarchy.cpp) -----------------------------------------------------
+std::string nodeLabel(const tinygltf::Model& model, int index);  // "node 3 'name'"
+
+struct NodeVisit {
+  int node;
+  int parent;  // index of the parent's visit, -1 for a root
+};
+// The default scene's nodes in document pre-order (parents before children). Throws LoadError
+// for a default scene that does not exist, a node or child that does not exist, and a node
+// reached twice.
+std::vector<NodeVisit> walkHierarchy(const tinygltf::Model& model);
+
+struct InstanceCount {
+  uint64_t instances = 0;  // nodes with a mesh
+  uint64_t triangles = 0;  // before zero-area triangles are dropped
+};
+// Counts what `visits` will instance from the accessor counts alone; throws LoadError naming the
+// count and the limit as soon as the triangles pass `maxTriangles`.
+InstanceCount countInstances(const tinygltf::Model& model, const std::vector<NodeVisit>& visits,
+                             uint64_t maxTriangles);
 
 // ---- accessors (gltf_accessors.cpp) ----------------------------------------------------------
 // Every read is bounds-checked against the buffer before any byte is touched; violations throw
@@ -99,9 +163,19 @@ class AttributeCache {
 LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int primitiveIndex,
                                AttributeCache& cache, Warnings& warnings);
 
+struct DroppedTriangles {
+  size_t zeroArea = 0;   // already without area in the mesh
+  size_t collapsed = 0;  // with area in the mesh, none in float after the node transform
+};
 // Transforms `local` by `toWorld` into `out` (positions, inverse-transpose normals, winding
-// flipped for a mirroring transform) and drops zero-area triangles; returns how many it dropped.
-size_t instantiatePrimitive(const LocalPrimitive& local, const glm::dmat4& toWorld,
-                            TriangleMesh& out);
+// flipped for a mirroring transform) and drops zero-area triangles. Throws LoadError (starting
+// with `label`) for a position or a triangle area that overflows a float.
+DroppedTriangles instantiatePrimitive(const LocalPrimitive& local, const glm::dmat4& toWorld,
+                                      const std::string& label, TriangleMesh& out);
+
+// ---- whole-scene checks (gltf_scene_checks.cpp) ---------------------------------------------
+// Throws LoadError when nothing emits, or when the scene's extent or its lights' total power
+// overflows the floats the renderer computes them in.
+void checkScene(const SceneDesc& desc);
 
 }  // namespace pathlab::gltf

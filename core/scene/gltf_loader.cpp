@@ -37,10 +37,6 @@ void checkExtensions(const tinygltf::Model& model, Warnings& warnings) {
   }
 }
 
-std::string nodeLabel(const tinygltf::Model& model, int index) {
-  return "node " + std::to_string(index) + quoted(model.nodes[size_t(index)].name);
-}
-
 // glTF 2.0 spec, sec. 3.5.3: matrix, or T * R * S with R a unit quaternion (x, y, z, w).
 glm::dmat4 localTransform(const tinygltf::Model& model, int index) {
   const tinygltf::Node& node = model.nodes[size_t(index)];
@@ -88,12 +84,13 @@ Mat4 orthonormalCameraToWorld(const glm::dmat4& world, const std::string& label)
   glm::dvec3 y = glm::dvec3(world[1]);
   y = glm::normalize(y - z * glm::dot(y, z));
   const glm::dvec3 x = glm::cross(y, z);
-  glm::dmat4 m(glm::dvec4(x, 0.0), glm::dvec4(y, 0.0), glm::dvec4(z, 0.0), world[3]);
-  for (int c = 0; c < 4; ++c) {
+  const glm::dmat4 m(glm::dvec4(x, 0.0), glm::dvec4(y, 0.0), glm::dvec4(z, 0.0), world[3]);
+  for (int c = 0; c < 3; ++c) {
     for (int r = 0; r < 4; ++r) {
       if (!std::isfinite(m[c][r])) throw LoadError(label + ": degenerate camera transform");
     }
   }
+  for (int r = 0; r < 3; ++r) toFiniteFloat(m[3][r], label + ": position coordinate");
   return Mat4(m);
 }
 
@@ -102,10 +99,9 @@ class SceneBuilder {
   SceneBuilder(const tinygltf::Model& model, SceneDesc& desc, Warnings& warnings)
       : model_(model), desc_(desc), warnings_(warnings) {}
 
-  void build();
+  void build(const std::vector<NodeVisit>& visits);
 
  private:
-  std::vector<int> rootNodes() const;
   void visit(int index, const glm::dmat4& world);
   void addMesh(int nodeIndex, const glm::dmat4& world);
   void addCamera(int nodeIndex, const glm::dmat4& world);
@@ -120,62 +116,13 @@ class SceneBuilder {
   int defaultMaterial_ = -1;
 };
 
-std::vector<int> SceneBuilder::rootNodes() const {
-  if (model_.scenes.empty()) {
-    // No scenes: render every node that is no other node's child.
-    std::vector<char> isChild(model_.nodes.size(), 0);
-    for (const tinygltf::Node& node : model_.nodes) {
-      for (int c : node.children) {
-        if (c >= 0 && size_t(c) < isChild.size()) isChild[size_t(c)] = 1;
-      }
-    }
-    std::vector<int> roots;
-    for (size_t i = 0; i < model_.nodes.size(); ++i) {
-      if (!isChild[i]) roots.push_back(int(i));
-    }
-    return roots;
-  }
-  const int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-  if (size_t(scene) >= model_.scenes.size()) {
-    throw LoadError("default scene " + std::to_string(scene) + " does not exist");
-  }
-  return model_.scenes[size_t(scene)].nodes;
-}
-
-void SceneBuilder::build() {
-  struct Pending {
-    int node;
-    glm::dmat4 parent;
-  };
-  std::vector<Pending> stack;
-  const std::vector<int> roots = rootNodes();
-  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0)});
-  // Explicit stack: a deep hierarchy must not overflow the call stack. Children are pushed in
-  // reverse so nodes are visited in document (pre-)order, which defines "the first camera".
-  std::vector<char> visited(model_.nodes.size(), 0);
-  while (!stack.empty()) {
-    const Pending item = stack.back();
-    stack.pop_back();
-    if (item.node < 0 || size_t(item.node) >= model_.nodes.size()) {
-      throw LoadError("the scene refers to node " + std::to_string(item.node) +
-                      ", which does not exist");
-    }
-    if (visited[size_t(item.node)]) {
-      // glTF 2.0 spec, sec. 3.5.1: the hierarchy is a set of disjoint strict trees.
-      throw LoadError(nodeLabel(model_, item.node) +
-                      " is reached twice (a cycle, a node with two parents, or a repeated root)");
-    }
-    visited[size_t(item.node)] = 1;
-    const glm::dmat4 world = item.parent * localTransform(model_, item.node);
-    visit(item.node, world);
-    const std::vector<int>& children = model_.nodes[size_t(item.node)].children;
-    for (auto it = children.rbegin(); it != children.rend(); ++it) {
-      if (*it < 0 || size_t(*it) >= model_.nodes.size()) {
-        throw LoadError(nodeLabel(model_, item.node) + ": child " + std::to_string(*it) +
-                        " does not exist");
-      }
-      stack.push_back({*it, world});
-    }
+void SceneBuilder::build(const std::vector<NodeVisit>& visits) {
+  std::vector<glm::dmat4> world(visits.size());
+  for (size_t i = 0; i < visits.size(); ++i) {
+    const NodeVisit& v = visits[i];
+    const glm::dmat4 parent = v.parent >= 0 ? world[size_t(v.parent)] : glm::dmat4(1.0);
+    world[i] = parent * localTransform(model_, v.node);
+    visit(v.node, world[i]);
   }
 }
 
@@ -241,10 +188,18 @@ void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
     TriangleMesh out;
     out.name = local.name;
     out.material = material;
-    const size_t dropped = instantiatePrimitive(local, world, out);
-    if (dropped > 0) {
-      warnings_.add(label + ": " + std::to_string(dropped) + " zero-area triangle" +
-                    (dropped > 1 ? "s" : "") + " dropped");
+    const DroppedTriangles dropped =
+        instantiatePrimitive(local, world, nodeLabel(model_, nodeIndex) + ", " + label, out);
+    if (dropped.zeroArea > 0) {
+      warnings_.add(label + ": " + std::to_string(dropped.zeroArea) + " zero-area triangle" +
+                    (dropped.zeroArea > 1 ? "s" : "") + " dropped");
+    }
+    if (dropped.collapsed > 0) {
+      // Not "zero area": the cause is the transform's scale or distance, lost to float precision.
+      warnings_.add(nodeLabel(model_, nodeIndex) + ", " + label + ": " +
+                    std::to_string(dropped.collapsed) + " triangle" +
+                    (dropped.collapsed > 1 ? "s" : "") +
+                    " dropped: the node transform leaves them no area in 32-bit floats");
     }
     if (out.triangleCount() > 0) desc_.meshes.push_back(std::move(out));
   }
@@ -271,7 +226,11 @@ void SceneBuilder::addCamera(int nodeIndex, const glm::dmat4& world) {
   c.name = camera.name;
   c.yfov = float(yfov);
   const double aspect = camera.perspective.aspectRatio;
-  if (std::isfinite(aspect) && aspect > 0.0) c.aspectRatio = float(aspect);
+  // Absent (0) or not positive: the image's own aspect ratio is used.
+  if (aspect > 0.0) c.aspectRatio = toFiniteFloat(aspect, label + ": aspectRatio");
+  if (c.aspectRatio && !(*c.aspectRatio > 0.f)) {
+    throw LoadError(label + ": aspectRatio " + formatNumber(aspect) + " is 0 as a 32-bit float");
+  }
   c.cameraToWorld = orthonormalCameraToWorld(world, label);
   desc_.camera = c;
 }
@@ -306,61 +265,56 @@ void SceneBuilder::addLight(int nodeIndex, const glm::dmat4& world) {
   }
   if (!g.color.empty()) {
     if (g.color.size() != 3) throw LoadError(label + ": color must have 3 components");
-    light.color = Spectrum(float(g.color[0]), float(g.color[1]), float(g.color[2]));
+    for (int k = 0; k < 3; ++k) light.color[k] = toFiniteFloat(g.color[size_t(k)], label + ": color");
   }
-  light.intensity = float(g.intensity);
-  if (!isFinite(light.color) || !std::isfinite(light.intensity) || light.intensity < 0.f ||
-      light.color.r < 0.f || light.color.g < 0.f || light.color.b < 0.f) {
-    throw LoadError(label + ": color and intensity must be finite and non-negative");
+  light.intensity = toFiniteFloat(g.intensity, label + ": intensity");
+  if (light.intensity < 0.f || light.color.r < 0.f || light.color.g < 0.f || light.color.b < 0.f) {
+    throw LoadError(label + ": color and intensity must be non-negative");
+  }
+  // The renderer's emitted intensity is this product, in float.
+  if (!isFinite(light.color * light.intensity)) {
+    throw LoadError(label + ": color x intensity (" + formatNumber(maxComponent(light.color)) +
+                    " x " + formatNumber(light.intensity) + ") " + overflowText());
   }
   // `range` is ignored: pathlab's lights follow the inverse-square law to infinity.
   if (light.type == PunctualLightType::Spot) {
-    float inner = float(g.spot.innerConeAngle), outer = float(g.spot.outerConeAngle);
-    if (!(outer > 0.f && outer <= kPi / 2.f && inner >= 0.f && inner < outer)) {
-      warnings_.add(label + ": cone angles need 0 <= inner < outer <= pi/2; clamped");
-      outer = std::isfinite(outer) ? std::clamp(outer, 1e-4f, kPi / 2.f) : kPi / 4.f;
-      inner = std::isfinite(inner) ? std::clamp(inner, 0.f, outer * 0.999f) : 0.f;
+    // Checked and clamped in double: a huge angle must not pass as float infinity.
+    double inner = g.spot.innerConeAngle, outer = g.spot.outerConeAngle;
+    if (!(outer > 0.0 && outer <= kPi / 2.0 && inner >= 0.0 && inner < outer)) {
+      warnings_.add(label + ": cone angles (inner " + formatNumber(inner) + ", outer " +
+                    formatNumber(outer) + ") need 0 <= inner < outer <= pi/2; clamped");
+      outer = std::isfinite(outer) ? std::clamp(outer, 1e-4, kPi / 2.0) : kPi / 4.0;
+      inner = std::isfinite(inner) ? std::clamp(inner, 0.0, outer * 0.999) : 0.0;
     }
-    light.innerConeAngle = inner;
-    light.outerConeAngle = outer;
+    light.innerConeAngle = float(inner);
+    light.outerConeAngle = float(outer);
   }
-  light.position = Vec3(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+  const glm::dvec4 position = world * glm::dvec4(0.0, 0.0, 0.0, 1.0);
+  for (int k = 0; k < 3; ++k) {
+    light.position[k] = toFiniteFloat(position[k], nodeName + ": position coordinate of " + label);
+  }
   const glm::dvec3 direction = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
   const double len = glm::length(direction);
-  if (!isFinite(light.position) || !(len > 0.0) || !std::isfinite(len)) {
+  if (!(len > 0.0) || !std::isfinite(len)) {
     throw LoadError(nodeName + ": degenerate transform for " + label);
   }
   light.direction = Vec3(direction / len);
   desc_.punctualLights.push_back(light);
 }
 
-// The loader's whole-scene check: a scene that emits nothing renders black whatever the estimator.
-void checkHasEmitter(const SceneDesc& desc) {
-  for (const PunctualLightDesc& light : desc.punctualLights) {
-    if (light.intensity > 0.f && maxComponent(light.color) > 0.f) return;
-  }
-  for (const TriangleMesh& mesh : desc.meshes) {
-    const Material& m = desc.materials[size_t(mesh.material)];
-    if (!m.isEmissive()) continue;
-    if (!m.emissiveTexture.valid() ||
-        maxComponent(Spectrum(desc.textures[size_t(m.emissiveTexture.texture)].average())) > 0.f) {
-      return;
-    }
-  }
-  throw LoadError(
-      "no light source (no triangle has an emissive material and no "
-      "KHR_lights_punctual light is in the scene)");
-}
-
-SceneDesc load(const std::string& path) {
+SceneDesc load(const std::string& path, const LoadOptions& options) {
   Warnings warnings;
   const tinygltf::Model model = parseFile(path, warnings);
   checkExtensions(model, warnings);
+  // Counted before any material, texture or geometry is decoded: an instancing bomb is refused
+  // in the time it takes to walk its node tree.
+  const std::vector<NodeVisit> visits = walkHierarchy(model);
+  countInstances(model, visits, options.maxTriangles);
   SceneDesc desc;
   desc.path = path;
   convertMaterials(model, desc, warnings);
-  SceneBuilder(model, desc, warnings).build();
-  checkHasEmitter(desc);
+  SceneBuilder(model, desc, warnings).build(visits);
+  checkScene(desc);
   desc.warnings = warnings.take();
   return desc;
 }
@@ -368,9 +322,9 @@ SceneDesc load(const std::string& path) {
 }  // namespace
 }  // namespace gltf
 
-SceneDesc loadGltf(const std::string& path) {
+SceneDesc loadGltf(const std::string& path, const LoadOptions& options) {
   try {
-    return gltf::load(path);
+    return gltf::load(path, options);
   } catch (const gltf::LoadError& e) {
     throw SceneError(gltf::oneLine(path + ": " + e.what()));
   } catch (const std::bad_alloc&) {

@@ -30,8 +30,7 @@ class MaterialReader {
 
  private:
   float finite(double v, const std::string& what) const {
-    if (!std::isfinite(v)) throw LoadError(label_ + ": " + what + " is not a finite number");
-    return float(v);
+    return toFiniteFloat(v, label_ + ": " + what);
   }
   float number(const tinygltf::Value& object, const char* key, float fallback) const {
     if (!object.Has(key)) return fallback;
@@ -220,6 +219,13 @@ Material MaterialReader::convert(int index) {
 
   if (const tinygltf::Value* e = findExtension(g.extensions, "KHR_materials_emissive_strength")) {
     m.emissiveStrength = std::max(number(*e, "emissiveStrength", 1.f), 0.f);
+  }
+  // The renderer's emitted radiance is this product, in float (the texture only scales it down).
+  const Spectrum emission = m.emissiveFactor * m.emissiveStrength;
+  if (!isFinite(emission)) {
+    throw LoadError(label_ + ": emissiveFactor x emissiveStrength (" +
+                    formatNumber(maxComponent(m.emissiveFactor)) + " x " +
+                    formatNumber(m.emissiveStrength) + ") " + overflowText());
   }
   if (const tinygltf::Value* e = findExtension(g.extensions, "KHR_materials_ior")) {
     const float ior = number(*e, "ior", 1.5f);

@@ -6,6 +6,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <atomic>
 #include <limits>
 
 namespace pathlab {
@@ -13,6 +15,7 @@ namespace pathlab {
 struct Scene::EmbreeState {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::atomic<int64_t> bytes{0};  // what the device has allocated, as its memory monitor counts
   ~EmbreeState() {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
@@ -20,6 +23,12 @@ struct Scene::EmbreeState {
 };
 
 namespace {
+
+// Embree reports its allocations (negative: frees) through a callback, from its build threads.
+bool embreeMemory(void* userPtr, ssize_t bytes, bool /*post*/) {
+  static_cast<std::atomic<int64_t>*>(userPtr)->fetch_add(int64_t(bytes), std::memory_order_relaxed);
+  return true;
+}
 
 // Embree reports errors through a C callback: remember the message, throw after the call returns.
 void embreeError(void* userPtr, RTCError code, const char* message) {
@@ -122,6 +131,7 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
   if (!embree_->device) throw SceneError(desc_.path + ": could not create the Embree device");
   std::string embreeMessage;
   rtcSetDeviceErrorFunction(embree_->device, embreeError, &embreeMessage);
+  rtcSetDeviceMemoryMonitorFunction(embree_->device, embreeMemory, &embree_->bytes);
   embree_->scene = buildBvh(embree_->device, desc_.meshes);
   rtcSetDeviceErrorFunction(embree_->device, nullptr, nullptr);
   if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE)
@@ -134,6 +144,16 @@ size_t Scene::triangleCount() const {
   size_t n = 0;
   for (const TriangleMesh& m : desc_.meshes) n += m.triangleCount();
   return n;
+}
+
+size_t Scene::geometryBytes() const {
+  size_t bytes = 0;
+  for (const TriangleMesh& m : desc_.meshes) {
+    bytes += m.positions.capacity() * sizeof(Vec3) + m.normals.capacity() * sizeof(Vec3) +
+             m.uvs.capacity() * sizeof(Vec2) + m.indices.capacity() * sizeof(uint32_t);
+  }
+  const int64_t embree = embree_->bytes.load(std::memory_order_relaxed);
+  return bytes + size_t(std::max<int64_t>(embree, 0)) + lights_.size() * sizeof(Light);
 }
 
 void* Scene::embreeHandle() const { return embree_->scene; }

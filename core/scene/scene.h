@@ -47,6 +47,9 @@ class Scene {
   const std::string& path() const { return desc_.path; }
   const std::vector<std::string>& warnings() const { return desc_.warnings; }
   size_t triangleCount() const;
+  // Approximate memory of the geometry: the world-space meshes, Embree's copy and BVH (as its
+  // memory monitor counts them) and the lights.
+  size_t geometryBytes() const;
   // The RTCScene, for the ray-throughput ceiling benchmark (tests/bench); renderers use intersect/visible.
   void* embreeHandle() const;
 
