@@ -100,6 +100,16 @@ std::vector<OverflowCase> overflowCases() {
                      return g.json();
                    }(),
                    {"camera 0", "position coordinate 1e+39 overflows"}});
+  // Out of its range rather than overflowing, and named in the shortest form, not 300 digits.
+  cases.push_back({"camera-yfov.gltf",
+                   [] {
+                     TestGltf g;
+                     g.add("cameras", R"({"type":"perspective","perspective":{"yfov":1e300,"znear":0.1}})");
+                     g.root(R"({"mesh":)" + str(g.mesh({TestGltf::primitive(g.vec3(kTriangle))})) + "}");
+                     g.root(R"({"camera":0})");
+                     return g.json();
+                   }(),
+                   {"camera 0", "yfov 1e+300 is not in (0, pi)"}});
   cases.push_back({"positions-1e30.gltf",
                    positionsScene({{0, 0, 0}, {1e30f, 0, 0}, {0, 1e30f, 0}}),
                    {"mesh 0 'huge'", "triangle 0 (an edge of 1e+30) is too large: its area overflows"}});

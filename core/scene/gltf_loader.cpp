@@ -220,7 +220,7 @@ void SceneBuilder::addCamera(int nodeIndex, const glm::dmat4& world) {
   if (desc_.camera) return;  // the first perspective camera in document order wins
   const double yfov = camera.perspective.yfov;
   if (!(yfov > 0.0 && yfov < glm::pi<double>())) {
-    throw LoadError(label + ": yfov " + std::to_string(yfov) + " is not in (0, pi)");
+    throw LoadError(label + ": yfov " + formatNumber(yfov) + " is not in (0, pi)");
   }
   CameraDesc c;
   c.name = camera.name;

@@ -232,7 +232,7 @@ Material MaterialReader::convert(int index) {
     if (ior >= 1.f) {
       m.ior = ior;
     } else {
-      warnings_.add(label_ + ": KHR_materials_ior ior " + std::to_string(ior) +
+      warnings_.add(label_ + ": KHR_materials_ior ior " + formatNumber(ior) +
                     " is not supported (needs ior >= 1); 1.5 used");
     }
   }
