@@ -185,6 +185,9 @@ int runConverge(ConvergeOptions o) {
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
   Scene scene(loadGltf(o.scene, o.load));
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
+  for (const ConvergenceConfig& c : configs)
+    if (const std::string w = misOffWarning(scene, c.settings); !w.empty())
+      std::cerr << fmt::format("pathlab: warning: '{}': {}\n", c.label, w);
   fs::create_directories(o.outputDir);
   const fs::path dir(o.outputDir);
 

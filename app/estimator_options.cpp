@@ -32,10 +32,18 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
           std::map<std::string, IntegratorKind>{{"pt", IntegratorKind::Pt}, {"bpt", IntegratorKind::Bpt},
                                                 {"lt", IntegratorKind::Lt}},
           CLI::ignore_case));
-  cmd->add_option("--mis", s.mis.heuristic, "MIS heuristic of bpt: balance, power or uniform")
+  cmd->add_option("--mis", s.mis.heuristic,
+                  "MIS heuristic of bpt: balance, power, uniform, or off (1/n_k per technique of length k: biased "
+                  "with delta lights or BSDFs)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, MisHeuristic>{{"balance", MisHeuristic::Balance}, {"power", MisHeuristic::Power},
-                                              {"uniform", MisHeuristic::Uniform}},
+                                              {"uniform", MisHeuristic::Uniform}, {"off", MisHeuristic::Off}},
+          CLI::ignore_case));
+  cmd->add_option("--connect", s.connect,
+                  "Subpaths of bpt: all (one pair per sample, every prefix pair connected) or endpoints (naive BPT: "
+                  "subpaths of their own per technique, endpoints connected)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, ConnectStrategy>{{"all", ConnectStrategy::All}, {"endpoints", ConnectStrategy::Endpoints}},
           CLI::ignore_case));
   cmd->add_option("--beta", s.mis.beta, "Exponent of the power heuristic")->check(CLI::Range(kMinBeta, kMaxBeta));
   cmd->add_option("--min-connection", s.mis.minConnection,

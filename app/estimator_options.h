@@ -22,7 +22,7 @@ struct EstimatorOptions {
   bool unweighted = false;  // with --isolate
 };
 
-// Registers --max-length --integrator --mis --beta --min-connection --techniques --isolate --unweighted --rr/--no-rr
+// Registers --max-length --integrator --mis --connect --beta --min-connection --techniques --isolate --unweighted --rr/--no-rr
 // --seed --aperture --focus-distance on `cmd`.
 void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& options);
 // Turns the parsed strings into settings.techniques and settings.isolate and checks the result with validateSettings

@@ -64,7 +64,8 @@ TEST(BptFurnace, RussianRouletteLongPaths) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Heuristics, BptFurnace,
-                         ::testing::Values(MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform),
+                         ::testing::Values(MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform,
+                                           MisHeuristic::Off),
                          [](const auto& info) { return std::string(misHeuristicName(info.param)); });
 
 // One technique alone: with the set {(s, t)} its weight is exactly one, so the render is that

@@ -21,6 +21,7 @@ expect_error "too many pixels" "pixels" render "$BOX" -o "$TMP/x.pfm" --width 16
 expect_error "unknown option" "--bogus" render "$BOX" -o "$TMP/x.pfm" --bogus
 expect_error "unknown integrator" "integrator" render "$BOX" -o "$TMP/x.pfm" --integrator magic
 expect_error "unknown heuristic" "mis" render "$BOX" -o "$TMP/x.pfm" --mis maximum
+expect_error "unknown connect" "connect" render "$BOX" -o "$TMP/x.pfm" --connect some
 expect_error "bad technique" "techniques" render "$BOX" -o "$TMP/x.pfm" --techniques "1;x"
 expect_error "too long technique" "9,9" render "$BOX" -o "$TMP/x.pfm" --techniques "9,9" --max-length 4
 expect_error "unknown extension" "\.bmp" render "$BOX" -o "$TMP/x.bmp" --spp 1
@@ -50,6 +51,20 @@ rm -f "$TMP/pyr.pfm"
 expect_error "pyramid file exists" "pyr-s0-t2.pfm: file exists" render "$BOX" -o "$TMP/pyr.pfm" --spp 1 --width 16 --height 12 --pyramid 2
 "$PATHLAB" render "$BOX" -o "$TMP/iso.pfm" --spp 1 --width 16 --height 12 --isolate 1,2 --unweighted 2>/dev/null && ok ||
   fail "isolated unweighted render"
+
+# Naive BPT: --stats files each technique's own subpath rays under its row (no walk rows).
+if "$PATHLAB" render "$BOX" -o "$TMP/naive.pfm" --spp 1 --width 16 --height 12 --max-length 3 --connect endpoints \
+  --stats 2>"$TMP/err" && grep -qE '^\(2,2\) +[0-9]' "$TMP/err" && ! grep -q "camera walks" "$TMP/err"; then ok
+else fail "naive stats: $(cat "$TMP/err")"; fi
+# MIS off: one warning line naming the biased lengths and why (bidir-lamp: a spot light, glass);
+# none in the Cornell box (area light, no delta BSDF).
+LAMP="$SRC/assets/bidir-lamp.gltf"
+if "$PATHLAB" render "$LAMP" -o "$TMP/off.pfm" --spp 1 --width 16 --height 12 --max-length 4 --mis off 2>"$TMP/err" &&
+  [ "$(grep -c "mis off: lengths 1-4 biased" "$TMP/err")" -eq 1 ] && grep -q "spot light" "$TMP/err"; then ok
+else fail "mis off warning: $(cat "$TMP/err")"; fi
+if "$PATHLAB" render "$BOX" -o "$TMP/off2.pfm" --spp 1 --width 16 --height 12 --mis off 2>"$TMP/err" &&
+  ! grep -q "mis off" "$TMP/err"; then ok
+else fail "mis off warned on the Cornell box: $(cat "$TMP/err")"; fi
 
 # --replay prints one sample technique by technique; bad requests are one-line errors.
 if "$PATHLAB" render "$BOX" --replay 5,6,2 --width 16 --height 12 --max-length 3 >"$TMP/replay" 2>"$TMP/err" &&

@@ -60,6 +60,8 @@ then ok; else fail "explicit reference, CPU clock: $(cat "$TMP/log")"; fi
 C=(converge "$BOX" -o "$TMP/bad" --time 0.1 --width 8 --height 8)
 expect_error "unknown integrator" "magic" "${C[@]}" --configs "bpt;magic"
 expect_error "mis for pt" "pt:mis=power.*bpt and lt" "${C[@]}" --configs "pt:mis=power"
+expect_error "connect for pt" "pt:connect=endpoints.*bpt and lt" "${C[@]}" --configs "pt:connect=endpoints"
+expect_error "unknown connect" "connect strategy 'some'" "${C[@]}" --configs "bpt:connect=some"
 expect_error "unknown key" "foo" "${C[@]}" --configs "bpt:foo=1"
 expect_error "too long technique" "9,9" "${C[@]}" --configs "bpt:techniques=9,9,max-length=4"
 expect_error "duplicate config" "twice" "${C[@]}" --configs "pt;pt"

@@ -102,7 +102,17 @@ std::string describe(const RenderSettings& s) {
   else
     out += fmt::format(", MIS {}", misHeuristicName(s.mis.heuristic));
   if (s.mis.minConnection != kDefaultMinConnection) out += fmt::format(", min connection {:g}", s.mis.minConnection);
+  if (s.connect != ConnectStrategy::All) out += fmt::format(", connect {}", connectStrategyName(s.connect));
   return out;
+}
+
+const std::string& estimatorWarning(EstimatorWarning& cache, const Scene* scene, const RenderSettings& settings) {
+  if (cache.scene != scene || !(cache.settings == settings)) {
+    cache.scene = scene;
+    cache.settings = settings;
+    cache.text = scene ? misOffWarning(*scene, settings) : std::string();
+  }
+  return cache.text;
 }
 
 }  // namespace pathlab::ui

@@ -53,4 +53,13 @@ bool isolatedTechniqueDisabled(const RenderSettings& settings);
 // One line describing the estimator, for the status panel and screenshots.
 std::string describe(const RenderSettings& settings);
 
+// The shown image's estimator warning (misOffWarning: which lengths MIS off biases and why), kept
+// with the settings and scene it was computed for: recomputed only when either changes.
+struct EstimatorWarning {
+  RenderSettings settings;
+  const Scene* scene = nullptr;
+  std::string text;
+};
+const std::string& estimatorWarning(EstimatorWarning& cache, const Scene* scene, const RenderSettings& settings);
+
 }  // namespace pathlab::ui

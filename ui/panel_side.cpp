@@ -20,7 +20,8 @@ std::string humanCount(double v) {
 
 }  // namespace
 
-void drawStatusSection(const RenderSnapshot& s, RunState& run, double frameMs, PanelRequests& requests) {
+void drawStatusSection(const RenderSnapshot& s, const std::string& warning, RunState& run, double frameMs,
+                       PanelRequests& requests) {
   const Counters& c = s.counters;
   const double seconds = std::max(s.seconds, 1e-9);
   if (ImGui::Button(run.userPaused ? "Resume (Space)" : "Pause (Space)")) requests.actions.push_back(Action::TogglePause);
@@ -42,6 +43,11 @@ void drawStatusSection(const RenderSnapshot& s, RunState& run, double frameMs, P
   if (c.discarded() > 0) ImGui::PopStyleColor();
   ImGui::TextWrapped("%d x %d, generation %llu: %s", s.settings.width, s.settings.height,
                      static_cast<unsigned long long>(s.generation), describe(s.settings).c_str());
+  if (!warning.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.7f, 0.2f, 1.f));
+    ImGui::TextWrapped("%s", warning.c_str());
+    ImGui::PopStyleColor();
+  }
   ImGui::TextDisabled("UI %.1f ms/frame", frameMs);
 }
 

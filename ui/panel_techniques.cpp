@@ -185,7 +185,20 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   ImGui::RadioButton("power", &heuristic, static_cast<int>(MisHeuristic::Power));
   ImGui::SameLine();
   ImGui::RadioButton("uniform", &heuristic, static_cast<int>(MisHeuristic::Uniform));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("1 / (number of enabled techniques able to sample the path): unbiased");
+  ImGui::SameLine();
+  ImGui::RadioButton("off", &heuristic, static_cast<int>(MisHeuristic::Off));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("1 / n_k for every enabled technique of length k, whatever the path (Veach's naive\n"
+                      "combination): biased where a technique cannot sample a path (the status says where)");
   edited.mis.heuristic = static_cast<MisHeuristic>(heuristic);
+  bool naive = edited.connect == ConnectStrategy::Endpoints;
+  ImGui::Checkbox("naive BPT: connect endpoints only", &naive);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("each technique (s,t) traces a light subpath of s and a camera subpath of t vertices of its own\n"
+                      "and connects their endpoints: same weights and expectation as path reuse, more rays a sample");
+  edited.connect = naive ? ConnectStrategy::Endpoints : ConnectStrategy::All;
   if (edited.mis.heuristic == MisHeuristic::Power) ImGui::SliderFloat("beta", &edited.mis.beta, 0.5f, 8.f, "%.2f");
   ImGui::SliderFloat("min connection", &edited.mis.minConnection, 0.f, 0.3f, "%.4f", ImGuiSliderFlags_Logarithmic);
   if (ImGui::IsItemHovered())

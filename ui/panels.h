@@ -32,7 +32,9 @@ struct PanelRect {
 };
 
 // Side panel sections (panel_side.cpp, panel_techniques.cpp, panel_reference.cpp).
-void drawStatusSection(const RenderSnapshot& snapshot, RunState& run, double frameMs, PanelRequests& requests);
+// `warning`: the estimator's (estimatorWarning), shown in the warning colour when not empty.
+void drawStatusSection(const RenderSnapshot& snapshot, const std::string& warning, RunState& run, double frameMs,
+                       PanelRequests& requests);
 // Integrator, maximum length, MIS, the combine / isolate mode and the technique grid; `counters`
 // (of the shown image) for the cells' tooltips.
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,

@@ -53,7 +53,8 @@ NamedPreset parseOne(const Json& p) {
     if (v == "balance") out.mis.heuristic = MisHeuristic::Balance;
     else if (v == "power") out.mis.heuristic = MisHeuristic::Power;
     else if (v == "uniform") out.mis.heuristic = MisHeuristic::Uniform;
-    else throw std::invalid_argument(fmt::format("mis \"{}\" is not balance, power or uniform", v));
+    else if (v == "off") out.mis.heuristic = MisHeuristic::Off;
+    else throw std::invalid_argument(fmt::format("mis \"{}\" is not balance, power, uniform or off", v));
   }
   if (p.contains("beta")) {
     out.mis.beta = typed(p, "beta", &Json::is_number, "a number").get<float>();

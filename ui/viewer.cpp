@@ -171,7 +171,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
     if (ui_.messageIsError && ImGui::SmallButton("dismiss")) ui_.message.clear();
   }
   if (ImGui::CollapsingHeader("Status", ImGuiTreeNodeFlags_DefaultOpen))
-    drawStatusSection(snapshot_, run_, ui_.frameMs, requests);
+    drawStatusSection(snapshot_, estimatorWarning(warning_, scene_.scene.get(), snapshot_.settings), run_, ui_.frameMs,
+                      requests);
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
     drawEstimatorSection(estimator_, grid_, run_.settingsError, snapshot_.counters);
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))

@@ -65,6 +65,7 @@ class Viewer {
   ConvergenceState convergence_;
   PyramidView pyramid_;
   UiState ui_;
+  EstimatorWarning warning_;  // of the shown image's settings
 
   // The renderer and what it was last given; the image and the pyramid it published.
   std::unique_ptr<ProgressiveRenderer> renderer_;

@@ -40,7 +40,7 @@ void Viewer::perform(Action action) {
     case Action::TechniquesClear: setTechniques(TechniquePreset::Clear); break;
     case Action::CycleMode: cycleMode(e); break;
     case Action::CycleHeuristic:
-      e.settings.mis.heuristic = static_cast<MisHeuristic>((static_cast<int>(e.settings.mis.heuristic) + 1) % 3);
+      e.settings.mis.heuristic = static_cast<MisHeuristic>((static_cast<int>(e.settings.mis.heuristic) + 1) % kMisHeuristicCount);
       break;
     case Action::CycleIntegrator: {
       constexpr IntegratorKind order[] = {IntegratorKind::Bpt, IntegratorKind::Pt, IntegratorKind::Lt};

@@ -18,6 +18,13 @@ struct Isolation {
   bool operator==(const Isolation&) const = default;
 };
 
+// How a sample's techniques get their subpaths. All: one camera and one light subpath, every
+// prefix pair connected (path reuse, Veach 1997 sec. 10.2). Endpoints: each technique (s, t)
+// samples a light subpath of exactly s and a camera subpath of exactly t vertices of its own and
+// connects their endpoints (naive BPT): the same techniques, weights and expectation, more rays.
+enum class ConnectStrategy { All, Endpoints };
+const char* connectStrategyName(ConnectStrategy c);
+
 struct BidirOptions {
   int maxLength = 10;           // edges
   bool russianRoulette = true;  // sampling/russian_roulette.h
@@ -26,6 +33,7 @@ struct BidirOptions {
   std::optional<Isolation> isolate;
   int pyramidLength = 0;  // > 0: every technique up to this length also goes to the pyramid
   bool checkMis = false;  // test every weighted path's partition of unity (Counters)
+  ConnectStrategy connect = ConnectStrategy::All;
 };
 
 }  // namespace pathlab

@@ -2,6 +2,7 @@
 #include "core/bpt/bidir_tracer.h"
 
 #include "core/bpt/connect.h"
+#include "core/bpt/mis_off.h"
 #include "core/metrics/technique_timer.h"
 
 #include <algorithm>
@@ -16,18 +17,39 @@ struct BidirTracer::Walks {
   Connection connection;                 // scratch reused by every technique
 };
 
+const char* connectStrategyName(ConnectStrategy c) { return c == ConnectStrategy::Endpoints ? "endpoints" : "all"; }
+
+namespace {
+
+// ConnectStrategy::Endpoints: the walk streams of technique (s, t), keyed by the sample like its
+// connection's stream (evaluate) and salted apart from it and from each other, so each technique's
+// subpaths are independent of every other technique's and of which techniques are in use.
+constexpr uint64_t kCameraWalkSalt = 0x9E3779B97F4A7C15ull, kLightWalkSalt = 0xC2B2AE3D27D4EB4Full;
+Pcg32 walkStream(uint64_t connectionKey, int s, int t, uint64_t salt) {
+  const uint64_t st = static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t);
+  return Pcg32(mixBits(connectionKey ^ st ^ salt), mixBits(connectionKey + salt));
+}
+
+}  // namespace
+
 BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOptions& options)
     : scene_(scene), camera_(camera), options_(options), misPower_(options.mis) {
   options_.pyramidLength = std::min(options_.pyramidLength, options_.maxLength);
-  // The partial sums weigh every technique of a path's length: exact only when all are enabled.
-  misEvaluation_ = options_.techniques.containsAllUpTo(options_.maxLength) ? MisEvaluation::PartialSums
-                                                                          : MisEvaluation::Explicit;
+  // MIS off weighs by length alone: a table, never the partial sums. Otherwise the partial sums
+  // weigh every technique of a path's length: exact only when all are enabled.
+  if (options_.mis.heuristic == MisHeuristic::Off) {
+    misEvaluation_ = MisEvaluation::Constant;
+    offWeights_ = misOffWeights(options_.techniques, options_.maxLength);
+  } else {
+    misEvaluation_ = options_.techniques.containsAllUpTo(options_.maxLength) ? MisEvaluation::PartialSums
+                                                                            : MisEvaluation::Explicit;
+  }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
   // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
   // with t >= 2 samples its light vertex afresh (next-event estimation).
   auto need = [&](int s, int t) {
     cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, t);
-    if (!(s == 1 && t >= 2)) lightVerticesNeeded_ = std::max(lightVerticesNeeded_, s);
+    if (lightWalkNeeded(s, t)) lightVerticesNeeded_ = std::max(lightVerticesNeeded_, s);
   };
   for (const Technique x : techniquesUpTo(options_.maxLength))
     if (options_.techniques.contains(x) || x.length() <= options_.pyramidLength) need(x.s, x.t);
@@ -36,15 +58,21 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
 
 float BidirTracer::weight(const MisPath& path, const Walks& walks, Counters& counters) const {
   const float ratio = lightTracingRatio();
-  // The partial sums decline (nullopt) a path with a near-coincident connection: misWeight then
-  // applies MisOptions::minConnection.
-  const std::optional<float> fast =
-      misEvaluation_ == MisEvaluation::PartialSums
-          ? misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
-                              minConnectionDistance_)
-          : std::nullopt;
-  const float w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+  float w = 0.f;
+  if (misEvaluation_ == MisEvaluation::Constant) {
+    w = offWeights_[static_cast<size_t>(path.s + path.t - 1)];
+  } else {
+    // The partial sums decline (nullopt) a path with a near-coincident connection: misWeight then
+    // applies MisOptions::minConnection.
+    const std::optional<float> fast =
+        misEvaluation_ == MisEvaluation::PartialSums
+            ? misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
+                                minConnectionDistance_)
+            : std::nullopt;
+    w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+  }
   if (options_.checkMis) {
+    // Under MIS off a path some enabled technique cannot sample fails here: that is its bias.
     ++counters.misPartitionChecks;
     const double sum = misWeightSum(scene_, camera_, path, options_.techniques, options_.mis, ratio);
     if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
@@ -85,6 +113,46 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   if (t == 1) r.pRaster = c.pRaster;
 }
 
+bool BidirTracer::prepare(TechniqueResult& r, int s, int t, Vec2 pRaster, int pyramidLength) const {
+  const bool enabled = options_.techniques.contains(s, t);
+  const std::optional<Isolation>& isolate = options_.isolate;
+  const bool isolated = isolate && isolate->s == s && isolate->t == t;
+  r.s = s;
+  r.t = t;
+  r.pRaster = pRaster;
+  r.inImage = isolate ? isolated && (enabled || isolate->unweighted) : enabled;
+  r.inPyramid = s + t - 1 <= pyramidLength;
+  return r.inImage || r.inPyramid;
+}
+
+void BidirTracer::run(TechniqueResult& r, uint64_t connectionKey, bool timed, Walks& walks, SampleOutputs& outputs,
+                      Counters& counters) const {
+  const std::optional<Isolation>& isolate = options_.isolate;
+  const bool unweighted = isolate && isolate->unweighted && isolate->s == r.s && isolate->t == r.t;
+  TechniqueCounters& tc = counters.technique(r.s, r.t);
+  ++tc.tried;
+  const uint64_t shadowBefore = counters.shadowRays;
+  ScopedTimer timer(timed, tc.nanoseconds);
+  evaluate(r, options_.techniques.contains(r.s, r.t), unweighted, connectionKey, walks, outputs, counters);
+  timer.stop();  // what follows is the outputs', not the technique's
+  tc.shadowRays += counters.shadowRays - shadowBefore;
+  outputs.add(r, tc);
+}
+
+int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, Walks& walks, Counters& counters) const {
+  const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, rng, WalkOptions{vertices, options_.russianRoulette},
+                                       walks.camera, counters);
+  if (misEvaluation_ == MisEvaluation::PartialSums) accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums);
+  return nt;
+}
+
+int BidirTracer::walkLight(int vertices, Pcg32& rng, Walks& walks, Counters& counters) const {
+  if (vertices <= 0) return 0;
+  const int ns = generateLightSubpath(scene_, rng, WalkOptions{vertices, options_.russianRoulette}, walks.light, counters);
+  if (ns > 0 && misEvaluation_ == MisEvaluation::PartialSums) accumulateLightSums(walks.light, misPower_, walks.lightSums);
+  return ns;
+}
+
 Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
                              Counters& counters) const {
   // The connections' key is drawn first, so that how long the walks below are allowed to grow
@@ -92,65 +160,80 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
   const uint64_t keyHigh = cameraRng.nextU32();  // two statements: operand order is unspecified
   const uint64_t connectionKey = keyHigh << 32 | cameraRng.nextU32();
 
-  // Each walk stops at the longest prefix any technique in use needs (light tracing needs no
-  // camera walk at all).
   thread_local Walks walks;
   const bool timed = timing_ && connectionKey % kTimedSampleStride == 0;
+  if (timed) ++counters.timedSamples;
+  const int pyramidLength = targets.pyramid ? options_.pyramidLength : 0;
+  SampleOutputs outputs(targets, counters);
+  if (options_.connect == ConnectStrategy::Endpoints) {
+    sampleEndpoints(pRaster, uLens, connectionKey, timed, pyramidLength, walks, outputs, targets, counters);
+    return outputs.cameraEstimate();
+  }
+
+  // Each walk stops at the longest prefix any technique in use needs (light tracing needs no
+  // camera walk at all).
   const uint64_t raysBefore = counters.rays;
   const uint64_t walkStart = timed ? ticks() : 0;
-  const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, cameraRng,
-                                       WalkOptions{cameraVerticesNeeded_, options_.russianRoulette}, walks.camera,
-                                       counters);
+  const int nt = walkCamera(pRaster, uLens, cameraVerticesNeeded_, cameraRng, walks, counters);
   const uint64_t cameraRays = counters.rays, cameraEnd = timed ? ticks() : 0;
-  const int ns = lightVerticesNeeded_ > 0
-                     ? generateLightSubpath(scene_, lightRng, WalkOptions{lightVerticesNeeded_, options_.russianRoulette},
-                                            walks.light, counters)
-                     : 0;
-  if (misEvaluation_ == MisEvaluation::PartialSums) {
-    accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums);
-    if (ns > 0) accumulateLightSums(walks.light, misPower_, walks.lightSums);
-  }
+  const int ns = walkLight(lightVerticesNeeded_, lightRng, walks, counters);
   counters.cameraWalk.rays += cameraRays - raysBefore;
   counters.lightWalk.rays += counters.rays - cameraRays;
   if (timed) {
     counters.cameraWalk.nanoseconds += elapsedNanoseconds(walkStart, cameraEnd);
     counters.lightWalk.nanoseconds += elapsedNanoseconds(cameraEnd, ticks());
-    ++counters.timedSamples;
   }
 
-  const int pyramidLength = targets.pyramid ? options_.pyramidLength : 0;
   if (targets.trace) {
     targets.trace->cameraVertices = nt;
     targets.trace->lightVertices = ns;
     targets.trace->records.clear();
   }
-  SampleOutputs outputs(targets, counters);
   for (int t = 1; t <= nt; ++t)
     for (int s = 0; s <= std::max(ns, 1); ++s) {
       const int k = s + t - 1;
       if (k < 1 || k > options_.maxLength) continue;
-      if (s > ns && !(s == 1 && t >= 2)) continue;  // next-event estimation needs no light subpath
-      const bool enabled = options_.techniques.contains(s, t);
-      const std::optional<Isolation>& isolate = options_.isolate;
-      const bool isolated = isolate && isolate->s == s && isolate->t == t;
+      if (s > ns && lightWalkNeeded(s, t)) continue;
       TechniqueResult r;
-      r.s = s;
-      r.t = t;
-      r.pRaster = pRaster;
-      r.inImage = isolate ? isolated && (enabled || isolate->unweighted) : enabled;
-      r.inPyramid = k <= pyramidLength;
-      if (!r.inImage && !r.inPyramid) continue;
-
-      TechniqueCounters& tc = counters.technique(s, t);
-      ++tc.tried;
-      const uint64_t shadowBefore = counters.shadowRays;
-      ScopedTimer timer(timed, tc.nanoseconds);
-      evaluate(r, enabled, isolated && isolate->unweighted, connectionKey, walks, outputs, counters);
-      timer.stop();  // what follows is the outputs', not the technique's
-      tc.shadowRays += counters.shadowRays - shadowBefore;
-      outputs.add(r, tc);
+      if (prepare(r, s, t, pRaster, pyramidLength)) run(r, connectionKey, timed, walks, outputs, counters);
     }
   return outputs.cameraEstimate();
+}
+
+void BidirTracer::sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionKey, bool timed, int pyramidLength,
+                                  Walks& walks, SampleOutputs& outputs, const SampleTargets& targets,
+                                  Counters& counters) const {
+  // The seed's naive BPT: for each technique a light subpath of exactly s and a camera subpath of
+  // exactly t vertices, sampled independently (every camera subpath through the sample's pRaster
+  // and uLens), joined at their endpoints only. The weights are functions of the path alone, so
+  // they are those of path reuse and still a partition of unity; the partial sums are those of the
+  // technique's own subpaths. The walks' rays and time go to the technique's own row.
+  if (targets.trace) {
+    targets.trace->cameraVertices = targets.trace->lightVertices = 0;
+    targets.trace->records.clear();
+  }
+  for (const Technique x : techniquesUpTo(options_.maxLength)) {
+    TechniqueResult r;
+    if (!prepare(r, x.s, x.t, pRaster, pyramidLength)) continue;
+    TechniqueCounters& tc = counters.technique(x);
+    const uint64_t raysBefore = counters.rays;
+    ScopedTimer walkTimer(timed, tc.nanoseconds);
+    Pcg32 cameraRng = walkStream(connectionKey, x.s, x.t, kCameraWalkSalt);
+    const int nt = walkCamera(pRaster, uLens, x.t, cameraRng, walks, counters);
+    int ns = 0;
+    if (nt == x.t && lightWalkNeeded(x.s, x.t)) {
+      Pcg32 lightRng = walkStream(connectionKey, x.s, x.t, kLightWalkSalt);
+      ns = walkLight(x.s, lightRng, walks, counters);
+    }
+    walkTimer.stop();
+    tc.walkRays += counters.rays - raysBefore;
+    if (targets.trace) {
+      targets.trace->cameraVertices = std::max(targets.trace->cameraVertices, nt);
+      targets.trace->lightVertices = std::max(targets.trace->lightVertices, ns);
+    }
+    if (nt < x.t || (lightWalkNeeded(x.s, x.t) && ns < x.s)) continue;  // a walk ended early
+    run(r, connectionKey, timed, walks, outputs, counters);
+  }
 }
 
 }  // namespace pathlab

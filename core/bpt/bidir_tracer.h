@@ -10,6 +10,8 @@
 #include "core/bpt/subpath.h"
 #include "core/bpt/technique_set.h"
 
+#include <vector>
+
 namespace pathlab {
 
 // pbrt-v4 issue 347: the number of light subpaths per pass sets both the t = 1 splat scale
@@ -23,14 +25,16 @@ inline float lightTracingRatio() { return static_cast<float>(kLightSubpathsPerCa
 enum class MisEvaluation {
   PartialSums,  // every technique enabled: O(1) per connection (mis_partial_sums.h)
   Explicit,     // a technique subset: the O(n) walk over the enabled set (mis.h)
+  Constant,     // MisHeuristic::Off: 1 / n_k from a table by length (mis_off.h)
 };
 
 class BidirTracer {
  public:
   BidirTracer(const Scene& scene, const Camera& camera, const BidirOptions& options);
 
-  // One camera sample through pRaster and one light subpath: returns the camera-side pixel
-  // estimate (t >= 2); the t = 1 contributions, the pyramid and the trace go to `targets`.
+  // One camera sample through pRaster and one light subpath (ConnectStrategy::Endpoints: a
+  // camera and a light subpath per technique): returns the camera-side pixel estimate (t >= 2);
+  // the t = 1 contributions, the pyramid and the trace go to `targets`.
   // Contributions that are NaN, Inf or negative are dropped one technique at a time and counted
   // under that technique.
   Spectrum sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
@@ -48,17 +52,30 @@ class BidirTracer {
 
  private:
   struct Walks;  // the per-thread subpaths and their MIS sums
+  // Sets r's s, t, pRaster, inImage and inPyramid; false when nothing uses the technique.
+  bool prepare(TechniqueResult& r, int s, int t, Vec2 pRaster, int pyramidLength) const;
+  // Counts, times and evaluates a prepared technique and hands the result to the outputs.
+  void run(TechniqueResult& r, uint64_t connectionKey, bool timed, Walks& walks, SampleOutputs& outputs,
+           Counters& counters) const;
+  // The walks of both strategies (rays into the counters' walk or technique rows by the caller).
+  int walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, Walks& walks, Counters& counters) const;
+  int walkLight(int vertices, Pcg32& rng, Walks& walks, Counters& counters) const;
+  // ConnectStrategy::Endpoints: each technique in use on subpaths of its own.
+  void sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionKey, bool timed, int pyramidLength, Walks& walks,
+                       SampleOutputs& outputs, const SampleTargets& targets, Counters& counters) const;
   // Fills r (its s, t, pRaster, inImage and inPyramid already set) with the technique's outcome,
   // contribution and weights.
   void evaluate(TechniqueResult& r, bool enabled, bool unweightedInImage, uint64_t connectionKey, Walks& walks,
                 const SampleOutputs& outputs, Counters& counters) const;
   float weight(const MisPath& path, const Walks& walks, Counters& counters) const;
+  bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 
   const Scene& scene_;
   const Camera& camera_;
   BidirOptions options_;
   MisEvaluation misEvaluation_ = MisEvaluation::Explicit;
   MisPower misPower_;
+  std::vector<float> offWeights_;  // MisEvaluation::Constant: 1 / n_k by length k
   float minConnectionDistance_ = 0.f;
   int cameraVerticesNeeded_ = 1;  // the camera vertex itself is always there
   int lightVerticesNeeded_ = 0;

@@ -56,6 +56,7 @@ const char* misHeuristicName(MisHeuristic h) {
     case MisHeuristic::Balance: return "balance";
     case MisHeuristic::Power: return "power";
     case MisHeuristic::Uniform: return "uniform";
+    case MisHeuristic::Off: return "off";
   }
   return "?";
 }
@@ -191,6 +192,12 @@ bool UsableTechniques::shortConnection(int sp) const {
 
 bool UsableTechniques::operator()(int sp) const { return enabledAndPossible(sp) && !shortConnection(sp); }
 
+int techniquesEnabledOfLength(const TechniqueSet& techniques, int k) {
+  int count = 0;
+  for (int s = 0; s <= k; ++s) count += techniques.contains(s, k + 1 - s) ? 1 : 0;
+  return count;
+}
+
 float minConnectionDistance(const Scene& scene, const MisOptions& options) {
   return options.minConnection * scene.bounds().radius;
 }
@@ -201,6 +208,13 @@ namespace {
 double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& techniques, const MisOptions& options,
                            float lightTracingRatio, float minDistance) {
   const int n = d.n;
+  if (options.heuristic == MisHeuristic::Off) {
+    // Veach 1997 sec. 9.1 (naive combination): 1 / n_k for every enabled technique of length
+    // k = n - 1, whether or not the others can produce this path; no short-connection exclusion
+    // (the weight does not look at the path). Zero where (s, t) itself cannot form the path.
+    if (!techniques.contains(s, n - s) || !techniquePossible(d, s)) return 0.0;
+    return 1.0 / static_cast<double>(techniquesEnabledOfLength(techniques, n - 1));
+  }
   const UsableTechniques usable(d, techniques, minDistance);
   if (!usable(s)) return 0.0;
 

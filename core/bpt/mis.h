@@ -66,7 +66,8 @@ inline double remap0(double p) { return p != 0.0 ? p : 1.0; }
 // Weight of technique (s, t) among the enabled techniques able to produce the same path.
 // `lightTracingRatio` = light subpaths per pass / camera samples per pass (the sample counts n_i
 // of Veach's multi-sample model for t = 1 against t >= 2); see bidir_tracer.h.
-// Returns 0 when (s, t) itself is disabled or impossible.
+// Returns 0 when (s, t) itself is disabled or impossible. MisHeuristic::Off: 1 / n_k whatever the
+// other techniques can do, so misWeightSum is then the share of n_k that can produce the path.
 float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
                 const MisOptions& options, float lightTracingRatio = 1.f);
 
@@ -122,6 +123,9 @@ class UsableTechniques {
   bool enabledAndPossible(int sPrime) const;
   bool shortConnection(int sPrime) const;
 };
+
+// n_k: the enabled techniques of length k, which MisHeuristic::Off weighs 1 / n_k each.
+int techniquesEnabledOfLength(const TechniqueSet& techniques, int k);
 
 // MisOptions::minConnection in scene units.
 float minConnectionDistance(const Scene& scene, const MisOptions& options);

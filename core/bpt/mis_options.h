@@ -3,7 +3,12 @@
 
 namespace pathlab {
 
-enum class MisHeuristic { Balance, Power, Uniform };
+// Off: Veach's naive combination (1997, sec. 9.1): every enabled technique of length k weighs
+// 1 / n_k, n_k the number enabled at that length, whatever the path. Unlike Uniform, which counts
+// only the techniques able to produce the path, it is biased wherever an enabled technique cannot
+// sample some path of its length (mis_off.h says where).
+enum class MisHeuristic { Balance, Power, Uniform, Off };
+inline constexpr int kMisHeuristicCount = 4;
 
 // Default of MisOptions::minConnection (fraction of the scene's bounding radius).
 inline constexpr float kDefaultMinConnection = 1e-3f;

@@ -83,6 +83,10 @@ class Bsdf {
 
   bool hasNonDelta() const { return hasNonDelta_; }
   bool isDeltaOnly() const { return !hasNonDelta_; }
+  // Some lobe is a delta (smooth mirror, metal, coat or glass): a path can scatter here by it.
+  bool hasDelta() const {
+    return (reflectionDelta_ && (active_[kMetal] || active_[kSpecular])) || (transmissionDelta_ && active_[kTransmission]);
+  }
   const Frame& shadingFrame() const { return frame_; }
   const Vec3& geometricNormal() const { return ng_; }
 

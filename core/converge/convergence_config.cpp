@@ -14,7 +14,7 @@ namespace pathlab {
 namespace {
 
 constexpr std::array<std::string_view, 3> kIntegrators = {"bpt", "pt", "lt"};
-constexpr std::array<std::string_view, 5> kKeys = {"mis", "beta", "min-connection", "techniques", "max-length"};
+constexpr std::array<std::string_view, 6> kKeys = {"mis", "beta", "min-connection", "techniques", "max-length", "connect"};
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -84,14 +84,20 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
       const size_t eq = pair.find('=');
       if (eq == std::string_view::npos) fail(config, fmt::format("'{}' is not key=value", pair));
       const std::string_view key = trim(pair.substr(0, eq)), value = trim(pair.substr(eq + 1));
-      const bool estimatorKey = key == "mis" || key == "beta" || key == "min-connection" || key == "techniques";
+      const bool estimatorKey =
+          key == "mis" || key == "beta" || key == "min-connection" || key == "techniques" || key == "connect";
       if (estimatorKey && s.integrator == IntegratorKind::Pt)
         fail(config, fmt::format("{} applies to bpt and lt, not pt", key));
       if (key == "mis") {
         if (value == "balance") s.mis.heuristic = MisHeuristic::Balance;
         else if (value == "power") s.mis.heuristic = MisHeuristic::Power;
         else if (value == "uniform") s.mis.heuristic = MisHeuristic::Uniform;
-        else fail(config, fmt::format("unknown MIS heuristic '{}' (balance, power or uniform)", value));
+        else if (value == "off") s.mis.heuristic = MisHeuristic::Off;
+        else fail(config, fmt::format("unknown MIS heuristic '{}' (balance, power, uniform or off)", value));
+      } else if (key == "connect") {
+        if (value == "all") s.connect = ConnectStrategy::All;
+        else if (value == "endpoints") s.connect = ConnectStrategy::Endpoints;
+        else fail(config, fmt::format("unknown connect strategy '{}' (all or endpoints)", value));
       } else if (key == "beta") {
         s.mis.beta = parseNumber<float>(config, key, value);
         if (!(s.mis.beta >= 0.01f && s.mis.beta <= 100.f)) fail(config, "beta is outside 0.01..100");
@@ -108,7 +114,7 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");
       } else {
-        fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length)", key));
+        fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length, connect)", key));
       }
     }
   }

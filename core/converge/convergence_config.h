@@ -1,5 +1,6 @@
 // The configurations `pathlab converge` compares: a `;`-separated list of
-// INTEGRATOR[:key=value[,key=value...]] with keys mis, beta, min-connection, techniques and max-length.
+// INTEGRATOR[:key=value[,key=value...]] with keys mis, beta, min-connection, techniques, max-length and
+// connect (all or endpoints).
 #pragma once
 
 #include "core/render/render_settings.h"

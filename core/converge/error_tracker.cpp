@@ -43,6 +43,7 @@ std::string seriesLabel(const RenderSettings& s) {
     if (s.integrator == IntegratorKind::Bpt)
       out += s.mis.heuristic == MisHeuristic::Power ? fmt::format(" power({:g})", s.mis.beta)
                                                      : std::string(" ") + misHeuristicName(s.mis.heuristic);
+    if (s.connect != ConnectStrategy::All) out += std::string(" connect=") + connectStrategyName(s.connect);
     if (s.techniques != TechniqueSet::all()) out += " [" + s.techniques.toString() + "]";
     if (s.isolate)
       out += fmt::format(" only ({},{}){}", s.isolate->s, s.isolate->t, s.isolate->unweighted ? " unweighted" : "");

@@ -80,6 +80,8 @@ std::string describe(const RenderSettings& s) {
       misHeuristicName(s.mis.heuristic), s.mis.beta, s.mis.minConnection, s.lens.apertureRadius, s.lens.focusDistance,
       s.pyramidLength);
   if (s.isolate) text += fmt::format(" isolate={},{},{}", s.isolate->s, s.isolate->t, s.isolate->unweighted);
+  // Only when not the default, so the keys of existing caches stay what they were.
+  if (s.connect != ConnectStrategy::All) text += fmt::format(" connect={}", connectStrategyName(s.connect));
   if (s.camera) {
     text += fmt::format(" yfov={} aspect={} camera=", s.camera->yfov, s.camera->aspectRatio.value_or(0.f));
     for (int c = 0; c < 4; ++c)

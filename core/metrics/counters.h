@@ -35,6 +35,7 @@ struct TechniqueCounters {
   uint64_t contributed = 0;  // a non-zero unweighted contribution
   DiscardCounts discarded;   // contributions refused as NaN, Inf or negative
   uint64_t shadowRays = 0;   // visibility queries of its connections (blocked + contributed for s >= 1)
+  uint64_t walkRays = 0;     // closest-hit rays of its own subpaths (naive BPT, ConnectStrategy::Endpoints)
   // connect() and misWeight, summed over threads, of the timed samples only (BidirTracer::setTiming):
   // compare shares, or time per timed try, never totals.
   uint64_t nanoseconds = 0;
@@ -45,6 +46,7 @@ struct TechniqueCounters {
     contributed += o.contributed;
     discarded += o.discarded;
     shadowRays += o.shadowRays;
+    walkRays += o.walkRays;
     nanoseconds += o.nanoseconds;
     return *this;
   }

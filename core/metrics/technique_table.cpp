@@ -18,7 +18,7 @@ constexpr std::array<TechniqueColumnInfo, 12> kColumns = {{
     {TechniqueColumn::BlockedShare, "% blocked", "blocked, as a share of the connections tried"},
     {TechniqueColumn::Contributed, "contrib.", "connections with a non-zero unweighted contribution"},
     {TechniqueColumn::Discarded, "discarded", "contributions refused as NaN, Inf or negative"},
-    {TechniqueColumn::Rays, "rays", "shadow rays (walks: closest-hit rays)"},
+    {TechniqueColumn::Rays, "rays", "shadow rays, plus its own subpaths' rays under --connect endpoints (walks: closest-hit rays)"},
     {TechniqueColumn::RaysPerSecond, "rays/s", "rays per second of render time"},
     {TechniqueColumn::RayShare, "% rays", "share of every ray of the render"},
     {TechniqueColumn::TimeShare, "% time", "share of the timed work: connect + MIS weight, the walks per subpath"},
@@ -87,7 +87,7 @@ std::vector<TechniqueRow> techniqueRows(const Counters& c, int maxLength, double
     r.blocked = tc.blocked;
     r.contributed = tc.contributed;
     r.discarded = tc.discarded.total();
-    r.rays = tc.shadowRays;
+    r.rays = tc.shadowRays + tc.walkRays;
     finish(r, tc.nanoseconds);
   };
   for (const auto [s, t] : techniquesUpTo(std::min(maxLength, kCountedLength)))

@@ -2,6 +2,7 @@
 // every front end runs before any work.
 #include "core/render/render_settings.h"
 
+#include "core/bpt/mis_off.h"
 #include "core/film/technique_films.h"
 #include "core/math/types.h"
 
@@ -48,10 +49,17 @@ TechniqueSet enabledTechniques(const RenderSettings& settings) {
 }
 
 BidirOptions bidirOptions(const RenderSettings& s) {
-  return BidirOptions{s.maxLength, s.russianRoulette, enabledTechniques(s), s.mis, s.isolate, s.pyramidLength, s.checkMis};
+  return BidirOptions{s.maxLength,     s.russianRoulette, enabledTechniques(s), s.mis, s.isolate,
+                      s.pyramidLength, s.checkMis,        s.connect};
 }
 
 PathTracerOptions pathTracerOptions(const RenderSettings& s) { return PathTracerOptions{s.maxLength, s.russianRoulette}; }
+
+std::string misOffWarning(const Scene& scene, const RenderSettings& s) {
+  if (s.integrator == IntegratorKind::Pt || s.mis.heuristic != MisHeuristic::Off) return "";
+  const bool pinhole = s.lens.apertureRadius == 0.f;
+  return misOffWarning(misOffBias(scene, enabledTechniques(s), s.maxLength, pinhole));
+}
 
 void validateSettings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1)

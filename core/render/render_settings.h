@@ -30,6 +30,7 @@ struct RenderSettings {
   std::optional<CameraDesc> camera;  // overrides the scene's camera (the viewer's orbit/fly)
   TechniqueSet techniques = TechniqueSet::all();  // Bpt and Lt only; see enabledTechniques
   MisOptions mis;
+  ConnectStrategy connect = ConnectStrategy::All;  // Bpt and Lt only: path reuse or naive BPT
   std::optional<Isolation> isolate;  // Bpt and Lt only
   // > 0: also accumulate every technique (s, t) of length <= pyramidLength, weighted and
   // unweighted, in films of their own (the technique pyramid, Veach 1997 fig. 10.3).
@@ -64,6 +65,12 @@ TechniqueSet enabledTechniques(const RenderSettings& settings);
 // What each tracer needs of the settings.
 BidirOptions bidirOptions(const RenderSettings& settings);
 PathTracerOptions pathTracerOptions(const RenderSettings& settings);
+
+class Scene;
+
+// The one-line warning of MIS off (mis_off.h) for these settings in this scene: which lengths are
+// biased and why; "" for any other heuristic, the path tracer, or an unbiased scene.
+std::string misOffWarning(const Scene& scene, const RenderSettings& settings);
 
 // Throws std::invalid_argument with a one-line message naming the setting when the settings
 // cannot be rendered: no technique of length 1..maxLength enabled or one listed beyond it, an

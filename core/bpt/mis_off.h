@@ -1,0 +1,40 @@
+// MIS off (MisHeuristic::Off): the constant weight 1 / n_k of each length, and where in a scene
+// that naive combination is biased, and why.
+#pragma once
+
+#include "core/bpt/technique_set.h"
+#include "core/scene/scene.h"
+
+#include <string>
+#include <vector>
+
+namespace pathlab {
+
+// weights[k] = 1 / n_k for k = 1..maxLength (0 where no technique of length k is enabled);
+// weights[0] is unused. Built once per settings change: the weight never depends on the path.
+std::vector<float> misOffWeights(const TechniqueSet& techniques, int maxLength);
+
+// The naive combination estimates sum_x f(x) c(x) / n_k for a path x of length k, where c(x)
+// counts the enabled techniques able to sample x: biased exactly where 0 < c(x) < n_k for some
+// x (c = 0 is a path no enabled technique samples, which every heuristic loses). The structural
+// reasons a technique cannot sample a path in pathlab:
+//  - s = 0 cannot hit a point, spot or directional light (a delta position or direction);
+//  - s >= 1 cannot connect at a vertex with a delta BSDF (smooth mirror, glass, clear coat):
+//    for a path of length k >= 2 with such a vertex x_i (1 <= i <= k - 1), s = i and s = i + 1;
+//  - a pinhole camera biases nothing: it cannot be hit, but pathlab has no t = 0 technique, and
+//    t = 1 connects to the pinhole as to a lens point.
+struct MisOffBias {
+  std::vector<int> lengths;          // the biased lengths, ascending
+  std::vector<std::string> reasons;  // one phrase each, with the lengths it biases
+  bool biased() const { return !lengths.empty(); }
+};
+MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int maxLength, bool pinhole);
+
+// One line for the CLI warning and the viewer's status line, "" when unbiased: "mis off: lengths
+// 1-10 biased (1/n_k also goes to techniques that cannot sample the path): ...".
+std::string misOffWarning(const MisOffBias& bias);
+
+// "1-3, 5, 7-10".
+std::string lengthRanges(const std::vector<int>& lengths);
+
+}  // namespace pathlab
