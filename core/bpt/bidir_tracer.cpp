@@ -113,7 +113,10 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   if (t == 1) r.pRaster = c.pRaster;
 }
 
-bool BidirTracer::prepare(TechniqueResult& r, int s, int t, Vec2 pRaster, int pyramidLength) const {
+// prepare and run are inlined into both sample loops: as calls they cost 3 % more instructions
+// per path-reuse sample (callgrind).
+[[gnu::always_inline]] inline bool BidirTracer::prepare(TechniqueResult& r, int s, int t, Vec2 pRaster,
+                                                        int pyramidLength) const {
   const bool enabled = options_.techniques.contains(s, t);
   const std::optional<Isolation>& isolate = options_.isolate;
   const bool isolated = isolate && isolate->s == s && isolate->t == t;
@@ -125,8 +128,8 @@ bool BidirTracer::prepare(TechniqueResult& r, int s, int t, Vec2 pRaster, int py
   return r.inImage || r.inPyramid;
 }
 
-void BidirTracer::run(TechniqueResult& r, uint64_t connectionKey, bool timed, Walks& walks, SampleOutputs& outputs,
-                      Counters& counters) const {
+[[gnu::always_inline]] inline void BidirTracer::run(TechniqueResult& r, uint64_t connectionKey, bool timed,
+                                                     Walks& walks, SampleOutputs& outputs, Counters& counters) const {
   const std::optional<Isolation>& isolate = options_.isolate;
   const bool unweighted = isolate && isolate->unweighted && isolate->s == r.s && isolate->t == r.t;
   TechniqueCounters& tc = counters.technique(r.s, r.t);
