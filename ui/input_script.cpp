@@ -6,6 +6,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -80,6 +81,8 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
       if (action.rfind("drag=", 0) != 0 ||
           std::sscanf(action.c_str() + 5, "%f,%f>%f,%f%c", &x0, &y0, &x1, &y1, &tail) != 4)
         throw bad("expected key=NAME, drag=X0,Y0>X1,Y1, drop=PATH, resize=W,H or wait=SPP");
+      if (!std::isfinite(x0) || !std::isfinite(y0) || !std::isfinite(x1) || !std::isfinite(y1))
+        throw bad("drag positions must be finite numbers");
       e.kind = InputEvent::Kind::Drag;
       e.from = {x0, y0};
       e.to = {x1, y1};

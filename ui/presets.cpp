@@ -137,8 +137,9 @@ std::vector<NamedPreset> parsePresets(const std::string& text, const std::string
   Json root;
   try {
     root = Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line 3, ...".
+  } catch (const Json::exception& e) {
+    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line 3, ..."
+    // (or out_of_range.406 for a number such as 1e999 that overflows a double).
     std::string what = e.what();
     if (const size_t p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
     throw PresetError(path + ": " + what);

@@ -99,7 +99,9 @@ INSTANTIATE_TEST_SUITE_P(
                             "coincide"},
                     BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [0, 0], "target": [0, 0, 1]}}]})",
                             "3 numbers"},
-                    BadCase{R"({"presets": [{"name": "x"}, {"name": "x"}]})", "preset 1 (\"x\"): duplicate"}),
+                    BadCase{R"({"presets": [{"name": "x"}, {"name": "x"}]})", "preset 1 (\"x\"): duplicate"},
+                    // A number that overflows a double is nlohmann's out_of_range, not a parse_error.
+                    BadCase{R"({"presets": [{"name": "x", "beta": 1e999}]})", "1e999"}),
     [](const testing::TestParamInfo<BadCase>& info) { return "case" + std::to_string(info.index); });
 
 TEST(Presets, UnknownNameListsTheKnownOnes) {

@@ -109,7 +109,8 @@ TEST(InputScript, ParsesKeysAndDragsAndReplaysThemFrameByFrame) {
   EXPECT_EQ(inputAt(drop, 3).dropped, std::vector<std::string>{"a b/c.gltf"});
   EXPECT_TRUE(inputAt(drop, 4).dropped.empty());
   EXPECT_EQ(inputAt(parseInputScript("1:resize=640,480"), 1).resize, Vec2i(640, 480));
-  for (const char* bad : {"1:resize=0,4", "1:resize=4", "1:drop=", "x:key=3", "1:key=nope", "1:drag=1,2", "1:press=3", "-1:key=3"})
+  for (const char* bad : {"1:resize=0,4", "1:resize=4", "1:drop=", "x:key=3", "1:key=nope", "1:drag=1,2", "1:press=3", "-1:key=3",
+                          "1:drag=nan,2>3,4", "1:drag=1,inf>3,4", "1:drag=1,2>1e999,4"})
     EXPECT_THROW(parseInputScript(bad), std::invalid_argument) << bad;
 }
 
