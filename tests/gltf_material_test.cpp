@@ -85,19 +85,26 @@ TEST(GltfTexture, ColourTexturesAreSrgbDecodedAndDataTexturesLinear) {
     "emissiveTexture":{"index":0,"texCoord":1}})");
   addTexturedTriangle(g);
   const SceneDesc d = loadGltf(g.write("srgb.gltf"));
-  ASSERT_EQ(d.textures.size(), 2u);  // sRGB and linear decodings of the same image
+  ASSERT_EQ(d.textures.size(), 2u);  // sRGB and linear views of the same image
   const Material& m = d.materials[0];
   const Texture& srgb = d.textures[size_t(m.baseColorTexture.texture)];
   const Texture& linear = d.textures[size_t(m.metallicRoughnessTexture.texture)];
   EXPECT_EQ(m.emissiveTexture.texture, m.baseColorTexture.texture);
   ASSERT_EQ(srgb.width, 2);
   ASSERT_EQ(srgb.height, 1);
-  EXPECT_FLOAT_EQ(srgb.texels[0].r, srgbToLinear(128.f / 255.f));
-  EXPECT_FLOAT_EQ(srgb.texels[0].g, srgbToLinear(64.f / 255.f));
-  EXPECT_FLOAT_EQ(srgb.texels[0].b, 1.f);
-  EXPECT_FLOAT_EQ(srgb.texels[1].a, 128.f / 255.f);  // alpha is linear
-  EXPECT_FLOAT_EQ(linear.texels[0].r, 128.f / 255.f);
-  EXPECT_FLOAT_EQ(linear.texels[0].g, 64.f / 255.f);
+  // Held once, as the file's 8-bit RGBA, shared by both views.
+  ASSERT_TRUE(srgb.bytes && linear.bytes);
+  EXPECT_EQ(srgb.bytes, linear.bytes);
+  EXPECT_EQ(srgb.channels, 4);
+  EXPECT_EQ(srgb.texelBytes(), 8u);
+  EXPECT_TRUE(srgb.srgb);
+  EXPECT_FALSE(linear.srgb);
+  EXPECT_FLOAT_EQ(srgb.fetch(0, 0).r, srgbToLinear(128.f / 255.f));
+  EXPECT_FLOAT_EQ(srgb.fetch(0, 0).g, srgbToLinear(64.f / 255.f));
+  EXPECT_FLOAT_EQ(srgb.fetch(0, 0).b, 1.f);
+  EXPECT_FLOAT_EQ(srgb.fetch(1, 0).a, 128.f / 255.f);  // alpha is linear
+  EXPECT_FLOAT_EQ(linear.fetch(0, 0).r, 128.f / 255.f);
+  EXPECT_FLOAT_EQ(linear.fetch(0, 0).g, 64.f / 255.f);
   EXPECT_EQ(srgb.wrapS, WrapMode::ClampToEdge);
   EXPECT_EQ(srgb.wrapT, WrapMode::MirroredRepeat);
   EXPECT_TRUE(srgb.nearest);
@@ -118,8 +125,9 @@ TEST(GltfTexture, SixteenBitImagesKeepTheirPrecision) {
   addTexturedTriangle(g);
   const SceneDesc d = loadGltf(g.write("sixteen.gltf"));
   ASSERT_EQ(d.textures.size(), 1u);
-  EXPECT_FLOAT_EQ(d.textures[0].texels[0].r, 1000.f / 65535.f);
-  EXPECT_FLOAT_EQ(d.textures[0].texels[0].g, 32768.f / 65535.f);
+  EXPECT_FALSE(d.textures[0].bytes);  // 16-bit images keep the float path
+  EXPECT_FLOAT_EQ(d.textures[0].fetch(0, 0).r, 1000.f / 65535.f);
+  EXPECT_FLOAT_EQ(d.textures[0].fetch(0, 0).g, 32768.f / 65535.f);
   EXPECT_EQ(d.textures[0].wrapS, WrapMode::Repeat);  // no sampler: REPEAT, linear filtering
   EXPECT_FALSE(d.textures[0].nearest);
 }
@@ -133,7 +141,8 @@ TEST(GltfTexture, ExternalImageFilesAreFoundNextToTheGltf) {
   addTexturedTriangle(g);
   const SceneDesc d = loadGltf(g.write("external-image.gltf"));
   ASSERT_EQ(d.textures.size(), 1u);
-  EXPECT_EQ(d.textures[0].texels[0], Vec4(0, 1, 0, 1));
+  EXPECT_EQ(d.textures[0].channels, 3);  // the file's RGB, not expanded to RGBA
+  EXPECT_EQ(d.textures[0].fetch(0, 0), Vec4(0, 1, 0, 1));
 }
 
 }  // namespace

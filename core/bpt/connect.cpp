@@ -107,6 +107,7 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     v.type = VertexType::Light;
     v.p = ls.pLight;
     v.pError = ls.pError;
+    v.uv = ls.uv;
     v.light = li;
     v.isDeltaPosition = light.isDeltaPosition();
     v.isInfinite = light.isInfinite();

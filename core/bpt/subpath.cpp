@@ -131,6 +131,9 @@ int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& opti
   x0.type = VertexType::Light;
   x0.p = le.ray.o;
   x0.pError = le.pError;
+  // Where a connection from x0 reads the emitter's radiance again (emittedOverOriginPdf): a
+  // textured emitter's radiance varies over the triangle.
+  x0.uv = le.uv;
   x0.ng = light.type() == LightType::Area || light.isInfinite() ? le.n : Vec3(0.f);
   x0.light = li;
   x0.isDeltaPosition = light.isDeltaPosition();

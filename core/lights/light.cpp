@@ -2,6 +2,7 @@
 #include "core/lights/light.h"
 
 #include "core/sampling/warp.h"
+#include "core/texture/texture_integral.h"
 
 #include <algorithm>
 #include <limits>
@@ -53,6 +54,10 @@ Light Light::area(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec2& uv
   l.frame_ = Frame(l.n_);
   l.twoSided_ = twoSided;
   l.texture_ = emissiveTexture;
+  // The texels the triangle covers, not the whole texture's average: a triangle over a black part
+  // of the texture has no power and is never chosen (Scene leaves it out of the lights).
+  l.meanLe_ = emissiveTexture ? emission * Spectrum(meanOverTriangle(*emissiveTexture, uv0, uv1, uv2))
+                              : emission;
   return l;
 }
 
@@ -109,6 +114,7 @@ LightLiSample Light::sampleLi(const Vec3& ref, Vec2 u) const {
       const Vec3 wi = toLight / dist;
       const float cosLight = absDot(n_, wi);
       s.pLight = p;
+      s.uv = uv;
       s.nLight = n_;
       s.wi = wi;
       s.dist = dist;
@@ -185,6 +191,7 @@ LightLeSample Light::sampleLe(Vec2 uPos, Vec2 uDir) const {
       const Vec3 dir = side * frame_.toWorld(local);
       s.ray = Ray{p, dir};
       s.pError = interpolationError(b.x, p_[0], b.y, p_[1], b2, p_[2]);
+      s.uv = uv;
       s.n = n_;
       s.pdfPosA = 1.f / area_;
       s.pdfDirW = sideProb * cosineHemispherePdf(local.z);
@@ -277,10 +284,9 @@ Spectrum Light::intensity(const Vec3& w) const {
 Spectrum Light::power() const {
   switch (type_) {
     case LightType::Area: {
-      // Phi = pi A <Le>: a Lambertian emitter radiates pi L per unit area on each emitting side.
-      Spectrum mean = emission_;
-      if (texture_) mean *= Spectrum(texture_->average());
-      return mean * (kPi * area_ * (twoSided_ ? 2.f : 1.f));
+      // Phi = pi A <Le>: a Lambertian emitter radiates pi L per unit area on each emitting side,
+      // <Le> the mean of radiance() over the triangle, which sampleLe's positions are uniform on.
+      return meanLe_ * (kPi * area_ * (twoSided_ ? 2.f : 1.f));
     }
     case LightType::Point:
       return emission_ * (4.f * kPi);

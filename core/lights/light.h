@@ -22,6 +22,7 @@ struct LightLiSample {
   Vec3 pLight{0.f};      // the point on the light (far along -direction for directional)
   Vec3 nLight{0.f};      // light surface normal (area); zero for punctual lights
   Vec3 pError{0.f};      // error bound of pLight (area lights, interpolationError)
+  Vec2 uv{0.f};          // texture coordinates of pLight (area lights)
   float dist = 0.f;      // distance to pLight (infinity for directional)
   float pdfW = 0.f;      // solid angle at the reference point; 1 for delta lights
   bool isDelta = false;  // delta in position or direction: cannot be hit by a ray
@@ -31,6 +32,7 @@ struct LightLeSample {
   Spectrum Le{0.f};      // emitted radiance (area) / intensity (point, spot) / irradiance (dir.)
   Ray ray;               // origin on the light, unit direction of travel
   Vec3 pError{0.f};      // error bound of ray.o (area lights, interpolationError)
+  Vec2 uv{0.f};          // texture coordinates of ray.o (area lights): where radiance() is read
   Vec3 n{0.f};           // light surface normal (area); for directional, the direction itself
   float pdfPosA = 0.f;   // area measure (1 for a point position)
   float pdfDirW = 0.f;   // solid angle (1 for a delta direction)
@@ -78,12 +80,15 @@ class Light {
   // Emission along `w` for point / spot (intensity) -- used by sampleLe and connections.
   Spectrum intensity(const Vec3& w) const;
 
-  Spectrum power() const;  // total emitted flux, for selection proportional to power
+  // Total emitted flux, for selection proportional to power. An area light's is pi x area x its
+  // mean radiance over the triangle (texture integrated once, at construction; per side).
+  Spectrum power() const;
   float area() const { return area_; }
 
  private:
   LightType type_ = LightType::Point;
   Spectrum emission_{0.f};  // Le, intensity or irradiance by type
+  Spectrum meanLe_{0.f};    // area: emission_ x the texture's mean over the triangle's uvs
   Vec3 p_[3]{};             // triangle vertices; p_[0] is the position of point / spot lights
   Vec2 uv_[3]{};
   Vec3 n_{0.f};             // area: geometric normal; spot / directional: direction of travel

@@ -214,9 +214,16 @@ bool loadImageChecked(tinygltf::Image* image, int imageIndex, std::string* err, 
     if (err) *err += "image " + std::to_string(imageIndex) + " is empty\n";
     return false;
   }
-  // Decoded to 8- or 16-bit RGBA by tinygltf's own stb_image loader (null options: expand to RGBA).
+  // Decoded to 8 or 16 bits by tinygltf's own stb_image loader, keeping the file's channels: an
+  // RGB JPEG stays 3 bytes a texel (Texture expands grey and RGB on lookup).
+  // tinygltf 2.7 reads its options through user_data as `struct LoadImageDataOption { bool
+  // preserve_channels; }`, declared only in its implementation section: this mirrors it.
+  struct PreserveChannelsOption {
+    bool preserveChannels = true;
+  } option;
+  static_assert(sizeof(PreserveChannelsOption) == sizeof(bool));
   return tinygltf::LoadImageData(image, imageIndex, err, warn, reqWidth, reqHeight, bytes, size,
-                                 nullptr);
+                                 &option);
 }
 
 }  // namespace pathlab::gltf

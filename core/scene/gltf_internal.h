@@ -124,8 +124,9 @@ bool loadImageChecked(tinygltf::Image* image, int imageIndex, std::string* err, 
                       void* userData);
 
 // ---- materials and textures (gltf_materials.cpp) ---------------------------------------------
-// Fills desc.materials 1:1 with model.materials and desc.textures with the decoded images they use.
-void convertMaterials(const tinygltf::Model& model, SceneDesc& desc, Warnings& warnings);
+// Fills desc.materials 1:1 with model.materials and desc.textures with the images they use; the
+// pixels of those images are moved out of `model` (held once, shared by their textures).
+void convertMaterials(tinygltf::Model& model, SceneDesc& desc, Warnings& warnings);
 
 // ---- geometry (gltf_geometry.cpp) ------------------------------------------------------------
 // One triangle primitive decoded in its mesh's local space, shared by all nodes instancing it.

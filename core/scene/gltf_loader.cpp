@@ -304,7 +304,7 @@ void SceneBuilder::addLight(int nodeIndex, const glm::dmat4& world) {
 
 SceneDesc load(const std::string& path, const LoadOptions& options) {
   Warnings warnings;
-  const tinygltf::Model model = parseFile(path, warnings);
+  tinygltf::Model model = parseFile(path, warnings);
   checkExtensions(model, warnings);
   // Counted before any material, texture or geometry is decoded: an instancing bomb is refused
   // in the time it takes to walk its node tree.

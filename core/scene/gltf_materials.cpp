@@ -1,12 +1,12 @@
 // glTF materials (metallic-roughness with KHR_materials_emissive_strength, _ior, _specular and
-// _transmission) and their images, decoded once into linear float textures.
+// _transmission) and their images, each held once (8-bit as 8-bit) and shared by its textures.
 #include "core/scene/gltf_internal.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <tuple>
 
 namespace pathlab::gltf {
@@ -21,9 +21,17 @@ const tinygltf::Value* findExtension(const tinygltf::ExtensionMap& extensions, c
   return it != extensions.end() && it->second.IsObject() ? &it->second : nullptr;
 }
 
+// An image's pixels as tinygltf decoded them, moved out of the model once and shared by every
+// Texture made from it.
+struct ImagePixels {
+  std::string name;  // for messages and Texture::name
+  int width = 0, height = 0, channels = 0, bits = 0;
+  std::shared_ptr<const std::vector<uint8_t>> data;
+};
+
 class MaterialReader {
  public:
-  MaterialReader(const tinygltf::Model& model, SceneDesc& desc, Warnings& warnings)
+  MaterialReader(tinygltf::Model& model, SceneDesc& desc, Warnings& warnings)
       : model_(model), desc_(desc), warnings_(warnings) {}
 
   Material convert(int index);
@@ -61,14 +69,16 @@ class MaterialReader {
     return texture(info.index, info.texCoord, slot, srgb);
   }
   int decodedTexture(int imageIndex, int samplerIndex, bool srgb);
+  const ImagePixels& pixels(int imageIndex);
 
-  const tinygltf::Model& model_;
+  tinygltf::Model& model_;  // its images' pixels are moved out as they are first used
   SceneDesc& desc_;
   Warnings& warnings_;
   std::string label_;  // "material 'name'" of the material being converted
-  // One Texture per (image, sampler, colour space): an image used both as sRGB colour and as
-  // linear data decodes twice.
+  // One Texture per (image, sampler, colour space), all of an image's Textures sharing its
+  // pixels: each image is decoded once (by tinygltf) and held once.
   std::map<std::tuple<int, int, bool>, int> cache_;
+  std::map<int, ImagePixels> pixels_;
 };
 
 WrapMode wrapMode(int mode, Warnings& warnings) {
@@ -82,19 +92,9 @@ WrapMode wrapMode(int mode, Warnings& warnings) {
   }
 }
 
-// 8-bit sRGB -> linear table: decoding a 4k texture calls the transfer function 50M times
-// otherwise.
-const std::array<float, 256>& srgbTable() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int i = 0; i < 256; ++i) t[size_t(i)] = srgbToLinear(float(i) / 255.f);
-    return t;
-  }();
-  return table;
-}
-
-// tinygltf's stb loader yields row 0 at the top, as Texture and glTF uv (0, 0) expect.
-Texture decodeImage(const tinygltf::Image& image, int imageIndex, bool srgb) {
+// tinygltf's stb loader yields row 0 at the top, as Texture and glTF uv (0, 0) expect, with the
+// file's own channels (loadImageChecked asks it to preserve them).
+ImagePixels takePixels(tinygltf::Image& image, int imageIndex) {
   const std::string name = "image " + std::to_string(imageIndex) + quoted(image.name);
   if (image.image.empty()) {
     if (!image.uri.empty() && !tinygltf::IsDataURI(image.uri)) {
@@ -112,26 +112,42 @@ Texture decodeImage(const tinygltf::Image& image, int imageIndex, bool srgb) {
     throw LoadError(name + ": pixel data is shorter than " + std::to_string(w) + "x" +
                     std::to_string(h));
   }
+  ImagePixels p;
+  p.name = !image.name.empty() ? image.name : !tinygltf::IsDataURI(image.uri) ? image.uri : name;
+  p.width = w;
+  p.height = h;
+  p.channels = comp;
+  p.bits = bits;
+  p.data = std::make_shared<const std::vector<uint8_t>>(std::move(image.image));
+  image.image.clear();
+  return p;
+}
+
+// A Texture over `pixels` in colour space `srgb`: 8-bit pixels are shared as they are (decoded on
+// lookup); 16-bit ones are decoded here into linear floats.
+Texture makeTexture(const ImagePixels& pixels, bool srgb) {
   Texture tex;
-  tex.name = !image.name.empty() ? image.name : !tinygltf::IsDataURI(image.uri) ? image.uri : name;
-  tex.width = w;
-  tex.height = h;
-  tex.texels.resize(pixels);
-  const unsigned char* data = image.image.data();
-  const std::array<float, 256>& table = srgbTable();
-  for (size_t p = 0; p < pixels; ++p) {
+  tex.name = pixels.name;
+  tex.width = pixels.width;
+  tex.height = pixels.height;
+  tex.channels = pixels.channels;
+  tex.srgb = srgb;
+  if (pixels.bits == 8) {
+    tex.bytes = pixels.data;
+    return tex;
+  }
+  const int comp = pixels.channels;
+  const size_t count = size_t(pixels.width) * size_t(pixels.height);
+  tex.texels.resize(count);
+  const unsigned char* data = pixels.data->data();
+  for (size_t p = 0; p < count; ++p) {
     float c[4];
     for (int k = 0; k < comp; ++k) {
       const size_t i = p * size_t(comp) + size_t(k);
-      if (bits == 8) {
-        const bool colour = srgb && (comp >= 3 ? k < 3 : k == 0);
-        c[k] = colour ? table[data[i]] : float(data[i]) / 255.f;
-      } else {
-        uint16_t v;
-        std::memcpy(&v, data + 2 * i, 2);
-        c[k] = float(v) / 65535.f;
-        if (srgb && (comp >= 3 ? k < 3 : k == 0)) c[k] = srgbToLinear(c[k]);
-      }
+      uint16_t v;
+      std::memcpy(&v, data + 2 * i, 2);
+      c[k] = float(v) / 65535.f;
+      if (srgb && (comp >= 3 ? k < 3 : k == 0)) c[k] = srgbToLinear(c[k]);
     }
     switch (comp) {
       case 1: tex.texels[p] = Vec4(c[0], c[0], c[0], 1.f); break;
@@ -143,10 +159,18 @@ Texture decodeImage(const tinygltf::Image& image, int imageIndex, bool srgb) {
   return tex;
 }
 
+const ImagePixels& MaterialReader::pixels(int imageIndex) {
+  auto it = pixels_.find(imageIndex);
+  if (it == pixels_.end()) {
+    it = pixels_.emplace(imageIndex, takePixels(model_.images[size_t(imageIndex)], imageIndex)).first;
+  }
+  return it->second;
+}
+
 int MaterialReader::decodedTexture(int imageIndex, int samplerIndex, bool srgb) {
   auto key = std::make_tuple(imageIndex, samplerIndex, srgb);
   if (auto it = cache_.find(key); it != cache_.end()) return it->second;
-  Texture tex = decodeImage(model_.images[size_t(imageIndex)], imageIndex, srgb);
+  Texture tex = makeTexture(pixels(imageIndex), srgb);
   if (samplerIndex >= 0) {
     const tinygltf::Sampler& s = model_.samplers[size_t(samplerIndex)];
     tex.wrapS = wrapMode(s.wrapS, warnings_);
@@ -254,7 +278,7 @@ Material MaterialReader::convert(int index) {
 
 }  // namespace
 
-void convertMaterials(const tinygltf::Model& model, SceneDesc& desc, Warnings& warnings) {
+void convertMaterials(tinygltf::Model& model, SceneDesc& desc, Warnings& warnings) {
   MaterialReader reader(model, desc, warnings);
   desc.materials.reserve(model.materials.size() + 1);  // + the default material, if needed
   for (size_t i = 0; i < model.materials.size(); ++i) {

@@ -2,6 +2,7 @@
 // the renderer derives from the whole scene (its extent, the lights' total power) fit in floats.
 #include "core/scene/gltf_internal.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -13,13 +14,16 @@ void checkHasEmitter(const SceneDesc& desc) {
   for (const PunctualLightDesc& light : desc.punctualLights) {
     if (light.intensity > 0.f && maxComponent(light.color) > 0.f) return;
   }
+  // Each emissive texture is read once, however many meshes use it.
+  std::vector<int> checked;
   for (const TriangleMesh& mesh : desc.meshes) {
     const Material& m = desc.materials[size_t(mesh.material)];
     if (!m.isEmissive()) continue;
-    if (!m.emissiveTexture.valid() ||
-        maxComponent(Spectrum(desc.textures[size_t(m.emissiveTexture.texture)].average())) > 0.f) {
-      return;
-    }
+    const int texture = m.emissiveTexture.texture;
+    if (!m.emissiveTexture.valid()) return;
+    if (std::find(checked.begin(), checked.end(), texture) != checked.end()) continue;
+    checked.push_back(texture);
+    if (maxComponent(Spectrum(desc.textures[size_t(texture)].average())) > 0.f) return;
   }
   throw LoadError(
       "no light source (no triangle has an emissive material and no "

@@ -86,7 +86,10 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
   bounds_.center = 0.5f * (boundsMin_ + boundsMax_);
   bounds_.radius = glm::max(0.5f * glm::length(boundsMax_ - boundsMin_), 1e-6f);
 
-  // Area lights: one per emissive triangle (glTF emissive materials), then punctual lights.
+  // Area lights: one per emissive triangle (glTF emissive materials) that emits anything, then
+  // punctual lights. A triangle whose texels are all black stays a surface but is no light: its
+  // radiance is zero wherever it is hit, so leaving it out of the light set (hit.light = -1)
+  // changes no estimate, and the power-proportional choice never wastes a sample on it.
   std::vector<Light> lights;
   std::vector<std::vector<int>> triangleLight(desc_.meshes.size());
   for (size_t m = 0; m < desc_.meshes.size(); ++m) {
@@ -103,9 +106,11 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
       const Vec2 uv0 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i0];
       const Vec2 uv1 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i1];
       const Vec2 uv2 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i2];
+      Light light = Light::area(mesh.positions[i0], mesh.positions[i1], mesh.positions[i2], uv0, uv1,
+                                uv2, emission, tex, mat.doubleSided);
+      if (!(maxComponent(light.power()) > 0.f)) continue;
       triangleLight[m][t] = static_cast<int>(lights.size());
-      lights.push_back(Light::area(mesh.positions[i0], mesh.positions[i1], mesh.positions[i2], uv0,
-                                   uv1, uv2, emission, tex, mat.doubleSided));
+      lights.push_back(light);
     }
   }
   for (const PunctualLightDesc& l : desc_.punctualLights) {

@@ -1,21 +1,21 @@
-// Texture lookup with glTF sampler semantics (wrap modes, NEAREST or bilinear magnification)
-// and the sRGB transfer functions used to decode colour textures at load time.
+// Texture lookup with glTF sampler semantics (wrap modes, NEAREST or bilinear magnification), the
+// decoding of 8-bit texels, and the sRGB transfer functions.
 #include "core/texture/texture.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace pathlab {
 namespace {
 
-// Wraps an integer texel index into [0, n) according to the glTF wrap mode. Callers keep i within
-// a few periods of [0, n), so the modulo never sees an overflowed value.
-int wrapIndex(int i, int n, WrapMode mode) {
+// Wraps a texel index into [0, n) according to the glTF wrap mode.
+int64_t wrapIndex(int64_t i, int64_t n, WrapMode mode) {
   switch (mode) {
-    case WrapMode::ClampToEdge: return std::clamp(i, 0, n - 1);
+    case WrapMode::ClampToEdge: return std::clamp<int64_t>(i, 0, n - 1);
     case WrapMode::MirroredRepeat: {
-      int period = 2 * n;
-      int m = ((i % period) + period) % period;
+      const int64_t period = 2 * n;
+      const int64_t m = ((i % period) + period) % period;
       return m < n ? m : period - 1 - m;
     }
     case WrapMode::Repeat:
@@ -36,34 +36,77 @@ double reduceCoordinate(float u, WrapMode mode) {
   }
 }
 
+// 8-bit value -> linear float, one table per encoding: the values are those the loader computed
+// when it stored float texels (v / 255, and the sRGB decode of v / 255), so lookups are unchanged.
+using ByteTable = std::array<float, 256>;
+const ByteTable& linearTable() {
+  static const ByteTable table = [] {
+    ByteTable t{};
+    for (int i = 0; i < 256; ++i) t[size_t(i)] = float(i) / 255.f;
+    return t;
+  }();
+  return table;
+}
+const ByteTable& srgbTable() {
+  static const ByteTable table = [] {
+    ByteTable t{};
+    for (int i = 0; i < 256; ++i) t[size_t(i)] = srgbToLinear(float(i) / 255.f);
+    return t;
+  }();
+  return table;
+}
+
 }  // namespace
 
+bool Texture::valid() const {
+  if (width <= 0 || height <= 0) return false;
+  const size_t count = size_t(width) * size_t(height);
+  if (bytes) return channels >= 1 && channels <= 4 && bytes->size() >= count * size_t(channels);
+  return texels.size() >= count;
+}
+
+Vec4 Texture::fetch(int64_t x, int64_t y) const {
+  const size_t index = size_t(wrapIndex(y, height, wrapT)) * size_t(width) + size_t(wrapIndex(x, width, wrapS));
+  if (!bytes) return texels[index];
+  const uint8_t* t = bytes->data() + index * size_t(channels);
+  const ByteTable& linear = linearTable();
+  const ByteTable& colour = srgb ? srgbTable() : linear;
+  switch (channels) {
+    case 1: return Vec4(Vec3(colour[t[0]]), 1.f);
+    case 2: return Vec4(Vec3(colour[t[0]]), linear[t[1]]);
+    case 3: return Vec4(colour[t[0]], colour[t[1]], colour[t[2]], 1.f);
+    default: return Vec4(colour[t[0]], colour[t[1]], colour[t[2]], linear[t[3]]);
+  }
+}
+
 Vec4 Texture::sample(Vec2 uv) const {
-  if (width <= 0 || height <= 0 || texels.size() < size_t(width) * size_t(height)) return Vec4(0.f);
+  if (!valid()) return Vec4(0.f);
   double u = reduceCoordinate(uv.x, wrapS);
   double v = reduceCoordinate(uv.y, wrapT);
-  auto texel = [&](int x, int y) -> const Vec4& {
-    return texels[size_t(wrapIndex(y, height, wrapT)) * size_t(width) +
-                  size_t(wrapIndex(x, width, wrapS))];
-  };
   if (nearest) {
-    return texel(int(std::floor(u * width)), int(std::floor(v * height)));
+    return fetch(int64_t(std::floor(u * width)), int64_t(std::floor(v * height)));
   }
-  // Texel centres sit at half-integer coordinates (OpenGL / glTF convention).
+  // Texel centres sit at half-integer coordinates (OpenGL / glTF convention). Filtering mixes
+  // the decoded (linear) values, as the loader's float texels were mixed before.
   double x = u * width - 0.5, y = v * height - 0.5;
   double x0 = std::floor(x), y0 = std::floor(y);
   float fx = float(x - x0), fy = float(y - y0);
-  int ix = int(x0), iy = int(y0);
-  Vec4 top = glm::mix(texel(ix, iy), texel(ix + 1, iy), fx);
-  Vec4 bottom = glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), fx);
+  const auto ix = int64_t(x0), iy = int64_t(y0);
+  Vec4 top = glm::mix(fetch(ix, iy), fetch(ix + 1, iy), fx);
+  Vec4 bottom = glm::mix(fetch(ix, iy + 1), fetch(ix + 1, iy + 1), fx);
   return glm::mix(top, bottom, fy);
 }
 
 Vec4 Texture::average() const {
-  if (texels.empty()) return Vec4(0.f);
+  if (!valid()) return Vec4(0.f);
   glm::dvec4 sum(0.0);
-  for (const Vec4& t : texels) sum += glm::dvec4(t);
-  return Vec4(sum / double(texels.size()));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) sum += glm::dvec4(fetch(x, y));
+  return Vec4(sum / (double(width) * double(height)));
+}
+
+size_t Texture::texelBytes() const {
+  return bytes ? bytes->size() : texels.size() * sizeof(Vec4);
 }
 
 float srgbToLinear(float v) {
