@@ -18,6 +18,14 @@ struct Isolation {
   bool operator==(const Isolation&) const = default;
 };
 
+// A deliberate bug for teaching and for testing the consistency check (issue 13): technique
+// (s, t)'s unweighted contribution is multiplied by `factor`, so it and the image are biased.
+struct BiasInjection {
+  int s = 0, t = 1;
+  float factor = 1.f;
+  bool operator==(const BiasInjection&) const = default;
+};
+
 // How a sample's techniques get their subpaths. All: one camera and one light subpath, every
 // prefix pair connected (path reuse, Veach 1997 sec. 10.2). Endpoints: each technique (s, t)
 // samples a light subpath of exactly s and a camera subpath of exactly t vertices of its own and
@@ -34,6 +42,7 @@ struct BidirOptions {
   int pyramidLength = 0;  // > 0: every technique up to this length also goes to the pyramid
   bool checkMis = false;  // test every weighted path's partition of unity (Counters)
   ConnectStrategy connect = ConnectStrategy::All;
+  std::optional<BiasInjection> injectBias;
 };
 
 }  // namespace pathlab

@@ -92,10 +92,8 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
 
   // The weight is computed over the enabled set (a disabled technique's share is zero) before the
   // shadow ray, which is traced only when something will use the contribution.
-  if (enabled) {
-    const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-    r.weight = weight(path, walks, counters);
-  }
+  const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
+  if (enabled) r.weight = weight(path, walks, counters);
   r.imageWeight = !r.inImage ? 0.f : unweightedInImage ? 1.f : r.weight;
   if (!(r.imageWeight > 0.f) && !r.inPyramid && !outputs.wantsEveryContribution()) {
     r.weight = 0.f;
@@ -110,6 +108,9 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   }
   r.outcome = TechniqueOutcome::Contributed;
   r.unweighted = c.L;
+  if (options_.injectBias && options_.injectBias->s == s && options_.injectBias->t == t)
+    r.unweighted *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
+  if (outputs.wantsSampleable()) r.sampleableBy = sampleableTechniques(path);
   if (t == 1) r.pRaster = c.pRaster;
 }
 

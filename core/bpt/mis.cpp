@@ -166,6 +166,26 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   d.x0CanBeHit = canBeHitAsOrigin(vertex(0));
 }
 
+uint64_t sampleableTechniques(const MisPath& path) {
+  const int s = path.s, t = path.t, n = s + t;
+  if (n > kSampleableBits) return 0;
+  auto vertex = [&](int i) -> const PathVertex& {
+    return i < s ? lightVertex(path, i) : cameraVertex(path, n - 1 - i);
+  };
+  // The connection's own ends x(s-1), x(s) were joined, so they are not delta here (as in
+  // pathDensities' patches).
+  auto delta = [&](int i) { return i != s && i != s - 1 && vertex(i).isDelta; };
+  uint64_t bits = 0;
+  bool previousDelta = delta(0);
+  if (canBeHitAsOrigin(vertex(0)) && !previousDelta) bits |= 1;
+  for (int sp = 1; sp < n; ++sp) {
+    const bool d = delta(sp);
+    if (!previousDelta && !d) bits |= uint64_t{1} << sp;
+    previousDelta = d;
+  }
+  return bits;
+}
+
 UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance)
     : d_(d), techniques_(techniques) {
   const float min2 = minConnectionDistance * minConnectionDistance;

@@ -107,6 +107,15 @@ inline bool techniquePossible(const PathDensities& d, int sp) {
   return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
 }
 
+// Bit s' (0 <= s' < n, n = s + t <= kSampleableBits) is set when technique (s', n - s') can
+// produce this very path: the connection edge it would use has no delta vertex at either end, and
+// s' = 0 needs x0 on an area light (techniquePossible on the same delta flags, without the
+// densities). Independent of which techniques are enabled. 0 for longer paths. The technique
+// maps and the consistency check (issue 13) compare each technique only on the paths it can
+// sample: "cannot" is structural, not a small weight.
+inline constexpr int kSampleableBits = 64;
+uint64_t sampleableTechniques(const MisPath& path);
+
 // The techniques misWeight weighs for a path: those enabled and possible, less those whose
 // connection edge is shorter than minConnectionDistance when an enabled possible technique with a
 // longer (or no) connection edge remains (MisOptions::minConnection). The set depends on the

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/bpt/technique_result.h"
+#include "core/check/technique_check.h"
 #include "core/film/film.h"
 #include "core/film/splat_buffer.h"
 #include "core/film/technique_films.h"
@@ -18,6 +19,7 @@ struct SampleTargets {
   SampleTrace* trace = nullptr;       // a record of every technique tried
   SampleId id;
   SplatBuffer* splats = nullptr;  // the thread's own buffer of the t = 1 splats, instead of `film`
+  TechniqueCheck::PassSums* check = nullptr;  // the thread's sums of the consistency check
 };
 
 class SampleOutputs {
@@ -26,7 +28,9 @@ class SampleOutputs {
 
   // Whether an output wants a technique's contribution even where its image weight is zero (the
   // pyramid's unweighted films, the replay trace): the kernel then still traces its shadow ray.
-  bool wantsEveryContribution() const { return targets_.trace != nullptr; }
+  bool wantsEveryContribution() const { return targets_.trace != nullptr || targets_.check != nullptr; }
+  // Whether an output needs TechniqueResult::sampleableBy (the consistency check).
+  bool wantsSampleable() const { return targets_.check != nullptr; }
 
   void add(const TechniqueResult& result, TechniqueCounters& counters);
   // The sum of the t >= 2 contributions: the sample's estimate for its own pixel.

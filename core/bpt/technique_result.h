@@ -26,6 +26,9 @@ struct TechniqueResult {
   Vec2 pRaster{0.f};       // where it lands: the sample's own pixel, or the splat position (t = 1)
   bool inImage = false;    // reaches the image (enabled, or the isolated technique)
   bool inPyramid = false;  // goes to the technique pyramid
+  // Contributed results, when an output asks (SampleOutputs::wantsSampleable): bit s' set when
+  // technique (s', s + t - s') could have sampled this same path (sampleableTechniques, mis.h).
+  uint64_t sampleableBy = 0;
   bool blocked() const { return outcome == TechniqueOutcome::Blocked; }
 };
 

@@ -25,6 +25,11 @@ struct RenderSession::ThreadSplats {
   ThreadSplats(int width, int height) : buffers(width, height) {}
 };
 
+struct RenderSession::ThreadChecks {
+  tbb::enumerable_thread_specific<TechniqueCheck::PassSums> sums;
+  explicit ThreadChecks(const TechniqueCheck& check) : sums(TechniqueCheck::PassSums(check)) {}
+};
+
 RenderSession::~RenderSession() = default;
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
@@ -39,6 +44,12 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
     threadSplats_ = std::make_unique<ThreadSplats>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength);
+  if (bidirTracer_ && settings.checkTechniques) {
+    const TechniqueSet enabled = enabledTechniques(settings);
+    check_ = std::make_unique<TechniqueCheck>(settings.width, settings.height, settings.maxLength, settings.checkBlocks,
+                                              [&](int s, int t) { return enabled.contains(s, t); });
+    threadChecks_ = std::make_unique<ThreadChecks>(*check_);
+  }
 }
 
 Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats,
@@ -81,11 +92,13 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
         }
         Counters& c = local.local();
         SplatBuffer* splats = threadSplats_ ? &threadSplats_->buffers.local() : nullptr;
+        TechniqueCheck::PassSums* checkSums = threadChecks_ ? &threadChecks_->sums.local() : nullptr;
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
             SampleTargets targets = shared;
             targets.id = SampleId{x, y, pass};
             targets.splats = splats;
+            targets.check = checkSums;
             const Spectrum L = sampleAt(x, y, pass, targets, c);
             if (!film_.addSample(x, y, L)) {
               countDiscarded(L, c);
@@ -101,6 +114,15 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
       if (cancelled.load()) b.clear();
       else b.mergeInto(film_);
     }
+  if (threadChecks_) {
+    std::vector<TechniqueCheck::PassSums*> sums;
+    for (TechniqueCheck::PassSums& t : threadChecks_->sums) sums.push_back(&t);
+    if (cancelled.load()) {
+      for (TechniqueCheck::PassSums* t : sums) t->clear();
+    } else {
+      check_->finishPass(sums);
+    }
+  }
   if (cancelled.load()) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
   passes_.fetch_add(1, std::memory_order_relaxed);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/bpt/bidir_tracer.h"
+#include "core/check/technique_check.h"
 #include "core/film/film.h"
 #include "core/film/technique_films.h"
 #include "core/metrics/counters.h"
@@ -42,6 +43,8 @@ class RenderSession {
   // Technique (s, t) of the pyramid (settings.pyramidLength > 0), weighted or unweighted.
   bool hasPyramid() const { return pyramid_ != nullptr; }
   Image techniqueImage(int s, int t, bool unweighted) const;
+  // The consistency check's sums (settings.checkTechniques), else null.
+  const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }
   uint64_t passes() const { return passes_.load(std::memory_order_relaxed); }
   const RenderSettings& settings() const { return settings_; }
@@ -63,6 +66,9 @@ class RenderSession {
   struct ThreadSplats;
   std::unique_ptr<ThreadSplats> threadSplats_;
   std::unique_ptr<TechniqueFilms> pyramid_;
+  std::unique_ptr<TechniqueCheck> check_;
+  struct ThreadChecks;  // each render thread's sums of the check over the current pass
+  std::unique_ptr<ThreadChecks> threadChecks_;
   Counters counters_;
   // Atomic: a progress thread reads it while renderPass runs (`pathlab render`'s progress bar).
   std::atomic<uint64_t> passes_{0};

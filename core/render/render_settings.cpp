@@ -50,7 +50,7 @@ TechniqueSet enabledTechniques(const RenderSettings& settings) {
 
 BidirOptions bidirOptions(const RenderSettings& s) {
   return BidirOptions{s.maxLength,     s.russianRoulette, enabledTechniques(s), s.mis, s.isolate,
-                      s.pyramidLength, s.checkMis,        s.connect};
+                      s.pyramidLength, s.checkMis,        s.connect,           s.injectBias};
 }
 
 PathTracerOptions pathTracerOptions(const RenderSettings& s) { return PathTracerOptions{s.maxLength, s.russianRoulette}; }
@@ -86,6 +86,26 @@ void validateSettings(const RenderSettings& s) {
           fmt::format("technique ({},{}) has length {}, more than the maximum length {}", i.s, i.t, k, s.maxLength));
     if (s.integrator == IntegratorKind::Lt && i.t != 1)
       throw std::invalid_argument(fmt::format("light tracing has only the t = 1 techniques, not ({},{})", i.s, i.t));
+  }
+  if (s.injectBias) {
+    const BiasInjection& b = *s.injectBias;
+    if (!bidirectional) throw std::invalid_argument("injecting a bias needs the bpt or lt integrator");
+    const Technique x{b.s, b.t};
+    if (!x.valid())
+      throw std::invalid_argument(fmt::format("technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", b.s, b.t));
+    if (x.length() > s.maxLength)
+      throw std::invalid_argument(fmt::format("technique ({},{}) has length {}, more than the maximum length {}", b.s,
+                                              b.t, x.length(), s.maxLength));
+    checkRange("injected bias factor", b.factor, 0.f, kMaxInjectedBias);
+  }
+  if (s.checkTechniques) {
+    if (!bidirectional) throw std::invalid_argument("the consistency check needs the bpt or lt integrator");
+    if (s.maxLength > kMaxCheckedLength)
+      throw std::invalid_argument(fmt::format("the consistency check supports paths of at most {} edges, not {}",
+                                              kMaxCheckedLength, s.maxLength));
+    if (s.isolate) throw std::invalid_argument("the consistency check compares the enabled techniques: not with --isolate");
+    if (s.checkBlocks < 1 || s.checkBlocks > kMaxCheckBlocks)
+      throw std::invalid_argument(fmt::format("check blocks {} is outside 1..{}", s.checkBlocks, kMaxCheckBlocks));
   }
   if (s.pyramidLength != 0) {
     if (!bidirectional) throw std::invalid_argument("the technique pyramid needs the bpt or lt integrator");

@@ -35,6 +35,12 @@ struct RenderSettings {
   // > 0: also accumulate every technique (s, t) of length <= pyramidLength, weighted and
   // unweighted, in films of their own (the technique pyramid, Veach 1997 fig. 10.3).
   int pyramidLength = 0;
+  // Bpt and Lt only: one technique made wrong on purpose (BiasInjection); the image is biased.
+  std::optional<BiasInjection> injectBias;
+  // Bpt and Lt only: accumulate the consistency check of every enabled technique against the
+  // others on the paths both can sample (core/check/technique_check.h).
+  bool checkTechniques = false;
+  int checkBlocks = 4;  // the check's regions: a checkBlocks x checkBlocks grid and the whole image
   // Check on every path that the MIS weights of the enabled techniques able to produce it sum to
   // one (Counters::misPartitionFailures). On by default in debug builds.
 #ifdef NDEBUG
@@ -47,6 +53,10 @@ struct RenderSettings {
 };
 
 inline constexpr int kMaxPyramidLength = 8;
+// The consistency check keeps a mask of the techniques able to sample each path (one bit each).
+inline constexpr int kMaxCheckedLength = 30;
+inline constexpr float kMaxInjectedBias = 1e6f;
+inline constexpr int kMaxCheckBlocks = 16;
 // The bidirectional tracers connect O(n^2) prefix pairs with O(n) weights each and their technique
 // tables hold about n^2 / 2 entries: beyond this many edges that is memory and time for nothing.
 inline constexpr int kMaxBidirectionalLength = kMaxTechniqueLength;

@@ -1,0 +1,90 @@
+// The consistency check of the bidirectional techniques (issue 13, part 4): does every enabled
+// technique (s, t) estimate what the others estimate, on the paths both can sample?
+//
+// Each technique's *unweighted* estimate is unbiased for the integral over the paths of its
+// length that it can sample (p_{s,t}(x) > 0; Veach 1997 sec. 10.2), whatever the weights. So for
+// two techniques i and j of one length, restricted to the paths both can sample,
+//     E[ sum of i's contributions to paths j can sample ] = E[ the same of j's, restricted to i ].
+// A wrong technique breaks these equalities with every partner, a right one only with a wrong
+// partner. The check compares pairs, not each technique with the MIS combination: the combination
+// follows its dominant technique (direct lighting is mostly (1,2)), so a bug there would hide in
+// the reference it is compared with.
+//
+// Statistics: the passes are independent (their streams are keyed by the pass), so the
+// difference of the two restricted estimates over a region, one value per pass, has a mean and a
+// standard error from its sum and sum of squares. Regions: a blocks x blocks grid and the whole
+// image. Luminance only. check_report.h turns the sums into z-scores and a verdict.
+#pragma once
+
+#include "core/math/types.h"
+#include "core/sampling/technique.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace pathlab {
+
+// Running sums over the passes of one pair (i, j) in one region, with a = i's estimate restricted
+// to the paths j can sample and b = j's restricted to i's (each the region's mean per pixel).
+struct PairSums {
+  double sumA = 0.0, sumB = 0.0;
+  double sumD = 0.0, sumD2 = 0.0;        // d = a - b
+  uint64_t nonzeroA = 0, nonzeroB = 0;  // passes in which a (b) was not zero
+};
+
+class TechniqueCheck {
+ public:
+  // `enabled(s, t)` decides which techniques are compared; lengths 1..maxLength (at most 62:
+  // TechniqueResult::sampleableBy has a bit per technique of a length).
+  template <class Enabled>
+  TechniqueCheck(int width, int height, int maxLength, int blocks, Enabled enabled)
+      : TechniqueCheck(width, height, maxLength, blocks) {
+    for (const Technique x : techniquesUpTo(maxLength)) enabled_[x.index()] = enabled(x.s, x.t) ? 1 : 0;
+  }
+
+  // One render thread's sums over one pass (no sharing, no atomics).
+  class PassSums {
+   public:
+    explicit PassSums(const TechniqueCheck& check) : check_(&check), a_(check.passValues(), 0.0) {}
+    // A contributed technique result: its unweighted contribution's luminance, where it lands and
+    // the techniques able to sample the same path (TechniqueResult::sampleableBy).
+    void add(Technique x, Vec2 pRaster, float luminance, uint64_t sampleableBy);
+    void clear() { std::fill(a_.begin(), a_.end(), 0.0); }
+
+   private:
+    friend class TechniqueCheck;
+    const TechniqueCheck* check_;
+    std::vector<double> a_;  // [pair of a length][block]: i's contributions on paths j can sample
+  };
+
+  // Adds one finished pass (the sum of every thread's PassSums, which are then cleared).
+  void finishPass(std::vector<PassSums*> threads);
+
+  int maxLength() const { return maxLength_; }
+  int blocks() const { return blocks_; }
+  int regions() const { return blocks_ * blocks_ + 1; }  // the blocks, row by row, then the whole image
+  static int wholeImage(int blocks) { return blocks * blocks; }
+  uint64_t passes() const { return passes_; }
+  bool enabled(Technique x) const { return x.length() <= maxLength_ && enabled_[x.index()]; }
+  // The sums of technique i's estimate against j's (same length, i != j) in a region.
+  PairSums pair(Technique i, Technique j, int region) const;
+  // The blocks grid over a width x height image: the block a position lands in, block bounds.
+  int blockOf(Vec2 pRaster) const;
+  void blockBounds(int block, int& x0, int& y0, int& x1, int& y1) const;
+
+ private:
+  TechniqueCheck(int width, int height, int maxLength, int blocks);
+  size_t pairIndex(Technique i, Technique j) const;  // over all lengths
+  size_t passValues() const { return pairCount_ * static_cast<size_t>(blocks_ * blocks_); }
+
+  int width_, height_, maxLength_, blocks_;
+  std::vector<uint8_t> enabled_;  // by Technique::index
+  std::vector<size_t> firstPair_;  // by length: the first ordered pair (s_i, s_j) of length k
+  size_t pairCount_ = 0;
+  std::vector<double> blockPixels_;
+  std::vector<double> pass_;   // scratch: the pass summed over threads
+  std::vector<PairSums> sums_;  // [pair][region]
+  uint64_t passes_ = 0;
+};
+
+}  // namespace pathlab
