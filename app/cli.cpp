@@ -52,6 +52,7 @@ void addCommands(CLI::App& app, CliOptions& o) {
   addRenderCommand(app, o.render);
   addConvergeCommand(app, o.converge);
   addViewCommand(app, o.view);
+  addCheckCommand(app, o.check);
   requireFiniteNumbers(app);
 }
 

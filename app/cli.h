@@ -2,6 +2,7 @@
 // checks every option gets whichever subcommand declares it.
 #pragma once
 
+#include "app/check_command.h"
 #include "app/converge_command.h"
 #include "app/render_command.h"
 #include "app/view_command.h"
@@ -14,6 +15,7 @@ struct CliOptions {
   RenderOptions render;
   ConvergeOptions converge;
   ViewOptions view;
+  CheckCommandOptions check;
 };
 
 // Registers every subcommand on `app`, then requireFiniteNumbers.

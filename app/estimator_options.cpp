@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <charconv>
+#include <cstdlib>
 #include <map>
 #include <stdexcept>
 
@@ -57,6 +58,9 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
   cmd->add_flag("--unweighted", o.unweighted,
                 "With --isolate: the technique's unweighted estimate of every path of its length it can sample")
       ->needs(isolate);
+  cmd->add_option("--inject-bias", o.injectBias,
+                  "S,T,FACTOR: multiply technique (S,T)'s unweighted contribution by FACTOR, a deliberate bug that "
+                  "biases the image (for teaching and for `pathlab check`)");
   cmd->add_flag("--rr,!--no-rr", s.russianRoulette, "Russian roulette from the third edge on (default on)");
   cmd->add_option("--seed", s.seed, "Seed of every random stream (samples are keyed by seed, pixel, index)");
   cmd->add_option("--aperture", s.lens.apertureRadius, "Thin-lens aperture radius in scene units (0: pinhole)")
@@ -74,7 +78,27 @@ void finishEstimatorOptions(EstimatorOptions& o) {
     o.settings.isolate = Isolation{parseInt(o.isolate.substr(0, comma), "--isolate"),
                                    parseInt(o.isolate.substr(comma + 1), "--isolate"), o.unweighted};
   }
+  if (!o.injectBias.empty()) {
+    const size_t a = o.injectBias.find(','), b = a == std::string::npos ? a : o.injectBias.find(',', a + 1);
+    if (b == std::string::npos) throw std::invalid_argument(fmt::format("--inject-bias: '{}' is not S,T,FACTOR", o.injectBias));
+    const std::string factorText = o.injectBias.substr(b + 1);
+    char* end = nullptr;
+    const double factor = std::strtod(factorText.c_str(), &end);
+    if (factorText.empty() || end != factorText.c_str() + factorText.size())
+      throw std::invalid_argument(fmt::format("--inject-bias: '{}' is not a number", factorText));
+    if (!(factor >= 0.0 && factor <= kMaxInjectedBias))
+      throw std::invalid_argument(fmt::format("--inject-bias: factor {} is outside 0..{:g}", factorText, kMaxInjectedBias));
+    o.settings.injectBias = BiasInjection{parseInt(o.injectBias.substr(0, a), "--inject-bias"),
+                                          parseInt(o.injectBias.substr(a + 1, b - a - 1), "--inject-bias"),
+                                          static_cast<float>(factor)};
+  }
   validateSettings(o.settings);
+}
+
+std::string biasInjectionWarning(const RenderSettings& s) {
+  if (!s.injectBias || s.integrator == IntegratorKind::Pt) return "";
+  return fmt::format("technique ({},{}) is multiplied by {:g} (--inject-bias): this image is deliberately wrong",
+                     s.injectBias->s, s.injectBias->t, s.injectBias->factor);
 }
 
 }  // namespace pathlab::app

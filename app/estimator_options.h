@@ -20,13 +20,16 @@ struct EstimatorOptions {
   std::string techniques = "all";  // a TechniqueSet SPEC
   std::string isolate;      // "S,T" or empty
   bool unweighted = false;  // with --isolate
+  std::string injectBias;   // "S,T,FACTOR" or empty
 };
 
 // Registers --max-length --integrator --mis --connect --beta --min-connection --techniques --isolate --unweighted --rr/--no-rr
-// --seed --aperture --focus-distance on `cmd`.
+// --seed --aperture --focus-distance --inject-bias on `cmd`.
 void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& options);
 // Turns the parsed strings into settings.techniques and settings.isolate and checks the result with validateSettings
 // (throws one-line std::invalid_argument / std::runtime_error messages naming the option).
 void finishEstimatorOptions(EstimatorOptions& options);
+// The one-line warning of --inject-bias for these settings, "" without one.
+std::string biasInjectionWarning(const RenderSettings& settings);
 
 }  // namespace pathlab::app

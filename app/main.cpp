@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return pathlab::app::runRender(options.render);
     if (app.got_subcommand("converge")) return pathlab::app::runConverge(options.converge);
     if (app.got_subcommand("view")) return pathlab::app::runView(options.view);
+    if (app.got_subcommand("check")) return pathlab::app::runCheck(options.check);
   } catch (const std::exception& e) {
     std::cerr << "pathlab: " << e.what() << "\n";
     return 1;

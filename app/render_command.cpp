@@ -167,6 +167,7 @@ int runRender(RenderOptions o) {
   Scene scene(loadGltf(o.scene, o.load));
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
   if (const std::string w = misOffWarning(scene, settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";
+  if (const std::string w = biasInjectionWarning(settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
   std::cerr << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene,
                            scene.triangleCount(), scene.lights().size(), double(scene.geometryBytes()) / 1e6,

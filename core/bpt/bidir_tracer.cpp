@@ -15,6 +15,7 @@ struct BidirTracer::Walks {
   LightSubpath light;
   SubpathMisSums cameraSums, lightSums;  // MisEvaluation::PartialSums only
   Connection connection;                 // scratch reused by every technique
+  std::vector<double> densityRatios;     // TechniqueResult::densityRatios, when an output wants them
 };
 
 const char* connectStrategyName(ConnectStrategy c) { return c == ConnectStrategy::Endpoints ? "endpoints" : "all"; }
@@ -110,7 +111,12 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   r.unweighted = c.L;
   if (options_.injectBias && options_.injectBias->s == s && options_.injectBias->t == t)
     r.unweighted *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
-  if (outputs.wantsSampleable()) r.sampleableBy = sampleableTechniques(path);
+  if (outputs.wantsSampleable()) {
+    r.sampleableBy = sampleableTechniques(path);
+    walks.densityRatios.resize(static_cast<size_t>(s + t));
+    techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
+    r.densityRatios = walks.densityRatios.data();
+  }
   if (t == 1) r.pRaster = c.pRaster;
 }
 

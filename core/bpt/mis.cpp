@@ -186,6 +186,25 @@ uint64_t sampleableTechniques(const MisPath& path) {
   return bits;
 }
 
+void techniqueDensityRatios(const Scene& scene, const Camera& camera, const MisPath& path, double* ratios) {
+  thread_local PathDensities d;
+  pathDensities(scene, camera, path, d);
+  const int s = path.s, n = d.n;
+  ratios[s] = 1.0;
+  double r = 1.0;
+  for (int sp = s + 1; sp < n; ++sp) {
+    const size_t i = static_cast<size_t>(sp - 1);
+    r *= remap0(d.pFromLight[i]) / remap0(d.pFromCamera[i]);
+    ratios[sp] = r;
+  }
+  r = 1.0;
+  for (int sp = s - 1; sp >= 0; --sp) {
+    const size_t i = static_cast<size_t>(sp);
+    r *= remap0(d.pFromCamera[i]) / remap0(d.pFromLight[i]);
+    ratios[sp] = r;
+  }
+}
+
 UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance)
     : d_(d), techniques_(techniques) {
   const float min2 = minConnectionDistance * minConnectionDistance;

@@ -116,6 +116,14 @@ inline bool techniquePossible(const PathDensities& d, int sp) {
 inline constexpr int kSampleableBits = 64;
 uint64_t sampleableTechniques(const MisPath& path);
 
+// ratios[s'] = p_{s'}(x) / p_s(x) for every s' in 0..n-1 of this path (n = s + t; ratios must
+// hold n values): the densities with which each technique of the path's length would sample it,
+// relative to the technique (s, t) that did (Veach 1997 eq. 10.10, walked outward from s as in
+// misWeight; delta densities cancel as there). Meaningful where the technique can sample the path
+// (sampleableTechniques); the consistency check uses them to estimate, from one technique's
+// samples, the second moment of another's estimator (E_j[(f/p_j)^2 p_j/p_i] = E_i[(f/p_i)^2]).
+void techniqueDensityRatios(const Scene& scene, const Camera& camera, const MisPath& path, double* ratios);
+
 // The techniques misWeight weighs for a path: those enabled and possible, less those whose
 // connection edge is shorter than minConnectionDistance when an enabled possible technique with a
 // longer (or no) connection edge remains (MisOptions::minConnection). The set depends on the

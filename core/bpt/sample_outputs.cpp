@@ -27,7 +27,7 @@ void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
   }
   if (targets_.trace) targets_.trace->records.push_back(r);
   // The check compares every enabled technique's unweighted estimate, whatever its weight.
-  if (targets_.check) targets_.check->add(Technique{r.s, r.t}, r.pRaster, luminance(r.unweighted), r.sampleableBy);
+  if (targets_.check) targets_.check->add(Technique{r.s, r.t}, r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
   if (r.inPyramid && targets_.pyramid) targets_.pyramid->add(r.s, r.t, r.pRaster, r.unweighted * r.weight, r.unweighted);
   if (!r.inImage) return;
   const Spectrum contribution = r.unweighted * r.imageWeight;

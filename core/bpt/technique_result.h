@@ -29,6 +29,9 @@ struct TechniqueResult {
   // Contributed results, when an output asks (SampleOutputs::wantsSampleable): bit s' set when
   // technique (s', s + t - s') could have sampled this same path (sampleableTechniques, mis.h).
   uint64_t sampleableBy = 0;
+  // With sampleableBy: p_{s'} / p_s of this path for s' = 0..s+t-1 (techniqueDensityRatios, mis.h),
+  // in the kernel's scratch; valid only while the outputs consume the result.
+  const double* densityRatios = nullptr;
   bool blocked() const { return outcome == TechniqueOutcome::Blocked; }
 };
 

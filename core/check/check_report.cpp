@@ -36,9 +36,19 @@ PairComparison comparePair(const TechniqueCheck& check, Technique i, Technique j
     return c;
   const double nd = static_cast<double>(n);
   const double mean = p.sumD / nd;
-  const double variance = std::max(0.0, (p.sumD2 - nd * mean * mean) / (nd - 1.0));
+  const double sampleVariance = std::max(0.0, (p.sumD2 - nd * mean * mean) / (nd - 1.0));
+  // The per-pass variance of a restricted estimate from its estimator's second moment, the larger
+  // of its own samples' and the partner's reweighted ones (PairSums): Var = E[sum X^2] / N^2 -
+  // E[a]^2 / samples. The standard error uses the larger of that model (a and b taken as
+  // uncorrelated) and the plain sample variance of d: a technique that has not yet met its rare,
+  // large values does not look certain.
+  auto modelVariance = [&](double own2, double cross2, double sum, double samples) {
+    const double m = sum / nd;
+    return std::max(0.0, std::max(own2, cross2) / nd - m * m / std::max(samples, 1.0));
+  };
+  const double model = modelVariance(p.ownA2, p.crossA2, p.sumA, p.samplesA) + modelVariance(p.ownB2, p.crossB2, p.sumB, p.samplesB);
   c.difference = mean;
-  c.standardError = std::sqrt(variance / nd);
+  c.standardError = std::sqrt(std::max(sampleVariance, model) / nd);
   c.partnerMean = p.sumB / nd;
   if (!(c.standardError > 0.0)) return c;
   c.z = mean / c.standardError;

@@ -46,16 +46,23 @@ void TechniqueCheck::blockBounds(int block, int& x0, int& y0, int& x1, int& y1) 
   y0 = edge(by, height_), y1 = edge(by + 1, height_);
 }
 
-void TechniqueCheck::PassSums::add(Technique x, Vec2 pRaster, float luminance, uint64_t sampleableBy) {
+void TechniqueCheck::PassSums::add(Technique x, Vec2 pRaster, float luminance, uint64_t sampleableBy,
+                                   const double* densityRatios) {
   const TechniqueCheck& c = *check_;
   if (!c.enabled(x) || !(luminance != 0.f)) return;
   const int k = x.length();
   const size_t block = static_cast<size_t>(c.blockOf(pRaster));
   const size_t blocks = static_cast<size_t>(c.blocks_ * c.blocks_);
+  const double v = luminance, v2 = v * v;
   for (int sp = 0; sp <= k; ++sp) {
     const Technique partner{sp, k + 1 - sp};
     if (sp == x.s || !((sampleableBy >> sp) & 1u) || !c.enabled(partner)) continue;
-    a_[c.pairIndex(x, partner) * blocks + block] += luminance;
+    double* a = &a_[3 * (c.pairIndex(x, partner) * blocks + block)];
+    a[0] += v;
+    a[1] += v2;
+    // p_i / p_j = 1 / (p_j / p_i); a partner able to sample the path has p_j > 0.
+    const double ratio = densityRatios ? densityRatios[sp] : 0.0;
+    if (ratio > 0.0 && std::isfinite(ratio)) a[2] += v2 / ratio;
   }
 }
 
@@ -67,12 +74,28 @@ void TechniqueCheck::finishPass(std::vector<PassSums*> threads) {
   }
   const int blocks = blocks_ * blocks_, whole = wholeImage(blocks_);
   const double pixels = static_cast<double>(width_) * static_cast<double>(height_);
-  auto accumulate = [](PairSums& p, double a, double b) {
-    p.sumA += a, p.sumB += b;
-    const double d = a - b;
+  struct Values {
+    double sum = 0.0, own2 = 0.0, cross2 = 0.0;  // of one ordered pair in one region
+    Values& operator+=(const Values& o) {
+      sum += o.sum, own2 += o.own2, cross2 += o.cross2;
+      return *this;
+    }
+  };
+  // a: i restricted to j (its own second moment, and j's estimated from i's samples); b: j to i.
+  auto accumulate = [&](PairSums& p, const Values& a, const Values& b, double n, Technique i, Technique j) {
+    const double ma = a.sum / n, mb = b.sum / n;
+    p.sumA += ma, p.sumB += mb;
+    const double d = ma - mb;
     p.sumD += d, p.sumD2 += d * d;
-    p.nonzeroA += a != 0.0 ? 1 : 0;
-    p.nonzeroB += b != 0.0 ? 1 : 0;
+    p.nonzeroA += ma != 0.0 ? 1 : 0;
+    p.nonzeroB += mb != 0.0 ? 1 : 0;
+    p.ownA2 += a.own2 / (n * n), p.crossA2 += b.cross2 / (n * n);
+    p.ownB2 += b.own2 / (n * n), p.crossB2 += a.cross2 / (n * n);
+    // A camera-side technique has one sample per pixel of the region, light tracing one light
+    // subpath per pixel of the image, wherever it lands.
+    p.samplesA = i.t == 1 ? pixels : n;
+    p.samplesB = j.t == 1 ? pixels : n;
+    p.pixels = n;
   };
   for (int k = 1; k <= maxLength_; ++k)
     for (int si = 0; si <= k; ++si)
@@ -80,15 +103,16 @@ void TechniqueCheck::finishPass(std::vector<PassSums*> threads) {
         const Technique i{si, k + 1 - si}, j{sj, k + 1 - sj};
         if (!enabled(i) || !enabled(j)) continue;
         const size_t ij = pairIndex(i, j), ji = pairIndex(j, i);
-        double totalA = 0.0, totalB = 0.0;
+        Values totalA, totalB;
         for (int b = 0; b < blocks; ++b) {
-          const double a = pass_[ij * static_cast<size_t>(blocks) + static_cast<size_t>(b)];
-          const double bb = pass_[ji * static_cast<size_t>(blocks) + static_cast<size_t>(b)];
+          const double* pa = &pass_[3 * (ij * static_cast<size_t>(blocks) + static_cast<size_t>(b))];
+          const double* pb = &pass_[3 * (ji * static_cast<size_t>(blocks) + static_cast<size_t>(b))];
+          const Values a{pa[0], pa[1], pa[2]}, bb{pb[0], pb[1], pb[2]};
           totalA += a, totalB += bb;
           const double n = blockPixels_[static_cast<size_t>(b)];
-          if (n > 0.0) accumulate(sums_[ij * static_cast<size_t>(regions()) + static_cast<size_t>(b)], a / n, bb / n);
+          if (n > 0.0) accumulate(sums_[ij * static_cast<size_t>(regions()) + static_cast<size_t>(b)], a, bb, n, i, j);
         }
-        accumulate(sums_[ij * static_cast<size_t>(regions()) + static_cast<size_t>(whole)], totalA / pixels, totalB / pixels);
+        accumulate(sums_[ij * static_cast<size_t>(regions()) + static_cast<size_t>(whole)], totalA, totalB, pixels, i, j);
       }
   ++passes_;
 }
@@ -97,7 +121,8 @@ PairSums TechniqueCheck::pair(Technique i, Technique j, int region) const {
   // Stored once per unordered pair, under (lower s, higher s); the other order is its mirror.
   if (i.s < j.s) return sums_[pairIndex(i, j) * static_cast<size_t>(regions()) + static_cast<size_t>(region)];
   const PairSums& p = sums_[pairIndex(j, i) * static_cast<size_t>(regions()) + static_cast<size_t>(region)];
-  return PairSums{p.sumB, p.sumA, -p.sumD, p.sumD2, p.nonzeroB, p.nonzeroA};
+  return PairSums{p.sumB,  p.sumA,    -p.sumD,  p.sumD2,    p.nonzeroB, p.nonzeroA, p.ownB2,
+                  p.crossB2, p.ownA2, p.crossA2, p.samplesB, p.samplesA, p.pixels};
 }
 
 }  // namespace pathlab

@@ -26,10 +26,22 @@ namespace pathlab {
 
 // Running sums over the passes of one pair (i, j) in one region, with a = i's estimate restricted
 // to the paths j can sample and b = j's restricted to i's (each the region's mean per pixel).
+//
+// Second moments, for a variance that does not rely on one technique having seen its rare paths:
+// a's per-pass variance is sum_s Var(X_s) / N^2 over the samples s of the pass (N the region's
+// pixels), and E[X^2] of i's estimator can be measured on i's own samples (ownA2) or, by
+// importance reweighting, on j's: E_j[(f/p_j)^2 p_j/p_i] = integral f^2/p_i = E_i[(f/p_i)^2]
+// (crossA2). Where i rarely finds a path j finds easily (a camera path hitting a tiny light that
+// light tracing starts from), i's own samples miss the huge values its estimator can take, while
+// j's samples weighted by p_j/p_i reveal them.
 struct PairSums {
   double sumA = 0.0, sumB = 0.0;
   double sumD = 0.0, sumD2 = 0.0;        // d = a - b
   uint64_t nonzeroA = 0, nonzeroB = 0;  // passes in which a (b) was not zero
+  double ownA2 = 0.0, crossA2 = 0.0;    // sums over passes of sum_s X_s^2 / N^2 for a's estimator
+  double ownB2 = 0.0, crossB2 = 0.0;    // the same for b's
+  double samplesA = 0.0, samplesB = 0.0;  // samples per pass behind a (b): N, or every light subpath for t = 1
+  double pixels = 0.0;                    // N
 };
 
 class TechniqueCheck {
@@ -48,13 +60,16 @@ class TechniqueCheck {
     explicit PassSums(const TechniqueCheck& check) : check_(&check), a_(check.passValues(), 0.0) {}
     // A contributed technique result: its unweighted contribution's luminance, where it lands and
     // the techniques able to sample the same path (TechniqueResult::sampleableBy).
-    void add(Technique x, Vec2 pRaster, float luminance, uint64_t sampleableBy);
+    // densityRatios[s'] = p_{s'} / p_s of the path (TechniqueResult::densityRatios).
+    void add(Technique x, Vec2 pRaster, float luminance, uint64_t sampleableBy, const double* densityRatios);
     void clear() { std::fill(a_.begin(), a_.end(), 0.0); }
 
    private:
     friend class TechniqueCheck;
     const TechniqueCheck* check_;
-    std::vector<double> a_;  // [pair of a length][block]: i's contributions on paths j can sample
+    // [pair of a length][block][3]: over i's contributions c on paths j can sample, sum c,
+    // sum c^2 and sum c^2 p_i / p_j (the estimate of j's second moment).
+    std::vector<double> a_;
   };
 
   // Adds one finished pass (the sum of every thread's PassSums, which are then cleared).
@@ -75,7 +90,7 @@ class TechniqueCheck {
  private:
   TechniqueCheck(int width, int height, int maxLength, int blocks);
   size_t pairIndex(Technique i, Technique j) const;  // over all lengths
-  size_t passValues() const { return pairCount_ * static_cast<size_t>(blocks_ * blocks_); }
+  size_t passValues() const { return 3 * pairCount_ * static_cast<size_t>(blocks_ * blocks_); }
 
   int width_, height_, maxLength_, blocks_;
   std::vector<uint8_t> enabled_;  // by Technique::index

@@ -22,7 +22,7 @@ if [ "$which" = address ] || [ "$which" = all ]; then
   configure build-asan address
   cmake --build build-asan -j "$jobs" --target pathlab pathlab_tests pathlab_viewer_tests pathlab_cli_tests
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-  slow='bench_smoke|converge_cli|BundledAgreement|TechniqueAgreement|DeltaAgreement|Extremes|ScaleInvariance|ChiSquare'
+  slow='bench_smoke|converge_cli|TechniqueCheckRender|BundledAgreement|TechniqueAgreement|DeltaAgreement|Extremes|ScaleInvariance|ChiSquare'
   ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-asan --output-on-failure -j "$jobs" -E "$slow|^viewer[.]"
   # Mesa's driver is unloaded before exit, leaving a few allocations LeakSanitizer can only
   # attribute to an "<unknown module>": the viewer runs with leak checking off, the rest of

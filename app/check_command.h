@@ -1,0 +1,33 @@
+// `pathlab check`: the consistency check of the bidirectional techniques (issue 13, part 4).
+#pragma once
+
+#include "app/estimator_options.h"
+#include "core/check/check_report.h"
+#include "core/scene/gltf_loader.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace pathlab::app {
+
+struct CheckCommandOptions {
+  std::string scene;
+  EstimatorOptions estimator = [] {
+    EstimatorOptions e;
+    e.settings.width = e.settings.height = 128;  // the check needs passes, not pixels
+    e.settings.checkTechniques = true;
+    return e;
+  }();
+  int spp = 0;           // 0: use the time limit
+  double seconds = 0.0;  // 0 with spp 0: the default time
+  int threads = 0;
+  CheckOptions check;
+  LoadOptions load;
+};
+
+void addCheckCommand(CLI::App& app, CheckCommandOptions& options);
+// Exit code 0 when every compared technique agrees, 1 when one disagrees (errors: exceptions).
+int runCheck(CheckCommandOptions options);
+
+}  // namespace pathlab::app
