@@ -4,7 +4,11 @@
 #include "app/output_check.h"
 #include "ui/run_viewer.h"
 
+#include <fmt/core.h>
 #include <tbb/global_control.h>
+
+#include <cstdio>
+#include <stdexcept>
 
 #include <filesystem>
 #include <thread>
@@ -57,6 +61,9 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--error-csv", v.errorCsv, "On exit, write every error series to this CSV (needs a reference)");
   cmd->add_flag("--convergence", v.convergencePanel, "Open the convergence panel (error plot, technique rays and time)");
   cmd->add_flag("--error-view", v.errorView, "Start in the false-colour error view (needs --reference)");
+  cmd->add_flag("--check", o.estimator.settings.checkTechniques,
+                "Run the consistency check of the techniques (cells of those that disagree turn red)");
+  cmd->add_option("--z-map", o.zMap, "S,T: with --check, draw technique (S,T)'s |z| per block over the image");
   cmd->add_flag("-f,--force", v.force, "Overwrite the screenshot (and the error CSV) if it exists");
 }
 
@@ -64,6 +71,16 @@ int runView(ViewOptions o) {
   finishEstimatorOptions(o.estimator);
   if (o.viewer.headless && o.viewer.frames == 0) o.viewer.frames = 60;
   o.viewer.settings = o.estimator.settings;
+  if (!o.zMap.empty()) {
+    int s = -1, t = -1;
+    char extra = 0;
+    if (std::sscanf(o.zMap.c_str(), "%d,%d%c", &s, &t, &extra) != 2 || !Technique{s, t}.valid() ||
+        Technique{s, t}.length() > o.estimator.settings.maxLength)
+      throw std::invalid_argument(fmt::format("--z-map: '{}' is not a technique S,T of length 1..{}", o.zMap,
+                                              o.estimator.settings.maxLength));
+    if (!o.estimator.settings.checkTechniques) throw std::invalid_argument("--z-map needs --check");
+    o.viewer.zMap = Technique{s, t};
+  }
   // Before the viewer loads the scene; it checks the extension and --force itself.
   if (!o.viewer.screenshot.empty()) checkOutputWritable(o.viewer.screenshot);
   if (!o.viewer.errorCsv.empty()) checkOutputWritable(o.viewer.errorCsv);

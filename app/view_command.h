@@ -11,6 +11,7 @@ namespace pathlab::app {
 struct ViewOptions {
   EstimatorOptions estimator;
   ui::ViewerOptions viewer;
+  std::string zMap;  // --z-map S,T
 };
 
 void addViewCommand(CLI::App& app, ViewOptions& options);

@@ -48,8 +48,11 @@ RenderSettings renderSettings(const EstimatorState& state) {
   if (s.integrator == IntegratorKind::Pt) {
     s.isolate.reset();
     s.pyramidLength = 0;
+    s.checkTechniques = false;
+    s.injectBias.reset();
   } else if (state.mode != EstimatorMode::Combine) {
     s.isolate = Isolation{state.isolated.s, state.isolated.t, state.mode == EstimatorMode::IsolateUnweighted};
+    s.checkTechniques = false;  // it compares the enabled techniques, which isolation does not run
   }
   return s;
 }
@@ -103,6 +106,8 @@ std::string describe(const RenderSettings& s) {
     out += fmt::format(", MIS {}", misHeuristicName(s.mis.heuristic));
   if (s.mis.minConnection != kDefaultMinConnection) out += fmt::format(", min connection {:g}", s.mis.minConnection);
   if (s.connect != ConnectStrategy::All) out += fmt::format(", connect {}", connectStrategyName(s.connect));
+  if (s.injectBias)
+    out += fmt::format(", BIAS INJECTED: ({},{}) x {:g}", s.injectBias->s, s.injectBias->t, s.injectBias->factor);
   return out;
 }
 
@@ -111,6 +116,11 @@ const std::string& estimatorWarning(EstimatorWarning& cache, const Scene* scene,
     cache.scene = scene;
     cache.settings = settings;
     cache.text = scene ? misOffWarning(*scene, settings) : std::string();
+    if (settings.injectBias && settings.integrator != IntegratorKind::Pt) {
+      if (!cache.text.empty()) cache.text += "\n";
+      cache.text += fmt::format("technique ({},{}) is multiplied by {:g} (inject bias): this image is deliberately wrong",
+                                settings.injectBias->s, settings.injectBias->t, settings.injectBias->factor);
+    }
   }
   return cache.text;
 }

@@ -28,7 +28,8 @@ struct EstimatorState {
 };
 
 // The settings the renderer gets: with the isolation of the mode; the path tracer has no
-// isolation and no pyramid, so they are dropped (the state keeps them for when bpt comes back).
+// isolation, no pyramid, no check and no injected bias, so they are dropped (the state keeps them
+// for when bpt comes back); the consistency check runs only while combining.
 RenderSettings renderSettings(const EstimatorState& state);
 
 // A new maximum length: the technique set is kept ("all", "s=0;s=1" grow with it) less the listed

@@ -31,7 +31,25 @@ std::string techniqueTooltip(int s, int t) {
 }
 
 // The grid: one checkbox per (s,t), rows by length, columns by s; its presets and the SPEC field.
-void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, const Counters& counters) {
+const TechniqueVerdict* verdictOf(const CheckReport* check, Technique x) {
+  if (!check) return nullptr;
+  for (const TechniqueVerdict& v : check->techniques)
+    if (v.technique == x) return &v;
+  return nullptr;
+}
+
+std::string verdictText(const TechniqueVerdict& v, int blocks) {
+  if (v.status != CheckStatus::Agrees && v.status != CheckStatus::Disagrees)
+    return fmt::format("check: {}", checkStatusName(v.status));
+  const std::string region = v.worstRegion == TechniqueCheck::wholeImage(blocks)
+                                 ? std::string("the whole image")
+                                 : fmt::format("block ({},{})", v.worstRegion % blocks, v.worstRegion / blocks);
+  return fmt::format("check: {} (z = {:+.2f} against ({},{}) in {}, whole image z = {:+.2f})", checkStatusName(v.status),
+                     v.z, v.worst.partner.s, v.worst.partner.t, region, v.wholeImageZ);
+}
+
+void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, const Counters& counters,
+                       const CheckReport* check) {
   RenderSettings& edited = estimator.settings;
   const TechniqueSet& set = edited.techniques;
   const bool isolating = estimator.mode != EstimatorMode::Combine;
@@ -89,6 +107,9 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
         ImGui::PushID(k * 100 + s);
         const bool isolated = isolating && estimator.isolated == Technique{s, t};
         if (isolated) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(230, 160, 40, 200));
+        const TechniqueVerdict* verdict = verdictOf(check, {s, t});
+        if (verdict && verdict->status == CheckStatus::Disagrees)
+          ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(220, 40, 40, 230));
         ImGui::BeginDisabled(lightTracing && t != 1);
         bool on = set.contains(s, t);
         if (ImGui::Checkbox("##t", &on)) {
@@ -103,10 +124,11 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
           const TechniqueCounters& c = counters.technique(s, t);
-          ImGui::SetTooltip("%s\nthis generation: %llu connections tried, %llu blocked, %llu contributed, %llu discarded",
+          ImGui::SetTooltip("%s\nthis generation: %llu connections tried, %llu blocked, %llu contributed, %llu discarded%s",
                             techniqueTooltip(s, t).c_str(), static_cast<unsigned long long>(c.tried),
                             static_cast<unsigned long long>(c.blocked), static_cast<unsigned long long>(c.contributed),
-                            static_cast<unsigned long long>(c.discarded.total()));
+                            static_cast<unsigned long long>(c.discarded.total()),
+                            verdict ? ("\n" + verdictText(*verdict, check->blocks)).c_str() : "");
         }
         ImGui::PopID();
       }
@@ -153,8 +175,63 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
 
 }  // namespace
 
+// The consistency check (issue 13, part 4): on/off, its verdict, the |z| map's technique, and a
+// deliberately wrong technique (inject bias) to see what the check and the image make of one.
+void drawCheckControls(EstimatorState& estimator, TechniqueGridState& grid, const CheckReport* check) {
+  RenderSettings& edited = estimator.settings;
+  const bool combining = estimator.mode == EstimatorMode::Combine;
+  ImGui::BeginDisabled(!combining);
+  ImGui::Checkbox("check techniques", &edited.checkTechniques);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("compare every enabled technique's unweighted estimate with the others' on the paths both can\n"
+                      "sample (per %d x %d blocks and the whole image); a technique that disagrees turns red.\n"
+                      "Runs while combining (isolation renders one technique only); `pathlab check` on the CLI.",
+                      edited.checkBlocks, edited.checkBlocks);
+  if (edited.checkTechniques && combining) {
+    ImGui::SameLine();
+    if (!check) {
+      ImGui::TextDisabled("(waiting for passes)");
+    } else if (check->agrees()) {
+      ImGui::TextColored(ImVec4(0.4f, 0.9f, 0.4f, 1.f), "all agree (%llu passes)", static_cast<unsigned long long>(check->passes));
+    } else {
+      ImGui::TextColored(kError, "%d disagree", check->disagreeing());
+    }
+    std::string current = grid.zMap ? fmt::format("({},{})", grid.zMap->s, grid.zMap->t) : std::string("off");
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
+    if (ImGui::BeginCombo("|z| map", current.c_str())) {
+      if (ImGui::Selectable("off", !grid.zMap)) grid.zMap.reset();
+      if (check)
+        for (const TechniqueVerdict& v : check->techniques) {
+          const std::string label = fmt::format("({},{}){}", v.technique.s, v.technique.t,
+                                                v.status == CheckStatus::Disagrees ? "  disagrees" : "");
+          if (ImGui::Selectable(label.c_str(), grid.zMap == v.technique)) grid.zMap = v.technique;
+        }
+      ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("draw the technique's |z| per block over the image");
+  }
+  bool inject = edited.injectBias.has_value();
+  if (ImGui::Checkbox("inject bias", &inject))
+    edited.injectBias = inject ? std::optional<BiasInjection>(BiasInjection{1, 2, 1.05f}) : std::nullopt;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("multiply one technique's unweighted contribution by a factor: a deliberate bug that biases\n"
+                      "the image (named in the caption and the status) and that the check should find");
+  if (edited.injectBias) {
+    BiasInjection& b = *edited.injectBias;
+    int st[2] = {b.s, b.t};
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.35f);
+    if (ImGui::InputInt2("(s,t)##bias", st) && Technique{st[0], st[1]}.valid() &&
+        Technique{st[0], st[1]}.length() <= edited.maxLength)
+      b.s = st[0], b.t = st[1];
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
+    ImGui::SliderFloat("factor##bias", &b.factor, 0.f, 2.f, "%.3f");
+  }
+}
+
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
-                          const Counters& counters) {
+                          const Counters& counters, const CheckReport* check) {
   RenderSettings& edited = estimator.settings;
   ImGui::PushID("estimator");
   // Integrator
@@ -223,7 +300,8 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   }
 
   ImGui::Separator();
-  drawTechniqueGrid(estimator, grid, counters);
+  drawTechniqueGrid(estimator, grid, counters, check);
+  drawCheckControls(estimator, grid, check);
   ImGui::EndDisabled();
   if (!bidirectional) ImGui::TextDisabled("the path tracer ignores the technique set");
 

@@ -37,8 +37,10 @@ void drawStatusSection(const RenderSnapshot& snapshot, const std::string& warnin
                        PanelRequests& requests);
 // Integrator, maximum length, MIS, the combine / isolate mode and the technique grid; `counters`
 // (of the shown image) for the cells' tooltips.
+// `check`: the consistency check of the shown image (null when off): cells of techniques that
+// disagree turn red, with the z-score in their tooltip.
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
-                          const Counters& counters);
+                          const Counters& counters, const CheckReport* check);
 void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
 void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
 void drawPresetSection(const PresetState& presets, PanelRequests& requests);
@@ -70,6 +72,7 @@ struct ImageOverlay {
   std::string errorViewProblem;    // why the error view is not shown although asked for ("" otherwise)
   bool idleForNoTechnique = false, paused = false;
   float uiScale = 1.f;
+  std::optional<Technique> zMap;  // the check's |z| per block over the image, for this technique
 };
 void drawImageOverlay(const ImageOverlay& overlay);
 // The error view's colour bar with its scale, in the side panel (panel_reference.cpp).

@@ -57,6 +57,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
   display_.exposure = options.exposure;
   display_.errorView = options.errorView;
   ui_.showUi = !options.hideUi;
+  grid_.zMap = options.zMap;
   if (options.pyramidLength > 0) {
     pyramid_.show = true;
     pyramid_.length = options.pyramidLength;
@@ -126,7 +127,8 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   drawImageOverlay(ImageOverlay{
       ImVec2(static_cast<float>(imageOrigin_.x) / fbScale, static_cast<float>(imageOrigin_.y) / fbScale),
       ImVec2(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale), &snapshot_,
-      renderSettings(estimator_), shownDisplay(), errorViewProblem(), run_.idleForNoTechnique, run_.userPaused, scale});
+      renderSettings(estimator_), shownDisplay(), errorViewProblem(), run_.idleForNoTechnique, run_.userPaused, scale,
+      grid_.zMap});
   carryOut(requests);
 
   RenderSettings& edited = estimator_.settings;
@@ -174,7 +176,7 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
     drawStatusSection(snapshot_, estimatorWarning(warning_, scene_.scene.get(), snapshot_.settings), run_, ui_.frameMs,
                       requests);
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
-    drawEstimatorSection(estimator_, grid_, run_.settingsError, snapshot_.counters);
+    drawEstimatorSection(estimator_, grid_, run_.settingsError, snapshot_.counters, snapshot_.check.get());
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
     drawDisplaySection(display_, run_, pyramid_, snapshot_.image);
   if (ImGui::CollapsingHeader("Reference and error", convergence_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))

@@ -6,6 +6,7 @@
 #include "core/scene/gltf_loader.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace pathlab::ui {
@@ -39,6 +40,7 @@ struct ViewerOptions {
   std::string errorCsv;
   bool convergencePanel = false;  // open the convergence panel (plot and technique table)
   bool errorView = false;         // start in the false-colour error view
+  std::optional<Technique> zMap;  // the consistency check's |z| map of this technique (settings.checkTechniques)
 };
 
 }  // namespace pathlab::ui

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,8 @@ struct RunState {
 struct TechniqueGridState {
   int oneLength = 2;      // the "one length only" preset's length (clamped to the maximum where used)
   std::string specError;  // a SPEC typed in the field that does not parse
+  // The consistency check's |z| per block drawn over the image for this technique (none: off).
+  std::optional<Technique> zMap;
 };
 
 // The scene shown, the one loading, the files offered, and the camera moved over it.

@@ -81,7 +81,8 @@ void ProgressiveRenderer::State::run() {
     return finished;
   };
 
-  auto publish = [&](Image image, bool preview, int factor, const Counters& counters, uint64_t spp) {
+  auto publish = [&](Image image, bool preview, int factor, const Counters& counters, uint64_t spp,
+                     std::shared_ptr<const CheckReport> check) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     std::lock_guard lock(mutex);
     if (generation != gen) return;  // superseded while finishing: never shown
@@ -95,6 +96,7 @@ void ProgressiveRenderer::State::run() {
     front.renderSeconds = renderSeconds;
     front.counters = counters;
     front.settings = set;
+    front.check = std::move(check);
     published.notify_all();
   };
 
@@ -131,7 +133,7 @@ void ProgressiveRenderer::State::run() {
       RenderSession preview(*sc, previewSettings(set, factor));
       if (!runPass(preview)) continue;
       previewCounters += preview.counters();
-      publish(preview.image(), true, factor, previewCounters, 0);
+      publish(preview.image(), true, factor, previewCounters, 0, nullptr);
       continue;
     }
 
@@ -141,7 +143,9 @@ void ProgressiveRenderer::State::run() {
     counters += session->counters();
     Image image = session->image();
     if (observe && *observe) (*observe)(PassInfo{gen, set, sc.get(), session->passes(), renderSeconds}, image);
-    publish(std::move(image), false, 1, counters, session->passes());
+    std::shared_ptr<const CheckReport> check;
+    if (const TechniqueCheck* c = session->techniqueCheck()) check = std::make_shared<const CheckReport>(checkReport(*c));
+    publish(std::move(image), false, 1, counters, session->passes(), std::move(check));
 
     if (session->hasPyramid()) {
       {

@@ -8,6 +8,7 @@
 // within a few tens of milliseconds; full-resolution passes then accumulate.
 #pragma once
 
+#include "core/check/check_report.h"
 #include "core/film/downsample.h"
 #include "core/film/film.h"
 #include "core/metrics/counters.h"
@@ -33,6 +34,8 @@ struct RenderSnapshot {
   double renderSeconds = 0.0;     // time spent in its passes (previews included): pauses excluded
   Counters counters;              // of this generation (full passes and previews)
   RenderSettings settings;        // the settings this image was rendered with
+  // The consistency check over this generation's full passes (settings.checkTechniques), else null.
+  std::shared_ptr<const CheckReport> check;
 };
 
 // What the pass observer sees after every full-resolution pass, on the render thread.
