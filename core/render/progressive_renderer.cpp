@@ -27,6 +27,7 @@ RenderSettings previewSettings(const RenderSettings& full, int factor) {
   p.width = (full.width + factor - 1) / factor;
   p.height = (full.height + factor - 1) / factor;
   p.pyramidLength = 0;
+  p.techniqueMaps = false;
   return p;
 }
 
