@@ -5,7 +5,7 @@
 #include "core/film/image_io.h"
 #include "core/maps/map_colours.h"
 #include "core/maps/map_legend.h"
-#include "core/maps/technique_luminance.h"
+#include "core/render/technique_luminance.h"
 
 #include <fmt/core.h>
 

@@ -1,7 +1,7 @@
 // The technique maps (issue 13 part 3): "cannot sample" agrees with closed-form delta reasoning
 // (Veach 1997, sec. 10.3.5), the dominant technique is the one the delta structure leaves, the
 // shares add up to one over the rendered image, and the map functions mark ties and empty pixels.
-#include "core/maps/technique_luminance.h"
+#include "core/render/technique_luminance.h"
 #include "core/maps/technique_maps.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"

@@ -1,5 +1,5 @@
 // TechniqueLuminance from a RenderSession.
-#include "core/maps/technique_luminance.h"
+#include "core/render/technique_luminance.h"
 
 namespace pathlab {
 
