@@ -59,8 +59,7 @@ Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap, floa
   return m;
 }
 
-void writePyramid(const std::string& output, const RenderSession& session, float exposure) {
-  const int length = session.settings().pyramidLength;
+void writePyramid(const std::string& output, const RenderSession& session, float exposure, int length) {
   const std::filesystem::path out(output);
   for (bool unweighted : {false, true}) {
     std::vector<Image> tiles;

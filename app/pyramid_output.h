@@ -12,7 +12,8 @@ namespace pathlab::app {
 // Every file a pyramid of length L writes next to `output` (OUT.ext -> OUT-s0-t2.ext,
 // OUT-s0-t2-unweighted.ext, ..., OUT-pyramid.png, OUT-pyramid-unweighted.png).
 std::vector<std::string> pyramidPaths(const std::string& output, int length);
-void writePyramid(const std::string& output, const RenderSession& session, float exposure);
+// Techniques up to `length` (at most the session's pyramid length).
+void writePyramid(const std::string& output, const RenderSession& session, float exposure, int length);
 
 // Tiles of one mosaic, row-major in (k, s) order, with a gap of `gap` pixels of value `background`.
 Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap = 4, float background = 0.02f);

@@ -5,6 +5,7 @@
 #include "app/output_check.h"
 #include "app/progress.h"
 #include "app/pyramid_output.h"
+#include "app/technique_maps_output.h"
 #include "core/film/image_io.h"
 #include "core/metrics/technique_table.h"
 #include "core/render/render_session.h"
@@ -127,6 +128,10 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "Also write every technique (s,t) up to this length, weighted and unweighted, and two mosaics "
                   "(rows: length, columns: s) next to the output")
       ->check(CLI::Range(1, kMaxPyramidLength));
+  cmd->add_option("--technique-maps", o.techniqueMaps,
+                  "Also write the technique maps up to this length next to the output: the dominant technique, "
+                  "each technique's share of the image and where each cannot sample (EXR and PNG)")
+      ->check(CLI::Range(1, kMaxPyramidLength));
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
@@ -140,6 +145,19 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
 
 int runRender(RenderOptions o) {
   finishEstimatorOptions(o.estimator);
+  // The maps read the pyramid's films (and their sampleable parts); --pyramid still decides which
+  // pyramid images are written.
+  const int pyramidOutput = o.estimator.settings.pyramidLength;
+  if (o.techniqueMaps > 0) {
+    RenderSettings& s = o.estimator.settings;
+    if (s.integrator == IntegratorKind::Pt)
+      throw std::runtime_error("--technique-maps needs the bidirectional tracer (--integrator bpt or lt)");
+    if (o.techniqueMaps > s.maxLength)
+      throw std::runtime_error(
+          fmt::format("--technique-maps {} is longer than the maximum path length {}", o.techniqueMaps, s.maxLength));
+    s.pyramidLength = std::max(s.pyramidLength, o.techniqueMaps);
+    s.techniqueMaps = true;
+  }
   const RenderSettings& settings = o.estimator.settings;
   if (o.output.empty() && o.replay.empty())
     throw std::runtime_error("render needs an output image (-o OUT) or --replay X,Y,SAMPLE");
@@ -158,8 +176,10 @@ int runRender(RenderOptions o) {
   std::optional<ReplayRequest> replay;
   if (!o.replay.empty()) replay = parseReplay(o.replay, settings);
   if (!replay) checkOutput(o.output, o.force);
-  if (!replay && settings.pyramidLength > 0)
-    for (const std::string& path : pyramidPaths(o.output, settings.pyramidLength)) checkOutput(path, o.force);
+  if (!replay && pyramidOutput > 0)
+    for (const std::string& path : pyramidPaths(o.output, pyramidOutput)) checkOutput(path, o.force);
+  if (!replay && o.techniqueMaps > 0)
+    for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps)) checkOutput(path, o.force);
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 
@@ -193,7 +213,8 @@ int runRender(RenderOptions o) {
   }
   const double seconds = elapsed();
   writeImage(o.output, session.image(), o.exposure);
-  if (settings.pyramidLength > 0) writePyramid(o.output, session, o.exposure);
+  if (pyramidOutput > 0) writePyramid(o.output, session, o.exposure, pyramidOutput);
+  if (o.techniqueMaps > 0) writeTechniqueMaps(o.output, session, o.techniqueMaps);
 
   const Counters& c = session.counters();
   std::cerr << fmt::format(

@@ -21,6 +21,7 @@ struct RenderOptions {
   bool force = false;
   bool stats = false;   // print the per-technique counters
   std::string replay;   // "X,Y,SAMPLE": print that one sample's techniques instead of rendering
+  int techniqueMaps = 0;  // > 0: also write the technique maps up to this length
   LoadOptions load;
 };
 

@@ -3,6 +3,7 @@
 
 #include "app/output_check.h"
 #include "ui/run_viewer.h"
+#include "ui/technique_map_view.h"
 
 #include <fmt/core.h>
 #include <tbb/global_control.h>
@@ -44,6 +45,8 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
       ->check(CLI::Range(0, 1 << 24));
   cmd->add_option("--pyramid", v.pyramidLength, "Open the technique pyramid up to this path length")
       ->check(CLI::Range(1, kMaxPyramidLength));
+  cmd->add_option("--technique-map", v.techniqueMap,
+                  "Show a technique map over the image: dominant, dominant:K, share:S,T or cannot:S,T");
   cmd->add_flag("--hide-ui", v.hideUi, "Start with the panels hidden (Tab shows them)");
   cmd->add_option("--script", v.script,
                   "Scripted input for tests: 'FRAME:key=NAME;FRAME:drag=X0,Y0>X1,Y1;FRAME:wait=SPP' (frames count from 0)");
@@ -80,6 +83,11 @@ int runView(ViewOptions o) {
                                               o.estimator.settings.maxLength));
     if (!o.estimator.settings.checkTechniques) throw std::invalid_argument("--z-map needs --check");
     o.viewer.zMap = Technique{s, t};
+  }
+  if (!o.viewer.techniqueMap.empty()) {
+    ui::parseMapView(o.viewer.techniqueMap);  // one line and exit 1 before any window opens
+    if (o.viewer.settings.integrator == IntegratorKind::Pt)
+      throw std::runtime_error("--technique-map needs the bidirectional tracer (--integrator bpt or lt)");
   }
   // Before the viewer loads the scene; it checks the extension and --force itself.
   if (!o.viewer.screenshot.empty()) checkOutputWritable(o.viewer.screenshot);

@@ -36,18 +36,6 @@ Vec3 turbo(float t) {
   return {glm::dot(v4, r4) + glm::dot(v2, r2), glm::dot(v4, g4) + glm::dot(v2, g2), glm::dot(v4, b4) + glm::dot(v2, b2)};
 }
 
-Vec3 viridis(float t) {
-  t = std::clamp(t, 0.f, 1.f);
-  const Vec3 c0(0.2777273272234177f, 0.005407344544966578f, 0.3340998053353061f);
-  const Vec3 c1(0.1050930431085774f, 1.404613529898575f, 1.384590162594685f);
-  const Vec3 c2(-0.3308618287255563f, 0.214847559468213f, 0.09509516302823659f);
-  const Vec3 c3(-4.634230498983486f, -5.799100973351585f, -19.33244095627987f);
-  const Vec3 c4(6.228269936347081f, 14.17993336680509f, 56.69055260068105f);
-  const Vec3 c5(4.776384997670288f, -13.74514537774601f, -65.35303263337234f);
-  const Vec3 c6(-5.435455855934631f, 4.645852612178535f, 26.3124352495832f);
-  return c0 + t * (c1 + t * (c2 + t * (c3 + t * (c4 + t * (c5 + t * c6)))));
-}
-
 float errorBarPosition(float error, const DisplaySettings& d) {
   if (d.errorLog) {
     if (!(error > 0.f)) return 0.f;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/film/film.h"
+#include "core/maps/map_colours.h"  // viridis
 #include "core/math/types.h"
 #include "core/metrics/error_image.h"
 
@@ -40,9 +41,6 @@ Vec3 displayColour(const Spectrum& radiance, const DisplaySettings& settings);
 
 Vec3 acesFilmic(const Vec3& x);
 Vec3 turbo(float t);  // t clamped to [0,1]
-// Viridis (perceptually uniform, colour-blind safe; van der Walt and Smith 2015), as a degree-6
-// polynomial fit (Matt Zucker 2020); t clamped to [0,1].
-Vec3 viridis(float t);
 
 // Position in [0,1] on the error colour bar of a per-pixel error value (0 below the range).
 float errorBarPosition(float error, const DisplaySettings& settings);

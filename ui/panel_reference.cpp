@@ -103,9 +103,6 @@ void drawReferenceSection(ReferenceState& state, ConvergenceState& convergence, 
   ImGui::PopID();
 }
 
-namespace {
-
-// The viridis colour scale as a horizontal bar of w x h pixels at `origin`.
 void drawViridisBar(ImDrawList* draw, ImVec2 origin, float w, float h) {
   constexpr int kSegments = 32;
   for (int i = 0; i < kSegments; ++i) {
@@ -117,6 +114,8 @@ void drawViridisBar(ImDrawList* draw, ImVec2 origin, float w, float h) {
                                   cb, ca);
   }
 }
+
+namespace {
 
 // The per-pixel error at position t in [0, 1] of the colour scale.
 double errorScaleValue(const DisplaySettings& d, float t) {

@@ -6,6 +6,7 @@
 
 #include "ui/estimator_state.h"
 #include "ui/shortcuts.h"
+#include "ui/technique_map_view.h"
 #include "ui/viewer_state.h"
 
 #include <imgui.h>
@@ -77,6 +78,11 @@ struct ImageOverlay {
 void drawImageOverlay(const ImageOverlay& overlay);
 // The error view's colour bar with its scale, in the side panel (panel_reference.cpp).
 void drawErrorBar(const DisplaySettings& display);
+// The viridis colour scale as a horizontal bar of w x h pixels at `origin` (panel_reference.cpp).
+void drawViridisBar(ImDrawList* draw, ImVec2 origin, float w, float h);
+// The technique maps section (panel_maps.cpp): show them, choose the map, and its legend or colour
+// bar. `maxLength` bounds the maps' length; `waiting` while no map has arrived yet.
+void drawTechniqueMapSection(MapView& view, int maxLength, bool waiting);
 // The same, over the image's top right corner.
 void drawErrorBarOverlay(const DisplaySettings& display, ImVec2 imageOrigin, ImVec2 imageSize, float uiScale);
 

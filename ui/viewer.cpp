@@ -58,6 +58,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
   display_.errorView = options.errorView;
   ui_.showUi = !options.hideUi;
   grid_.zMap = options.zMap;
+  if (!options.techniqueMap.empty()) maps_ = parseMapView(options.techniqueMap);
   if (options.pyramidLength > 0) {
     pyramid_.show = true;
     pyramid_.length = options.pyramidLength;
@@ -129,6 +130,7 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
       ImVec2(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale), &snapshot_,
       renderSettings(estimator_), shownDisplay(), errorViewProblem(), run_.idleForNoTechnique, run_.userPaused, scale,
       grid_.zMap});
+  drawMapOverImage(fbScale);
   carryOut(requests);
 
   RenderSettings& edited = estimator_.settings;
@@ -142,6 +144,11 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
     edited.height = std::max(1, static_cast<int>(static_cast<float>(imageSize_.y) * run_.resolutionScale));
   }
   edited.pyramidLength = pyramid_.show ? std::min(pyramid_.length, edited.maxLength) : 0;
+  // The maps read the pyramid's films: showing them makes the pyramid at least their length and
+  // keeps its sampleable films (one restart); which map is shown is the viewer's alone.
+  edited.techniqueMaps = maps_.show && edited.integrator != IntegratorKind::Pt;
+  if (edited.techniqueMaps)
+    edited.pyramidLength = std::max(edited.pyramidLength, std::min({maps_.length, edited.maxLength, kMaxPyramidLength}));
   if (pyramid_.show) {
     // Thumbnails as large as they are shown (no blocky upscaling on a projector), from the next pass.
     const int side =
@@ -179,6 +186,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
     drawEstimatorSection(estimator_, grid_, run_.settingsError, snapshot_.counters, snapshot_.check.get());
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
     drawDisplaySection(display_, run_, pyramid_, snapshot_.image);
+  if (ImGui::CollapsingHeader("Technique maps", maps_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+    drawTechniqueMapSection(maps_, estimator_.settings.maxLength, mapImages_.texture.empty());
   if (ImGui::CollapsingHeader("Reference and error", convergence_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawReferenceSection(reference_, convergence_, display_, estimator_.settings, snapshot_.image, requests);
   if (ImGui::CollapsingHeader("Scene and camera"))
@@ -205,6 +214,7 @@ bool Viewer::pollImage() {
     lastPriorityCheck_ = std::chrono::steady_clock::now();
   }
   const bool pyramid = pyramid_.show && updatePyramid();
+  const bool maps = maps_.show && updateMaps();
   const bool image = updateImage();
   bool reference = false;
   if (reference_.errors->referenceVersion() != reference_.uploadedVersion) {
@@ -215,7 +225,7 @@ bool Viewer::pollImage() {
   }
   // New points arrive on the render thread; the plot redraws when they do.
   const bool points = convergence_.show && reference_.errors->version() != convergence_.seriesVersion;
-  return image || pyramid || reference || points;
+  return image || pyramid || maps || reference || points;
 }
 
 void Viewer::applySettings() {
@@ -277,6 +287,38 @@ bool Viewer::updatePyramid() {
     }
   }
   return true;
+}
+
+bool Viewer::updateMaps() {
+  MapImages& m = mapImages_;
+  const bool due = forceRefresh_ || secondsSince(m.lastPoll) >= kPyramidRefreshSeconds;
+  if (due) m.lastPoll = std::chrono::steady_clock::now();
+  const bool fresh = due && renderer_->techniqueMaps(m.lum, m.version);
+  if (!fresh && m.coloured == maps_) return false;
+  m.coloured = maps_;
+  const Image map = mapImage(m.lum, maps_);
+  if (map.width <= 0) {
+    m.texture = Texture();
+    return fresh;
+  }
+  std::vector<uint8_t> rgba(4 * static_cast<size_t>(map.width) * static_cast<size_t>(map.height), 255);
+  for (size_t i = 0; i < rgba.size() / 4; ++i)
+    for (size_t c = 0; c < 3; ++c)
+      rgba[4 * i + c] = static_cast<uint8_t>(std::clamp(map.rgb[3 * i + c], 0.f, 1.f) * 255.f + 0.5f);
+  m.texture.uploadRgba8(map.width, map.height, rgba.data());
+  return true;
+}
+
+void Viewer::drawMapOverImage(float fbScale) {
+  const Texture& t = mapImages_.texture;
+  if (!maps_.show || t.empty() || imageSize_.x <= 0 || imageSize_.y <= 0) return;
+  // Fitted into the image area like the image (ImageView::draw), centred.
+  const ImVec2 origin(static_cast<float>(imageOrigin_.x) / fbScale, static_cast<float>(imageOrigin_.y) / fbScale);
+  const ImVec2 area(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale);
+  const float aspect = static_cast<float>(t.width()) / static_cast<float>(t.height());
+  const ImVec2 size = area.x > aspect * area.y ? ImVec2(aspect * area.y, area.y) : ImVec2(area.x, area.x / aspect);
+  const ImVec2 p0(origin.x + 0.5f * (area.x - size.x), origin.y + 0.5f * (area.y - size.y));
+  ImGui::GetBackgroundDrawList()->AddImage(t.imguiId(), p0, ImVec2(p0.x + size.x, p0.y + size.y));
 }
 
 void Viewer::waitForPyramid(double seconds) {

@@ -64,6 +64,7 @@ class Viewer {
   ReferenceState reference_;
   ConvergenceState convergence_;
   PyramidView pyramid_;
+  MapView maps_;
   UiState ui_;
   EstimatorWarning warning_;  // of the shown image's settings
 
@@ -75,6 +76,7 @@ class Viewer {
   std::unique_ptr<ImageView> imageView_;
   RenderSnapshot snapshot_;
   PyramidImages pyramidImages_;
+  MapImages mapImages_;
   std::chrono::steady_clock::time_point lastPoll_{}, lastPriorityCheck_{};
   bool forceRefresh_ = false;
   Vec2i imageOrigin_{0}, imageSize_{0};  // framebuffer pixels
@@ -86,6 +88,9 @@ class Viewer {
   void syncRenderer();
   bool updateImage();
   bool updatePyramid();
+  bool updateMaps();
+  // The chosen technique map over the image area, when shown and arrived (ImGui's background).
+  void drawMapOverImage(float fbScale);
   void openScene(const std::string& path);
   void pollSceneLoad();
   void refreshSceneFiles();

@@ -8,6 +8,7 @@
 #include "ui/orbit_camera.h"
 #include "ui/presets.h"
 #include "ui/scene_loader.h"
+#include "ui/technique_map_view.h"
 #include "ui/texture.h"
 
 #include <chrono>
@@ -97,6 +98,16 @@ struct PyramidImages {
   std::chrono::steady_clock::time_point lastPoll{};
   // The texture of technique (s, t), or null when it has not arrived yet.
   const Texture* texture(Technique x, bool unweighted) const;
+};
+
+// The technique maps' luminances as the renderer published them, and the texture of the map
+// chosen (recoloured when the luminances or the choice change).
+struct MapImages {
+  TechniqueLuminance lum;
+  uint64_t version = 0;
+  Texture texture;
+  MapView coloured;
+  std::chrono::steady_clock::time_point lastPoll{};
 };
 
 // The window's own state: which parts are shown, requests to the frame loop, the message line.

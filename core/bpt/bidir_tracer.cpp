@@ -111,8 +111,8 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   r.unweighted = c.L;
   if (options_.injectBias && options_.injectBias->s == s && options_.injectBias->t == t)
     r.unweighted *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
-  if (outputs.wantsSampleable()) {
-    r.sampleableBy = sampleableTechniques(path);
+  if (outputs.wantsSampleable()) r.sampleableBy = sampleableTechniques(path);
+  if (outputs.wantsDensityRatios()) {
     walks.densityRatios.resize(static_cast<size_t>(s + t));
     techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
     r.densityRatios = walks.densityRatios.data();

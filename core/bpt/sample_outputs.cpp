@@ -28,7 +28,14 @@ void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
   if (targets_.trace) targets_.trace->records.push_back(r);
   // The check compares every enabled technique's unweighted estimate, whatever its weight.
   if (targets_.check) targets_.check->add(Technique{r.s, r.t}, r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
-  if (r.inPyramid && targets_.pyramid) targets_.pyramid->add(r.s, r.t, r.pRaster, r.unweighted * r.weight, r.unweighted);
+  if (r.inPyramid && targets_.pyramid) {
+    const Spectrum weighted = r.unweighted * r.weight;
+    targets_.pyramid->add(r.s, r.t, r.pRaster, weighted, r.unweighted);
+    // The technique maps' "cannot sample": this path's weighted part, credited to every technique
+    // of its length able to sample it.
+    if (targets_.pyramid->keepsSampleable())
+      targets_.pyramid->addSampleable(r.s + r.t - 1, r.sampleableBy, r.pRaster, r.t == 1, luminance(weighted));
+  }
   if (!r.inImage) return;
   const Spectrum contribution = r.unweighted * r.imageWeight;
   if (isBlack(contribution)) return;

@@ -29,8 +29,13 @@ class SampleOutputs {
   // Whether an output wants a technique's contribution even where its image weight is zero (the
   // pyramid's unweighted films, the replay trace): the kernel then still traces its shadow ray.
   bool wantsEveryContribution() const { return targets_.trace != nullptr || targets_.check != nullptr; }
-  // Whether an output needs TechniqueResult::sampleableBy (the consistency check).
-  bool wantsSampleable() const { return targets_.check != nullptr; }
+  // Whether an output needs TechniqueResult::densityRatios (the consistency check): O(n) a result.
+  bool wantsDensityRatios() const { return targets_.check != nullptr; }
+  // Whether an output needs TechniqueResult::sampleableBy: the consistency check, or a pyramid
+  // kept for the technique maps (TechniqueFilms::keepsSampleable).
+  bool wantsSampleable() const {
+    return targets_.check != nullptr || (targets_.pyramid != nullptr && targets_.pyramid->keepsSampleable());
+  }
 
   void add(const TechniqueResult& result, TechniqueCounters& counters);
   // The sum of the t >= 2 contributions: the sample's estimate for its own pixel.

@@ -6,15 +6,23 @@
 
 namespace pathlab {
 
-uint64_t TechniqueFilms::bytesFor(int width, int height, int maxLength) {
-  return 2 * Technique::countUpTo(maxLength) * 3 * sizeof(double) * static_cast<uint64_t>(width) *
+uint64_t TechniqueFilms::bytesFor(int width, int height, int maxLength, bool sampleable) {
+  const uint64_t valuesPerPixel = 2 * 3 + (sampleable ? 2 : 0);
+  return Technique::countUpTo(maxLength) * valuesPerPixel * sizeof(double) * static_cast<uint64_t>(width) *
          static_cast<uint64_t>(height);
 }
 
-TechniqueFilms::TechniqueFilms(int width, int height, int maxLength)
+TechniqueFilms::TechniqueFilms(int width, int height, int maxLength, bool sampleable)
     : width_(width), height_(height), maxLength_(maxLength) {
-  const size_t values = 3 * static_cast<size_t>(width) * static_cast<size_t>(height);
-  buffers_.assign(2 * Technique::countUpTo(maxLength), std::vector<double>(values, 0.0));
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  buffers_.assign(2 * Technique::countUpTo(maxLength), std::vector<double>(3 * pixels, 0.0));
+  if (sampleable) sampleable_.assign(2 * Technique::countUpTo(maxLength), std::vector<double>(pixels, 0.0));
+}
+
+long long TechniqueFilms::pixel(Vec2 pRaster) const {
+  const int x = static_cast<int>(std::floor(pRaster.x)), y = static_cast<int>(std::floor(pRaster.y));
+  if (x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
+  return static_cast<long long>(y) * width_ + x;
 }
 
 size_t TechniqueFilms::buffer(int s, int t, bool unweighted) const {
@@ -23,9 +31,9 @@ size_t TechniqueFilms::buffer(int s, int t, bool unweighted) const {
 
 void TechniqueFilms::add(int s, int t, Vec2 pRaster, const Spectrum& weighted, const Spectrum& unweighted) {
   if (!covers(s, t)) return;
-  const int x = static_cast<int>(std::floor(pRaster.x)), y = static_cast<int>(std::floor(pRaster.y));
-  if (x < 0 || y < 0 || x >= width_ || y >= height_) return;
-  const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x));
+  const long long p = pixel(pRaster);
+  if (p < 0) return;
+  const size_t i = 3 * static_cast<size_t>(p);
   std::vector<double>& w = buffers_[buffer(s, t, false)];
   std::vector<double>& u = buffers_[buffer(s, t, true)];
   for (int c = 0; c < 3; ++c) {
@@ -40,19 +48,58 @@ void TechniqueFilms::add(int s, int t, Vec2 pRaster, const Spectrum& weighted, c
   }
 }
 
+void TechniqueFilms::addSampleable(int k, uint64_t sampleableBy, Vec2 pRaster, bool splat, double weightedLuminance) {
+  if (sampleable_.empty() || k < 1 || k > maxLength_ || !(weightedLuminance != 0.0)) return;
+  const long long p = pixel(pRaster);
+  if (p < 0) return;
+  // A camera contribution lands on the sample's own pixel, which the calling thread owns for the
+  // pass; splats land anywhere and go to buffers of their own, atomically.
+  for (const Technique x : techniquesOfLength(k)) {
+    if (x.s >= 64 || !(sampleableBy >> x.s & 1)) continue;
+    double& v = sampleable_[2 * x.index() + (splat ? 1 : 0)][static_cast<size_t>(p)];
+    if (splat)
+      std::atomic_ref<double>(v).fetch_add(weightedLuminance, std::memory_order_relaxed);
+    else
+      v += weightedLuminance;
+  }
+}
+
 void TechniqueFilms::clear() {
   for (std::vector<double>& b : buffers_) std::fill(b.begin(), b.end(), 0.0);
+  for (std::vector<double>& b : sampleable_) std::fill(b.begin(), b.end(), 0.0);
 }
+
+namespace {
+
+// Film::readout's normalisation: camera samples by samples per pixel, splats by the number of
+// light subpaths over the pixel count.
+double normalisation(bool splat, int width, int height, uint64_t samplesPerPixel, uint64_t lightSubpaths) {
+  const double pixels = static_cast<double>(width) * static_cast<double>(height);
+  return splat ? (lightSubpaths ? pixels / static_cast<double>(lightSubpaths) : 0.0)
+               : (samplesPerPixel ? 1.0 / static_cast<double>(samplesPerPixel) : 0.0);
+}
+
+}  // namespace
 
 Image TechniqueFilms::readout(int s, int t, bool unweighted, uint64_t samplesPerPixel, uint64_t lightSubpaths) const {
   Image img{width_, height_, std::vector<float>(3 * static_cast<size_t>(width_) * static_cast<size_t>(height_), 0.f)};
   if (!covers(s, t)) return img;
-  const double pixels = static_cast<double>(width_) * static_cast<double>(height_);
-  const double scale = t == 1 ? (lightSubpaths ? pixels / static_cast<double>(lightSubpaths) : 0.0)
-                              : (samplesPerPixel ? 1.0 / static_cast<double>(samplesPerPixel) : 0.0);
+  const double scale = normalisation(t == 1, width_, height_, samplesPerPixel, lightSubpaths);
   const std::vector<double>& b = buffers_[buffer(s, t, unweighted)];
   for (size_t i = 0; i < b.size(); ++i) img.rgb[i] = static_cast<float>(b[i] * scale);
   return img;
+}
+
+std::vector<float> TechniqueFilms::readoutSampleable(int s, int t, uint64_t samplesPerPixel,
+                                                     uint64_t lightSubpaths) const {
+  std::vector<float> out(static_cast<size_t>(width_) * static_cast<size_t>(height_), 0.f);
+  if (sampleable_.empty() || !covers(s, t)) return out;
+  const double camera = normalisation(false, width_, height_, samplesPerPixel, lightSubpaths);
+  const double splat = normalisation(true, width_, height_, samplesPerPixel, lightSubpaths);
+  const std::vector<double>& c = sampleable_[2 * Technique{s, t}.index()];
+  const std::vector<double>& l = sampleable_[2 * Technique{s, t}.index() + 1];
+  for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(c[i] * camera + l[i] * splat);
+  return out;
 }
 
 }  // namespace pathlab

@@ -3,6 +3,7 @@
 #include "core/render/progressive_renderer.h"
 
 #include "core/render/render_session.h"
+#include "core/render/technique_luminance.h"
 
 #include <tbb/task_arena.h>
 
@@ -27,6 +28,7 @@ RenderSettings previewSettings(const RenderSettings& full, int factor) {
   p.width = (full.width + factor - 1) / factor;
   p.height = (full.height + factor - 1) / factor;
   p.pyramidLength = 0;
+  p.techniqueMaps = false;
   return p;
 }
 
@@ -52,6 +54,8 @@ struct ProgressiveRenderer::State {
   RenderSnapshot front;
   std::vector<TechniqueThumbnail> thumbnails;
   uint64_t thumbnailsVersion = 0;
+  TechniqueLuminance maps;
+  uint64_t mapsVersion = 0;
 
   tbb::task_arena arena;
   std::thread worker;
@@ -120,6 +124,8 @@ void ProgressiveRenderer::State::run() {
         start = Clock::now();
         renderSeconds = 0.0;
         thumbnails.clear();
+        maps = TechniqueLuminance{};
+        ++mapsVersion;
         ++thumbnailsVersion;
       }
       side = thumbnailSide;
@@ -158,6 +164,14 @@ void ProgressiveRenderer::State::run() {
       if (generation == gen) {
         thumbnails = std::move(thumbs);
         ++thumbnailsVersion;
+      }
+    }
+    if (set.techniqueMaps && session->hasPyramid()) {
+      TechniqueLuminance lum = techniqueLuminance(*session);
+      std::lock_guard lock(mutex);
+      if (generation == gen) {
+        maps = std::move(lum);
+        ++mapsVersion;
       }
     }
   }
@@ -271,6 +285,14 @@ bool ProgressiveRenderer::pyramid(std::vector<TechniqueThumbnail>& out, uint64_t
   if (state_->thumbnailsVersion <= version) return false;
   out = state_->thumbnails;
   version = state_->thumbnailsVersion;
+  return true;
+}
+
+bool ProgressiveRenderer::techniqueMaps(TechniqueLuminance& out, uint64_t& version) const {
+  std::lock_guard lock(state_->mutex);
+  if (state_->mapsVersion <= version) return false;
+  out = state_->maps;
+  version = state_->mapsVersion;
   return true;
 }
 

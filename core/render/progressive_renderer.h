@@ -11,6 +11,7 @@
 #include "core/check/check_report.h"
 #include "core/film/downsample.h"
 #include "core/film/film.h"
+#include "core/maps/technique_maps.h"
 #include "core/metrics/counters.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
@@ -83,6 +84,10 @@ class ProgressiveRenderer {
   // there is none or nothing newer than `version` (updated on success).
   bool pyramid(std::vector<TechniqueThumbnail>& out, uint64_t& version) const;
   void setThumbnailSide(int side);  // default 128; used from the next publication on
+  // The technique maps' luminances (settings.techniqueMaps), full resolution, published after
+  // every full pass like the thumbnails; the viewer colours whichever map is chosen from them, so
+  // changing the map never restarts the image.
+  bool techniqueMaps(TechniqueLuminance& out, uint64_t& version) const;
 
   // Per-technique timing (BidirTracer::setTiming) from the next pass on; no new generation.
   void setTiming(bool on);

@@ -43,7 +43,8 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
   if (bidirTracer_ && threads * SplatBuffer::bytesFor(settings.width, settings.height) <= kMaxThreadSplatBytes)
     threadSplats_ = std::make_unique<ThreadSplats>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
-    pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength);
+    pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength,
+                                                settings.techniqueMaps);
   if (bidirTracer_ && settings.checkTechniques) {
     const TechniqueSet enabled = enabledTechniques(settings);
     check_ = std::make_unique<TechniqueCheck>(settings.width, settings.height, settings.maxLength, settings.checkBlocks,
@@ -60,6 +61,11 @@ Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& coun
 Image RenderSession::techniqueImage(int s, int t, bool unweighted) const {
   if (!pyramid_) return Image{film_.width(), film_.height(), std::vector<float>(3 * film_.pixelCount(), 0.f)};
   return pyramid_->readout(s, t, unweighted, film_.samplesPerPixel(), film_.lightSubpaths());
+}
+
+std::vector<float> RenderSession::sampleableLuminance(int s, int t) const {
+  if (!pyramid_) return std::vector<float>(film_.pixelCount(), 0.f);
+  return pyramid_->readoutSampleable(s, t, film_.samplesPerPixel(), film_.lightSubpaths());
 }
 
 Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const {

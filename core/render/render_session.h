@@ -43,6 +43,9 @@ class RenderSession {
   // Technique (s, t) of the pyramid (settings.pyramidLength > 0), weighted or unweighted.
   bool hasPyramid() const { return pyramid_ != nullptr; }
   Image techniqueImage(int s, int t, bool unweighted) const;
+  // With settings.techniqueMaps: per pixel, the luminance of the length-(s+t-1) image that (s, t)
+  // can sample (TechniqueFilms::readoutSampleable).
+  std::vector<float> sampleableLuminance(int s, int t) const;
   // The consistency check's sums (settings.checkTechniques), else null.
   const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }

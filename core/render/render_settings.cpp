@@ -107,6 +107,10 @@ void validateSettings(const RenderSettings& s) {
     if (s.checkBlocks < 1 || s.checkBlocks > kMaxCheckBlocks)
       throw std::invalid_argument(fmt::format("check blocks {} is outside 1..{}", s.checkBlocks, kMaxCheckBlocks));
   }
+  if (s.techniqueMaps) {
+    if (!bidirectional) throw std::invalid_argument("the technique maps need the bpt or lt integrator");
+    if (s.pyramidLength == 0) throw std::invalid_argument("the technique maps need the technique pyramid (a length)");
+  }
   if (s.pyramidLength != 0) {
     if (!bidirectional) throw std::invalid_argument("the technique pyramid needs the bpt or lt integrator");
     if (s.pyramidLength < 0 || s.pyramidLength > kMaxPyramidLength)
@@ -114,7 +118,7 @@ void validateSettings(const RenderSettings& s) {
     if (s.pyramidLength > s.maxLength)
       throw std::invalid_argument(
           fmt::format("pyramid length {} is more than the maximum path length {}", s.pyramidLength, s.maxLength));
-    const uint64_t bytes = TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength);
+    const uint64_t bytes = TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength, s.techniqueMaps);
     if (bytes > kMaxPyramidBytes)
       throw std::invalid_argument(fmt::format("a pyramid of length {} at {} x {} needs {:.1f} GiB (at most {} GiB)",
                                               s.pyramidLength, s.width, s.height, static_cast<double>(bytes) / (1ull << 30),

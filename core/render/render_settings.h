@@ -35,6 +35,9 @@ struct RenderSettings {
   // > 0: also accumulate every technique (s, t) of length <= pyramidLength, weighted and
   // unweighted, in films of their own (the technique pyramid, Veach 1997 fig. 10.3).
   int pyramidLength = 0;
+  // With pyramidLength > 0: the pyramid also keeps, per technique, the part of its length's image
+  // it can sample at all, for the technique maps' "cannot sample" (core/film/technique_maps.h).
+  bool techniqueMaps = false;
   // Bpt and Lt only: one technique made wrong on purpose (BiasInjection); the image is biased.
   std::optional<BiasInjection> injectBias;
   // Bpt and Lt only: accumulate the consistency check of every enabled technique against the
@@ -85,7 +88,7 @@ std::string misOffWarning(const Scene& scene, const RenderSettings& settings);
 // Throws std::invalid_argument with a one-line message naming the setting when the settings
 // cannot be rendered: no technique of length 1..maxLength enabled or one listed beyond it, an
 // isolated technique outside 1..maxLength or not a light-tracing one under `lt`, isolation or a
-// pyramid asked of the path tracer, a pyramid longer than maxLength or kMaxPyramidLength or too
+// pyramid (or technique maps without one) asked of the path tracer, a pyramid longer than maxLength or kMaxPyramidLength or too
 // large for memory; a float setting that is not finite or outside its range (MIS beta and minimum
 // connection, lens aperture and focus distance, an override camera's transform and field of view),
 // whichever route it came by (CLI, converge configurations, viewer presets).

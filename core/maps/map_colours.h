@@ -1,0 +1,37 @@
+// Colours of the technique maps, shared by `render --technique-maps` and the viewer: a fixed
+// categorical palette by technique, viridis for shares, hatching for "cannot sample". Every
+// function returns display colours (sRGB values in [0, 1]), not radiance.
+#pragma once
+
+#include "core/film/film.h"
+#include "core/maps/technique_maps.h"
+#include "core/math/types.h"
+
+namespace pathlab {
+
+// Viridis (perceptually uniform, colour-blind safe; van der Walt and Smith 2015), as a degree-6
+// polynomial fit (Matt Zucker 2020); t clamped to [0,1]. Also the viewer's error view.
+Vec3 viridis(float t);
+
+// Kelly's colours of maximum contrast (Kelly 1965, less white and black) by Technique::index:
+// every technique up to length 5 has its own; longer ones repeat them (the legends name them).
+Vec3 techniqueColour(Technique x);
+inline constexpr int kTechniquePaletteSize = 20;
+inline const Vec3 kTieColour{1.f, 1.f, 1.f};
+inline const Vec3 kEmptyColour{0.f, 0.f, 0.f};
+inline const Vec3 kHatchColour{0.8f, 0.8f, 0.8f};
+
+// Whether pixel (x, y) lies on a stripe of the hatching (diagonal, 8-pixel period).
+inline bool onHatch(int x, int y) { return ((x + y) / 4) % 2 == 0; }
+
+// width x height display images of the maps.
+Image dominantColours(const DominantMap& m);
+Image shareColours(const std::vector<float>& share, int width, int height);  // viridis; black where -1
+// Viridis of the share of the length's image, hatched in proportion to the fraction the technique
+// cannot sample (fully hatched: impossible; dark and unhatched: weighted away); black where empty.
+Image cannotSampleColours(const CannotSampleMap& m);
+
+// The linear image whose PNG (writeImage: clamp, sRGB encode) shows these display colours.
+Image displayToLinear(Image display);
+
+}  // namespace pathlab

@@ -1,0 +1,23 @@
+// TechniqueLuminance from a RenderSession.
+#include "core/render/technique_luminance.h"
+
+namespace pathlab {
+
+TechniqueLuminance techniqueLuminance(const RenderSession& session, int length) {
+  TechniqueLuminance lum;
+  if (!session.hasPyramid()) return lum;
+  const RenderSettings& s = session.settings();
+  lum.width = s.width;
+  lum.height = s.height;
+  lum.length = length > 0 && length < s.pyramidLength ? length : s.pyramidLength;
+  for (const Technique x : techniquesUpTo(lum.length)) {
+    const Image img = session.techniqueImage(x.s, x.t, false);
+    std::vector<float> y(lum.pixelCount());
+    for (size_t i = 0; i < y.size(); ++i) y[i] = luminance(Spectrum(img.rgb[3 * i], img.rgb[3 * i + 1], img.rgb[3 * i + 2]));
+    lum.weighted.push_back(std::move(y));
+    if (s.techniqueMaps) lum.sampleable.push_back(session.sampleableLuminance(x.s, x.t));
+  }
+  return lum;
+}
+
+}  // namespace pathlab

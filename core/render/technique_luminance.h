@@ -1,0 +1,14 @@
+// The technique maps' input read from a render session's technique pyramid.
+#pragma once
+
+#include "core/maps/technique_maps.h"
+#include "core/render/render_session.h"
+
+namespace pathlab {
+
+// Every technique up to `length` (0 or more than the pyramid's: the session's pyramid length):
+// weighted luminance, and the sampleable luminance when the session keeps it
+// (settings.techniqueMaps). Empty without a pyramid.
+TechniqueLuminance techniqueLuminance(const RenderSession& session, int length = 0);
+
+}  // namespace pathlab

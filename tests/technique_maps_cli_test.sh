@@ -1,0 +1,34 @@
+#!/bin/bash
+# `pathlab render --technique-maps L` end to end: the files appear next to the output, an existing
+# one is never overwritten without --force (and nothing is rendered then), and bad requests get one
+# line and a non-zero exit.
+. "$(dirname "$0")/cli_lib.sh"
+BOX="$SRC/assets/cornell-box.gltf"
+small=(--spp 2 --width 16 --height 12 --max-length 3)
+
+if "$PATHLAB" render "$BOX" -o "$TMP/m.exr" "${small[@]}" --technique-maps 2 2>"$TMP/err"; then
+  # k = 0..2: 3 dominant maps (EXR + PNG); 5 techniques: share and cannot EXRs; 2 mosaics.
+  count=$(ls "$TMP" | grep -c '^m-')
+  [ "$count" -eq 18 ] && [ -s "$TMP/m-dominant.png" ] && [ -s "$TMP/m-dominant-k2.exr" ] &&
+    [ -s "$TMP/m-share-s1-t2.exr" ] && [ -s "$TMP/m-cannot-s0-t3.exr" ] && [ -s "$TMP/m-share.png" ] &&
+    [ -s "$TMP/m-cannot-sample.png" ] && [ ! -e "$TMP/m-pyramid.png" ] && ok || fail "map files: $(ls "$TMP")"
+  ls -a "$TMP" | grep -q '\.tmp' && fail "temporary files left behind: $(ls -a "$TMP")"
+else fail "maps render: $(cat "$TMP/err")"; fi
+
+# An existing map refuses the render (before any work) and leaves every file as it was.
+before=$(md5sum "$TMP/m-dominant.png")
+rm "$TMP/m.exr"
+expect_error "map file exists" "m-dominant.exr: file exists" render "$BOX" -o "$TMP/m.exr" "${small[@]}" --technique-maps 2
+[ -e "$TMP/m.exr" ] && fail "the image was written although a map exists"
+[ "$(md5sum "$TMP/m-dominant.png")" = "$before" ] && ok || fail "an existing map was changed"
+"$PATHLAB" render "$BOX" -o "$TMP/m.exr" "${small[@]}" --technique-maps 2 --force 2>"$TMP/err" && ok || fail "--force: $(cat "$TMP/err")"
+
+expect_error "maps with pt" "technique-maps.*bpt" render "$BOX" -o "$TMP/x.exr" --integrator pt --technique-maps 2
+expect_error "maps longer than the paths" "technique-maps 3 is longer" render "$BOX" -o "$TMP/x.exr" --max-length 2 --technique-maps 3
+expect_error "maps absurd length" "technique-maps" render "$BOX" -o "$TMP/x.exr" --technique-maps 1000
+expect_error "maps not a number" "technique-maps" render "$BOX" -o "$TMP/x.exr" --technique-maps k
+mkdir "$TMP/m2-share.png"
+expect_error "map target is a directory" "m2-share.png: is a directory" render "$BOX" -o "$TMP/m2.exr" "${small[@]}" --technique-maps 2
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]
