@@ -85,7 +85,16 @@ CheckReport checkReport(const TechniqueCheck& check, const CheckOptions& options
     v.technique = x;
     v.blockZ.assign(static_cast<size_t>(check.blocks() * check.blocks()), -1.0);
     const int k = x.length();
-    for (const Technique j : techniquesOfLength(k)) v.partners += (j != x && check.enabled(j)) ? 1 : 0;
+    // Partners that share any path with it (the whole image's sums say so): a point light leaves
+    // s = 0 nothing to share, and such a partner does not count toward the two comparisons a
+    // region needs.
+    int sharing = 0;
+    for (const Technique j : techniquesOfLength(k)) {
+      if (j == x || !check.enabled(j)) continue;
+      ++v.partners;
+      const PairSums whole = check.pair(x, j, TechniqueCheck::wholeImage(check.blocks()));
+      sharing += (whole.nonzeroA > 0 || whole.nonzeroB > 0) ? 1 : 0;
+    }
     bool sharesPaths = false, comparable = false;
     double worst = -1.0;
     for (int region = 0; region < regions; ++region) {
@@ -96,6 +105,11 @@ CheckReport checkReport(const TechniqueCheck& check, const CheckOptions& options
         sharesPaths |= p.nonzeroA > 0 || p.nonzeroB > 0;
         pairs.push_back(comparePair(check, x, j, region, options));
       }
+      // One valid partner cannot tell which of the two is wrong: with more partners sharing paths
+      // with it, a region where only one comparison is possible is not judged (else a right
+      // technique would be flagged wherever it can only be compared with a wrong one).
+      const int valid = static_cast<int>(std::count_if(pairs.begin(), pairs.end(), [](const PairComparison& c) { return c.valid; }));
+      if (valid < std::min(2, sharing)) continue;
       const PairComparison* median = lowerMedian(pairs);
       if (!median) continue;
       comparable = true;

@@ -43,7 +43,8 @@ struct TechniqueVerdict {
   // The technique's statistic in a region is the lower median of |z| over its valid partners
   // there: a wrong technique disagrees with every partner, a right one only with wrong ones, so
   // one wrong technique does not drag its partners with it (at length 1, with a single partner,
-  // both are flagged: two techniques cannot tell which of them is wrong).
+  // both are flagged: two techniques cannot tell which of them is wrong). A technique with two
+  // or more partners is judged only in regions where at least two comparisons are possible.
   double z = 0.0;                 // the statistic in its worst region (signed as that pair's z)
   int worstRegion = -1;           // TechniqueCheck region (blocks row by row, then the whole image)
   PairComparison worst;           // the pair at the lower median there
