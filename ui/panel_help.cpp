@@ -97,6 +97,7 @@ void drawImageOverlay(const ImageOverlay& o) {
   text += shown.preview ? fmt::format("  |  preview 1/{}", shown.previewFactor)
                         : fmt::format("  |  {} spp", shown.samplesPerPixel);
   if (o.paused) text += "  |  paused";
+  if (!o.mapName.empty()) text += "  |  map: " + o.mapName;
   if (o.display.errorView) text += fmt::format("  |  {} vs reference", pixelErrorName(o.display.errorKind));
   const float line = ImGui::GetTextLineHeightWithSpacing();
   caption(text, ImVec2(o.origin.x + 10.f, o.origin.y + o.size.y - line - 6.f), IM_COL32(235, 235, 235, 255));

@@ -74,6 +74,7 @@ struct ImageOverlay {
   bool idleForNoTechnique = false, paused = false;
   float uiScale = 1.f;
   std::optional<Technique> zMap;  // the check's |z| per block over the image, for this technique
+  std::string mapName;            // the technique map shown over the image (mapViewName), or ""
 };
 void drawImageOverlay(const ImageOverlay& overlay);
 // The error view's colour bar with its scale, in the side panel (panel_reference.cpp).

@@ -3,6 +3,8 @@
 
 #include "core/maps/map_colours.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -43,6 +45,17 @@ MapView parseMapView(const std::string& text) {
     }
   throw std::invalid_argument("--technique-map: '" + text +
                               "' is not dominant, dominant:K, share:S,T or cannot:S,T");
+}
+
+std::string mapViewName(const MapView& v) {
+  switch (v.kind) {
+    case MapKind::Dominant:
+      return v.dominantLength > 0 ? fmt::format("dominant technique of length {}", v.dominantLength)
+                                  : fmt::format("dominant technique, lengths 1-{}", v.length);
+    case MapKind::Share: return fmt::format("share of ({},{})", v.technique.s, v.technique.t);
+    case MapKind::CannotSample: return fmt::format("where ({},{}) cannot sample", v.technique.s, v.technique.t);
+  }
+  return "technique map";
 }
 
 }  // namespace pathlab::ui

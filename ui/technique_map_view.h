@@ -29,5 +29,7 @@ Image mapImage(const TechniqueLuminance& lum, const MapView& view);
 // `view --technique-map`: "dominant", "dominant:K", "share:S,T" or "cannot:S,T"; throws
 // std::invalid_argument naming the text otherwise.
 MapView parseMapView(const std::string& text);
+// What the caption says of a shown map: "dominant technique, lengths 1-3", "share of (1,2)", ...
+std::string mapViewName(const MapView& view);
 
 }  // namespace pathlab::ui

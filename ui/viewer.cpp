@@ -129,7 +129,7 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
       ImVec2(static_cast<float>(imageOrigin_.x) / fbScale, static_cast<float>(imageOrigin_.y) / fbScale),
       ImVec2(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale), &snapshot_,
       renderSettings(estimator_), shownDisplay(), errorViewProblem(), run_.idleForNoTechnique, run_.userPaused, scale,
-      grid_.zMap});
+      grid_.zMap, maps_.show ? mapViewName(maps_) : std::string()});
   drawMapOverImage(fbScale);
   carryOut(requests);
 
