@@ -61,7 +61,9 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
   cmd->add_option("--inject-bias", o.injectBias,
                   "S,T,FACTOR: multiply technique (S,T)'s unweighted contribution by FACTOR, a deliberate bug that "
                   "biases the image (for teaching and for `pathlab check`)");
-  cmd->add_flag("--rr,!--no-rr", s.russianRoulette, "Russian roulette from the third edge on (default on)");
+  // A callback, not a negated flag: CLI11 prints a negated flag as "--no-rr{false}".
+  cmd->add_flag_callback("--no-rr", [&s] { s.russianRoulette = false; },
+                         "Turn Russian roulette off (it is on by default, from the third edge on)");
   cmd->add_option("--seed", s.seed, "Seed of every random stream (samples are keyed by seed, pixel, index)");
   cmd->add_option("--aperture", s.lens.apertureRadius, "Thin-lens aperture radius in scene units (0: pinhole)")
       ->check(CLI::Range(0.f, kMaxAperture));

@@ -2,10 +2,13 @@
 #include "app/pyramid_output.h"
 
 #include "core/film/image_io.h"
+#include "core/maps/map_legend.h"
 #include "core/sampling/technique.h"
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 namespace pathlab::app {
@@ -36,7 +39,7 @@ std::vector<std::string> pyramidPaths(const std::string& output, int length) {
   return paths;
 }
 
-Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap, float background) {
+Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap, float background, float labelValue) {
   if (tiles.empty()) return {};
   const int w = tiles.front().width, h = tiles.front().height;
   Image m;
@@ -55,6 +58,14 @@ Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap, floa
         m.rgb[o + 1] = v.g;
         m.rgb[o + 2] = v.b;
       }
+    // "(s,t) k=K" in the tile's top-left corner on a dark box, a font pixel per 80 tile pixels.
+    if (labelValue > 0.f) {
+      const std::string label = fmt::format("({},{}) k={}", tx.s, tx.t, tx.length());
+      const int scale = std::clamp(w / 80, 1, 4);
+      const int textWidth = drawText(m, -10000, -10000, label, Vec3(0.f), scale);  // measures only
+      fillRect(m, x0, y0, std::min(textWidth + 4 * scale, w), std::min(9 * scale, h), Vec3(0.f));
+      drawText(m, x0 + 2 * scale, y0 + scale, label, Vec3(labelValue), scale);
+    }
   }
   return m;
 }
@@ -67,7 +78,8 @@ void writePyramid(const std::string& output, const RenderSession& session, float
       tiles.push_back(session.techniqueImage(x.s, x.t, unweighted));
       writeImage(techniquePath(out, x.s, x.t, unweighted), tiles.back(), exposure);
     }
-    writeImage(mosaicPath(out, unweighted), techniqueMosaic(tiles, length), exposure);
+    // Labels white after the PNG's exposure.
+    writeImage(mosaicPath(out, unweighted), techniqueMosaic(tiles, length, 4, 0.02f, std::exp2(-exposure)), exposure);
   }
 }
 

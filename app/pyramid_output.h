@@ -16,6 +16,8 @@ std::vector<std::string> pyramidPaths(const std::string& output, int length);
 void writePyramid(const std::string& output, const RenderSession& session, float exposure, int length);
 
 // Tiles of one mosaic, row-major in (k, s) order, with a gap of `gap` pixels of value `background`.
-Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap = 4, float background = 0.02f);
+// labelValue > 0: each tile carries "(s,t) k=K" in its corner, drawn at that value.
+Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap = 4, float background = 0.02f,
+                      float labelValue = 0.f);
 
 }  // namespace pathlab::app

@@ -96,9 +96,14 @@ bool isolatedTechniqueDisabled(const RenderSettings& s) {
 
 std::string describe(const RenderSettings& s) {
   std::string out = fmt::format("{}, max length {}", integratorName(s.integrator), s.maxLength);
-  if (s.integrator == IntegratorKind::Pt) return out;
-  out += fmt::format(", techniques {}", s.techniques.empty() ? "(none)" : s.techniques.toString());
-  if (s.isolate)
+  // What each integrator really does: the path tracer weighs its light sample against BSDF
+  // sampling with the power heuristic; light tracing has one technique per length, t = 1.
+  if (s.integrator == IntegratorKind::Pt) return out + ", light sample + BSDF sampling, MIS power (beta 2)";
+  const TechniqueSet enabled = enabledTechniques(s);
+  out += fmt::format(", techniques {}", enabled.empty() ? "(none)" : enabled.toString());
+  if (s.integrator == IntegratorKind::Lt && !s.isolate) {
+    out += ", one technique a length (weight 1)";
+  } else if (s.isolate)
     out += fmt::format(", isolate ({},{}) {}", s.isolate->s, s.isolate->t, s.isolate->unweighted ? "unweighted" : "weighted");
   else if (s.mis.heuristic == MisHeuristic::Power)
     out += fmt::format(", MIS power (beta {:g})", s.mis.beta);

@@ -6,8 +6,10 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 
 namespace pathlab::ui {
@@ -88,6 +90,20 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
       e.to = {x1, y1};
     }
     events.push_back(e);
+  }
+  // ImGui counts a press when a key goes down: the same key listed on consecutive frames (or twice
+  // on one) would stay down and count once. Each later press of a key moves to the frame after
+  // the previous one's release, so every listed press counts (in the order listed per frame).
+  std::vector<size_t> keys;
+  for (size_t i = 0; i < events.size(); ++i)
+    if (events[i].kind == InputEvent::Kind::Key) keys.push_back(i);
+  std::stable_sort(keys.begin(), keys.end(), [&](size_t a, size_t b) { return events[a].frame < events[b].frame; });
+  std::map<std::pair<int, bool>, int> released;  // (key, ctrl) -> first frame it is up again
+  for (const size_t i : keys) {
+    InputEvent& e = events[i];
+    const auto id = std::make_pair(e.key, e.ctrl);
+    if (const auto it = released.find(id); it != released.end() && e.frame <= it->second) e.frame = it->second + 1;
+    released[id] = e.frame + e.holdFrames;
   }
   return events;
 }

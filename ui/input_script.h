@@ -8,7 +8,9 @@
 // image has SPP samples per pixel: scripts that compare configurations run the same on a loaded
 // machine). NAME is a
 // key of the shortcut table ("3", "M", "Space", "F1", "Ctrl+S", "PageDown", "]") or a fly key
-// W A S D Q E (held for 10 frames).
+// W A S D Q E (held for 10 frames). Every listed press counts: a key listed again while it is
+// still down (the next frame, or the same frame) is pressed again on the first frame after it is
+// released, so "5:key=]; 6:key=]" presses ] on frames 5 and 7.
 #pragma once
 
 #include "core/math/types.h"

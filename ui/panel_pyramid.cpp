@@ -75,6 +75,16 @@ void drawPyramid(const PyramidView& view, const PyramidImages& images, Estimator
       } else {
         clicked = ImGui::Button(fmt::format("{},{}", s, t).c_str(), ImVec2(size.x + 4.f, size.y + 4.f));
       }
+      if (texture) {
+        // Its (s,t) on the thumbnail itself, readable on a projector without hovering.
+        const std::string label = fmt::format("({},{})", s, t);
+        const ImVec2 at(ImGui::GetItemRectMin().x + 4.f * uiScale, ImGui::GetItemRectMin().y + 3.f * uiScale);
+        const ImVec2 extent = ImGui::CalcTextSize(label.c_str());
+        ImDrawList* draw = ImGui::GetWindowDrawList();
+        draw->AddRectFilled(ImVec2(at.x - 2.f, at.y - 1.f), ImVec2(at.x + extent.x + 2.f, at.y + extent.y + 1.f),
+                            IM_COL32(0, 0, 0, 150), 3.f);
+        draw->AddText(at, IM_COL32(255, 255, 255, 235), label.c_str());
+      }
       if (isolated)  // the technique the main image shows, framed so the back row sees it too
         ImGui::GetWindowDrawList()->AddRect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
                                             IM_COL32(240, 160, 40, 255), 0.f, 0, 3.f * uiScale);

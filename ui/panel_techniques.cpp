@@ -111,8 +111,9 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
         if (verdict && verdict->status == CheckStatus::Disagrees)
           ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(220, 40, 40, 230));
         ImGui::BeginDisabled(lightTracing && t != 1);
-        bool on = set.contains(s, t);
-        if (ImGui::Checkbox("##t", &on)) {
+        // The grid ticks what the integrator really uses (techniqueShownEnabled).
+        bool on = techniqueShownEnabled(edited, {s, t});
+        if (ImGui::Checkbox("##t", &on) && edited.integrator != IntegratorKind::Pt) {
           // Isolating, a click picks the technique shown; Ctrl+click still switches it on or off
           // (a weighted share depends on which techniques are enabled).
           if (isolating && !ImGui::GetIO().KeyCtrl) {
@@ -253,22 +254,31 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   const bool bidirectional = edited.integrator != IntegratorKind::Pt;
   ImGui::BeginDisabled(!bidirectional);
 
-  // MIS heuristic
+  if (!bidirectional) {
+    // The path tracer's own combination, not the bidirectional heuristic it does not use.
+    ImGui::TextWrapped("MIS: power heuristic (beta 2), its light sample against BSDF sampling");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("the grid shows its techniques: s = 0 (BSDF sampling hits a light) and s = 1 (light sample)");
+    ImGui::PopStyleColor();
+  }
+  // MIS heuristic (bpt and lt only: the path tracer's is fixed, above)
   int heuristic = static_cast<int>(edited.mis.heuristic);
-  ImGui::TextUnformatted("MIS");
-  ImGui::SameLine();
-  ImGui::RadioButton("balance", &heuristic, static_cast<int>(MisHeuristic::Balance));
-  ImGui::SameLine();
-  ImGui::RadioButton("power", &heuristic, static_cast<int>(MisHeuristic::Power));
-  ImGui::SameLine();
-  ImGui::RadioButton("uniform", &heuristic, static_cast<int>(MisHeuristic::Uniform));
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("1 / (number of enabled techniques able to sample the path): unbiased");
-  ImGui::SameLine();
-  ImGui::RadioButton("off", &heuristic, static_cast<int>(MisHeuristic::Off));
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("1 / n_k for every enabled technique of length k, whatever the path (Veach's naive\n"
-                      "combination): biased where a technique cannot sample a path (the status says where)");
+  if (bidirectional) {
+    ImGui::TextUnformatted("MIS");
+    ImGui::SameLine();
+    ImGui::RadioButton("balance", &heuristic, static_cast<int>(MisHeuristic::Balance));
+    ImGui::SameLine();
+    ImGui::RadioButton("power", &heuristic, static_cast<int>(MisHeuristic::Power));
+    ImGui::SameLine();
+    ImGui::RadioButton("uniform", &heuristic, static_cast<int>(MisHeuristic::Uniform));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("1 / (number of enabled techniques able to sample the path): unbiased");
+    ImGui::SameLine();
+    ImGui::RadioButton("off", &heuristic, static_cast<int>(MisHeuristic::Off));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("1 / n_k for every enabled technique of length k, whatever the path (Veach's naive\n"
+                        "combination): biased where a technique cannot sample a path (the status says where)");
+  }
   edited.mis.heuristic = static_cast<MisHeuristic>(heuristic);
   bool naive = edited.connect == ConnectStrategy::Endpoints;
   ImGui::Checkbox("naive BPT: connect endpoints only", &naive);

@@ -71,4 +71,9 @@ bool noTechniqueEnabled(const RenderSettings& settings) {
   return settings.integrator != IntegratorKind::Pt && !settings.techniques.anyUpTo(settings.maxLength);
 }
 
+bool techniqueShownEnabled(const RenderSettings& settings, Technique x) {
+  if (settings.integrator == IntegratorKind::Pt) return x.s <= 1;
+  return enabledTechniques(settings).contains(x);
+}
+
 }  // namespace pathlab::ui

@@ -29,5 +29,9 @@ TechniqueSet toggleLightVertices(const TechniqueSet& set, int maxLength, int s);
 // True when the settings enable no technique up to their maximum length (Bpt and Lt): the
 // renderer cannot run them.
 bool noTechniqueEnabled(const RenderSettings& settings);
+// Whether the grid ticks technique x: what the integrator really uses. Bpt: the enabled set;
+// lt: the enabled set's t = 1 techniques; pt: s <= 1 (its BSDF-sampled hits of emitters and its
+// light samples, whatever the set says, which it ignores).
+bool techniqueShownEnabled(const RenderSettings& settings, Technique x);
 
 }  // namespace pathlab::ui

@@ -131,6 +131,22 @@ TEST(EstimatorState, DescriptionNamesTheEstimator) {
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS power (beta 2)");
   s.techniques = TechniqueSet::parse("1,2;s=0;2,1");
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques s=0;k=2, MIS power (beta 2)");
+  s.injectBias = BiasInjection{1, 2, 1.05f};
+  EXPECT_EQ(describe(s), "bpt, max length 5, techniques s=0;k=2, MIS power (beta 2), BIAS INJECTED: (1,2) x 1.05");
+}
+
+// Issue 14's honest labels: what each integrator really does, not the bidirectional settings it
+// ignores (the path tracer's power heuristic; light tracing's t = 1 techniques).
+TEST(EstimatorState, DescriptionSaysWhatPathAndLightTracingUse) {
+  RenderSettings s;
+  s.maxLength = 4;
+  s.integrator = IntegratorKind::Pt;
+  s.mis.heuristic = MisHeuristic::Balance;
+  EXPECT_EQ(describe(s), "pt, max length 4, light sample + BSDF sampling, MIS power (beta 2)");
+  s.integrator = IntegratorKind::Lt;
+  EXPECT_EQ(describe(s), "lt, max length 4, techniques t=1, one technique a length (weight 1)");
+  s.techniques = TechniqueSet::parse("k=2");
+  EXPECT_EQ(describe(s), "lt, max length 4, techniques 2,1, one technique a length (weight 1)");
 }
 
 }  // namespace

@@ -61,6 +61,25 @@ TEST(TechniqueGrid, TheSpecFieldTakesNothingOrASpecThatFits) {
   EXPECT_THROW(parseTypedSpec("s=6", 4), std::invalid_argument);  // nothing up to length 4
 }
 
+// The grid ticks what the integrator uses: the enabled set for bpt, its t = 1 part for lt, and
+// for the path tracer its own techniques s <= 1 whatever the set.
+TEST(TechniqueGrid, TicksWhatTheIntegratorUses) {
+  RenderSettings s;
+  s.maxLength = 3;
+  s.techniques = TechniqueSet::parse("0,3;2,2");
+  s.integrator = IntegratorKind::Bpt;
+  EXPECT_TRUE(techniqueShownEnabled(s, {0, 3}));
+  EXPECT_FALSE(techniqueShownEnabled(s, {1, 2}));
+  s.integrator = IntegratorKind::Lt;
+  EXPECT_FALSE(techniqueShownEnabled(s, {0, 3}));
+  s.techniques = TechniqueSet::all();
+  EXPECT_TRUE(techniqueShownEnabled(s, {3, 1}));
+  EXPECT_FALSE(techniqueShownEnabled(s, {2, 2}));
+  s.integrator = IntegratorKind::Pt;
+  s.techniques = TechniqueSet::parse("2,2");
+  for (const Technique x : techniquesUpTo(3)) EXPECT_EQ(techniqueShownEnabled(s, x), x.s <= 1) << x.s << "," << x.t;
+}
+
 TEST(TechniqueGrid, EmptySetMeansNothingToRender) {
   RenderSettings s;
   s.integrator = IntegratorKind::Bpt;

@@ -9,6 +9,8 @@
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -87,6 +89,29 @@ TEST(SceneLoader, ABrokenSceneIsOneLineNamingTheFile) {
 
 namespace pathlab::ui {
 namespace {
+
+// Issue 14: a key listed on consecutive frames (or twice on one) is pressed that many times:
+// each later press waits for a frame with the key up, since ImGui counts a press as the key
+// going down.
+TEST(InputScript, EveryListedKeyPressCounts) {
+  const std::vector<InputEvent> script = parseInputScript("5:key=];6:key=];6:key=];6:key=[");
+  auto downAt = [&](int frame, int key) {
+    const std::vector<int> keys = inputAt(script, frame).keysDown;
+    return std::count(keys.begin(), keys.end(), key);
+  };
+  int presses = 0;
+  bool wasDown = false;
+  for (int frame = 0; frame < 20; ++frame) {
+    const bool down = downAt(frame, GLFW_KEY_RIGHT_BRACKET) > 0;
+    presses += down && !wasDown ? 1 : 0;
+    wasDown = down;
+  }
+  EXPECT_EQ(presses, 3);
+  EXPECT_EQ(downAt(5, GLFW_KEY_RIGHT_BRACKET), 1);
+  EXPECT_EQ(downAt(7, GLFW_KEY_RIGHT_BRACKET), 1);
+  EXPECT_EQ(downAt(9, GLFW_KEY_RIGHT_BRACKET), 1);
+  EXPECT_EQ(downAt(6, GLFW_KEY_LEFT_BRACKET), 1);  // another key keeps its frame
+}
 
 TEST(InputScript, ParsesKeysAndDragsAndReplaysThemFrameByFrame) {
   const std::vector<InputEvent> script = parseInputScript("2:key=3;5:drag=10,20>30,40;9:key=Ctrl+S;12:key=W");
