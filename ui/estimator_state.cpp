@@ -80,6 +80,14 @@ void isolate(EstimatorState& state, Technique x, bool unweighted) {
   state.mode = unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
 }
 
+bool isolateOfChosenLength(EstimatorState& state, int chosenLength, int s) {
+  const int k = std::clamp(chosenLength, 1, state.settings.maxLength);
+  if (s < 0 || s > k) return false;
+  const bool unweighted = state.mode == EstimatorMode::IsolateUnweighted;
+  isolate(state, Technique{s, k + 1 - s}, unweighted);
+  return true;
+}
+
 void cycleMode(EstimatorState& state) {
   preferBidirectional(state);
   state.mode = static_cast<EstimatorMode>((static_cast<int>(state.mode) + 1) % 3);

@@ -43,6 +43,11 @@ bool setIsolated(EstimatorState& state, Technique x);
 void isolate(EstimatorState& state, Technique x, bool unweighted);
 // The next mode (combine, weighted, unweighted); the path tracer gives way to bpt.
 void cycleMode(EstimatorState& state);
+// Ctrl+digit S: isolate technique (S, k + 1 - S) of the grid's chosen length k (clamped to the
+// maximum), the seed's "one path length, every technique" comparison a key per technique. Keeps
+// the isolate mode (weighted or unweighted); from combining it isolates the weighted share.
+// False (nothing changes) when S > k.
+bool isolateOfChosenLength(EstimatorState& state, int chosenLength, int s);
 // A preset's estimator (NamedPreset::applyTo); without an isolation of its own the isolated
 // technique is kept for the isolate modes.
 void applyPreset(EstimatorState& state, const NamedPreset& preset);

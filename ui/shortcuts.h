@@ -12,6 +12,7 @@ enum class Action {
   CycleMode, CycleHeuristic, CycleIntegrator, LongerPaths, ShorterPaths,
   IsolateMoreLight, IsolateMoreCamera, IsolateLonger, IsolateShorter,
   NextPreset, PreviousPreset,
+  IsolateS0, IsolateS1, IsolateS2, IsolateS3, IsolateS4, IsolateS5, IsolateS6, IsolateS7, IsolateS8, IsolateS9,
   ExposureUp, ExposureDown, ToggleToneMap, ToggleFalseColour,
   ToggleConvergence, ToggleErrorView, UseImageAsReference,
   ResetCamera, ReloadScene, SaveImage, Screenshot, Quit,

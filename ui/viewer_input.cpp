@@ -6,6 +6,7 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <fmt/core.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -54,6 +55,15 @@ void Viewer::perform(Action action) {
     case Action::IsolateMoreCamera: moveIsolated(-1, +1); break;
     case Action::IsolateLonger: moveIsolated(0, +1); break;
     case Action::IsolateShorter: moveIsolated(0, -1); break;
+    case Action::IsolateS0: case Action::IsolateS1: case Action::IsolateS2: case Action::IsolateS3:
+    case Action::IsolateS4: case Action::IsolateS5: case Action::IsolateS6: case Action::IsolateS7:
+    case Action::IsolateS8: case Action::IsolateS9: {
+      const int s = static_cast<int>(action) - static_cast<int>(Action::IsolateS0);
+      if (!isolateOfChosenLength(e, grid_.oneLength, s))
+        showMessage(fmt::format("no technique with s = {} at length {} (the grid's k)", s,
+                                std::min(grid_.oneLength, e.settings.maxLength)));
+      break;
+    }
     case Action::NextPreset: applyPreset(presets_.current + 1); break;
     case Action::PreviousPreset: applyPreset(presets_.current < 0 ? -1 : presets_.current - 1); break;
     case Action::ExposureUp: display_.exposure = std::min(display_.exposure + 0.5f, 20.f); break;

@@ -135,6 +135,26 @@ TEST(EstimatorState, DescriptionNamesTheEstimator) {
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques s=0;k=2, MIS power (beta 2), BIAS INJECTED: (1,2) x 1.05");
 }
 
+// Ctrl+digit S isolates (S, k + 1 - S) of the grid's chosen length: the seed's comparison of one
+// length's techniques a key each; the isolate mode is kept, combining becomes the weighted share.
+TEST(EstimatorState, DigitKeysIsolateTheTechniquesOfTheChosenLength) {
+  EstimatorState e;
+  e.settings.integrator = IntegratorKind::Pt;
+  e.settings.maxLength = 5;
+  EXPECT_TRUE(isolateOfChosenLength(e, 2, 0));
+  EXPECT_EQ(e.isolated, (Technique{0, 3}));
+  EXPECT_EQ(e.mode, EstimatorMode::IsolateWeighted);
+  EXPECT_EQ(e.settings.integrator, IntegratorKind::Bpt);
+  e.mode = EstimatorMode::IsolateUnweighted;
+  EXPECT_TRUE(isolateOfChosenLength(e, 2, 2));
+  EXPECT_EQ(e.isolated, (Technique{2, 1}));
+  EXPECT_EQ(e.mode, EstimatorMode::IsolateUnweighted);
+  EXPECT_FALSE(isolateOfChosenLength(e, 2, 3));  // no (3,0)
+  EXPECT_EQ(e.isolated, (Technique{2, 1}));
+  EXPECT_TRUE(isolateOfChosenLength(e, 9, 5));  // the length is clamped to the maximum, 5
+  EXPECT_EQ(e.isolated, (Technique{5, 1}));
+}
+
 // Issue 14's honest labels: what each integrator really does, not the bidirectional settings it
 // ignores (the path tracer's power heuristic; light tracing's t = 1 techniques).
 TEST(EstimatorState, DescriptionSaysWhatPathAndLightTracingUse) {

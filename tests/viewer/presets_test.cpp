@@ -23,6 +23,16 @@ TEST(Presets, ShippedFileParsesAndEveryPresetIsRenderable) {
     EXPECT_EQ(s.width, 320) << p.name;  // the image size is the window's, never the preset's
   }
   EXPECT_EQ(findPreset(presets, "light tracing (t = 1)", kShipped).techniques, TechniqueSet::lightTracing());
+  // The seed's comparisons: the three techniques of direct light and the four of one bounce,
+  // each alone and unweighted (issue 14).
+  int direct = 0, bounce = 0;
+  for (const NamedPreset& p : presets) {
+    if (!p.isolate || !p.isolate->unweighted) continue;
+    direct += p.isolate->s + p.isolate->t - 1 == 2 ? 1 : 0;
+    bounce += p.isolate->s + p.isolate->t - 1 == 3 ? 1 : 0;
+  }
+  EXPECT_EQ(direct, 3);
+  EXPECT_EQ(bounce, 4);
 }
 
 TEST(Presets, FieldsAndDefaults) {
