@@ -99,8 +99,14 @@ void drawImageOverlay(const ImageOverlay& o) {
   if (o.paused) text += "  |  paused";
   if (!o.mapName.empty()) text += "  |  map: " + o.mapName;
   if (o.display.errorView) text += fmt::format("  |  {} vs reference", pixelErrorName(o.display.errorKind));
-  const float line = ImGui::GetTextLineHeightWithSpacing();
-  caption(text, ImVec2(o.origin.x + 10.f, o.origin.y + o.size.y - line - 6.f), IM_COL32(235, 235, 235, 255));
+  // Wrapped to the image's width (a narrow image in lecture mode would cut it), growing upward
+  // from the bottom edge.
+  const float wrap = std::max(o.size.x - 32.f, 100.f);
+  const ImVec2 extent = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
+  const ImVec2 at(o.origin.x + 10.f, o.origin.y + o.size.y - extent.y - 9.f);
+  draw->AddRectFilled(ImVec2(at.x - 6.f, at.y - 3.f), ImVec2(at.x + extent.x + 6.f, at.y + extent.y + 3.f),
+                      IM_COL32(0, 0, 0, 160), 4.f);
+  draw->AddText(ImGui::GetFont(), ImGui::GetFontSize(), at, IM_COL32(235, 235, 235, 255), text.c_str(), nullptr, wrap);
 }
 
 }  // namespace pathlab::ui
