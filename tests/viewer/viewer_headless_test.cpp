@@ -134,6 +134,26 @@ TEST(ViewerHeadless, ClosesWhileRendering) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
 }
 
+// Issue 14: a notice ("screenshot out/...") is not part of the picture: the second of two F12
+// screenshots shows the panel as the first did, without the first one's notice.
+TEST(ViewerHeadless, ScreenshotsLeaveOutTheNoticeOfTheLastOne) {
+  const std::string dir = kTmp + "/notice";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string command = "cd " + dir + " && " + std::string(PATHLAB_BINARY) + " view " + kBox + kFast +
+                              "--frames 12 --headless --script '4:key=F12;8:key=F12' --screenshot last.png 2>err.txt";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::vector<std::string> shots;
+  for (const auto& e : std::filesystem::directory_iterator(dir + "/out")) shots.push_back(e.path().string());
+  ASSERT_EQ(shots.size(), 2u);
+  std::sort(shots.begin(), shots.end());  // pathlab-screenshot-TIME.png, then ...-TIME-2.png
+  if (shots[0].find("-2.png") != std::string::npos) std::swap(shots[0], shots[1]);
+  const Png first = readPng(shots[0]), second = readPng(shots[1]);
+  // The panel's top: the title and Help button, then the Status header (or a notice pushing it
+  // down, from y = 45 at this size).
+  EXPECT_LT(first.meanDifference(second, 0, 0, 200, 70), 1.0);
+}
+
 TEST(ViewerHeadless, KeepsAnExistingScreenshotWithoutForce) {
   const std::string out = kTmp + "/existing.png";
   std::ofstream(out) << "precious";
