@@ -82,6 +82,26 @@ ReplayRequest parseReplay(const std::string& text, const RenderSettings& setting
   return r;
 }
 
+// The path a technique formed, under every technique of its length (the seed's "one path, every
+// technique"): the density each would sample it with, the edge it connects, its weights.
+void printTechniquesOnPath(const std::vector<TechniqueOnPath>& every) {
+  if (every.empty()) return;
+  std::cout << fmt::format("{:>12}  this path under every technique: {:>11} {:>9} {:>9} {:>9}  {}\n", "", "p_A(x)",
+                           "balance", "power", "uniform", "connects");
+  for (const TechniqueOnPath& x : every) {
+    const std::string name = fmt::format("({},{})", x.s, x.t);
+    const std::string edge = x.connectionEdge < 0 ? std::string("nothing: hits the emitter")
+                                                  : fmt::format("x{}-x{}", x.connectionEdge, x.connectionEdge + 1);
+    if (!x.possible) {
+      std::cout << fmt::format("{:>12}  {:>32} {:>11}  cannot: a delta vertex at {} or a light it cannot hit\n", "",
+                               name, "0", edge);
+      continue;
+    }
+    std::cout << fmt::format("{:>12}  {:>32} {:>11.4e} {:>9.4f} {:>9.4f} {:>9.4f}  {}{}\n", "", name, x.pdfA,
+                             x.balance, x.power, x.uniform, edge, x.enabled ? "" : "  (disabled)");
+  }
+}
+
 // One sample, exactly as the render computed it, technique by technique (stdout).
 int runReplay(const RenderSession& session, const ReplayRequest& r) {
   Counters counters;
@@ -95,13 +115,15 @@ int runReplay(const RenderSession& session, const ReplayRequest& r) {
                            trace.lightVertices);
   std::cout << fmt::format("{:>8} {:>36} {:>10} {:>36} {:>16} {}\n", "(s,t)", "unweighted", "weight", "weighted",
                            "raster", "");
-  for (const TechniqueResult& t : trace.records) {
+  for (size_t i = 0; i < trace.records.size(); ++i) {
+    const TechniqueResult& t = trace.records[i];
     const Spectrum w = t.unweighted * t.weight;
     std::cout << fmt::format("{:>8} {:>36} {:>10.4g} {:>36} {:>16} {}\n", fmt::format("({},{})", t.s, t.t),
                              fmt::format("({:.4g}, {:.4g}, {:.4g})", t.unweighted.r, t.unweighted.g, t.unweighted.b),
                              t.weight, fmt::format("({:.4g}, {:.4g}, {:.4g})", w.r, w.g, w.b),
                              fmt::format("{:.1f},{:.1f}", t.pRaster.x, t.pRaster.y),
                              t.blocked() ? "blocked" : isBlack(t.unweighted) ? "zero" : t.inImage ? "" : "not in the image");
+    if (i < trace.onPath.size()) printTechniquesOnPath(trace.onPath[i]);
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 
 #include "core/bpt/connect.h"
 #include "core/bpt/mis_off.h"
+#include "core/bpt/path_techniques.h"
 #include "core/metrics/technique_timer.h"
 
 #include <algorithm>
@@ -16,6 +17,7 @@ struct BidirTracer::Walks {
   SubpathMisSums cameraSums, lightSums;  // MisEvaluation::PartialSums only
   Connection connection;                 // scratch reused by every technique
   std::vector<double> densityRatios;     // TechniqueResult::densityRatios, when an output wants them
+  std::vector<TechniqueOnPath> onPath;   // TechniqueResult::onPath (replay)
 };
 
 const char* connectStrategyName(ConnectStrategy c) { return c == ConnectStrategy::Endpoints ? "endpoints" : "all"; }
@@ -112,6 +114,10 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   if (options_.injectBias && options_.injectBias->s == s && options_.injectBias->t == t)
     r.unweighted *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
   if (outputs.wantsSampleable()) r.sampleableBy = sampleableTechniques(path);
+  if (outputs.wantsOnPath()) {
+    walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
+    r.onPath = &walks.onPath;
+  }
   if (outputs.wantsDensityRatios()) {
     walks.densityRatios.resize(static_cast<size_t>(s + t));
     techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
@@ -198,6 +204,7 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
     targets.trace->cameraVertices = nt;
     targets.trace->lightVertices = ns;
     targets.trace->records.clear();
+    targets.trace->onPath.clear();
   }
   for (int t = 1; t <= nt; ++t)
     for (int s = 0; s <= std::max(ns, 1); ++s) {
@@ -221,6 +228,7 @@ void BidirTracer::sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionK
   if (targets.trace) {
     targets.trace->cameraVertices = targets.trace->lightVertices = 0;
     targets.trace->records.clear();
+    targets.trace->onPath.clear();
   }
   for (const Technique x : techniquesUpTo(options_.maxLength)) {
     TechniqueResult r;

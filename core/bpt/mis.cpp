@@ -241,9 +241,7 @@ float minConnectionDistance(const Scene& scene, const MisOptions& options) {
   return options.minConnection * scene.bounds().radius;
 }
 
-namespace {
-
-// Weight of technique s among the usable ones for the path whose densities are d.
+// Weight of technique s among the usable ones for the path whose densities are d (mis.h).
 double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& techniques, const MisOptions& options,
                            float lightTracingRatio, float minDistance) {
   const int n = d.n;
@@ -289,8 +287,6 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
   }
   return 1.0 / sum;
 }
-
-}  // namespace
 
 float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
                 const MisOptions& options, float lightTracingRatio) {

@@ -98,6 +98,11 @@ PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisP
 // The same into `d`, reusing its storage (no allocation once it has grown to the path length).
 void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d);
 
+// The weight misWeight gives technique s' of the path whose densities are d (minDistance in scene
+// units, minConnectionDistance), for the path inspector's "one path, every technique".
+double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& techniques, const MisOptions& options,
+                           float lightTracingRatio, float minDistance);
+
 // Whether technique s' (t' = n - s') can produce a path with these delta flags. Inline: the
 // weights ask it for every technique of every connection.
 inline bool techniquePossible(const PathDensities& d, int sp) {

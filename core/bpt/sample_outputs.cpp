@@ -8,6 +8,15 @@ void SampleOutputs::discard(const Spectrum& value, const TechniqueResult& r, Tec
   counters_.noteDiscard(DiscardExample{targets_.id.x, targets_.id.y, targets_.id.sample, r.s, r.t, value});
 }
 
+void SampleOutputs::trace(const TechniqueResult& r) {
+  // The record outlives the kernel's scratch: its pointers are dropped, the path's techniques kept.
+  TechniqueResult record = r;
+  record.densityRatios = nullptr;
+  record.onPath = nullptr;
+  targets_.trace->records.push_back(record);
+  targets_.trace->onPath.push_back(r.onPath ? *r.onPath : std::vector<TechniqueOnPath>{});
+}
+
 void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
   if (r.outcome != TechniqueOutcome::Contributed) {
     ++(r.blocked() ? counters.blocked : counters.zero);
@@ -15,7 +24,7 @@ void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
       TechniqueResult record = r;
       record.weight = 0.f;
       record.inImage = false;
-      targets_.trace->records.push_back(record);
+      trace(record);
     }
     return;
   }
@@ -25,7 +34,7 @@ void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
     discard(r.unweighted, r, counters);
     return;
   }
-  if (targets_.trace) targets_.trace->records.push_back(r);
+  if (targets_.trace) trace(r);
   // The check compares every enabled technique's unweighted estimate, whatever its weight.
   if (targets_.check) targets_.check->add(Technique{r.s, r.t}, r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
   if (r.inPyramid && targets_.pyramid) {

@@ -29,6 +29,8 @@ class SampleOutputs {
   // Whether an output wants a technique's contribution even where its image weight is zero (the
   // pyramid's unweighted films, the replay trace): the kernel then still traces its shadow ray.
   bool wantsEveryContribution() const { return targets_.trace != nullptr || targets_.check != nullptr; }
+  // Whether an output needs TechniqueResult::onPath (the replay trace).
+  bool wantsOnPath() const { return targets_.trace != nullptr; }
   // Whether an output needs TechniqueResult::densityRatios (the consistency check): O(n) a result.
   bool wantsDensityRatios() const { return targets_.check != nullptr; }
   // Whether an output needs TechniqueResult::sampleableBy: the consistency check, or a pyramid
@@ -43,6 +45,7 @@ class SampleOutputs {
 
  private:
   void discard(const Spectrum& value, const TechniqueResult& result, TechniqueCounters& counters);
+  void trace(const TechniqueResult& result);
   const SampleTargets& targets_;
   Counters& counters_;
   Spectrum cameraEstimate_{0.f};

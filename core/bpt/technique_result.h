@@ -9,6 +9,24 @@
 
 namespace pathlab {
 
+// One technique of a path's length, seen from a path another technique sampled (the path
+// inspector's "one path, every technique"; techniquesOnPath, path_techniques.h).
+struct TechniqueOnPath {
+  int s = 0, t = 1;
+  bool possible = false;  // the technique can sample this path (sampleableTechniques)
+  bool enabled = false;
+  // p_{s',t'}(x) in area measure: the product over the path's vertices of the density each was
+  // sampled with from its own side (x_0..x_{s'-1} from the light, the rest from the camera); a
+  // delta vertex counts one (its delta cancels between the techniques that share it). Zero when
+  // impossible.
+  double pdfA = 0.0;
+  // The edge the technique connects deterministically, x_{s'-1} -- x_{s'} (none for s' = 0: the
+  // camera subpath hits the emitter): its geometry term and the BSDFs at its ends are the factors
+  // of f this technique does not importance-sample.
+  int connectionEdge = -1;
+  double balance = 0.0, power = 0.0, uniform = 0.0;  // MIS weights among the enabled techniques
+};
+
 enum class TechniqueOutcome : uint8_t {
   Zero,         // cannot form the path (delta vertex, f = 0, off the film), or weight zero and not wanted
   Blocked,      // a non-zero contribution whose shadow ray was occluded
@@ -32,13 +50,18 @@ struct TechniqueResult {
   // With sampleableBy: p_{s'} / p_s of this path for s' = 0..s+t-1 (techniqueDensityRatios, mis.h),
   // in the kernel's scratch; valid only while the outputs consume the result.
   const double* densityRatios = nullptr;
+  // For the replay trace: this path under every technique of its length (techniquesOnPath), in
+  // the kernel's scratch; valid only while the outputs consume the result.
+  const std::vector<TechniqueOnPath>* onPath = nullptr;
   bool blocked() const { return outcome == TechniqueOutcome::Blocked; }
 };
 
 // Every technique of one replayed sample (`pathlab render --replay`).
 struct SampleTrace {
   int cameraVertices = 0, lightVertices = 0;
-  std::vector<TechniqueResult> records;  // every technique tried, in evaluation order
+  std::vector<TechniqueResult> records;  // every technique tried, in evaluation order (scratch pointers null)
+  // records[i]'s path under every technique of its length (empty unless it contributed).
+  std::vector<std::vector<TechniqueOnPath>> onPath;
 };
 
 // Which sample this is, for the discarded-sample report (Counters::discardExamples).
