@@ -99,6 +99,26 @@ TEST_P(ViewerAspect, ImageRegionHasTheCameraAspect) {
 
 const std::string kBox = "cornell-box.gltf", kVeach = "veach-mis.gltf";
 
+// Resizing keeps the framing: after a landscape and a portrait resize the picture is the one a
+// window opened at the final size shows (seeded samples: the same pixels).
+TEST(ViewerAspectResize, ResizingKeepsTheFraming) {
+  const std::string common = "view " + std::string(PATHLAB_SOURCE_DIR) + "/assets/" + kVeach +
+                             " --headless --hide-ui --render-scale 0.25 --spp 1 --max-length 3 --threads 2 --frames 12 --force ";
+  const std::string direct = kTmp + "/resize-direct.png", resized = kTmp + "/resize-resized.png";
+  pathlab::test::CommandRun r = pathlab::test::runPathlab(kTmp, common + "--width 500 --height 900 --screenshot " + direct);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::string directLine = r.err;
+  r = pathlab::test::runPathlab(kTmp, common + "--width 640 --height 480 --script '1:resize=900,500;3:resize=500,900' --screenshot " + resized);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // 500 / 1.5 = 333.3: 500 x 333, centred in 900.
+  EXPECT_NE(r.err.find("image 500x333+0+283 "), std::string::npos) << r.err;
+  EXPECT_NE(directLine.find("image 500x333+0+283 "), std::string::npos) << directLine;
+  const Png a = readPng(direct), b = readPng(resized);
+  ASSERT_EQ(b.width, 500);
+  ASSERT_EQ(b.height, 900);
+  EXPECT_LT(a.meanDifference(b, 0, 0, 500, 900), 1.0);
+}
+
 // The mouse maps to the fitted rectangle: at 800 x 1000 with the UI hidden the Cornell box is
 // 800 x 800 from y = 100, so a drag in the bar above it is nobody's, and one over it orbits.
 TEST(ViewerAspectInput, DragOnTheBarIsNotTheImages) {
