@@ -6,6 +6,7 @@
 #include "app/progress.h"
 #include "app/pyramid_output.h"
 #include "app/technique_maps_output.h"
+#include "core/camera/image_size.h"
 #include "core/film/image_io.h"
 #include "core/metrics/technique_table.h"
 #include "core/render/render_session.h"
@@ -143,8 +144,10 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--time", o.seconds, "Render for this many seconds of wall time instead of a sample count")
       ->check(CLI::Range(0.001, 7.0 * 24 * 3600))
       ->excludes(spp);
-  cmd->add_option("--width", o.estimator.settings.width, "Image width in pixels")->check(CLI::Range(1, kMaxImageSide));
-  cmd->add_option("--height", o.estimator.settings.height, "Image height in pixels")->check(CLI::Range(1, kMaxImageSide));
+  cmd->add_option("--width", o.width, "Image width in pixels (default: the camera's aspect, longest side 512)")
+      ->check(CLI::Range(1, kMaxImageSide));
+  cmd->add_option("--height", o.height, "Image height in pixels (default: the camera's aspect, longest side 512)")
+      ->check(CLI::Range(1, kMaxImageSide));
   addEstimatorOptions(cmd, o.estimator);
   cmd->add_option("--pyramid", o.estimator.settings.pyramidLength,
                   "Also write every technique (s,t) up to this length, weighted and unweighted, and two mosaics "
@@ -180,12 +183,19 @@ int runRender(RenderOptions o) {
     s.pyramidLength = std::max(s.pyramidLength, o.techniqueMaps);
     s.techniqueMaps = true;
   }
-  const RenderSettings& settings = o.estimator.settings;
+  RenderSettings& settings = o.estimator.settings;
   if (o.output.empty() && o.replay.empty())
     throw std::runtime_error("render needs an output image (-o OUT) or --replay X,Y,SAMPLE");
-  if (static_cast<long long>(settings.width) * settings.height > kMaxPixels)
-    throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", settings.width,
-                                         settings.height, kMaxPixels));
+  // Until the camera's aspect is known, a side not given may be as large as allowed: the syntax of
+  // --replay and a too large --width x --height are still refused before any work.
+  settings.width = o.width > 0 ? o.width : kMaxImageSide;
+  settings.height = o.height > 0 ? o.height : kMaxImageSide;
+  auto checkPixels = [&] {
+    if (static_cast<long long>(settings.width) * settings.height > kMaxPixels)
+      throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", settings.width,
+                                           settings.height, kMaxPixels));
+  };
+  if (o.width > 0 && o.height > 0) checkPixels();
   if (settings.integrator != IntegratorKind::Pt) {
     const TechniqueSet techniques = enabledTechniques(settings);
     for (int k : techniques.uncoveredLengths(settings.maxLength))
@@ -207,6 +217,14 @@ int runRender(RenderOptions o) {
 
   const auto loadStart = std::chrono::steady_clock::now();
   Scene scene(loadGltf(o.scene, o.load));
+  // The image has the camera's shape, so nothing the camera frames is cropped (image_size.h).
+  const Vec2i size = imageSizeForAspect(cameraAspect(settings.camera, scene.cameraDesc()),
+                                        o.width > 0 ? std::optional(o.width) : std::nullopt,
+                                        o.height > 0 ? std::optional(o.height) : std::nullopt);
+  settings.width = size.x;
+  settings.height = size.y;
+  checkPixels();
+  if (replay) replay = parseReplay(o.replay, settings);
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
   if (const std::string w = misOffWarning(scene, settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";
   if (const std::string w = biasInjectionWarning(settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";

@@ -14,6 +14,9 @@ struct RenderOptions {
   std::string scene;
   std::string output;
   EstimatorOptions estimator;
+  // 0: not given. Neither given: the camera's aspect with the longest side 512; one given: the
+  // other follows the aspect; both: exactly those.
+  int width = 0, height = 0;
   int spp = 0;          // 0: use the time limit (or the default of 64 if neither is given)
   double seconds = 0.0;
   int threads = 0;      // 0: every hardware thread

@@ -33,7 +33,7 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--threads", v.threads, "Render threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--max-triangles", v.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
-  cmd->add_option("--width", v.windowWidth, "Window width in pixels (the image fills the window beside the panel)")
+  cmd->add_option("--width", v.windowWidth, "Window width in pixels (the image keeps the camera's aspect in the room the panels leave)")
       ->check(CLI::Range(64, 16384));
   cmd->add_option("--height", v.windowHeight, "Window height in pixels")->check(CLI::Range(64, 16384));
   auto* presets = cmd->add_option("--presets", v.presetsFile, "JSON file of named presets (e.g. assets/presets.json)");

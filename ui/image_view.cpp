@@ -3,7 +3,9 @@
 
 #include "ui/gl.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 namespace pathlab::ui {
 
@@ -26,6 +28,7 @@ void ImageView::upload(const Image& image, int fullWidth, int fullHeight) {
   uvScale_ = {std::min(1.f, static_cast<float>(fullWidth) / (f * static_cast<float>(image.width))),
               std::min(1.f, static_cast<float>(fullHeight) / (f * static_cast<float>(image.height)))};
   aspect_ = static_cast<float>(fullWidth) / static_cast<float>(std::max(fullHeight, 1));
+  fullSize_ = {fullWidth, fullHeight};
   ++version_;
 }
 
@@ -78,17 +81,15 @@ void ImageView::renderCache(Vec2i size, const DisplaySettings& display) {
   cachedDisplay_ = display;
 }
 
-void ImageView::draw(Vec2i origin, Vec2i size, int fbHeight, const DisplaySettings& display) {
-  if (empty() || size.x <= 0 || size.y <= 0) return;
-  // Letterbox: while a resize is being rendered the shown image may have another aspect.
-  Vec2i drawSize = size;
-  if (static_cast<float>(size.x) > aspect_ * static_cast<float>(size.y))
-    drawSize.x = static_cast<int>(std::lround(aspect_ * static_cast<float>(size.y)));
-  else
-    drawSize.y = static_cast<int>(std::lround(static_cast<float>(size.x) / aspect_));
-  drawSize = glm::max(drawSize, Vec2i(1));
+PixelRect ImageView::draw(Vec2i origin, Vec2i size, int fbHeight, const DisplaySettings& display) {
+  if (empty() || size.x <= 0 || size.y <= 0) return {};
+  // Letterbox: while a resize is being rendered the shown image may have another aspect. An image
+  // whose shape differs from the rectangle's only by the rounding of one of its sides (the viewer
+  // renders the camera's aspect at --render-scale) fills it.
+  const long long rounding = std::llabs(static_cast<long long>(fullSize_.x) * size.y - static_cast<long long>(fullSize_.y) * size.x);
+  const PixelRect fitted = rounding <= std::max(size.x, size.y) ? PixelRect{origin, size} : fitAspect({origin, size}, aspect_);
+  const Vec2i drawSize = fitted.size, drawOrigin = fitted.origin;
   if (drawSize != cachedSize_ || version_ != cachedVersion_ || !(display == cachedDisplay_)) renderCache(drawSize, display);
-  const Vec2i drawOrigin = origin + (size - drawSize) / 2;
   const int y0 = fbHeight - drawOrigin.y - drawSize.y;
   GLint read = 0;
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
@@ -96,6 +97,7 @@ void ImageView::draw(Vec2i origin, Vec2i size, int fbHeight, const DisplaySettin
   glBlitFramebuffer(0, 0, drawSize.x, drawSize.y, drawOrigin.x, y0, drawOrigin.x + drawSize.x, y0 + drawSize.y,
                     GL_COLOR_BUFFER_BIT, GL_NEAREST);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read));
+  return fitted;
 }
 
 }  // namespace pathlab::ui

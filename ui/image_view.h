@@ -5,6 +5,7 @@
 #pragma once
 
 #include "ui/display_settings.h"
+#include "ui/image_rect.h"
 #include "ui/shader_program.h"
 #include "ui/texture.h"
 
@@ -27,7 +28,8 @@ class ImageView {
   void setReference(const Image* reference);
   bool hasReference() const { return !reference_.empty(); }
   // Rectangle in framebuffer pixels, origin top-left (as ImGui's), framebuffer height fbHeight.
-  void draw(Vec2i origin, Vec2i size, int fbHeight, const DisplaySettings& display);
+  // Returns where the image went (empty: nothing to draw).
+  PixelRect draw(Vec2i origin, Vec2i size, int fbHeight, const DisplaySettings& display);
 
  private:
   ShaderProgram program_;
@@ -36,6 +38,7 @@ class ImageView {
   unsigned vertexArray_ = 0;
   Vec2 uvScale_{1.f};
   float aspect_ = 1.f;
+  Vec2i fullSize_{1};
   // The cache: display transform of image `version_` with `cachedDisplay_` at `cachedSize_`.
   uint64_t version_ = 0, cachedVersion_ = 0;
   DisplaySettings cachedDisplay_;

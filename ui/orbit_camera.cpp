@@ -27,6 +27,7 @@ OrbitCamera::OrbitCamera(const CameraDesc& scene, const Vec3& boundsMin, const V
   pitch_ = std::clamp(std::asin(std::clamp(f.y, -1.f, 1.f)), -kMaxPitch, kMaxPitch);
   yaw_ = std::atan2(f.x, -f.z);
   yfov_ = scene.yfov;
+  aspectRatio_ = scene.aspectRatio;
   const float diagonal = std::max(glm::length(boundsMax - boundsMin), 1e-3f);
   const float ahead = glm::dot(0.5f * (boundsMin + boundsMax) - eye, f);
   distance_ = ahead > 1e-3f * diagonal ? ahead : 0.5f * diagonal;
@@ -66,6 +67,7 @@ CameraDesc OrbitCamera::desc() const {
   CameraDesc d;
   d.cameraToWorld = Mat4(Vec4(right, 0.f), Vec4(up, 0.f), Vec4(-f, 0.f), Vec4(eye(), 1.f));
   d.yfov = yfov_;
+  d.aspectRatio = aspectRatio_;
   d.name = "viewer";
   return d;
 }

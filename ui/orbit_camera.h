@@ -7,6 +7,8 @@
 
 #include "core/scene/scene_desc.h"
 
+#include <optional>
+
 namespace pathlab::ui {
 
 class OrbitCamera {
@@ -39,6 +41,8 @@ class OrbitCamera {
   float distance_ = 1.f;
   float yaw_ = 0.f, pitch_ = 0.f;  // forward (0,0) = -z
   float yfov_ = 0.6911f;
+  // The scene camera's: an orbit or a fly never changes the framing's shape (ui/image_rect.h).
+  std::optional<float> aspectRatio_;
   float flySpeed_ = 1.f;
   float minDistance_ = 1e-3f;
 };

@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 #include <algorithm>
 #include <imgui.h>
+#include <optional>
 
 namespace pathlab::ui {
 
@@ -18,7 +19,8 @@ const Texture* PyramidImages::texture(Technique x, bool unweighted) const {
   return nullptr;
 }
 
-float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale) {
+float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale,
+                        std::optional<float> imageAspect) {
   const ImGuiStyle& style = ImGui::GetStyle();
   const int rows = std::max(1, std::min(view.length, maxLength));
   const float n = static_cast<float>(rows + 1);  // thumbnails in the longest row
@@ -37,6 +39,15 @@ float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, 
   // width = n (h a + c) + p with a = (W - width) / H, solved for width (no feedback through the
   // rendered image, which would restart the render until it settled).
   const float c = frame + style.ItemSpacing.x, p = 2.f * style.WindowPadding.x;
+  if (imageAspect) {
+    // The image has the camera's aspect whatever room it gets (ui/image_rect.h): so do the
+    // thumbnails, and the panel is n (h a + c) + p wide.
+    const float a = *imageAspect;
+    if (n * (h * a + c) + p > 0.35f * availableWidth) h = std::max(((0.35f * availableWidth - p) / n - c) / a, 16.f);
+    const float width = std::max(n * (h * a + c) + p, std::min(220.f * uiScale, 0.5f * availableWidth));
+    view.thumbnail = {h * a, h};
+    return width;
+  }
   auto widthFor = [&](float thumbHeight) {
     return (n * thumbHeight * availableWidth / height + n * c + p) / (1.f + n * thumbHeight / height);
   };

@@ -58,7 +58,10 @@ void drawTechniqueTable(const RenderSnapshot& snapshot);
 
 // The technique pyramid on the right (panel_pyramid.cpp). pyramidPanelWidth sets view.thumbnail
 // and view.both for the space left of the window; a click on a thumbnail isolates its technique.
-float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale);
+// imageAspect: the image's width / height when it has one of its own (the camera's); none: the
+// image takes the room the panel leaves.
+float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale,
+                        std::optional<float> imageAspect);
 void drawPyramidWindow(PyramidView& view, const PyramidImages& images, EstimatorState& estimator, PanelRect rect,
                        float uiScale);
 

@@ -227,10 +227,15 @@ int runViewer(const ViewerOptions& o) {
       const Vec2i fb = surface->framebufferSize();
       const std::string series =
           o.reference.empty() ? std::string() : fmt::format("; {} error series", viewer.errors().series().size());
-      std::cerr << fmt::format("{}: {}x{} {}, image {}x{} at {} spp; {}{}\n",
+      // The region the last frame drew (what the screenshot shows), then the resolution rendered:
+      // they differ under --render-scale or a reference's size, and on a busy machine the shown
+      // snapshot may still be a placeholder generation's.
+      const PixelRect drawn = viewer.drawnImage();
+      std::cerr << fmt::format("{}: {}x{} {}, image {}x{}+{}+{} at {} spp, rendered {}x{}; {}{}\n",
                                o.screenshot.empty() ? "pathlab view" : o.screenshot, fb.x, fb.y,
-                               o.headless ? "offscreen" : "window", s.settings.width, s.settings.height,
-                               s.samplesPerPixel, stats.summary(), series);
+                               o.headless ? "offscreen" : "window", drawn.size.x, drawn.size.y, drawn.origin.x,
+                               drawn.origin.y, s.samplesPerPixel, s.settings.width, s.settings.height,
+                               stats.summary(), series);
     }
     if (!o.errorCsv.empty()) viewer.writeErrorCsv(o.errorCsv, true);  // checked before the first frame
   }  // the viewer (and its render threads) goes before the GL context

@@ -2,6 +2,7 @@
 // to the textures, scenes, presets, saving.
 #include "ui/viewer.h"
 
+#include "core/camera/image_size.h"
 #include "core/film/image_io.h"
 #include "ui/output_names.h"
 #include "ui/technique_grid.h"
@@ -101,16 +102,23 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   // Panels beside the image, never over it: the controls on the left, the pyramid on the right,
   // the convergence plot and technique table along the bottom.
   const float scale = ui_.scale;
+  const std::optional<float> aspect = imageAspect();
   const float bottom = ui_.showUi && convergence_.show ? convergencePanelHeight(io.DisplaySize.y, scale) : 0.f;
   const float upper = io.DisplaySize.y - bottom;
   const float panelWidth = ui_.showUi ? std::min(380.f * scale, io.DisplaySize.x * 0.6f) : 0.f;
   const float pyramidWidth =
       ui_.showUi && pyramid_.show
-          ? pyramidPanelWidth(pyramid_, estimator_.settings.maxLength, io.DisplaySize.x - panelWidth, upper, scale)
+          ? pyramidPanelWidth(pyramid_, estimator_.settings.maxLength, io.DisplaySize.x - panelWidth, upper, scale, aspect)
           : 0.f;
-  imageOrigin_ = {static_cast<int>(panelWidth * framebufferScale), 0};
-  imageSize_ = {std::max(framebufferSize.x - imageOrigin_.x - static_cast<int>(pyramidWidth * framebufferScale), 0),
-                std::max(framebufferSize.y - static_cast<int>(bottom * framebufferScale), 0)};
+  // The room the panels leave; the image is the largest rectangle of its aspect in it, centred
+  // (never cropped: the camera's vertical and horizontal field of view both stay whole).
+  PixelRect room;
+  room.origin = {static_cast<int>(panelWidth * framebufferScale), 0};
+  room.size = {std::max(framebufferSize.x - room.origin.x - static_cast<int>(pyramidWidth * framebufferScale), 0),
+               std::max(framebufferSize.y - static_cast<int>(bottom * framebufferScale), 0)};
+  const PixelRect fitted = fitAspect(room, aspect);
+  imageOrigin_ = fitted.origin;
+  imageSize_ = fitted.size;
   handleCamera(framebufferScale);
   updateReferenceState();
 
@@ -139,6 +147,14 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   if (const std::optional<ReferenceView> view = reference_.errors->referenceView(); view && reference_.matchSize) {
     edited.width = view->width;
     edited.height = view->height;
+  } else if (aspect) {
+    // The longest side follows the window; the other the camera's aspect, not the rounding of a
+    // scaled-down rectangle (at --render-scale 0.25 that would drift by a few percent).
+    const int longest = std::max(imageSize_.x, imageSize_.y);
+    const Vec2i size = imageSizeForAspect(aspect, std::nullopt, std::nullopt,
+                                          std::max(1, static_cast<int>(static_cast<float>(longest) * run_.resolutionScale)));
+    edited.width = size.x;
+    edited.height = size.y;
   } else {
     edited.width = std::max(1, static_cast<int>(static_cast<float>(imageSize_.x) * run_.resolutionScale));
     edited.height = std::max(1, static_cast<int>(static_cast<float>(imageSize_.y) * run_.resolutionScale));
@@ -314,13 +330,13 @@ bool Viewer::updateMaps() {
 void Viewer::drawMapOverImage(float fbScale) {
   const Texture& t = mapImages_.texture;
   if (!maps_.show || t.empty() || imageSize_.x <= 0 || imageSize_.y <= 0) return;
-  // Fitted into the image area like the image (ImageView::draw), centred.
-  const ImVec2 origin(static_cast<float>(imageOrigin_.x) / fbScale, static_cast<float>(imageOrigin_.y) / fbScale);
-  const ImVec2 area(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale);
-  const float aspect = static_cast<float>(t.width()) / static_cast<float>(t.height());
-  const ImVec2 size = area.x > aspect * area.y ? ImVec2(aspect * area.y, area.y) : ImVec2(area.x, area.x / aspect);
-  const ImVec2 p0(origin.x + 0.5f * (area.x - size.x), origin.y + 0.5f * (area.y - size.y));
-  ImGui::GetBackgroundDrawList()->AddImage(t.imguiId(), p0, ImVec2(p0.x + size.x, p0.y + size.y));
+  // Fitted into the image's rectangle like the image (ImageView::draw), centred: the map has the
+  // image's aspect, so it covers the image exactly.
+  const PixelRect r =
+      fitAspect({imageOrigin_, imageSize_}, static_cast<float>(t.width()) / static_cast<float>(t.height()));
+  const ImVec2 p0(static_cast<float>(r.origin.x) / fbScale, static_cast<float>(r.origin.y) / fbScale);
+  const ImVec2 p1(static_cast<float>(r.origin.x + r.size.x) / fbScale, static_cast<float>(r.origin.y + r.size.y) / fbScale);
+  ImGui::GetBackgroundDrawList()->AddImage(t.imguiId(), p0, p1);
 }
 
 void Viewer::waitForPyramid(double seconds) {
@@ -337,8 +353,18 @@ void Viewer::waitForPyramid(double seconds) {
 }
 
 void Viewer::drawImage(Vec2i framebufferSize) {
+  drawn_ = {};
   if (run_.idleForNoTechnique) return;  // black: nothing is estimated
-  imageView_->draw(imageOrigin_, imageSize_, framebufferSize.y, shownDisplay());
+  drawn_ = imageView_->draw(imageOrigin_, imageSize_, framebufferSize.y, shownDisplay());
+}
+
+std::optional<float> Viewer::imageAspect() const {
+  // A reference sets the pixels (the error needs the same ones), and with them the shape.
+  if (const std::optional<ReferenceView> view = reference_.errors->referenceView(); view && reference_.matchSize)
+    return static_cast<float>(view->width) / static_cast<float>(std::max(view->height, 1));
+  // The orbit/fly override carries the scene camera's aspect (OrbitCamera keeps it); a preset's
+  // camera has none of its own and shows the same scene: it keeps the scene camera's too.
+  return cameraAspect(estimator_.settings.camera, scene_.scene->cameraDesc());
 }
 
 void Viewer::openScene(const std::string& path) {

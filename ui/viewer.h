@@ -8,6 +8,7 @@
 
 #include "core/render/progressive_renderer.h"
 #include "ui/estimator_state.h"
+#include "ui/image_rect.h"
 #include "ui/image_view.h"
 #include "ui/panels.h"
 #include "ui/viewer_options.h"
@@ -35,6 +36,8 @@ class Viewer {
   bool busy() const { return scene_.loader.busy(); }
   // Draws the image under the panels (after ImGui::Render, before ImGui's draw data).
   void drawImage(Vec2i framebufferSize);
+  // Where the last drawImage put the image (empty when nothing was drawn): what a screenshot shows.
+  const PixelRect& drawnImage() const { return drawn_; }
 
   // Headless screenshots: waits (up to `seconds`) until the thumbnails of the current generation's
   // newest pass are published, when the pyramid is shown.
@@ -79,7 +82,10 @@ class Viewer {
   MapImages mapImages_;
   std::chrono::steady_clock::time_point lastPoll_{}, lastPriorityCheck_{};
   bool forceRefresh_ = false;
-  Vec2i imageOrigin_{0}, imageSize_{0};  // framebuffer pixels
+  // The image's rectangle in framebuffer pixels: the room the panels leave, fitted to the image's
+  // aspect (ui/image_rect.h). Input, captions and overlays use it; the bars stay background.
+  Vec2i imageOrigin_{0}, imageSize_{0};
+  PixelRect drawn_;
 
   // viewer.cpp: the frame, settings to the renderer, images to the textures, scenes, presets, saving
   void drawSidePanel(float width, float height, PanelRequests& requests);
@@ -91,6 +97,9 @@ class Viewer {
   bool updateMaps();
   // The chosen technique map over the image area, when shown and arrived (ImGui's background).
   void drawMapOverImage(float fbScale);
+  // Width / height of the image: the reference's when it sets the size, else the camera's (none:
+  // the glTF camera has no aspectRatio, the image fills the room as glTF asks).
+  std::optional<float> imageAspect() const;
   void openScene(const std::string& path);
   void pollSceneLoad();
   void refreshSceneFiles();

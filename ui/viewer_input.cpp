@@ -90,9 +90,8 @@ void Viewer::perform(Action action) {
 void Viewer::handleCamera(float framebufferScale) {
   const ImGuiIO& io = ImGui::GetIO();
   const Vec2 mouse = Vec2(io.MousePos.x, io.MousePos.y) * framebufferScale;
-  const bool overImage = mouse.x >= static_cast<float>(imageOrigin_.x) && mouse.y >= static_cast<float>(imageOrigin_.y) &&
-                         mouse.x < static_cast<float>(imageOrigin_.x + imageSize_.x) &&
-                         mouse.y < static_cast<float>(imageOrigin_.y + imageSize_.y);
+  // The fitted rectangle: a drag or a wheel over the bars beside a letterboxed image is not the image's.
+  const bool overImage = PixelRect{imageOrigin_, imageSize_}.contains(mouse);
   bool moved = false;
   // A drag belongs to the image only if it started there, outside every ImGui window.
   const bool anyDown = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];

@@ -33,6 +33,20 @@ TEST(OrbitCamera, StartsAtTheSceneCamera) {
   EXPECT_NEAR(orbit.distance(), 1.08f, 1e-3f);
 }
 
+// The override camera keeps the scene camera's aspect, so an orbit never changes the framing's
+// shape (the viewer fits the image to it, ui/image_rect.h).
+TEST(OrbitCamera, MovesKeepTheSceneCamerasAspect) {
+  CameraDesc wide = kBoxCamera;
+  wide.aspectRatio = 1.5f;
+  OrbitCamera orbit(wide, kBoxMin, kBoxMax);
+  orbit.orbit(0.3f, 0.1f);
+  orbit.zoom(2.f);
+  orbit.fly({1.f, 0.f, 0.f}, 0.1f);
+  ASSERT_TRUE(orbit.desc().aspectRatio.has_value());
+  EXPECT_EQ(*orbit.desc().aspectRatio, 1.5f);
+  EXPECT_FALSE(OrbitCamera(kBoxCamera, kBoxMin, kBoxMax).desc().aspectRatio.has_value());
+}
+
 TEST(OrbitCamera, OrbitKeepsTheDistanceAndAFullTurnReturns) {
   OrbitCamera orbit(kBoxCamera, kBoxMin, kBoxMax);
   const Vec3 pivot = orbit.pivot();

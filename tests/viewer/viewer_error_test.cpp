@@ -86,7 +86,7 @@ TEST(ViewerError, TwoConfigurationsTwoSeriesBothFalling) {
                     " --headless --width 640 --height 480 --max-length 4 --threads 2 --frames 42"
                     " --script '20:wait=8;21:key=U;40:wait=8' --error-csv " + csv + " --screenshot " + shot + " --force");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.err.find("image 80x60"), std::string::npos) << "rendered at the reference's size: " << r.err;
+  EXPECT_NE(r.err.find("rendered 80x60"), std::string::npos) << "rendered at the reference's size: " << r.err;
   EXPECT_NE(r.err.find("2 error series"), std::string::npos) << r.err;
   const std::map<int, std::vector<Point>> series = readSeries(csv);
   ASSERT_EQ(series.size(), 2u);
