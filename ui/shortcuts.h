@@ -14,7 +14,7 @@ enum class Action {
   NextPreset, PreviousPreset,
   ExposureUp, ExposureDown, ToggleToneMap, ToggleFalseColour,
   ToggleConvergence, ToggleErrorView, UseImageAsReference,
-  ResetCamera, ReloadScene, SaveImage, Screenshot, Quit,
+  ResetCamera, ReloadScene, SaveImage, Screenshot, ToggleRecording, Quit,
 };
 
 struct Shortcut {

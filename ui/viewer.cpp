@@ -173,7 +173,9 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
   if (ImGui::GetItemRectSize().x + ImGui::GetStyle().ItemSpacing.x < right - ImGui::GetStyle().WindowPadding.x)
     ImGui::SameLine(right);
   if (ImGui::SmallButton("Help (F1)")) ui_.showHelp = !ui_.showHelp;
-  if (!ui_.message.empty() && (ui_.messageIsError || secondsSince(ui_.messageTime) < kMessageSeconds)) {
+  const bool transient = !ui_.messageIsError;
+  if (!ui_.message.empty() && !(transient && ui_.recording) &&
+      (ui_.messageIsError || secondsSince(ui_.messageTime) < kMessageSeconds)) {
     ImGui::PushStyleColor(ImGuiCol_Text, ui_.messageIsError ? ImVec4(1.f, 0.35f, 0.35f, 1.f) : ImVec4(0.6f, 0.9f, 0.6f, 1.f));
     ImGui::TextWrapped("%s", ui_.message.c_str());
     ImGui::PopStyleColor();
