@@ -56,6 +56,12 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
                      ->check(CLI::Range(1, 100000));
   cmd->add_option("--screenshot", v.screenshot, "After the last frame, write the whole viewer to this PNG")
       ->needs(frames);
+  auto* record = cmd->add_option("--record", v.recordDir,
+                                 "Record numbered PNG frames of the window into this directory from the first frame "
+                                 "(F9 stops and restarts; with ffmpeg installed, DIR/recording.mp4 on stop)");
+  cmd->add_flag("--record-image", v.recordImage, "Record the image area alone (with its caption), not the whole window")
+      ->needs(record);
+  cmd->add_option("--record-fps", v.recordFps, "Frame rate of the recording (default 30)")->check(CLI::Range(1, 120));
   cmd->add_option("--render-scale", v.renderScale, "Render resolution relative to the window: 1, 0.5 or 0.25")
       ->check(CLI::IsMember({1.f, 0.5f, 0.25f}));
   cmd->add_option("--reference", v.reference,
@@ -67,7 +73,8 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_flag("--check", o.estimator.settings.checkTechniques,
                 "Run the consistency check of the techniques (cells of those that disagree turn red)");
   cmd->add_option("--z-map", o.zMap, "S,T: with --check, draw technique (S,T)'s |z| per block over the image");
-  cmd->add_flag("-f,--force", v.force, "Overwrite the screenshot (and the error CSV) if it exists");
+  cmd->add_flag("-f,--force", v.force,
+                "Overwrite the screenshot (and the error CSV) if it exists; record into a non-empty directory");
 }
 
 int runView(ViewOptions o) {
@@ -92,6 +99,7 @@ int runView(ViewOptions o) {
   // Before the viewer loads the scene; it checks the extension and --force itself.
   if (!o.viewer.screenshot.empty()) checkOutputWritable(o.viewer.screenshot);
   if (!o.viewer.errorCsv.empty()) checkOutputWritable(o.viewer.errorCsv);
+  if (!o.viewer.recordDir.empty()) checkOutputDirectory(o.viewer.recordDir);
   if (o.viewer.scene == kDefaultScene && !std::filesystem::exists(o.viewer.scene))
     o.viewer.scene = PATHLAB_ASSETS_DIR "/cornell-box.gltf";
   // The render threads get every core; the UI thread still runs at its own bounded frame rate.

@@ -8,6 +8,7 @@
 #include "ui/input_script.h"
 #include "ui/output_names.h"
 #include "ui/presets.h"
+#include "ui/recorder.h"
 #include "ui/scene_loader.h"
 #include "ui/screenshot.h"
 #include "ui/viewer.h"
@@ -106,6 +107,63 @@ struct FrameStats {
 
 void saveScreenshot(const std::string& path, Vec2i size) { writePngRgba(path, size, readFramebufferRgba(size)); }
 
+// The recorder and its take's clock. Headless, every drawn frame advances the clock by the UI
+// frame period (a simulated clock: the same script writes the same frames on any machine); in a
+// window it is the wall clock, so the clip plays at the speed the lecture happened.
+struct Recording {
+  std::unique_ptr<Recorder> recorder;
+  bool headless = false, imageOnly = false;
+  int fps = 30;
+  long long takeFrames = 0;  // frames drawn in this take
+  Clock::time_point takeStart{};
+
+  bool active() const { return recorder && recorder->recording(); }
+  void start(Viewer& viewer, const std::string& dir) {
+    if (!recorder) recorder = std::make_unique<Recorder>(dir, fps, headless);
+    recorder->start();
+    takeFrames = 0;
+    takeStart = Clock::now();
+    viewer.setRecording(true);
+    std::cerr << fmt::format("pathlab view: recording into {} at {} fps\n", recorder->dir(), fps);
+  }
+  void toggle(Viewer& viewer) {
+    if (active()) {
+      recorder->stop();
+      viewer.setRecording(false);
+      return;
+    }
+    try {
+      // Without --record, each recording gets a fresh directory beside the screenshots.
+      std::string dir = recorder ? recorder->dir() : freshStem("out", "pathlab-recording", {""});
+      if (!recorder) prepareRecordDirectory(dir, false);
+      start(viewer, dir);
+    } catch (const std::exception& e) {
+      viewer.showMessage(e.what(), true);
+    }
+  }
+  // After the frame is drawn, before it is presented.
+  void capture(const Viewer& viewer, Vec2i fb) {
+    if (!active()) return;
+    const double t = headless ? static_cast<double>(takeFrames) * kFrameSeconds
+                              : std::chrono::duration<double>(Clock::now() - takeStart).count();
+    ++takeFrames;
+    const int copies = recorder->framesDue(t);
+    if (copies == 0) return;
+    // The image area includes the caption drawn over it (ImGui's foreground list is drawn by now).
+    const Vec2i origin = imageOnly ? viewer.imageOrigin() : Vec2i(0);
+    const Vec2i size = imageOnly ? viewer.imageSize() : fb;
+    if (size.x <= 0 || size.y <= 0) return;
+    recorder->submit(readFramebufferRgba(fb, origin, size), size, copies);
+  }
+  void report(Viewer* viewer) {
+    if (!recorder) return;
+    while (const std::optional<std::string> r = recorder->takeReport()) {
+      std::cerr << "pathlab view: " << *r << "\n";
+      if (viewer) viewer->showMessage(*r, r->starts_with("warning"));
+    }
+  }
+};
+
 // Feeds this frame's scripted input to ImGui (after the platform backend's own, so it wins).
 // Returns the files the script drops on the window in this frame.
 std::vector<std::string> applyScript(const std::vector<InputEvent>& script, int frame, std::vector<int>& held) {
@@ -127,7 +185,8 @@ std::vector<std::string> applyScript(const std::vector<InputEvent>& script, int 
 }  // namespace
 
 int runViewer(const ViewerOptions& o) {
-  if (o.headless && o.screenshot.empty()) throw std::runtime_error("--headless needs --screenshot OUT.png");
+  if (o.headless && o.screenshot.empty() && o.recordDir.empty())
+    throw std::runtime_error("--headless needs --screenshot OUT.png or --record DIR");
   if (!o.screenshot.empty()) checkScreenshotPath(o);
   if (!o.errorCsv.empty()) checkErrorCsvPath(o);
   if ((!o.errorCsv.empty() || o.errorView) && o.reference.empty())
@@ -140,6 +199,7 @@ int runViewer(const ViewerOptions& o) {
     options.settings = findPreset(presets, o.preset, o.presetsFile).applyTo(options.settings);
   }
   const std::vector<InputEvent> script = parseInputScript(o.script);
+  if (!o.recordDir.empty()) prepareRecordDirectory(o.recordDir, o.force);  // refused before the scene loads
   std::vector<int> scriptKeys;
   SceneLoadResult loaded = SceneLoader::load(o.scene, o.load);
   if (!loaded.scene) throw std::runtime_error(loaded.error);
@@ -157,6 +217,11 @@ int runViewer(const ViewerOptions& o) {
   {
     Viewer viewer(options, loaded.scene, std::move(presets));
     viewer.setUiScale(uiScale);
+    Recording recording;
+    recording.headless = o.headless;
+    recording.imageOnly = o.recordImage;
+    recording.fps = o.recordFps;
+    if (!o.recordDir.empty()) recording.start(viewer, o.recordDir);
     auto lastInput = Clock::now();
     int frame = 0;
     const bool counted = o.frames > 0;  // draw every frame and stop after o.frames
@@ -177,11 +242,14 @@ int runViewer(const ViewerOptions& o) {
       // A window draws only after input (for a moment, so ImGui can settle hover states) and when
       // a new image arrives; otherwise it sleeps in the event wait and the CPU renders.
       const bool recent = std::chrono::duration<double>(Clock::now() - lastInput).count() < kInputLingerSeconds;
-      if (surface->waitEvents(recent || counted ? 0.0 : kIdleWaitSeconds)) lastInput = Clock::now();
+      // While recording every frame is drawn: the clip needs frames when nothing changes too.
+      const bool recordingNow = recording.active();
+      if (surface->waitEvents(recent || counted || recordingNow ? 0.0 : kIdleWaitSeconds)) lastInput = Clock::now();
       const auto start = Clock::now();
       const bool newImage = viewer.pollImage();
       const bool active = std::chrono::duration<double>(start - lastInput).count() < kInputLingerSeconds;
-      if (!counted && !active && !newImage && !viewer.busy()) continue;
+      recording.report(&viewer);
+      if (!counted && !active && !newImage && !viewer.busy() && !recordingNow) continue;
       ++frame;
       // A scripted resize first: the platform frame then sees the new size.
       if (const auto size = inputAt(script, frame - 1).resize) surface->resize(*size);
@@ -211,6 +279,8 @@ int runViewer(const ViewerOptions& o) {
           viewer.showMessage(e.what(), true);
         }
       }
+      if (viewer.takeRecordingToggleRequest()) recording.toggle(viewer);
+      recording.capture(viewer, fb);
       if (last && !o.screenshot.empty()) {
         glFinish();
         saveScreenshot(o.screenshot, fb);
@@ -238,6 +308,10 @@ int runViewer(const ViewerOptions& o) {
                                stats.summary(), series);
     }
     if (!o.errorCsv.empty()) viewer.writeErrorCsv(o.errorCsv, true);  // checked before the first frame
+    if (recording.recorder) {
+      recording.recorder->finish();  // the last frames written, the clip assembled
+      recording.report(nullptr);
+    }
   }  // the viewer (and its render threads) goes before the GL context
   return exitCode;
 }

@@ -12,10 +12,12 @@
 
 namespace pathlab::ui {
 
-std::vector<unsigned char> readFramebufferRgba(Vec2i size) {
+std::vector<unsigned char> readFramebufferRgba(Vec2i size) { return readFramebufferRgba(size, Vec2i(0), size); }
+
+std::vector<unsigned char> readFramebufferRgba(Vec2i framebufferSize, Vec2i origin, Vec2i size) {
   std::vector<unsigned char> rows(static_cast<size_t>(size.x) * static_cast<size_t>(size.y) * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  glReadPixels(origin.x, framebufferSize.y - origin.y - size.y, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
   // GL rows come bottom-up.
   std::vector<unsigned char> out(rows.size());
   const size_t stride = static_cast<size_t>(size.x) * 4;

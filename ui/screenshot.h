@@ -10,6 +10,9 @@ namespace pathlab::ui {
 
 // The pixels of the bound framebuffer, RGBA8, top row first.
 std::vector<unsigned char> readFramebufferRgba(Vec2i size);
+// The pixels of a rectangle of the bound framebuffer (origin from the top left, as the viewer's
+// image area), RGBA8, top row first.
+std::vector<unsigned char> readFramebufferRgba(Vec2i framebufferSize, Vec2i origin, Vec2i size);
 
 // Writes RGBA8 (top row first) as an RGB PNG atomically (temporary file, then rename). Throws
 // std::runtime_error naming the path on failure.

@@ -51,6 +51,7 @@ constexpr Shortcut kShortcuts[] = {
     {GLFW_KEY_F5, false, "F5", Action::ReloadScene, "reload the scene file"},
     {GLFW_KEY_S, true, "Ctrl+S", Action::SaveImage, "save the image as EXR and PNG in out/"},
     {GLFW_KEY_F12, false, "F12", Action::Screenshot, "screenshot of the window in out/"},
+    {GLFW_KEY_F9, false, "F9", Action::ToggleRecording, "start / stop recording PNG frames (--record DIR, else out/)"},
     {GLFW_KEY_Q, true, "Ctrl+Q", Action::Quit, "quit"},
 };
 

@@ -15,7 +15,7 @@ enum class Action {
   IsolateS0, IsolateS1, IsolateS2, IsolateS3, IsolateS4, IsolateS5, IsolateS6, IsolateS7, IsolateS8, IsolateS9,
   ExposureUp, ExposureDown, ToggleToneMap, ToggleFalseColour,
   ToggleConvergence, ToggleErrorView, UseImageAsReference,
-  ResetCamera, ReloadScene, SaveImage, Screenshot, Quit,
+  ResetCamera, ReloadScene, SaveImage, Screenshot, ToggleRecording, Quit,
 };
 
 struct Shortcut {

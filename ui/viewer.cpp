@@ -189,8 +189,10 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
   if (ImGui::GetItemRectSize().x + ImGui::GetStyle().ItemSpacing.x < right - ImGui::GetStyle().WindowPadding.x)
     ImGui::SameLine(right);
   if (ImGui::SmallButton("Help (F1)")) ui_.showHelp = !ui_.showHelp;
-  // A notice is not part of the picture: not drawn in the frame a screenshot (F12) captures.
-  const bool transientShown = !ui_.screenshotRequested && secondsSince(ui_.messageTime) < kMessageSeconds;
+  // A notice is not part of the picture: not drawn in the frame a screenshot (F12) captures, nor
+  // while recording (errors still are).
+  const bool transientShown =
+      !ui_.screenshotRequested && !ui_.recording && secondsSince(ui_.messageTime) < kMessageSeconds;
   if (!ui_.message.empty() && (ui_.messageIsError || transientShown)) {
     ImGui::PushStyleColor(ImGuiCol_Text, ui_.messageIsError ? ImVec4(1.f, 0.35f, 0.35f, 1.f) : ImVec4(0.6f, 0.9f, 0.6f, 1.f));
     ImGui::TextWrapped("%s", ui_.message.c_str());

@@ -47,6 +47,12 @@ class Viewer {
   ProgressiveRenderer& renderer() { return *renderer_; }
   bool quitRequested() const { return ui_.quit; }
   bool takeScreenshotRequest() { return std::exchange(ui_.screenshotRequested, false); }
+  bool takeRecordingToggleRequest() { return std::exchange(ui_.recordingToggleRequested, false); }
+  // While recording, transient (non-error) messages are not drawn: they would end up in the clip.
+  void setRecording(bool recording) { ui_.recording = recording; }
+  // The image area of the last built frame, framebuffer pixels from the top left.
+  Vec2i imageOrigin() const { return imageOrigin_; }
+  Vec2i imageSize() const { return imageSize_; }
   // Size of the UI relative to the default: 2 in lecture mode, times the display's HiDPI factor.
   void setUiScale(float scale) { ui_.scale = scale; }
   void setFrameTime(double ms) { ui_.frameMs = ui_.frameMs == 0.0 ? ms : 0.9 * ui_.frameMs + 0.1 * ms; }

@@ -83,6 +83,7 @@ void Viewer::perform(Action action) {
     case Action::ReloadScene: openScene(scene_.path); break;
     case Action::SaveImage: saveImage(); break;
     case Action::Screenshot: ui_.screenshotRequested = true; break;
+    case Action::ToggleRecording: ui_.recordingToggleRequested = true; break;
     case Action::Quit: ui_.quit = true; break;
   }
 }

@@ -32,7 +32,12 @@ struct ViewerOptions {
   bool headless = false;
   int frames = 0;
   std::string screenshot;
-  bool force = false;    // overwrite the screenshot
+  bool force = false;    // overwrite the screenshot; record into a non-empty directory
+  // Recording (ui/recorder.h): numbered PNG frames of the window (or of the image area alone) in
+  // recordDir from the first frame; the F9 key stops and restarts it. recordFps: the clip's rate.
+  std::string recordDir;
+  bool recordImage = false;
+  int recordFps = 30;
   bool hideUi = false;   // start with the panels hidden
   std::string script;    // scripted input (ui/input_script.h), counted in drawn frames
   // A reference image (.exr or .pfm) for the live error plot and the error view; rendered at its

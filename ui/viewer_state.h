@@ -114,7 +114,8 @@ struct MapImages {
 struct UiState {
   bool showUi = true, showHelp = false;
   float scale = 1.f;  // 2 in lecture mode, times the display's HiDPI factor
-  bool quit = false, screenshotRequested = false;
+  bool quit = false, screenshotRequested = false, recordingToggleRequested = false;
+  bool recording = false;  // transient notices are left out of the recorded frames
   bool dragging = false;  // a drag that started over the image moves the camera
   double frameMs = 0.0;
   std::string message;

@@ -22,11 +22,12 @@ struct CommandRun {
 };
 
 // `pathlab ARGS` with no standard input; its standard error goes through a file in `dir`, one per
-// test process (CTest runs the tests of a binary in parallel).
-inline CommandRun runPathlab(const std::string& dir, const std::string& args) {
+// test process (CTest runs the tests of a binary in parallel). `prefix` goes before the command in
+// the shell line: "cd DIR &&" or "PATH=... " for tests of the working directory or $PATH.
+inline CommandRun runPathlab(const std::string& dir, const std::string& args, const std::string& prefix = "") {
   std::filesystem::create_directories(dir);
-  const std::string errFile = dir + "/stderr-" + std::to_string(getpid()) + ".txt";
-  const std::string command = std::string(PATHLAB_BINARY) + " " + args + " 2>" + errFile + " </dev/null";
+  const std::string errFile = std::filesystem::absolute(dir + "/stderr-" + std::to_string(getpid()) + ".txt").string();
+  const std::string command = prefix + " " + std::string(PATHLAB_BINARY) + " " + args + " 2>" + errFile + " </dev/null";
   const int status = std::system(command.c_str());
   std::ifstream in(errFile);
   std::stringstream err;
