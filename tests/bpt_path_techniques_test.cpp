@@ -5,10 +5,10 @@
 // technique's weights equal misWeight under each heuristic, the density ratios equal
 // techniqueDensityRatios, and the impossible techniques are exactly those sampleableTechniques
 // leaves out, with zero density and weight.
-#include "core/bpt/connect.h"
 #include "core/bpt/path_techniques.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"
+#include "tests/support/random_connections.h"
 
 #include <gtest/gtest.h>
 
@@ -19,60 +19,43 @@ namespace {
 
 void checkScene(const Scene& scene, const std::string& name, int maxLength) {
   const Camera camera(scene.cameraDesc(), 16, 12, LensOptions{});
-  Pcg32 rng(77, 3);
-  CameraSubpath cp;
-  LightSubpath lp;
-  Counters counters;
   const TechniqueSet all = TechniqueSet::all();
   const MisOptions options{MisHeuristic::Balance, 2.f, 0.f};  // no short-connection rule: plain ratios
-  int compared = 0, impossible = 0;
-  for (int sample = 0; sample < 200; ++sample) {
-    const Vec2 pRaster(rng.next1D() * 16.f, rng.next1D() * 12.f);
-    const int nt = generateCameraSubpath(scene, camera, pRaster, rng.next2D(), rng, WalkOptions{maxLength + 1, true}, cp, counters);
-    const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, true}, lp, counters);
-    for (int t = 1; t <= nt; ++t)
-      for (int s = 0; s <= std::max(ns, 1) && s + t - 1 <= maxLength; ++s) {
-        if (s + t < 2 || (s > ns && !(s == 1 && t >= 2))) continue;
-        Pcg32 connectionRng(static_cast<uint64_t>(sample), static_cast<uint64_t>(s * 64 + t));
-        Connection c;
-        if (!formConnection(scene, camera, lp, s, cp, t, connectionRng, c)) continue;
-        const MisPath path{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-        const std::vector<TechniqueOnPath> every = techniquesOnPath(scene, camera, path, all, options);
-        ASSERT_EQ(static_cast<int>(every.size()), s + t) << name;
-        const uint64_t sampleable = sampleableTechniques(path);
-        std::vector<double> ratios(static_cast<size_t>(s + t));
-        techniqueDensityRatios(scene, camera, path, ratios.data());
-        double sum = 0.0, weights = 0.0;
-        for (const TechniqueOnPath& x : every) {
-          ASSERT_EQ(x.possible, ((sampleable >> x.s) & 1u) != 0) << name;
-          if (!x.possible) {
-            EXPECT_EQ(x.pdfA, 0.0);
-            EXPECT_EQ(x.balance, 0.0);
-            ++impossible;
-          }
-          sum += x.pdfA;
-          weights += x.balance;
-        }
-        const TechniqueOnPath& own = every[static_cast<size_t>(s)];
-        if (!(own.pdfA > 0.0) || !std::isfinite(sum) || !(sum > 0.0)) continue;
-        EXPECT_NEAR(weights, 1.0, 1e-6) << name;
-        for (const TechniqueOnPath& x : every) {
-          if (!x.possible) continue;
-          EXPECT_NEAR(x.balance, x.pdfA / sum, 1e-5 * std::max(x.balance, 1e-3)) << name << " (" << x.s << "," << x.t << ")";
-          EXPECT_NEAR(x.pdfA / own.pdfA, ratios[static_cast<size_t>(x.s)], 1e-5 * ratios[static_cast<size_t>(x.s)]) << name;
-        }
-        for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
-          MisOptions o = options;
-          o.heuristic = h;
-          const double expected = misWeight(scene, camera, path, all, o);
-          const double got = h == MisHeuristic::Balance ? own.balance : h == MisHeuristic::Power ? own.power : own.uniform;
-          EXPECT_NEAR(got, expected, 1e-5 * std::max(expected, 1e-3)) << name << " " << misHeuristicName(h);
-        }
-        ++compared;
+  int compared = 0;
+  test::forEachConnection(scene, camera, maxLength, 200, Pcg32(77, 3), [&](const MisPath& path, int s, int t) {
+    const std::vector<TechniqueOnPath> every = techniquesOnPath(scene, camera, path, all, options);
+    ASSERT_EQ(static_cast<int>(every.size()), s + t) << name;
+    const uint64_t sampleable = sampleableTechniques(path);
+    std::vector<double> ratios(static_cast<size_t>(s + t));
+    techniqueDensityRatios(scene, camera, path, ratios.data());
+    double sum = 0.0, weights = 0.0;
+    for (const TechniqueOnPath& x : every) {
+      ASSERT_EQ(x.possible, ((sampleable >> x.s) & 1u) != 0) << name;
+      if (!x.possible) {
+        EXPECT_EQ(x.pdfA, 0.0);
+        EXPECT_EQ(x.balance, 0.0);
       }
-  }
+      sum += x.pdfA;
+      weights += x.balance;
+    }
+    const TechniqueOnPath& own = every[static_cast<size_t>(s)];
+    if (!(own.pdfA > 0.0) || !std::isfinite(sum) || !(sum > 0.0)) return;
+    EXPECT_NEAR(weights, 1.0, 1e-6) << name;
+    for (const TechniqueOnPath& x : every) {
+      if (!x.possible) continue;
+      EXPECT_NEAR(x.balance, x.pdfA / sum, 1e-5 * std::max(x.balance, 1e-3)) << name << " (" << x.s << "," << x.t << ")";
+      EXPECT_NEAR(x.pdfA / own.pdfA, ratios[static_cast<size_t>(x.s)], 1e-5 * ratios[static_cast<size_t>(x.s)]) << name;
+    }
+    for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+      MisOptions o = options;
+      o.heuristic = h;
+      const double expected = misWeight(scene, camera, path, all, o);
+      const double got = h == MisHeuristic::Balance ? own.balance : h == MisHeuristic::Power ? own.power : own.uniform;
+      EXPECT_NEAR(got, expected, 1e-5 * std::max(expected, 1e-3)) << name << " " << misHeuristicName(h);
+    }
+    ++compared;
+  });
   EXPECT_GT(compared, 300) << name;
-  (void)impossible;
 }
 
 Scene bundled(const std::string& name) {

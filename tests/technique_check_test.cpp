@@ -3,12 +3,12 @@
 // sums, and the whole check on renders: every bundled scene passes, a 5 % bias injected into one
 // technique of length 2 or 3 is named (and only it), and over several seeds the check raises
 // no more false alarms than its level allows, its z-scores calibrated.
-#include "core/bpt/connect.h"
 #include "core/bpt/mis.h"
 #include "core/check/check_report.h"
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"
+#include "tests/support/random_connections.h"
 
 #include <gtest/gtest.h>
 
@@ -26,31 +26,16 @@ Scene bundled(const std::string& name) {
 // where delta vertices exist.
 void checkMask(const Scene& scene, const std::string& name, int maxLength, bool expectRestricted) {
   const Camera camera(scene.cameraDesc(), 16, 12, LensOptions{});
-  Pcg32 rng(2026, 7);
-  CameraSubpath cp;
-  LightSubpath lp;
-  Counters counters;
   int compared = 0, restricted = 0;
-  for (int sample = 0; sample < 300; ++sample) {
-    const Vec2 pRaster(rng.next1D() * 16.f, rng.next1D() * 12.f);
-    const int nt = generateCameraSubpath(scene, camera, pRaster, rng.next2D(), rng, WalkOptions{maxLength + 1, true}, cp, counters);
-    const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, true}, lp, counters);
-    for (int t = 1; t <= nt; ++t)
-      for (int s = 0; s <= std::max(ns, 1) && s + t - 1 <= maxLength; ++s) {
-        if (s + t < 2 || (s > ns && !(s == 1 && t >= 2))) continue;
-        Pcg32 connectionRng(static_cast<uint64_t>(sample), static_cast<uint64_t>(s * 64 + t));
-        Connection c;
-        if (!formConnection(scene, camera, lp, s, cp, t, connectionRng, c)) continue;
-        const MisPath path{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-        const PathDensities d = pathDensities(scene, camera, path);
-        uint64_t expected = 0;
-        for (int sp = 0; sp < d.n; ++sp) expected |= techniquePossible(d, sp) ? uint64_t{1} << sp : 0;
-        ASSERT_EQ(sampleableTechniques(path), expected) << name << " (" << s << "," << t << ")";
-        EXPECT_TRUE((expected >> s) & 1u) << "a technique can sample the path it sampled";
-        ++compared;
-        restricted += expected != (uint64_t{1} << d.n) - 1 ? 1 : 0;
-      }
-  }
+  test::forEachConnection(scene, camera, maxLength, 300, Pcg32(2026, 7), [&](const MisPath& path, int s, int t) {
+    const PathDensities d = pathDensities(scene, camera, path);
+    uint64_t expected = 0;
+    for (int sp = 0; sp < d.n; ++sp) expected |= techniquePossible(d, sp) ? uint64_t{1} << sp : 0;
+    ASSERT_EQ(sampleableTechniques(path), expected) << name << " (" << s << "," << t << ")";
+    EXPECT_TRUE((expected >> s) & 1u) << "a technique can sample the path it sampled";
+    ++compared;
+    restricted += expected != (uint64_t{1} << d.n) - 1 ? 1 : 0;
+  });
   EXPECT_GT(compared, 300) << name;
   if (expectRestricted) EXPECT_GT(restricted, 20) << name;
   else EXPECT_EQ(restricted, 0) << name;
