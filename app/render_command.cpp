@@ -94,8 +94,10 @@ void printTechniquesOnPath(const std::vector<TechniqueOnPath>& every) {
     const std::string edge = x.connectionEdge < 0 ? std::string("nothing: hits the emitter")
                                                   : fmt::format("x{}-x{}", x.connectionEdge, x.connectionEdge + 1);
     if (!x.possible) {
-      std::cout << fmt::format("{:>12}  {:>32} {:>11}  cannot: a delta vertex at {} or a light it cannot hit\n", "",
-                               name, "0", edge);
+      const std::string why = x.connectionEdge < 0
+                                  ? std::string("its emitter cannot be hit by a ray (point, spot, directional light)")
+                                  : fmt::format("x{} or x{} scatters by a delta lobe", x.connectionEdge, x.connectionEdge + 1);
+      std::cout << fmt::format("{:>12}  {:>32} {:>11}  cannot: {}\n", "", name, "0", why);
       continue;
     }
     std::cout << fmt::format("{:>12}  {:>32} {:>11.4e} {:>9.4f} {:>9.4f} {:>9.4f}  {}{}\n", "", name, x.pdfA,
