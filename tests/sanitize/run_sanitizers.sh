@@ -6,7 +6,8 @@
 #   - TSan: the tests where threads meet (progressive renderer, sessions, film) and the viewer's
 #     headless tests (`pathlab view --headless`: UI, render and scene loader threads; Mesa's
 #     llvmpipe runs uninstrumented, see tsan.supp), with TBB serial
-#     (tests/support/serial_tbb_under_tsan.cpp, linked into pathlab_tests and, under TSan, pathlab).
+#     (tests/support/serial_tbb_under_tsan.cpp, linked into the test binaries and, under TSan, pathlab):
+#     the tests where threads meet are a binary of their own there, pathlab_thread_tests.
 # Usage: tests/sanitize/run_sanitizers.sh [address|thread|all]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -32,16 +33,18 @@ fi
 
 if [ "$which" = thread ] || [ "$which" = all ]; then
   configure build-tsan thread
-  cmake --build build-tsan -j "$jobs" --target pathlab_tests pathlab pathlab_viewer_tests
+  cmake --build build-tsan -j "$jobs" --target pathlab_thread_tests pathlab pathlab_viewer_tests
   # halt_on_error: the first report fails the test (exit code 66, also from the `pathlab view`
   # processes the viewer's tests start, which inherit TSAN_OPTIONS). Suppressions: tsan.supp (only
   # uninstrumented libraries: TBB, Embree, Mesa's llvmpipe driver), never pathlab's own code.
   export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$supp/tsan.supp"
-  build-tsan/tests/pathlab_tests \
+  build-tsan/tests/pathlab_thread_tests \
     --gtest_filter='ProgressiveRenderer*:RenderSession*:TechniquePyramid.WeightedShares*:Film*:RenderSettingsValidation*:ErrorTracker.*:TechniqueCounters.Timing*'
   # The viewer's tests, headless (EGL on llvmpipe): its UI thread, render thread (TBB serial, also
   # in the pathlab binary) and scene loader thread. Not viewer.window: GLFW and Xvfb are the
   # release suite's. One at a time: as fast as two at once on these machines (about 45 s), and a
   # drop test that expects a scene to load within a few frames keeps its margin.
-  ctest --test-dir build-tsan --output-on-failure -j 1 -R '^viewer[.]' -E '^viewer[.]window$'
+  # The aspect tests (geometry of the letterboxed image, no thread of their own) are the release
+  # and ASan stages'.
+  ctest --test-dir build-tsan --output-on-failure -j 1 -R '^viewer[.]' -E '^viewer[.](window$|.*ViewerAspect)'
 fi
