@@ -86,11 +86,12 @@ void drawPyramid(const PyramidView& view, const PyramidImages& images, Estimator
       } else {
         clicked = ImGui::Button(fmt::format("{},{}", s, t).c_str(), ImVec2(size.x + 4.f, size.y + 4.f));
       }
-      if (texture) {
-        // Its (s,t) on the thumbnail itself, readable on a projector without hovering.
-        const std::string label = fmt::format("({},{})", s, t);
+      const std::string label = fmt::format("({},{})", s, t);
+      const ImVec2 extent = ImGui::CalcTextSize(label.c_str());
+      // Its (s,t) on the thumbnail itself, readable on a projector without hovering; not on
+      // thumbnails too small to hold it (the tooltip still names it).
+      if (texture && extent.x + 8.f * uiScale <= size.x && extent.y + 6.f * uiScale <= size.y) {
         const ImVec2 at(ImGui::GetItemRectMin().x + 4.f * uiScale, ImGui::GetItemRectMin().y + 3.f * uiScale);
-        const ImVec2 extent = ImGui::CalcTextSize(label.c_str());
         ImDrawList* draw = ImGui::GetWindowDrawList();
         draw->AddRectFilled(ImVec2(at.x - 2.f, at.y - 1.f), ImVec2(at.x + extent.x + 2.f, at.y + extent.y + 1.f),
                             IM_COL32(0, 0, 0, 150), 3.f);
