@@ -121,8 +121,19 @@ PairSums TechniqueCheck::pair(Technique i, Technique j, int region) const {
   // Stored once per unordered pair, under (lower s, higher s); the other order is its mirror.
   if (i.s < j.s) return sums_[pairIndex(i, j) * static_cast<size_t>(regions()) + static_cast<size_t>(region)];
   const PairSums& p = sums_[pairIndex(j, i) * static_cast<size_t>(regions()) + static_cast<size_t>(region)];
-  return PairSums{p.sumB,  p.sumA,    -p.sumD,  p.sumD2,    p.nonzeroB, p.nonzeroA, p.ownB2,
-                  p.crossB2, p.ownA2, p.crossA2, p.samplesB, p.samplesA, p.pixels};
+  return PairSums{.sumA = p.sumB,
+                  .sumB = p.sumA,
+                  .sumD = -p.sumD,
+                  .sumD2 = p.sumD2,
+                  .nonzeroA = p.nonzeroB,
+                  .nonzeroB = p.nonzeroA,
+                  .ownA2 = p.ownB2,
+                  .crossA2 = p.crossB2,
+                  .ownB2 = p.ownA2,
+                  .crossB2 = p.crossA2,
+                  .samplesA = p.samplesB,
+                  .samplesB = p.samplesA,
+                  .pixels = p.pixels};
 }
 
 }  // namespace pathlab
