@@ -1,7 +1,10 @@
 // `pathlab view [SCENE]`: registers the viewer's options and hands them to ui::runViewer.
 #include "app/view_command.h"
 
+#include "ui/compare.h"
+
 #include "app/output_check.h"
+#include "ui/compare.h"
 #include "ui/run_viewer.h"
 #include "ui/technique_map_view.h"
 
@@ -45,6 +48,9 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
       ->check(CLI::Range(0, 1 << 24));
   cmd->add_option("--pyramid", v.pyramidLength, "Open the technique pyramid up to this path length")
       ->check(CLI::Range(1, kMaxPyramidLength));
+  cmd->add_option("--compare", v.compare,
+                  "Side by side with a second estimator B, as a converge CONFIG (e.g. pt, bpt:mis=power, "
+                  "lt); each side renders on half of the threads");
   cmd->add_option("--technique-map", v.techniqueMap,
                   "Show a technique map over the image: dominant, dominant:K, share:S,T or cannot:S,T");
   cmd->add_flag("--hide-ui", v.hideUi, "Start with the panels hidden (Tab shows them)");
@@ -96,6 +102,7 @@ int runView(ViewOptions o) {
     if (o.viewer.settings.integrator == IntegratorKind::Pt)
       throw std::runtime_error("--technique-map needs the bidirectional tracer (--integrator bpt or lt)");
   }
+  if (!o.viewer.compare.empty()) ui::compareEstimator(o.viewer.compare, o.viewer.settings);  // one line, exit 1
   // Before the viewer loads the scene; it checks the extension and --force itself.
   if (!o.viewer.screenshot.empty()) checkOutputWritable(o.viewer.screenshot);
   if (!o.viewer.errorCsv.empty()) checkOutputWritable(o.viewer.errorCsv);

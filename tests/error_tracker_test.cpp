@@ -163,6 +163,45 @@ TEST(ErrorTracker, OneSeriesPerGenerationKeptAcrossChangesCappedAndCleared) {
   EXPECT_EQ(series[0].generation, 4u);
 }
 
+// The viewer's A/B comparison runs two renderers at once, each counting its own generations: their
+// passes interleave, yet each lane keeps one series with its own checkpoints (issue 14), B's
+// labelled as such, and the cap never drops a running series.
+TEST(ErrorTracker, TwoRenderersAtOnceKeepASeriesEach) {
+  ErrorTracker tracker(2, 2.0);
+  const RenderSettings a = settingsOf(2, 1);
+  RenderSettings b = a;
+  b.integrator = IntegratorKind::Bpt;
+  tracker.setReference(constantImage(2, 1, 1.f), viewOf(a, nullptr), "ref.exr");
+  // Both renderers are in their generation 1; passes alternate.
+  for (uint64_t spp = 1; spp <= 4; ++spp) {
+    tracker.observe(PassInfo{1, a, nullptr, spp, 0.5 * static_cast<double>(spp)}, constantImage(2, 1, 2.f), 0);
+    tracker.observe(PassInfo{1, b, nullptr, spp, 0.5 * static_cast<double>(spp)}, constantImage(2, 1, 3.f), 1);
+  }
+  std::vector<ErrorSeries> series = tracker.series();
+  ASSERT_EQ(series.size(), 2u);
+  EXPECT_EQ(series[0].label, seriesLabel(a));
+  EXPECT_EQ(series[1].label, "B: " + seriesLabel(b));
+  // Checkpoints at 1, 2 and 4 passes in each lane (factor 2), not thinned by the other's passes.
+  ASSERT_EQ(series[0].points.size(), 3u);
+  ASSERT_EQ(series[1].points.size(), 3u);
+  EXPECT_NEAR(series[0].points[2].error.rmse, 1.0, 1e-6);
+  EXPECT_NEAR(series[1].points[2].error.rmse, 2.0, 1e-6);
+  // Side B restarts (its generation 2); the cap of 2 drops B's old series, never A's running one.
+  tracker.observe(PassInfo{2, b, nullptr, 1, 0.5}, constantImage(2, 1, 3.f), 1);
+  series = tracker.series();
+  ASSERT_EQ(series.size(), 2u);
+  EXPECT_EQ(series[0].label, seriesLabel(a));
+  EXPECT_EQ(series[1].generation, 2u);
+  EXPECT_EQ(series[1].points.size(), 1u);
+  // A's next checkpoint (8 passes) still goes to its series.
+  for (uint64_t spp = 5; spp <= 8; ++spp)
+    tracker.observe(PassInfo{1, a, nullptr, spp, 0.5 * static_cast<double>(spp)}, constantImage(2, 1, 2.f), 0);
+  EXPECT_EQ(tracker.series()[0].points.size(), 4u);
+  // A lane that does not exist is ignored.
+  tracker.observe(PassInfo{1, a, nullptr, 9, 9.0}, constantImage(2, 1, 2.f), kErrorLanes);
+  EXPECT_EQ(tracker.series()[0].points.size(), 4u);
+}
+
 TEST(ErrorTracker, TheImageTakenAsReferenceIsNotComparedWithItself) {
   ErrorTracker tracker;
   const RenderSettings s = settingsOf(2, 1);

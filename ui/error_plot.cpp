@@ -61,7 +61,30 @@ void drawErrorPlot(const std::vector<ErrorSeries>& series, const ErrorPlotOption
   const LogAxis ax = LogAxis::fit(xMin, xMax), ay = LogAxis::fit(yMin, yMax);
   // Small plots (640 x 480 windows) drop the title and the x label: the controls above say both.
   const bool compact = size.y < 9.f * line;
-  const float left = ImGui::CalcTextSize("0.0001").x + 10.f * s, right = 10.f * s;
+  // The legend (colour, label, newest value) goes right of the plot, never over the curves; where
+  // that would leave the plot less than 55 % of the width, it shrinks to "id integrator value" (the
+  // labels are in the tooltips and the CSV) and still stands beside it.
+  std::vector<std::string> entries;
+  float legendWidth = 0.f;
+  const float swatch = 16.f * s, pad = 4.f * s;
+  auto legendEntries = [&](bool full) {
+    entries.clear();
+    legendWidth = 0.f;
+    for (const ErrorSeries& sr : series) {
+      const std::string value = sr.points.empty() ? std::string("-")
+                                                  : fmt::format("{:.3g}", metricValue(sr.points.back().error, o.metric));
+      // Short: the integrator alone ("pt", "B: bpt"), enough to tell the sides apart.
+      const size_t word = sr.label.find(' ', sr.label.starts_with("B: ") ? 3 : 0);
+      const std::string shortLabel = sr.label.substr(0, word);
+      entries.push_back(full ? fmt::format("{}: {}  {}", sr.id, sr.label, value)
+                             : fmt::format("{} {}  {}", sr.id, shortLabel, value));
+      legendWidth = std::max(legendWidth, ImGui::CalcTextSize(entries.back().c_str()).x);
+    }
+    return legendWidth + swatch + 4.f * pad;
+  };
+  float legendBlock = legendEntries(true);
+  if (legendBlock > 0.45f * size.x) legendBlock = legendEntries(false);
+  const float left = ImGui::CalcTextSize("0.0001").x + 10.f * s, right = 10.f * s + legendBlock;
   const float top = compact ? 6.f * s : line + 8.f * s, bottom = (compact ? 1.f : 2.f) * line + 8.f * s;
   const ImVec2 p0(origin.x + left, origin.y + top), p1(origin.x + size.x - right, origin.y + size.y - bottom);
   if (p1.x - p0.x < 20.f || p1.y - p0.y < 20.f) return;
@@ -140,18 +163,10 @@ void drawErrorPlot(const std::vector<ErrorSeries>& series, const ErrorPlotOption
   }
   draw->PopClipRect();
 
-  // Legend, top right inside the plot: colour, label, newest value.
-  float legendWidth = 0.f;
-  std::vector<std::string> entries;
-  for (const ErrorSeries& sr : series) {
-    const std::string value = sr.points.empty() ? std::string("-")
-                                                : fmt::format("{:.3g}", metricValue(sr.points.back().error, o.metric));
-    entries.push_back(fmt::format("{}: {}  {}", sr.id, sr.label, value));
-    legendWidth = std::max(legendWidth, ImGui::CalcTextSize(entries.back().c_str()).x);
-  }
-  const float swatch = 16.f * s, pad = 4.f * s;
-  const ImVec2 l0(std::max(p0.x + pad, p1.x - pad - legendWidth - swatch - 3.f * pad), p0.y + pad);
-  const ImVec2 l1(p1.x - pad, std::min(p1.y - pad, l0.y + static_cast<float>(entries.size()) * line + 2.f * pad));
+  // The legend beside the plot, from its top.
+  const ImVec2 l0(p1.x + pad, p0.y);
+  const ImVec2 l1(l0.x + legendWidth + swatch + 3.f * pad,
+                  std::min(origin.y + size.y - pad, l0.y + static_cast<float>(entries.size()) * line + 2.f * pad));
   draw->AddRectFilled(l0, l1, IM_COL32(10, 10, 12, 200), 3.f);
   draw->PushClipRect(l0, l1, true);
   for (size_t i = 0; i < entries.size(); ++i) {

@@ -93,9 +93,12 @@ void drawImageOverlay(const ImageOverlay& o) {
   if (o.zMap && o.shown->check && !o.shown->preview) drawZMap(*o.shown->check, *o.zMap, o.origin, o.size);
   // The configuration under the image, readable from the back of a lecture hall.
   const RenderSnapshot& shown = *o.shown;
-  std::string text = describe(shown.settings.width > 0 ? shown.settings : o.edited);
+  std::string text = o.side.empty() ? std::string() : o.side + ":  ";
+  text += describe(shown.settings.width > 0 ? shown.settings : o.edited);
   text += shown.preview ? fmt::format("  |  preview 1/{}", shown.previewFactor)
                         : fmt::format("  |  {} spp", shown.samplesPerPixel);
+  // Side by side, the time says the comparison is fair (both sides run on equal threads).
+  if (!o.side.empty()) text += fmt::format("  |  {:.1f} s", shown.renderSeconds);
   if (o.paused) text += "  |  paused";
   if (!o.mapName.empty()) text += "  |  map: " + o.mapName;
   if (o.display.errorView) text += fmt::format("  |  {} vs reference", pixelErrorName(o.display.errorKind));

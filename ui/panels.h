@@ -4,6 +4,7 @@
 // ImGui::NewFrame and ImGui::Render.
 #pragma once
 
+#include "ui/compare.h"
 #include "ui/estimator_state.h"
 #include "ui/shortcuts.h"
 #include "ui/technique_map_view.h"
@@ -25,6 +26,7 @@ struct PanelRequests {
   bool rescanScenes = false;
   bool returnToReferenceView = false;
   bool exportErrorCsv = false;
+  std::optional<std::string> compareConfig;  // side B's CONFIG typed in the compare section
 };
 
 // An area of the window in ImGui coordinates.
@@ -45,6 +47,8 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
 void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
 void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
 void drawPresetSection(const PresetState& presets, PanelRequests& requests);
+// The A/B comparison (panel_compare.cpp): on / off, side B's CONFIG, swap; `b`: B's shown image.
+void drawCompareSection(CompareState& compare, const RenderSnapshot& b, PanelRequests& requests);
 // `estimator` (its camera and lens) to offer a way back to the reference's view.
 void drawReferenceSection(ReferenceState& reference, ConvergenceState& convergence, DisplaySettings& display,
                           const RenderSettings& edited, const Image& shown, PanelRequests& requests);
@@ -78,6 +82,7 @@ struct ImageOverlay {
   float uiScale = 1.f;
   std::optional<Technique> zMap;  // the check's |z| per block over the image, for this technique
   std::string mapName;            // the technique map shown over the image (mapViewName), or ""
+  std::string side;               // "A" or "B" while comparing (the caption names it), else ""
 };
 void drawImageOverlay(const ImageOverlay& overlay);
 // The error view's colour bar with its scale, in the side panel (panel_reference.cpp).

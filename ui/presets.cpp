@@ -2,6 +2,7 @@
 #include "ui/presets.h"
 
 #include "core/bpt/technique_set.h"
+#include "ui/compare.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -17,7 +18,7 @@ namespace {
 using Json = nlohmann::json;
 
 const std::set<std::string> kKeys = {"name", "integrator", "techniques", "mis", "beta", "minConnection", "maxLength",
-                                     "isolate", "unweighted", "camera", "description"};
+                                     "isolate", "unweighted", "camera", "compare", "description"};
 
 Vec3 vec3Of(const Json& j, const std::string& what) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
@@ -105,6 +106,14 @@ NamedPreset parseOne(const Json& p) {
     if (glm::length(glm::cross(glm::normalize(d), Vec3(0.f, 1.f, 0.f))) < 1e-4f)
       throw std::invalid_argument("camera looks straight up or down (the up direction is +y)");
     out.camera = lookAtCamera(eye, target, glm::radians(yfovDegrees));
+  }
+  if (p.contains("compare")) {
+    // Side B of the A/B comparison as a converge CONFIG, checked now (at this preset's length).
+    const std::string config = typed(p, "compare", &Json::is_string, "a string").get<std::string>();
+    RenderSettings a;
+    a.maxLength = out.maxLength;
+    compareEstimator(config, a);  // throws the parser's line
+    out.compare = config;
   }
   return out;
 }

@@ -4,7 +4,8 @@
 //   {"presets": [{"name": "path tracing", "integrator": "bpt", "techniques": "s=0;s=1",
 //                 "mis": "power", "beta": 2, "minConnection": 0.001, "maxLength": 8, "isolate": [1, 2],
 //                 "unweighted": true,
-//                 "camera": {"eye": [0, 1, 3.9], "target": [0, 1, 0], "yfovDegrees": 39.6}}]}
+//                 "camera": {"eye": [0, 1, 3.9], "target": [0, 1, 0], "yfovDegrees": 39.6},
+//                 "compare": "bpt:mis=power"}]}
 //
 // Only "name" is required. A field left out takes the default of `pathlab view` (bpt, all,
 // balance, beta 2, min connection 0.001, max length 10, no isolation), so a preset always means
@@ -33,6 +34,9 @@ struct NamedPreset {
   int maxLength = 10;
   std::optional<Isolation> isolate;
   std::optional<CameraDesc> camera;
+  // Side B of the A/B comparison (a converge CONFIG, ui/compare.h): the preset sets both sides and
+  // turns the comparison on. None: the comparison is left as it is.
+  std::optional<std::string> compare;
 
   // `current` with this preset's estimator state (and camera, if it has one); image size, seed,
   // lens and Russian roulette stay.

@@ -72,6 +72,11 @@ void setUpFontsAndStyle(float scale) {
   }
 }
 
+// Lecture mode's UI scale: text as tall relative to the window at every projector resolution —
+// 2 at 1080 lines (a 30 px font), 1.33 at 720 (20 px), so that at 1280 x 720 the side panel keeps
+// to 40 % of the width and the image gets the rest; never below 1.25 nor above 3.
+float lectureScale(int windowHeight) { return std::clamp(static_cast<float>(windowHeight) / 540.f, 1.25f, 3.f); }
+
 void checkErrorCsvPath(const ViewerOptions& o) {
   const std::filesystem::path path(o.errorCsv);
   if (!path.parent_path().empty() && !std::filesystem::is_directory(path.parent_path()))
@@ -196,7 +201,10 @@ int runViewer(const ViewerOptions& o) {
   if (!o.presetsFile.empty()) presets = loadPresets(o.presetsFile);
   if (!o.preset.empty()) {
     if (o.presetsFile.empty()) throw std::runtime_error("--preset needs --presets FILE");
-    options.settings = findPreset(presets, o.preset, o.presetsFile).applyTo(options.settings);
+    const NamedPreset& preset = findPreset(presets, o.preset, o.presetsFile);
+    options.settings = preset.applyTo(options.settings);
+    // A preset with a side B starts the comparison (an explicit --compare wins).
+    if (preset.compare && options.compare.empty()) options.compare = *preset.compare;
   }
   const std::vector<InputEvent> script = parseInputScript(o.script);
   if (!o.recordDir.empty()) prepareRecordDirectory(o.recordDir, o.force);  // refused before the scene loads
@@ -209,7 +217,8 @@ int runViewer(const ViewerOptions& o) {
   std::unique_ptr<Surface> surface;
   if (o.headless) surface = std::make_unique<EglSurface>(o.windowWidth, o.windowHeight);
   else surface = std::make_unique<GlfwSurface>(o.windowWidth, o.windowHeight, "pathlab view " + o.scene);
-  const float uiScale = (o.lecture ? 2.f : 1.f) * surface->contentScale();
+  const float uiScale = (o.lecture ? lectureScale(surface->framebufferSize().y / std::max(surface->contentScale(), 1.f)) : 1.f) *
+                        surface->contentScale();
   setUpFontsAndStyle(uiScale);
   OpenGl3Backend backend;
   FrameStats stats;
@@ -231,11 +240,17 @@ int runViewer(const ViewerOptions& o) {
         // The screenshot shows the requested sample count (settings were applied in earlier frames).
         if (!viewer.renderer().waitForSpp(o.spp, kHeadlessSppTimeout))
           std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", o.spp, kHeadlessSppTimeout);
+        if (ProgressiveRenderer* b = viewer.compareRenderer(); b && !b->waitForSpp(o.spp, kHeadlessSppTimeout))
+          std::cerr << fmt::format("pathlab: warning: side B: {} spp not reached within {:.0f} s\n", o.spp,
+                                   kHeadlessSppTimeout);
         viewer.waitForPyramid(5.0);
       }
       if (const std::optional<uint64_t> spp = inputAt(script, frame).waitSpp) {
         if (!viewer.renderer().waitForSpp(*spp, kHeadlessSppTimeout))
           std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", *spp, kHeadlessSppTimeout);
+        if (ProgressiveRenderer* b = viewer.compareRenderer(); b && !b->waitForSpp(*spp, kHeadlessSppTimeout))
+          std::cerr << fmt::format("pathlab: warning: side B: {} spp not reached within {:.0f} s\n", *spp,
+                                   kHeadlessSppTimeout);
         viewer.forceRefresh();
       }
       if (last) viewer.forceRefresh();
@@ -301,10 +316,16 @@ int runViewer(const ViewerOptions& o) {
       // they differ under --render-scale or a reference's size, and on a busy machine the shown
       // snapshot may still be a placeholder generation's.
       const PixelRect drawn = viewer.drawnImage();
-      std::cerr << fmt::format("{}: {}x{} {}, image {}x{}+{}+{} at {} spp, rendered {}x{}; {}{}\n",
+      std::string compare;
+      if (viewer.compareRenderer()) {
+        const PixelRect b = viewer.drawnCompareImage();
+        compare = fmt::format(", B image {}x{}+{}+{} at {} spp", b.size.x, b.size.y, b.origin.x, b.origin.y,
+                              viewer.compareSnapshot().samplesPerPixel);
+      }
+      std::cerr << fmt::format("{}: {}x{} {}, image {}x{}+{}+{} at {} spp{}, rendered {}x{}; {}{}\n",
                                o.screenshot.empty() ? "pathlab view" : o.screenshot, fb.x, fb.y,
                                o.headless ? "offscreen" : "window", drawn.size.x, drawn.size.y, drawn.origin.x,
-                               drawn.origin.y, s.samplesPerPixel, s.settings.width, s.settings.height,
+                               drawn.origin.y, s.samplesPerPixel, compare, s.settings.width, s.settings.height,
                                stats.summary(), series);
     }
     if (!o.errorCsv.empty()) viewer.writeErrorCsv(o.errorCsv, true);  // checked before the first frame

@@ -44,6 +44,8 @@ constexpr Shortcut kShortcuts[] = {
     {GLFW_KEY_MINUS, false, "-", Action::ExposureDown, "exposure - 1/2 stop"},
     {GLFW_KEY_T, false, "T", Action::ToggleToneMap, "tone map: clamp / filmic"},
     {GLFW_KEY_F, false, "F", Action::ToggleFalseColour, "false colour (log luminance) on / off"},
+    {GLFW_KEY_C, false, "C", Action::ToggleCompare, "compare A | B side by side on / off (B: the other integrator, or --compare)"},
+    {GLFW_KEY_V, false, "V", Action::SwapCompareSides, "swap the sides A and B (the panels edit A)"},
     {GLFW_KEY_P, false, "P", Action::ToggleConvergence, "convergence panel: error plot and technique rays / time"},
     {GLFW_KEY_X, false, "X", Action::ToggleErrorView, "false-colour error against the reference on / off"},
     {GLFW_KEY_R, true, "Ctrl+R", Action::UseImageAsReference, "use the current image as the reference"},

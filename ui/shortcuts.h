@@ -6,6 +6,7 @@
 
 namespace pathlab::ui {
 
+// The last one is SwapCompareSides (the tests check every action has a key).
 enum class Action {
   TogglePause, ToggleUi, ToggleHelp, TogglePyramid,
   TechniquesAll, TechniquesPathTracing, TechniquesLightTracing, TechniquesOneLength, TechniquesClear,
@@ -16,6 +17,7 @@ enum class Action {
   ExposureUp, ExposureDown, ToggleToneMap, ToggleFalseColour,
   ToggleConvergence, ToggleErrorView, UseImageAsReference,
   ResetCamera, ReloadScene, SaveImage, Screenshot, ToggleRecording, Quit,
+  ToggleCompare, SwapCompareSides,
 };
 
 struct Shortcut {

@@ -76,13 +76,109 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
     convergence_.show = true;
   }
   convergence_.show = convergence_.show || options.convergencePanel;
-  renderer_ = std::make_unique<ProgressiveRenderer>(scene_.scene, initial, options.threads);
-  renderer_->setTargetSpp(targetApplied_);
+  threads_ = options.threads;
+  // Side B starts with A on the first frame (syncCompare), both at the window's size.
+  if (!options.compare.empty() && !applyCompareConfig(compare_, options.compare, renderSettings(estimator_)))
+    throw std::invalid_argument(compare_.error);
+  renderer_ = makeRenderer(initial, 0);
+  refreshSceneFiles();
+}
+
+std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(const RenderSettings& settings, int lane) {
+  auto renderer = std::make_unique<ProgressiveRenderer>(scene_.scene, settings,
+                                                        compare_.on ? threadsPerSide(threads_) : threads_);
+  renderer->setTargetSpp(run_.targetSpp);
+  renderer->setThumbnailSide(pyramidImages_.side);
   // Errors are measured on the render thread after each full pass (no copy of the image, no wait
   // for the UI's refresh); the tracker outlives the renderer through this shared pointer.
-  renderer_->setPassObserver(
-      [errors = reference_.errors](const PassInfo& info, const Image& mean) { errors->observe(info, mean); });
-  refreshSceneFiles();
+  renderer->setPassObserver([errors = reference_.errors, lane](const PassInfo& info, const Image& mean) {
+    errors->observe(info, mean, lane);
+  });
+  return renderer;
+}
+
+void Viewer::syncCompare() {
+  if (compare_.on == (compareSide_.renderer != nullptr)) return;
+  // Both sides start together (an equal-time comparison), each on its share of the threads: the
+  // old renderers go first (joining their workers), then the new ones start.
+  renderer_.reset();
+  compareSide_.renderer.reset();
+  RenderSettings a = applied_;
+  if (noTechniqueEnabled(a)) a.techniques = TechniqueSet::all();
+  renderer_ = makeRenderer(a, 0);
+  pausedApplied_ = timingApplied_ = false;
+  targetApplied_ = run_.targetSpp;
+  // The new renderers count versions from the start again.
+  snapshot_ = RenderSnapshot{};
+  pyramidImages_.version = 0;
+  mapImages_.version = 0;
+  if (compare_.on) {
+    CompareSide& b = compareSide_;
+    b.applied = compareRenderSettings(compare_.b, a);
+    if (noTechniqueEnabled(b.applied)) b.applied.techniques = TechniqueSet::all();
+    b.renderer = makeRenderer(b.applied, 1);
+    b.pausedApplied = false;
+    b.targetApplied = run_.targetSpp;
+    b.snapshot = RenderSnapshot{};
+    if (!b.view) b.view = std::make_unique<ImageView>();
+    b.view->setReference(reference_.errors->reference().get());
+  } else {
+    compareSide_ = CompareSide{};
+  }
+  forceRefresh_ = true;
+}
+
+void Viewer::applyCompareSettings() {
+  CompareSide& b = compareSide_;
+  if (!b.renderer) return;
+  b.idle = noTechniqueEnabled(compare_.b.settings);
+  const RenderSettings wanted = compareRenderSettings(compare_.b, renderSettings(estimator_));
+  if (b.idle || wanted == b.applied) return;
+  b.applied = wanted;
+  try {
+    b.renderer->setSettings(wanted);
+    forceRefresh_ = true;
+  } catch (const std::exception& e) {
+    compare_.error = e.what();  // B keeps its previous settings; the panel says why
+  }
+}
+
+bool Viewer::updateCompareImage() {
+  CompareSide& b = compareSide_;
+  if (!b.renderer) return false;
+  const bool newGeneration = b.renderer->generation() != b.snapshot.generation;
+  const bool due = forceRefresh_ || newGeneration || b.snapshot.preview || secondsSince(b.lastPoll) >= kRefreshSeconds;
+  if (!due) return false;
+  b.lastPoll = std::chrono::steady_clock::now();
+  if (!b.renderer->snapshot(b.snapshot)) return false;
+  b.view->upload(b.snapshot.image, b.snapshot.settings.width, b.snapshot.settings.height);
+  return true;
+}
+
+void Viewer::swapCompareSides() {
+  CompareSide& b = compareSide_;
+  if (!compare_.on || !b.renderer) return;
+  // The estimators change sides and so do their renderers and images: nothing restarts unless
+  // side A shows the pyramid, maps or check, which only A renders.
+  swapSides(compare_, estimator_);
+  std::swap(renderer_, b.renderer);
+  std::swap(applied_, b.applied);
+  std::swap(imageView_, b.view);
+  std::swap(snapshot_, b.snapshot);
+  std::swap(pausedApplied_, b.pausedApplied);
+  std::swap(targetApplied_, b.targetApplied);
+  std::swap(run_.idleForNoTechnique, b.idle);
+  for (int lane = 0; lane < 2; ++lane)
+    (lane == 0 ? renderer_ : b.renderer)->setPassObserver([errors = reference_.errors, lane](const PassInfo& info, const Image& mean) {
+      errors->observe(info, mean, lane);
+    });
+  b.renderer->setTiming(false);
+  renderer_->setTiming(timingApplied_);
+  renderer_->setThumbnailSide(pyramidImages_.side);
+  pyramidImages_.version = 0;
+  mapImages_.version = 0;
+  forceRefresh_ = true;
+  showMessage("sides swapped: A is now " + describe(renderSettings(estimator_)));
 }
 
 Viewer::~Viewer() = default;  // the renderer cancels its pass and joins its worker
@@ -105,7 +201,8 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   const std::optional<float> aspect = imageAspect();
   const float bottom = ui_.showUi && convergence_.show ? convergencePanelHeight(io.DisplaySize.y, scale) : 0.f;
   const float upper = io.DisplaySize.y - bottom;
-  const float panelWidth = ui_.showUi ? std::min(380.f * scale, io.DisplaySize.x * 0.6f) : 0.f;
+  // At most 45 % of the width: the image is what the audience looks at.
+  const float panelWidth = ui_.showUi ? std::min(380.f * scale, io.DisplaySize.x * 0.45f) : 0.f;
   const float pyramidWidth =
       ui_.showUi && pyramid_.show
           ? pyramidPanelWidth(pyramid_, estimator_.settings.maxLength, io.DisplaySize.x - panelWidth, upper, scale, aspect)
@@ -116,7 +213,13 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   room.origin = {static_cast<int>(panelWidth * framebufferScale), 0};
   room.size = {std::max(framebufferSize.x - room.origin.x - static_cast<int>(pyramidWidth * framebufferScale), 0),
                std::max(framebufferSize.y - static_cast<int>(bottom * framebufferScale), 0)};
-  const PixelRect fitted = fitAspect(room, aspect);
+  PixelRect fitted = fitAspect(room, aspect);
+  if (compare_.on) {
+    // Two images of the same shape, A left (or above), B right (or below).
+    const auto [a, b] = splitRoom(room, aspect, static_cast<int>(8.f * scale * framebufferScale));
+    fitted = a;
+    compareSide_.rect = b;
+  }
   imageOrigin_ = fitted.origin;
   imageSize_ = fitted.size;
   handleCamera(framebufferScale);
@@ -137,7 +240,15 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
       ImVec2(static_cast<float>(imageOrigin_.x) / fbScale, static_cast<float>(imageOrigin_.y) / fbScale),
       ImVec2(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale), &snapshot_,
       renderSettings(estimator_), shownDisplay(), errorViewProblem(), run_.idleForNoTechnique, run_.userPaused, scale,
-      grid_.zMap, maps_.show ? mapViewName(maps_) : std::string()});
+      grid_.zMap, maps_.show ? mapViewName(maps_) : std::string(), compare_.on ? "A" : ""});
+  if (compare_.on && compareSide_.renderer) {
+    const PixelRect& r = compareSide_.rect;
+    drawImageOverlay(ImageOverlay{
+        ImVec2(static_cast<float>(r.origin.x) / fbScale, static_cast<float>(r.origin.y) / fbScale),
+        ImVec2(static_cast<float>(r.size.x) / fbScale, static_cast<float>(r.size.y) / fbScale), &compareSide_.snapshot,
+        compareRenderSettings(compare_.b, renderSettings(estimator_)), shownDisplay(), errorViewProblem(),
+        compareSide_.idle, run_.userPaused, scale, std::nullopt, std::string(), "B"});
+  }
   drawMapOverImage(fbScale);
   carryOut(requests);
 
@@ -171,7 +282,11 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
         std::clamp(static_cast<int>(std::max(pyramid_.thumbnail.x, pyramid_.thumbnail.y) * framebufferScale), 32, 256);
     if (side != pyramidImages_.side) renderer_->setThumbnailSide(pyramidImages_.side = side);
   }
-  if (imageSize_.x > 0 && imageSize_.y > 0) applySettings();  // a minimised window keeps rendering the old size
+  syncCompare();
+  if (imageSize_.x > 0 && imageSize_.y > 0) {  // a minimised window keeps rendering the old size
+    applySettings();
+    applyCompareSettings();
+  }
   syncRenderer();
 }
 
@@ -204,6 +319,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
                       requests);
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
     drawEstimatorSection(estimator_, grid_, run_.settingsError, snapshot_.counters, snapshot_.check.get());
+  if (ImGui::CollapsingHeader("Compare A | B", compare_.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+    drawCompareSection(compare_, compareSide_.snapshot, requests);
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
     drawDisplaySection(display_, run_, pyramid_, snapshot_.image);
   if (ImGui::CollapsingHeader("Technique maps", maps_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
@@ -225,6 +342,8 @@ void Viewer::carryOut(const PanelRequests& requests) {
   if (requests.rescanScenes) refreshSceneFiles();
   if (requests.returnToReferenceView) returnToReferenceView();
   if (requests.exportErrorCsv) exportErrorCsv();
+  if (requests.compareConfig && applyCompareConfig(compare_, *requests.compareConfig, renderSettings(estimator_)))
+    showMessage("B: " + describe(compareRenderSettings(compare_.b, renderSettings(estimator_))));
 }
 
 bool Viewer::pollImage() {
@@ -235,17 +354,19 @@ bool Viewer::pollImage() {
   }
   const bool pyramid = pyramid_.show && updatePyramid();
   const bool maps = maps_.show && updateMaps();
+  const bool compare = updateCompareImage();
   const bool image = updateImage();
   bool reference = false;
   if (reference_.errors->referenceVersion() != reference_.uploadedVersion) {
     reference_.uploadedVersion = reference_.errors->referenceVersion();
     const std::shared_ptr<const Image> r = reference_.errors->reference();
     imageView_->setReference(r.get());
+    if (compareSide_.view) compareSide_.view->setReference(r.get());
     reference = true;
   }
   // New points arrive on the render thread; the plot redraws when they do.
   const bool points = convergence_.show && reference_.errors->version() != convergence_.seriesVersion;
-  return image || pyramid || maps || reference || points;
+  return image || compare || pyramid || maps || reference || points;
 }
 
 void Viewer::applySettings() {
@@ -267,6 +388,12 @@ void Viewer::applySettings() {
 void Viewer::syncRenderer() {
   if (run_.paused() != pausedApplied_) renderer_->setPaused(pausedApplied_ = run_.paused());
   if (run_.targetSpp != targetApplied_) renderer_->setTargetSpp(targetApplied_ = run_.targetSpp);
+  if (CompareSide& b = compareSide_; b.renderer) {
+    // B pauses with the user, or when it enables no technique; not when only A has none.
+    const bool paused = run_.userPaused || b.idle;
+    if (paused != b.pausedApplied) b.renderer->setPaused(b.pausedApplied = paused);
+    if (run_.targetSpp != b.targetApplied) b.renderer->setTargetSpp(b.targetApplied = run_.targetSpp);
+  }
   // Per-technique timing costs two clock reads a connection: only while its table is shown.
   const bool timing = ui_.showUi && convergence_.show;
   if (timing != timingApplied_) renderer_->setTiming(timingApplied_ = timing);
@@ -356,6 +483,10 @@ void Viewer::waitForPyramid(double seconds) {
 
 void Viewer::drawImage(Vec2i framebufferSize) {
   drawn_ = {};
+  compareSide_.drawn = {};
+  if (compareSide_.renderer && !compareSide_.idle)
+    compareSide_.drawn = compareSide_.view->draw(compareSide_.rect.origin, compareSide_.rect.size, framebufferSize.y,
+                                                 shownDisplay());
   if (run_.idleForNoTechnique) return;  // black: nothing is estimated
   drawn_ = imageView_->draw(imageOrigin_, imageSize_, framebufferSize.y, shownDisplay());
 }
@@ -398,6 +529,15 @@ void Viewer::pollSceneLoad() {
   } catch (const std::exception& e) {
     run_.settingsError = e.what();
   }
+  if (CompareSide& b = compareSide_; b.renderer) {
+    b.applied = compareRenderSettings(compare_.b, applied_);
+    if (noTechniqueEnabled(b.applied)) b.applied.techniques = TechniqueSet::all();
+    try {
+      b.renderer->setScene(scene_.scene, b.applied);
+    } catch (const std::exception& e) {
+      compare_.error = e.what();
+    }
+  }
   forceRefresh_ = true;
   refreshSceneFiles();
   const Scene& scene = *scene_.scene;
@@ -439,6 +579,12 @@ void Viewer::applyPreset(int index) {
   const NamedPreset& p = presets_.presets[static_cast<size_t>(presets_.current)];
   ui::applyPreset(estimator_, p);
   if (p.camera) scene_.orbit = OrbitCamera(*p.camera, scene_.scene->boundsMin(), scene_.scene->boundsMax());
+  // A preset with a side B sets both sides (checked when the presets were loaded); one without
+  // leaves the comparison as it is.
+  if (p.compare && !applyCompareConfig(compare_, *p.compare, renderSettings(estimator_))) {
+    showMessage("preset " + p.name + ": " + compare_.error, true);
+    return;
+  }
   showMessage("preset: " + p.name);
 }
 
@@ -448,10 +594,20 @@ void Viewer::saveImage() {
     return;
   }
   try {
-    const std::string stem = freshStem("out", "pathlab", {".exr", ".png"});
+    const RenderSnapshot& b = compareSide_.snapshot;
+    const bool both = compareSide_.renderer && b.image.width > 0 && !b.preview;
+    const std::string stem = freshStem("out", "pathlab", {".exr", ".png", "-B.exr", "-B.png"});
     writeImage(stem + ".exr", snapshot_.image);
     writeImage(stem + ".png", snapshot_.image, display_.exposure);
-    showMessage(fmt::format("saved {}.exr and .png ({} spp)", stem, snapshot_.samplesPerPixel));
+    if (both) {
+      // Side B beside it, so each side can be compared with a render of its configuration.
+      writeImage(stem + "-B.exr", b.image);
+      writeImage(stem + "-B.png", b.image, display_.exposure);
+      showMessage(fmt::format("saved {}.exr/.png (A, {} spp) and {}-B.exr/.png (B, {} spp)", stem,
+                              snapshot_.samplesPerPixel, stem, b.samplesPerPixel));
+    } else {
+      showMessage(fmt::format("saved {}.exr and .png ({} spp)", stem, snapshot_.samplesPerPixel));
+    }
   } catch (const std::exception& e) {
     showMessage(e.what(), true);
   }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/render/progressive_renderer.h"
+#include "ui/compare.h"
 #include "ui/estimator_state.h"
 #include "ui/image_rect.h"
 #include "ui/image_view.h"
@@ -38,6 +39,10 @@ class Viewer {
   void drawImage(Vec2i framebufferSize);
   // Where the last drawImage put the image (empty when nothing was drawn): what a screenshot shows.
   const PixelRect& drawnImage() const { return drawn_; }
+  // The comparison's side B (CompareState): where it was drawn, what it shows; null renderer when off.
+  const PixelRect& drawnCompareImage() const { return compareSide_.drawn; }
+  const RenderSnapshot& compareSnapshot() const { return compareSide_.snapshot; }
+  ProgressiveRenderer* compareRenderer() { return compareSide_.renderer.get(); }
 
   // Headless screenshots: waits (up to `seconds`) until the thumbnails of the current generation's
   // newest pass are published, when the pyramid is shown.
@@ -74,6 +79,7 @@ class Viewer {
   ConvergenceState convergence_;
   PyramidView pyramid_;
   MapView maps_;
+  CompareState compare_;
   UiState ui_;
   EstimatorWarning warning_;  // of the shown image's settings
 
@@ -92,9 +98,33 @@ class Viewer {
   // aspect (ui/image_rect.h). Input, captions and overlays use it; the bars stay background.
   Vec2i imageOrigin_{0}, imageSize_{0};
   PixelRect drawn_;
+  int threads_ = 0;  // the render threads asked for (0: all); each side of a comparison gets half
+
+  // Side B of the comparison: a renderer of its own while compare_.on, with what it was given, its
+  // image and where it goes. Side A is the fields above.
+  struct CompareSide {
+    std::unique_ptr<ProgressiveRenderer> renderer;
+    RenderSettings applied;
+    bool idle = false;  // B enables no technique: black, like A's idleForNoTechnique
+    bool pausedApplied = false;
+    uint64_t targetApplied = 0;
+    std::unique_ptr<ImageView> view;
+    RenderSnapshot snapshot;
+    std::chrono::steady_clock::time_point lastPoll{};
+    PixelRect rect, drawn;
+  };
+  CompareSide compareSide_;
 
   // viewer.cpp: the frame, settings to the renderer, images to the textures, scenes, presets, saving
   void drawSidePanel(float width, float height, PanelRequests& requests);
+  // A renderer for one side (lane 0: A, 1: B) with the viewer's target, observer and thumbnails.
+  std::unique_ptr<ProgressiveRenderer> makeRenderer(const RenderSettings& settings, int lane);
+  // Starts or ends the comparison when compare_.on changed: both sides restart together, each on
+  // half of the threads (the main renderer back on all of them when it ends).
+  void syncCompare();
+  void applyCompareSettings();
+  bool updateCompareImage();
+  void swapCompareSides();
   void carryOut(const PanelRequests& requests);
   void applySettings();
   void syncRenderer();

@@ -85,6 +85,16 @@ void Viewer::perform(Action action) {
     case Action::Screenshot: ui_.screenshotRequested = true; break;
     case Action::ToggleRecording: ui_.recordingToggleRequested = true; break;
     case Action::Quit: ui_.quit = true; break;
+    case Action::ToggleCompare:
+      if (compare_.on) compare_.on = false;
+      // The first time: the seed's comparison, the other integrator against this one.
+      else if (!compare_.typed.empty()) compare_.on = true;
+      else applyCompareConfig(compare_, e.settings.integrator == IntegratorKind::Pt ? "bpt" : "pt", renderSettings(e));
+      break;
+    case Action::SwapCompareSides:
+      if (compare_.on) swapCompareSides();
+      else showMessage("nothing to swap: the comparison is off (C turns it on)");
+      break;
   }
 }
 
@@ -92,7 +102,8 @@ void Viewer::handleCamera(float framebufferScale) {
   const ImGuiIO& io = ImGui::GetIO();
   const Vec2 mouse = Vec2(io.MousePos.x, io.MousePos.y) * framebufferScale;
   // The fitted rectangle: a drag or a wheel over the bars beside a letterboxed image is not the image's.
-  const bool overImage = PixelRect{imageOrigin_, imageSize_}.contains(mouse);
+  const bool overImage = PixelRect{imageOrigin_, imageSize_}.contains(mouse) ||
+                         (compareSide_.renderer && compareSide_.rect.contains(mouse));
   bool moved = false;
   // A drag belongs to the image only if it started there, outside every ImGui window.
   const bool anyDown = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];

@@ -25,6 +25,8 @@ struct ViewerOptions {
   float exposure = 0.f;  // stops
   uint64_t spp = 0;      // stop accumulating at this many samples per pixel (0: never)
   int pyramidLength = 0; // > 0: open the technique pyramid up to this length
+  // The A/B comparison's side B (a converge CONFIG, ui/compare.h): starts side by side.
+  std::string compare;
   std::string techniqueMap;  // start showing this technique map (ui/technique_map_view.h: parseMapView)
   float renderScale = 1.f;  // render resolution relative to the image area: 1, 0.5 or 0.25
   // Headless: draw offscreen through EGL. frames > 0: close after that many drawn frames (then

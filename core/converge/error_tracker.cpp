@@ -69,7 +69,9 @@ ReferenceView viewOf(const RenderSettings& settings, const Scene* scene) {
 }
 
 ErrorTracker::ErrorTracker(size_t maxSeries, double checkpointFactor)
-    : maxSeries_(std::max<size_t>(maxSeries, 1)), schedule_(checkpointFactor) {}
+    : maxSeries_(std::max<size_t>(maxSeries, 1)) {
+  for (Lane& lane : lanes_) lane.schedule = CheckpointSchedule(checkpointFactor);
+}
 
 void ErrorTracker::setReference(Image reference, const ReferenceView& view, const std::string& source, uint64_t own) {
   if (reference.width <= 0 || reference.height <= 0 || reference.rgb.empty())
@@ -92,8 +94,10 @@ void ErrorTracker::setReference(Image reference, const ReferenceView& view, cons
   ++referenceVersion_;
   // Points against another reference are not comparable with the new ones.
   series_.clear();
-  currentSeriesId_ = 0;
-  schedule_.reset();
+  for (Lane& lane : lanes_) {
+    lane.seriesId = 0;
+    lane.schedule.reset();
+  }
   ++version_;
 }
 
@@ -146,19 +150,22 @@ ReferenceStatus ErrorTracker::statusFor(const RenderSettings& settings, const Sc
   return say(ReferenceStatus::Valid, "");
 }
 
-void ErrorTracker::observe(const PassInfo& info, const Image& mean) {
+void ErrorTracker::observe(const PassInfo& info, const Image& mean, int laneIndex) {
+  if (laneIndex < 0 || laneIndex >= kErrorLanes) return;
+  Lane& lane = lanes_[static_cast<size_t>(laneIndex)];
   std::shared_ptr<const Image> reference;
   {
     std::lock_guard lock(mutex_);
-    if (!reference_ || info.generation == ownGeneration_) return;
+    // A "current image" reference was taken from the main renderer's generation `ownGeneration_`.
+    if (!reference_ || (laneIndex == 0 && info.generation == ownGeneration_)) return;
     if (!(viewOf(info.settings, info.scene) == view_)) return;
-    if (info.generation != currentGeneration_) {
-      currentGeneration_ = info.generation;
-      currentSeriesId_ = 0;
-      schedule_.reset();
+    if (info.generation != lane.generation) {
+      lane.generation = info.generation;
+      lane.seriesId = 0;
+      lane.schedule.reset();
     }
-    if (!schedule_.due(info.renderSeconds, info.samplesPerPixel)) return;
-    schedule_.record(info.renderSeconds, info.samplesPerPixel);
+    if (!lane.schedule.due(info.renderSeconds, info.samplesPerPixel)) return;
+    lane.schedule.record(info.renderSeconds, info.samplesPerPixel);
     reference = reference_;
   }
   // The metric outside the lock: the UI thread never waits for it.
@@ -166,14 +173,15 @@ void ErrorTracker::observe(const PassInfo& info, const Image& mean) {
   const ErrorMetrics error = errorMetrics(mean, *reference);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::lock_guard lock(mutex_);
-  if (reference != reference_ || info.generation != currentGeneration_) return;  // changed meanwhile
+  if (reference != reference_ || info.generation != lane.generation) return;  // changed meanwhile
   metricMs_ = ms;
-  auto it = std::find_if(series_.begin(), series_.end(), [&](const ErrorSeries& s) { return s.id == currentSeriesId_; });
+  auto it = std::find_if(series_.begin(), series_.end(), [&](const ErrorSeries& s) { return s.id == lane.seriesId; });
   if (it == series_.end()) {
-    series_.push_back(ErrorSeries{nextId_++, info.generation, seriesLabel(info.settings), {}});
-    currentSeriesId_ = series_.back().id;
+    const std::string label = laneIndex == 0 ? seriesLabel(info.settings) : "B: " + seriesLabel(info.settings);
+    series_.push_back(ErrorSeries{nextId_++, info.generation, label, {}});
+    lane.seriesId = series_.back().id;
     trimLocked();
-    it = std::find_if(series_.begin(), series_.end(), [&](const ErrorSeries& s) { return s.id == currentSeriesId_; });
+    it = std::find_if(series_.begin(), series_.end(), [&](const ErrorSeries& s) { return s.id == lane.seriesId; });
   }
   it->points.push_back(ErrorPoint{info.renderSeconds, info.samplesPerPixel, error});
   ++version_;
@@ -192,7 +200,7 @@ std::vector<ErrorSeries> ErrorTracker::series() const {
 void ErrorTracker::clear() {
   std::lock_guard lock(mutex_);
   series_.clear();
-  currentSeriesId_ = 0;  // the running generation continues in a new series
+  for (Lane& lane : lanes_) lane.seriesId = 0;  // the running generations continue in new series
   ++version_;
 }
 
@@ -214,9 +222,12 @@ double ErrorTracker::lastMetricMilliseconds() const {
 }
 
 void ErrorTracker::trimLocked() {
-  // The oldest go first; the running one (the newest) always stays.
-  if (series_.size() > maxSeries_)
-    series_.erase(series_.begin(), series_.begin() + static_cast<std::ptrdiff_t>(series_.size() - maxSeries_));
+  // The oldest go first; the running ones (one per lane) always stay.
+  auto running = [&](const ErrorSeries& s) {
+    return std::any_of(lanes_.begin(), lanes_.end(), [&](const Lane& lane) { return lane.seriesId == s.id; });
+  };
+  for (auto it = series_.begin(); series_.size() > maxSeries_ && it != series_.end();)
+    it = running(*it) ? it + 1 : series_.erase(it);
 }
 
 std::string ErrorTracker::csv() const {

@@ -7,6 +7,7 @@
 #include "core/metrics/error_metrics.h"
 #include "core/render/progressive_renderer.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -15,6 +16,9 @@
 #include <vector>
 
 namespace pathlab {
+
+// Renderers whose errors one tracker can follow at once (the viewer's A/B comparison).
+inline constexpr int kErrorLanes = 2;
 
 enum class ErrorMetric { RelMse, Rmse, Mape };
 const char* errorMetricName(ErrorMetric metric);
@@ -89,7 +93,10 @@ class ErrorTracker {
   ReferenceStatus statusFor(const RenderSettings& settings, const Scene* scene, std::string* why = nullptr) const;
 
   // The render thread's side: records a point when a checkpoint is due and the view matches.
-  void observe(const PassInfo& info, const Image& mean);
+  // `lane`: which of the viewer's side-by-side renderers (0: the main one, 1: the comparison's,
+  // whose series are labelled "B: ..."); each lane has its own generations and checkpoints, so two
+  // renderers running at once each get their series.
+  void observe(const PassInfo& info, const Image& mean, int lane = 0);
 
   // The UI's side. version() changes whenever the series do, so a copy is taken only then.
   uint64_t version() const;
@@ -104,15 +111,20 @@ class ErrorTracker {
  private:
   mutable std::mutex mutex_;
   size_t maxSeries_;
-  CheckpointSchedule schedule_;
+  // One renderer's running series: its generation, the series its points go to (0: none yet, or
+  // cleared) and its checkpoints.
+  struct Lane {
+    CheckpointSchedule schedule;
+    uint64_t generation = 0;
+    int seriesId = 0;
+  };
+  std::array<Lane, kErrorLanes> lanes_;
   std::shared_ptr<const Image> reference_;
   ReferenceView view_;
   std::string source_;
   uint64_t ownGeneration_ = 0;
   uint64_t referenceVersion_ = 0;
   std::vector<ErrorSeries> series_;
-  uint64_t currentGeneration_ = 0;
-  int currentSeriesId_ = 0;  // of currentGeneration_; 0: none yet (or cleared)
   int nextId_ = 1;
   uint64_t version_ = 0;
   double metricMs_ = 0.0;
