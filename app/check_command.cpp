@@ -3,6 +3,7 @@
 #include "app/check_command.h"
 
 #include "app/progress.h"
+#include "core/camera/image_size.h"
 #include "core/render/render_session.h"
 
 #include <fmt/core.h>
@@ -16,6 +17,7 @@ namespace pathlab::app {
 
 namespace {
 constexpr double kDefaultSeconds = 10.0;
+constexpr int kDefaultCheckSide = 128;
 constexpr int kMaxCheckSide = 4096;
 }  // namespace
 
@@ -28,8 +30,10 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   cmd->add_option("--time", o.seconds, "Render for this many seconds (default 10)")
       ->check(CLI::Range(0.001, 7.0 * 24 * 3600))
       ->excludes(spp);
-  cmd->add_option("--width", o.estimator.settings.width, "Image width (default 128)")->check(CLI::Range(1, kMaxCheckSide));
-  cmd->add_option("--height", o.estimator.settings.height, "Image height (default 128)")->check(CLI::Range(1, kMaxCheckSide));
+  cmd->add_option("--width", o.width, "Image width (default: the camera's shape, longest side 128)")
+      ->check(CLI::Range(1, kMaxCheckSide));
+  cmd->add_option("--height", o.height, "Image height (default: the camera's shape, longest side 128)")
+      ->check(CLI::Range(1, kMaxCheckSide));
   addEstimatorOptions(cmd, o.estimator);
   cmd->add_option("--blocks", o.estimator.settings.checkBlocks,
                   "Compare over a BLOCKS x BLOCKS grid of image blocks as well as the whole image (default 4)")
@@ -53,6 +57,12 @@ int runCheck(CheckCommandOptions o) {
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 
   Scene scene(loadGltf(o.scene, o.load));
+  // The camera's shape, as `render` (core/camera/image_size.h).
+  const Vec2i size = imageSizeForAspect(cameraAspect(settings.camera, scene.cameraDesc()),
+                                        o.width > 0 ? std::optional(o.width) : std::nullopt,
+                                        o.height > 0 ? std::optional(o.height) : std::nullopt, kDefaultCheckSide);
+  settings.width = size.x;
+  settings.height = size.y;
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
   if (const std::string w = misOffWarning(scene, settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";
   if (const std::string w = biasInjectionWarning(settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";

@@ -15,10 +15,11 @@ struct CheckCommandOptions {
   std::string scene;
   EstimatorOptions estimator = [] {
     EstimatorOptions e;
-    e.settings.width = e.settings.height = 128;  // the check needs passes, not pixels
     e.settings.checkTechniques = true;
     return e;
   }();
+  // 0: the camera's shape with the longest side 128 (the check needs passes, not pixels).
+  int width = 0, height = 0;
   int spp = 0;           // 0: use the time limit
   double seconds = 0.0;  // 0 with spp 0: the default time
   int threads = 0;

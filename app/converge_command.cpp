@@ -2,8 +2,10 @@
 // cached by hash), the configurations rendered one after another, the results written.
 #include "app/converge_command.h"
 
+
 #include "app/output_check.h"
 #include "app/progress.h"
+#include "core/camera/image_size.h"
 #include "core/bpt/bidir_tracer.h"
 #include "core/converge/convergence.h"
 #include "core/converge/convergence_report.h"
@@ -130,8 +132,8 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
                   "on a loaded machine; use it with --threads 1)")
       ->check(CLI::IsMember({"wall", "cpu"}))
       ->capture_default_str();
-  cmd->add_option("--width", o.width, "Image width (default: the reference's, or 256)")->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", o.height, "Image height (default: the reference's, or 256)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--width", o.width, "Image width (default: the reference's, or the camera's shape, longest side 256)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", o.height, "Image height (default: the reference's, or the camera's shape, longest side 256)")->check(CLI::Range(1, 16384));
   cmd->add_option("--max-length", o.maxLength, "Maximum path length in edges (a configuration may override it)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -184,6 +186,18 @@ int runConverge(ConvergeOptions o) {
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
   Scene scene(loadGltf(o.scene, o.load));
+  if (o.reference.empty() && (o.width == 0 || o.height == 0)) {
+    // As `render`: the image has the camera's shape (longest side 256 unless given), never cropped.
+    const Vec2i size = imageSizeForAspect(cameraAspect(std::nullopt, scene.cameraDesc()),
+                                          o.width > 0 ? std::optional(o.width) : std::nullopt,
+                                          o.height > 0 ? std::optional(o.height) : std::nullopt, kDefaultSide);
+    base.width = size.x;
+    base.height = size.y;
+    for (ConvergenceConfig& c : configs) {
+      c.settings.width = size.x;
+      c.settings.height = size.y;
+    }
+  }
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
   for (const ConvergenceConfig& c : configs)
     if (const std::string w = misOffWarning(scene, c.settings); !w.empty())
@@ -247,7 +261,8 @@ int runConverge(ConvergeOptions o) {
     plot.series.push_back(std::move(series));
   }
   const std::string table =
-      efficiencyMarkdown(efficiencyRows(curves), cpu ? "CPU time (s)" : "time (s)") + "\n" + referenceNote + "\n";
+      efficiencyMarkdown(efficiencyRows(curves), cpu ? "CPU time (s)" : "time (s)") + "\n" + referenceNote +
+      fmt::format(" Images of {} x {} pixels.\n", base.width, base.height);
   writeTextAtomically(dir / "convergence.csv", convergenceCsv(curves));
   writeTextAtomically(dir / "convergence.svg", renderSvg(plot));
   writeTextAtomically(dir / "efficiency.md", table);

@@ -37,5 +37,15 @@ expect_error "derived side too many pixels" "pixels" render "$VEACH" -o "$TMP/x.
 # --replay is checked against the derived size.
 expect_error "replay outside the derived size" "outside the 512 x 341" render "$VEACH" --replay 5,400,0 --max-length 2
 
+# converge and check take the camera's shape too (longest side 256 and 128 unless given): the
+# size is in converge's CSV-side efficiency table and on check's first line.
+if "$PATHLAB" converge "$VEACH" --configs pt --spp 2 --max-length 2 -o "$TMP/conv" --force >"$TMP/out" 2>"$TMP/err" </dev/null &&
+   grep -q "256 x 171" "$TMP/conv/efficiency.md"; then ok
+else fail "converge veach-mis by default: not 256 x 171: $(cat "$TMP/err") $(head -5 "$TMP/conv/efficiency.md" 2>/dev/null)"; fi
+"$PATHLAB" check "$VEACH" --spp 2 --max-length 2 >"$TMP/out" 2>"$TMP/err" </dev/null
+if head -1 "$TMP/out" | grep -q "128 x 85"; then ok; else fail "check veach-mis by default: $(head -1 "$TMP/out") $(cat "$TMP/err")"; fi
+"$PATHLAB" check "$VEACH" --spp 2 --max-length 2 --width 60 >"$TMP/out" 2>"$TMP/err" </dev/null
+if head -1 "$TMP/out" | grep -q "60 x 40"; then ok; else fail "check veach-mis --width 60: $(head -1 "$TMP/out") $(cat "$TMP/err")"; fi
+
 echo "render_size_cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

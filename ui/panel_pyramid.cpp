@@ -19,6 +19,10 @@ const Texture* PyramidImages::texture(Technique x, bool unweighted) const {
   return nullptr;
 }
 
+// The pyramid's largest share of the width beside the side panel: 45 %, so that at 1280 x 720 in
+// lecture mode the thumbnails of a 1.5:1 scene stay large enough for their (s,t) labels.
+constexpr float kMaxShare = 0.45f;
+
 float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale,
                         std::optional<float> imageAspect) {
   const ImGuiStyle& style = ImGui::GetStyle();
@@ -43,7 +47,7 @@ float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, 
     // The image has the camera's aspect whatever room it gets (ui/image_rect.h): so do the
     // thumbnails, and the panel is n (h a + c) + p wide.
     const float a = *imageAspect;
-    if (n * (h * a + c) + p > 0.35f * availableWidth) h = std::max(((0.35f * availableWidth - p) / n - c) / a, 16.f);
+    if (n * (h * a + c) + p > kMaxShare * availableWidth) h = std::max(((kMaxShare * availableWidth - p) / n - c) / a, 16.f);
     const float width = std::max(n * (h * a + c) + p, std::min(220.f * uiScale, 0.5f * availableWidth));
     view.thumbnail = {h * a, h};
     return width;
@@ -52,9 +56,9 @@ float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, 
     return (n * thumbHeight * availableWidth / height + n * c + p) / (1.f + n * thumbHeight / height);
   };
   float width = widthFor(h);
-  if (width > 0.35f * availableWidth) {
-    // Too wide: shrink the thumbnails until the panel takes 35% of the space.
-    const float w = 0.35f * availableWidth, a = (availableWidth - w) / height;
+  if (width > kMaxShare * availableWidth) {
+    // Too wide: shrink the thumbnails until the panel takes its largest share of the space.
+    const float w = kMaxShare * availableWidth, a = (availableWidth - w) / height;
     h = std::max(((w - p) / n - c) / a, 16.f);
     width = widthFor(h);
   }
