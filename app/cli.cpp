@@ -53,6 +53,7 @@ void addCommands(CLI::App& app, CliOptions& o) {
   addConvergeCommand(app, o.converge);
   addViewCommand(app, o.view);
   addCheckCommand(app, o.check);
+  addInspectCommand(app, o.inspect);
   requireFiniteNumbers(app);
 }
 

@@ -4,6 +4,7 @@
 
 #include "app/check_command.h"
 #include "app/converge_command.h"
+#include "app/inspect_command.h"
 #include "app/render_command.h"
 #include "app/view_command.h"
 
@@ -16,6 +17,7 @@ struct CliOptions {
   ConvergeOptions converge;
   ViewOptions view;
   CheckCommandOptions check;
+  InspectOptions inspect;
 };
 
 // Registers every subcommand on `app`, then requireFiniteNumbers.

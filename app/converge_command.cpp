@@ -40,17 +40,6 @@ constexpr const char* kOutputs[] = {"convergence.csv", "convergence.svg", "effic
 // its seed is offset by an odd 64-bit constant (the golden ratio's bits).
 constexpr uint64_t kReferenceSeedOffset = 0x9E3779B97F4A7C15ull;
 
-// Text files are written like images: a temporary beside the target, then a rename.
-void writeTextAtomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(tmp.string() + ": cannot write");
-  }
-  fs::rename(tmp, path);
-}
-
 // Before any work: the directory can be created or written (so can the cached reference), and
 // each result can be written into it.
 void checkOutputDir(const ConvergeOptions& o) {
@@ -263,9 +252,9 @@ int runConverge(ConvergeOptions o) {
   const std::string table =
       efficiencyMarkdown(efficiencyRows(curves), cpu ? "CPU time (s)" : "time (s)") + "\n" + referenceNote +
       fmt::format(" Images of {} x {} pixels.\n", base.width, base.height);
-  writeTextAtomically(dir / "convergence.csv", convergenceCsv(curves));
-  writeTextAtomically(dir / "convergence.svg", renderSvg(plot));
-  writeTextAtomically(dir / "efficiency.md", table);
+  writeTextAtomically((dir / "convergence.csv").string(), convergenceCsv(curves));
+  writeTextAtomically((dir / "convergence.svg").string(), renderSvg(plot));
+  writeTextAtomically((dir / "efficiency.md").string(), table);
   std::cout << table;
   std::cerr << fmt::format("wrote {}, {} and {}\n", (dir / "convergence.csv").string(), (dir / "convergence.svg").string(),
                            (dir / "efficiency.md").string());

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("converge")) return pathlab::app::runConverge(options.converge);
     if (app.got_subcommand("view")) return pathlab::app::runView(options.view);
     if (app.got_subcommand("check")) return pathlab::app::runCheck(options.check);
+    if (app.got_subcommand("inspect")) return pathlab::app::runInspect(options.inspect);
   } catch (const std::exception& e) {
     std::cerr << "pathlab: " << e.what() << "\n";
     return 1;

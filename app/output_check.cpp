@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <fstream>
 #include <linux/magic.h>
 #include <stdexcept>
 #include <sys/stat.h>
@@ -76,6 +77,16 @@ void checkOutputDirectory(const std::string& dir) {
   if (!missing.has_filename()) missing = missing.parent_path();  // "out/" is "out"
   const std::filesystem::path parent = missing.parent_path();
   checkWritableDirectory(dir, parent.empty() ? "." : parent.string());
+}
+
+void writeTextAtomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error(tmp + ": cannot write");
+  }
+  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace pathlab::app

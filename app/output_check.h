@@ -15,5 +15,8 @@ void checkOutputWritable(const std::string& path);
 // The same for a directory pathlab creates when it is missing (converge -o): an existing
 // directory that may be written, or else a parent in which it may be created.
 void checkOutputDirectory(const std::string& dir);
+// Text files are written like images: a temporary beside the target, then a rename. Throws
+// std::runtime_error naming the file when it cannot be written.
+void writeTextAtomically(const std::string& path, const std::string& text);
 
 }  // namespace pathlab::app

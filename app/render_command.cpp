@@ -5,6 +5,7 @@
 #include "app/output_check.h"
 #include "app/progress.h"
 #include "app/pyramid_output.h"
+#include "app/sample_inspection.h"
 #include "app/technique_maps_output.h"
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
@@ -83,51 +84,9 @@ ReplayRequest parseReplay(const std::string& text, const RenderSettings& setting
   return r;
 }
 
-// The path a technique formed, under every technique of its length (the seed's "one path, every
-// technique"): the density each would sample it with, the edge it connects, its weights.
-void printTechniquesOnPath(const std::vector<TechniqueOnPath>& every) {
-  if (every.empty()) return;
-  std::cout << fmt::format("{:>12}  this path under every technique: {:>11} {:>9} {:>9} {:>9}  {}\n", "", "p_A(x)",
-                           "balance", "power", "uniform", "connects");
-  for (const TechniqueOnPath& x : every) {
-    const std::string name = fmt::format("({},{})", x.s, x.t);
-    const std::string edge = x.connectionEdge < 0 ? std::string("nothing: hits the emitter")
-                                                  : fmt::format("x{}-x{}", x.connectionEdge, x.connectionEdge + 1);
-    if (!x.possible) {
-      const std::string why = x.connectionEdge < 0
-                                  ? std::string("its emitter cannot be hit by a ray (point, spot, directional light)")
-                                  : fmt::format("x{} or x{} scatters by a delta lobe", x.connectionEdge, x.connectionEdge + 1);
-      std::cout << fmt::format("{:>12}  {:>32} {:>11}  cannot: {}\n", "", name, "0", why);
-      continue;
-    }
-    std::cout << fmt::format("{:>12}  {:>32} {:>11.4e} {:>9.4f} {:>9.4f} {:>9.4f}  {}{}\n", "", name, x.pdfA,
-                             x.balance, x.power, x.uniform, edge, x.enabled ? "" : "  (disabled)");
-  }
-}
-
 // One sample, exactly as the render computed it, technique by technique (stdout).
 int runReplay(const RenderSession& session, const ReplayRequest& r) {
-  Counters counters;
-  SampleTrace trace;
-  Film splats(session.settings().width, session.settings().height);
-  const Spectrum L = session.replaySample(r.x, r.y, r.sample, counters, &splats, &trace);
-  std::cout << fmt::format("pixel {},{} sample {} ({}): camera-side estimate ({:g}, {:g}, {:g})\n", r.x, r.y, r.sample,
-                           integratorName(session.settings().integrator), L.r, L.g, L.b);
-  if (session.settings().integrator == IntegratorKind::Pt) return 0;
-  std::cout << fmt::format("camera subpath {} vertices, light subpath {} vertices\n", trace.cameraVertices,
-                           trace.lightVertices);
-  std::cout << fmt::format("{:>8} {:>36} {:>10} {:>36} {:>16} {}\n", "(s,t)", "unweighted", "weight", "weighted",
-                           "raster", "");
-  for (size_t i = 0; i < trace.records.size(); ++i) {
-    const TechniqueResult& t = trace.records[i];
-    const Spectrum w = t.unweighted * t.weight;
-    std::cout << fmt::format("{:>8} {:>36} {:>10.4g} {:>36} {:>16} {}\n", fmt::format("({},{})", t.s, t.t),
-                             fmt::format("({:.4g}, {:.4g}, {:.4g})", t.unweighted.r, t.unweighted.g, t.unweighted.b),
-                             t.weight, fmt::format("({:.4g}, {:.4g}, {:.4g})", w.r, w.g, w.b),
-                             fmt::format("{:.1f},{:.1f}", t.pRaster.x, t.pRaster.y),
-                             t.blocked() ? "blocked" : isBlack(t.unweighted) ? "zero" : t.inImage ? "" : "not in the image");
-    if (i < trace.onPath.size()) printTechniquesOnPath(trace.onPath[i]);
-  }
+  printInspection(std::cout, session.settings(), inspectSample(session, r.x, r.y, r.sample), false);
   return 0;
 }
 

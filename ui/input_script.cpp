@@ -46,7 +46,7 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
     auto bad = [&](const char* why) { return std::invalid_argument("--script: '" + item + "': " + why); };
     InputEvent e;
     const size_t colon = item.find(':');
-    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:drop=PATH, FRAME:resize=W,H or FRAME:wait=SPP");
+    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:click=X,Y, FRAME:drop=PATH, FRAME:resize=W,H or FRAME:wait=SPP");
     try {
       size_t used = 0;
       e.frame = std::stoi(item.substr(0, colon), &used);
@@ -80,9 +80,13 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
       if (action.rfind("Shift+", 0) == 0) e.shift = true, action = action.substr(6);
       float x0, y0, x1, y1;
       char tail;
-      if (action.rfind("drag=", 0) != 0 ||
-          std::sscanf(action.c_str() + 5, "%f,%f>%f,%f%c", &x0, &y0, &x1, &y1, &tail) != 4)
-        throw bad("expected key=NAME, drag=X0,Y0>X1,Y1, drop=PATH, resize=W,H or wait=SPP");
+      // A click is a drag that does not move (the inspector picks the pixel under it).
+      const bool click = action.rfind("click=", 0) == 0 &&
+                         std::sscanf(action.c_str() + 6, "%f,%f%c", &x0, &y0, &tail) == 2;
+      if (click) x1 = x0, y1 = y0;
+      if (!click && (action.rfind("drag=", 0) != 0 ||
+                     std::sscanf(action.c_str() + 5, "%f,%f>%f,%f%c", &x0, &y0, &x1, &y1, &tail) != 4))
+        throw bad("expected key=NAME, drag=X0,Y0>X1,Y1, click=X,Y, drop=PATH, resize=W,H or wait=SPP");
       if (!std::isfinite(x0) || !std::isfinite(y0) || !std::isfinite(x1) || !std::isfinite(y1))
         throw bad("drag positions must be finite numbers");
       e.kind = InputEvent::Kind::Drag;

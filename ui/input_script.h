@@ -3,7 +3,8 @@
 // each step writes io.KeysDown / io.MousePos / io.MouseDown for one frame (../shared/TOOLCHAIN.md).
 //
 // SCRIPT: ';'-separated events "FRAME:key=NAME", "FRAME:drag=X0,Y0>X1,Y1" (window pixels, left
-// button; "Shift+drag=..." pans), "FRAME:drop=PATH" (a file dropped on the window),
+// button; "Shift+drag=..." pans), "FRAME:click=X,Y" (a left click: a drag that does not move;
+// with the path inspector on it picks the pixel), "FRAME:drop=PATH" (a file dropped on the window),
 // "FRAME:resize=W,H" (the window resized) or "FRAME:wait=SPP" (that frame waits until the current
 // image has SPP samples per pixel: scripts that compare configurations run the same on a loaded
 // machine). NAME is a

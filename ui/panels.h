@@ -6,6 +6,7 @@
 
 #include "ui/compare.h"
 #include "ui/estimator_state.h"
+#include "ui/path_inspector.h"
 #include "ui/shortcuts.h"
 #include "ui/technique_map_view.h"
 #include "ui/viewer_state.h"
@@ -47,6 +48,12 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
 void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
 void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
 void drawPresetSection(const PresetState& presets, PanelRequests& requests);
+// The path inspector (panel_inspector.cpp): its section of the side panel (on / off, the picked
+// sample's techniques, the selected path under every technique) and its overlay over the image
+// (origin and size in ImGui coordinates; `raster` the inspected image's size in pixels).
+void drawInspectorSection(PathInspectorState& state, PanelRequests& requests);
+void drawInspectorOverlay(const InspectorOverlay& overlay, const PathInspectorState& state, ImVec2 origin, ImVec2 size,
+                          Vec2i raster, float uiScale);
 // The A/B comparison (panel_compare.cpp): on / off, side B's CONFIG, swap; `b`: B's shown image.
 void drawCompareSection(CompareState& compare, const RenderSnapshot& b, PanelRequests& requests);
 // `estimator` (its camera and lens) to offer a way back to the reference's view.

@@ -6,7 +6,7 @@
 
 namespace pathlab::ui {
 
-// The last one is SwapCompareSides (the tests check every action has a key).
+// The last one is BrightestSample (the tests check every action has a key).
 enum class Action {
   TogglePause, ToggleUi, ToggleHelp, TogglePyramid,
   TechniquesAll, TechniquesPathTracing, TechniquesLightTracing, TechniquesOneLength, TechniquesClear,
@@ -18,6 +18,7 @@ enum class Action {
   ToggleConvergence, ToggleErrorView, UseImageAsReference,
   ResetCamera, ReloadScene, SaveImage, Screenshot, ToggleRecording, Quit,
   ToggleCompare, SwapCompareSides,
+  ToggleInspector, NextSample, PreviousSample, BrightestSample,
 };
 
 struct Shortcut {

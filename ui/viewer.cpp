@@ -250,6 +250,10 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
         compareSide_.idle, run_.userPaused, scale, std::nullopt, std::string(), "B"});
   }
   drawMapOverImage(fbScale);
+  drawInspectorOverlay(inspectorOverlay_, inspector_,
+                       ImVec2(static_cast<float>(imageOrigin_.x) / fbScale, static_cast<float>(imageOrigin_.y) / fbScale),
+                       ImVec2(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale),
+                       {inspector_.inspectedSettings.width, inspector_.inspectedSettings.height}, scale);
   carryOut(requests);
 
   RenderSettings& edited = estimator_.settings;
@@ -288,6 +292,18 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
     applyCompareSettings();
   }
   syncRenderer();
+  updateInspector();
+}
+
+void Viewer::updateInspector() {
+  // The inspected image is the one shown: its settings (size, camera, estimator) once one arrived.
+  const RenderSettings& shown = snapshot_.settings.width > 0 ? snapshot_.settings : applied_;
+  if (!refreshInspection(inspector_, *scene_.scene, shown)) return;
+  inspectorOverlay_ = InspectorOverlay{};
+  if (inspector_.result) {
+    const RenderSettings& s = inspector_.inspectedSettings;
+    inspectorOverlay_ = inspectorOverlay(inspector_, Camera(s.camera.value_or(scene_.scene->cameraDesc()), s.width, s.height, s.lens));
+  }
 }
 
 void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
@@ -319,6 +335,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
                       requests);
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
     drawEstimatorSection(estimator_, grid_, run_.settingsError, snapshot_.counters, snapshot_.check.get());
+  if (ImGui::CollapsingHeader("Path inspector", inspector_.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+    drawInspectorSection(inspector_, requests);
   if (ImGui::CollapsingHeader("Compare A | B", compare_.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawCompareSection(compare_, compareSide_.snapshot, requests);
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))

@@ -80,6 +80,8 @@ class Viewer {
   PyramidView pyramid_;
   MapView maps_;
   CompareState compare_;
+  PathInspectorState inspector_;
+  InspectorOverlay inspectorOverlay_;  // of inspector_'s result, recomputed when it replays
   UiState ui_;
   EstimatorWarning warning_;  // of the shown image's settings
 
@@ -125,6 +127,8 @@ class Viewer {
   void applyCompareSettings();
   bool updateCompareImage();
   void swapCompareSides();
+  // The path inspector: replays the picked sample when it or the shown image's settings changed.
+  void updateInspector();
   void carryOut(const PanelRequests& requests);
   void applySettings();
   void syncRenderer();

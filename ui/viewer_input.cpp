@@ -91,6 +91,27 @@ void Viewer::perform(Action action) {
       else if (!compare_.typed.empty()) compare_.on = true;
       else applyCompareConfig(compare_, e.settings.integrator == IntegratorKind::Pt ? "bpt" : "pt", renderSettings(e));
       break;
+    case Action::ToggleInspector:
+      inspector_.on = !inspector_.on;
+      if (inspector_.on && !inspector_.pick) showMessage("path inspector: click a pixel of the image");
+      break;
+    case Action::NextSample:
+    case Action::PreviousSample:
+      if (!inspector_.on || !inspector_.pick) {
+        showMessage("pick a pixel first: K, then click the image");
+        break;
+      }
+      if (action == Action::NextSample) ++inspector_.sample;
+      else if (inspector_.sample > 0) --inspector_.sample;
+      break;
+    case Action::BrightestSample:
+      if (!inspector_.on || !inspector_.pixel || !inspector_.result) {
+        showMessage("pick a pixel first: K, then click the image");
+        break;
+      }
+      inspector_.sample = brightestSample(*scene_.scene, inspector_.inspectedSettings, *inspector_.pixel, 256);
+      showMessage(fmt::format("the brightest of the first 256 samples is sample {}", inspector_.sample));
+      break;
     case Action::SwapCompareSides:
       if (compare_.on) swapCompareSides();
       else showMessage("nothing to swap: the comparison is off (C turns it on)");
@@ -107,6 +128,16 @@ void Viewer::handleCamera(float framebufferScale) {
   bool moved = false;
   // A drag belongs to the image only if it started there, outside every ImGui window.
   const bool anyDown = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];
+  // A click (press and release within a few pixels) on the image picks the inspector's pixel.
+  if (ImGui::IsMouseClicked(0)) {
+    ui_.pressAt = mouse;
+    ui_.pressOverImage = PixelRect{imageOrigin_, imageSize_}.contains(mouse) && !io.WantCaptureMouse;
+  }
+  if (inspector_.on && ImGui::IsMouseReleased(0) && ui_.pressOverImage && glm::length(mouse - ui_.pressAt) < 4.f &&
+      imageSize_.x > 0 && imageSize_.y > 0) {
+    inspector_.pick = (mouse - Vec2(imageOrigin_)) / Vec2(imageSize_);
+    inspector_.sample = 0;
+  }
   if (!anyDown) ui_.dragging = false;
   else if (!ui_.dragging && overImage && !io.WantCaptureMouse &&
            (ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2)))

@@ -117,6 +117,8 @@ struct UiState {
   bool quit = false, screenshotRequested = false, recordingToggleRequested = false;
   bool recording = false;  // transient notices are left out of the recorded frames
   bool dragging = false;  // a drag that started over the image moves the camera
+  Vec2 pressAt{0.f};      // where the left button went down over the image (a click picks a pixel)
+  bool pressOverImage = false;
   double frameMs = 0.0;
   std::string message;
   bool messageIsError = false;

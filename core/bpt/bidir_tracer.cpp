@@ -18,6 +18,7 @@ struct BidirTracer::Walks {
   Connection connection;                 // scratch reused by every technique
   std::vector<double> densityRatios;     // TechniqueResult::densityRatios, when an output wants them
   std::vector<TechniqueOnPath> onPath;   // TechniqueResult::onPath (replay)
+  TracedPath traced;                     // TechniqueResult::traced (replay)
 };
 
 const char* connectStrategyName(ConnectStrategy c) { return c == ConnectStrategy::Endpoints ? "endpoints" : "all"; }
@@ -97,6 +98,13 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   // shadow ray, which is traced only when something will use the contribution.
   const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
   if (enabled) r.weight = weight(path, walks, counters);
+  if (outputs.wantsOnPath()) {
+    // The inspector shows blocked paths too: what each technique would have made of them.
+    tracePath(scene_, camera_, path, walks.traced);
+    r.traced = &walks.traced;
+    walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
+    r.onPath = &walks.onPath;
+  }
   r.imageWeight = !r.inImage ? 0.f : unweightedInImage ? 1.f : r.weight;
   if (!(r.imageWeight > 0.f) && !r.inPyramid && !outputs.wantsEveryContribution()) {
     r.weight = 0.f;
@@ -114,10 +122,6 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   if (options_.injectBias && options_.injectBias->s == s && options_.injectBias->t == t)
     r.unweighted *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
   if (outputs.wantsSampleable()) r.sampleableBy = sampleableTechniques(path);
-  if (outputs.wantsOnPath()) {
-    walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
-    r.onPath = &walks.onPath;
-  }
   if (outputs.wantsDensityRatios()) {
     walks.densityRatios.resize(static_cast<size_t>(s + t));
     techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
@@ -205,6 +209,9 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
     targets.trace->lightVertices = ns;
     targets.trace->records.clear();
     targets.trace->onPath.clear();
+    targets.trace->paths.clear();
+    targets.trace->cameraSubpath.assign(walks.camera.data(), walks.camera.data() + nt);
+    targets.trace->lightSubpath.assign(walks.light.data(), walks.light.data() + ns);
   }
   for (int t = 1; t <= nt; ++t)
     for (int s = 0; s <= std::max(ns, 1); ++s) {
@@ -229,6 +236,9 @@ void BidirTracer::sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionK
     targets.trace->cameraVertices = targets.trace->lightVertices = 0;
     targets.trace->records.clear();
     targets.trace->onPath.clear();
+    targets.trace->paths.clear();
+    targets.trace->cameraSubpath.clear();
+    targets.trace->lightSubpath.clear();
   }
   for (const Technique x : techniquesUpTo(options_.maxLength)) {
     TechniqueResult r;

@@ -13,6 +13,7 @@ std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& 
   balance.heuristic = MisHeuristic::Balance;
   power.heuristic = MisHeuristic::Power;
   uniform.heuristic = MisHeuristic::Uniform;
+  const UsableTechniques usable(d, techniques, minDistance);
   std::vector<TechniqueOnPath> out;
   for (int sp = 0; sp < d.n; ++sp) {
     TechniqueOnPath x;
@@ -21,6 +22,7 @@ std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& 
     x.possible = (sampleable >> sp) & 1u;
     x.enabled = techniques.contains(x.s, x.t);
     x.connectionEdge = sp >= 1 ? sp - 1 : -1;
+    x.counted = usable(sp);
     if (x.possible) {
       double p = 1.0;
       for (int i = 0; i < d.n; ++i)
@@ -33,6 +35,23 @@ std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& 
     out.push_back(x);
   }
   return out;
+}
+
+void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, TracedPath& out) {
+  const PathDensities d = pathDensities(scene, camera, path);
+  out = TracedPath{};
+  for (int i = 0; i < d.n; ++i) {
+    // x_i: the light prefix first, then the camera prefix from its far end back to the lens.
+    const PathVertex& v = i < path.s ? lightVertex(path, i) : cameraVertex(path, d.n - 1 - i);
+    out.p.push_back(v.p);
+    out.kind.push_back(v.type == VertexType::Camera  ? TracedVertexKind::Camera
+                       : v.type == VertexType::Light ? TracedVertexKind::Light
+                                                     : TracedVertexKind::Surface);
+    out.delta.push_back(d.delta[static_cast<size_t>(i)]);
+    out.deltaPosition.push_back(v.isDeltaPosition ? 1 : 0);
+    out.pFromLight.push_back(d.pFromLight[static_cast<size_t>(i)]);
+    out.pFromCamera.push_back(d.pFromCamera[static_cast<size_t>(i)]);
+  }
 }
 
 }  // namespace pathlab

@@ -18,4 +18,8 @@ std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& 
                                               const TechniqueSet& techniques, const MisOptions& options,
                                               float lightTracingRatio = 1.f);
 
+// The full path `path` forms, light end first, with both densities of every vertex (TracedPath),
+// into `out` (its storage reused).
+void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, TracedPath& out);
+
 }  // namespace pathlab

@@ -13,8 +13,10 @@ void SampleOutputs::trace(const TechniqueResult& r) {
   TechniqueResult record = r;
   record.densityRatios = nullptr;
   record.onPath = nullptr;
+  record.traced = nullptr;
   targets_.trace->records.push_back(record);
   targets_.trace->onPath.push_back(r.onPath ? *r.onPath : std::vector<TechniqueOnPath>{});
+  targets_.trace->paths.push_back(r.traced ? *r.traced : TracedPath{});
 }
 
 void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {

@@ -2,6 +2,7 @@
 // the outputs (film, pyramid, replay trace, counters) consume (sample_outputs.h).
 #pragma once
 
+#include "core/bpt/path_vertex.h"
 #include "core/math/types.h"
 
 #include <cstdint>
@@ -24,7 +25,26 @@ struct TechniqueOnPath {
   // camera subpath hits the emitter): its geometry term and the BSDFs at its ends are the factors
   // of f this technique does not importance-sample.
   int connectionEdge = -1;
+  // In the weights' denominators: enabled, possible, and not left out by the near-coincident
+  // connection rule (MisOptions::minConnection). Under balance w_s = p_s / sum of the counted p
+  // (times the light-tracing sample ratio for t' = 1), power with p^beta, uniform 1 / count.
+  bool counted = false;
   double balance = 0.0, power = 0.0, uniform = 0.0;  // MIS weights among the enabled techniques
+};
+
+// The full path a technique formed, light end first (x_0 on the light ... x_{k} at the camera), as
+// the replay trace keeps it for the path inspector: where each vertex is, what it is, and the
+// area density of each vertex sampled from either side (PathDensities, mis.h), so every
+// technique's p_{s',t'} = prod_{i<s'} pFromLight[i] * prod_{i>=s'} pFromCamera[i] (a delta
+// vertex's density counts one) can be recomputed from it.
+enum class TracedVertexKind : uint8_t { Camera, Light, Surface };
+struct TracedPath {
+  std::vector<Vec3> p;
+  std::vector<TracedVertexKind> kind;
+  std::vector<uint8_t> delta;           // a delta BSDF lobe scattered here
+  std::vector<uint8_t> deltaPosition;   // a point / spot light or a pinhole: cannot be hit
+  std::vector<double> pFromLight, pFromCamera;
+  size_t size() const { return p.size(); }
 };
 
 enum class TechniqueOutcome : uint8_t {
@@ -53,6 +73,9 @@ struct TechniqueResult {
   // For the replay trace: this path under every technique of its length (techniquesOnPath), in
   // the kernel's scratch; valid only while the outputs consume the result.
   const std::vector<TechniqueOnPath>* onPath = nullptr;
+  // For the replay trace: the path this technique formed (also when blocked), in the kernel's
+  // scratch; null when it formed none or no output asked.
+  const TracedPath* traced = nullptr;
   bool blocked() const { return outcome == TechniqueOutcome::Blocked; }
 };
 
@@ -62,6 +85,12 @@ struct SampleTrace {
   std::vector<TechniqueResult> records;  // every technique tried, in evaluation order (scratch pointers null)
   // records[i]'s path under every technique of its length (empty unless it contributed).
   std::vector<std::vector<TechniqueOnPath>> onPath;
+  // records[i]'s full path (empty when the technique formed none: a delta vertex, off the film).
+  std::vector<TracedPath> paths;
+  // The shared subpaths, camera vertex 0 at the lens and light vertex 0 on the emitter, with the
+  // densities they were created with (path reuse; empty under ConnectStrategy::Endpoints, where
+  // each technique walks its own, kept in `paths`).
+  std::vector<PathVertex> cameraSubpath, lightSubpath;
 };
 
 // Which sample this is, for the discarded-sample report (Counters::discardExamples).

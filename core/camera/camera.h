@@ -60,6 +60,11 @@ class Camera {
   std::optional<CameraWiSample> sampleWi(const Vec3& ref, Vec2 uLens) const;
   // Raster position of a world point through the lens centre (nullopt if behind or off film).
   std::optional<Vec2> rasterPosition(const Vec3& p) const;
+  // The same in two steps for drawing segments that leave the film or pass behind the lens (the
+  // path inspector clips them): a world point in camera space (looking down -z), and the raster
+  // position of a camera-space point in front of the lens (depth -z > 0), on the film or not.
+  Vec3 toCameraSpace(const Vec3& p) const { return Vec3(worldToCamera_ * Vec4(p, 1.f)); }
+  Vec2 rasterOfCameraPoint(const Vec3& pCam) const { return filmToRaster(Vec2(pCam) / -pCam.z); }
 
  private:
   Mat4 cameraToWorld_{1.f}, worldToCamera_{1.f};

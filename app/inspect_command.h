@@ -1,0 +1,30 @@
+// `pathlab inspect`: one camera sample of one pixel, every (s,t) technique it tried, each full
+// path with its vertex densities and the path under every technique of its length, as text and
+// JSON (issue 12, "On the command line"; app/sample_inspection.h).
+#pragma once
+
+#include "app/estimator_options.h"
+#include "core/scene/gltf_loader.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace pathlab::app {
+
+struct InspectOptions {
+  std::string scene;
+  EstimatorOptions estimator;
+  int width = 0, height = 0;  // as render: the camera's shape, longest side 512, unless given
+  std::string pixel;          // "X,Y"
+  uint64_t sample = 0;        // the pass index: samples are keyed by (seed, pixel, pass)
+  std::string json;           // write the inspection here as JSON
+  bool force = false;
+  LoadOptions load;
+};
+
+void addInspectCommand(CLI::App& app, InspectOptions& options);
+int runInspect(InspectOptions options);
+
+}  // namespace pathlab::app

@@ -1,0 +1,158 @@
+#include "app/sample_inspection.h"
+
+#include "core/bpt/bidir_tracer.h"
+
+#include <fmt/core.h>
+
+namespace pathlab::app {
+
+namespace {
+
+const char* kindName(TracedVertexKind k) {
+  switch (k) {
+    case TracedVertexKind::Camera: return "camera";
+    case TracedVertexKind::Light: return "light";
+    case TracedVertexKind::Surface: return "surface";
+  }
+  return "surface";
+}
+
+const char* kindName(VertexType t) {
+  return t == VertexType::Camera ? "camera" : t == VertexType::Light ? "light" : "surface";
+}
+
+nlohmann::json vec(Vec3 v) { return {v.x, v.y, v.z}; }
+nlohmann::json rgb(Spectrum s) { return {s.r, s.g, s.b}; }
+
+// The path a technique formed, under every technique of its length (the seed's "one path, every
+// technique"): the density each would sample it with, the edge it connects, its weights.
+void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>& every) {
+  if (every.empty()) return;
+  out << fmt::format("{:>12}  this path under every technique: {:>11} {:>9} {:>9} {:>9}  {}\n", "", "p_A(x)",
+                     "balance", "power", "uniform", "connects");
+  for (const TechniqueOnPath& x : every) {
+    const std::string name = fmt::format("({},{})", x.s, x.t);
+    const std::string edge = x.connectionEdge < 0 ? std::string("nothing: hits the emitter")
+                                                  : fmt::format("x{}-x{}", x.connectionEdge, x.connectionEdge + 1);
+    if (!x.possible) {
+      const std::string why = x.connectionEdge < 0
+                                  ? std::string("its emitter cannot be hit by a ray (point, spot, directional light)")
+                                  : fmt::format("x{} or x{} scatters by a delta lobe", x.connectionEdge, x.connectionEdge + 1);
+      out << fmt::format("{:>12}  {:>32} {:>11}  cannot: {}\n", "", name, "0", why);
+      continue;
+    }
+    out << fmt::format("{:>12}  {:>32} {:>11.4e} {:>9.4f} {:>9.4f} {:>9.4f}  {}{}\n", "", name, x.pdfA, x.balance,
+                       x.power, x.uniform, edge, x.enabled ? "" : "  (disabled)");
+  }
+}
+
+void printPath(std::ostream& out, const TracedPath& path) {
+  for (size_t i = 0; i < path.size(); ++i)
+    out << fmt::format("{:>12}  x{} {:<8} ({:.4g}, {:.4g}, {:.4g})  p from light {:.4e}  p from camera {:.4e}{}\n", "",
+                       i, kindName(path.kind[i]), path.p[i].x, path.p[i].y, path.p[i].z, path.pFromLight[i],
+                       path.pFromCamera[i], path.delta[i] ? "  delta" : "");
+}
+
+nlohmann::json subpathJson(const std::vector<PathVertex>& subpath) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const PathVertex& v : subpath)
+    out.push_back({{"p", vec(v.p)},
+                   {"kind", kindName(v.type)},
+                   {"delta", v.isDelta || v.isDeltaPosition},
+                   {"pdfFwdA", v.pdfFwdA},
+                   {"pdfRevA", v.pdfRevA}});
+  return out;
+}
+
+}  // namespace
+
+void printInspection(std::ostream& out, const RenderSettings& settings, const SampleInspection& in, bool paths) {
+  const Spectrum L = in.cameraEstimate;
+  out << fmt::format("pixel {},{} sample {} ({}): camera-side estimate ({:g}, {:g}, {:g})\n", in.x, in.y, in.sample,
+                     integratorName(settings.integrator), L.r, L.g, L.b);
+  if (settings.integrator == IntegratorKind::Pt) return;
+  const SampleTrace& trace = in.trace;
+  out << fmt::format("camera subpath {} vertices, light subpath {} vertices\n", trace.cameraVertices,
+                     trace.lightVertices);
+  out << fmt::format("{:>8} {:>36} {:>10} {:>36} {:>16} {}\n", "(s,t)", "unweighted", "weight", "weighted", "raster", "");
+  for (size_t i = 0; i < trace.records.size(); ++i) {
+    const TechniqueResult& t = trace.records[i];
+    const Spectrum w = t.unweighted * t.weight;
+    out << fmt::format("{:>8} {:>36} {:>10.4g} {:>36} {:>16} {}\n", fmt::format("({},{})", t.s, t.t),
+                       fmt::format("({:.4g}, {:.4g}, {:.4g})", t.unweighted.r, t.unweighted.g, t.unweighted.b), t.weight,
+                       fmt::format("({:.4g}, {:.4g}, {:.4g})", w.r, w.g, w.b),
+                       fmt::format("{:.1f},{:.1f}", t.pRaster.x, t.pRaster.y),
+                       t.blocked() ? "blocked" : isBlack(t.unweighted) ? "zero" : t.inImage ? "" : "not in the image");
+    if (paths && i < trace.paths.size()) printPath(out, trace.paths[i]);
+    if (i < trace.onPath.size() && (paths || !t.blocked())) printTechniquesOnPath(out, trace.onPath[i]);
+  }
+}
+
+nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspection& in) {
+  const SampleTrace& trace = in.trace;
+  nlohmann::json j;
+  j["pixel"] = {in.x, in.y};
+  j["sample"] = in.sample;
+  j["seed"] = settings.seed;
+  j["integrator"] = integratorName(settings.integrator);
+  j["heuristic"] = misHeuristicName(settings.mis.heuristic);
+  j["beta"] = settings.mis.beta;
+  j["minConnection"] = settings.mis.minConnection;
+  j["connect"] = connectStrategyName(settings.connect);
+  // The sample-count factor of the weights (Veach 1997 eq. 9.13: p_s is multiplied by n_s, the
+  // samples of technique s per camera sample): light subpaths per camera sample for the t = 1
+  // techniques. With 1 it drops out of every weight.
+  j["lightTracingSampleRatio"] = lightTracingRatio();
+  j["cameraEstimate"] = rgb(in.cameraEstimate);
+  j["cameraSubpath"] = subpathJson(trace.cameraSubpath);
+  j["lightSubpath"] = subpathJson(trace.lightSubpath);
+  nlohmann::json techniques = nlohmann::json::array();
+  for (size_t i = 0; i < trace.records.size(); ++i) {
+    const TechniqueResult& r = trace.records[i];
+    nlohmann::json t;
+    t["s"] = r.s;
+    t["t"] = r.t;
+    t["enabled"] = enabledTechniques(settings).contains(r.s, r.t);
+    t["blocked"] = r.blocked();
+    t["contribution"] = rgb(r.unweighted);
+    t["weight"] = r.weight;
+    t["inImage"] = r.inImage;
+    t["raster"] = {r.pRaster.x, r.pRaster.y};
+    nlohmann::json path = nlohmann::json::array(), vertices = nlohmann::json::array();
+    if (i < trace.paths.size())
+      for (size_t v = 0; v < trace.paths[i].size(); ++v) {
+        const TracedPath& p = trace.paths[i];
+        path.push_back(vec(p.p[v]));
+        vertices.push_back({{"p", vec(p.p[v])},
+                            {"kind", kindName(p.kind[v])},
+                            {"delta", p.delta[v] != 0},
+                            {"deltaPosition", p.deltaPosition[v] != 0},
+                            {"pdfFromLightA", p.pFromLight[v]},
+                            {"pdfFromCameraA", p.pFromCamera[v]}});
+      }
+    t["path"] = path;
+    t["vertices"] = vertices;
+    nlohmann::json densities = nlohmann::json::array();
+    if (i < trace.onPath.size())
+      for (const TechniqueOnPath& x : trace.onPath[i])
+        densities.push_back({{"s", x.s},
+                             {"t", x.t},
+                             {"pdfA", x.pdfA},
+                             {"possible", x.possible},
+                             {"enabled", x.enabled},
+                             {"counted", x.counted},
+                             {"connectionEdge", x.connectionEdge},
+                             {"weights", {{"balance", x.balance}, {"power", x.power}, {"uniform", x.uniform}}}});
+    t["densities"] = densities;
+    // This technique's own weights under each heuristic (its entry of `densities`).
+    if (i < trace.onPath.size() && static_cast<size_t>(r.s) < trace.onPath[i].size()) {
+      const TechniqueOnPath& own = trace.onPath[i][static_cast<size_t>(r.s)];
+      t["weights"] = {{"balance", own.balance}, {"power", own.power}, {"uniform", own.uniform}};
+    }
+    techniques.push_back(t);
+  }
+  j["techniques"] = techniques;
+  return j;
+}
+
+}  // namespace pathlab::app

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# `pathlab inspect` end to end: the text names every technique; the JSON has the documented fields,
+# its subpaths start on an emitter and at the camera, and every technique's weights are recomputed
+# from its listed densities (python3, which dev.sh installs); the JSON is not overwritten without
+# --force; bad input is one line and a non-zero exit.
+source "$(dirname "$0")/cli_lib.sh"
+
+BOX="$SRC/assets/cornell-box.gltf"
+VEACH="$SRC/assets/veach-mis.gltf"
+
+check_json() {
+  python3 - "$1" "$2" <<'PY'
+import json, math, sys
+j = json.load(open(sys.argv[1]))
+heuristic = sys.argv[2]
+for key in ["pixel", "sample", "seed", "heuristic", "cameraSubpath", "lightSubpath", "techniques"]:
+    assert key in j, key
+assert j["heuristic"] == heuristic, j["heuristic"]
+assert j["cameraSubpath"][0]["kind"] == "camera"
+assert j["lightSubpath"][0]["kind"] == "light"
+n_ratio = j["lightTracingSampleRatio"]
+checked = 0
+for t in j["techniques"]:
+    for key in ["s", "t", "enabled", "blocked", "contribution", "weight", "raster", "path", "densities"]:
+        assert key in t, key
+    if not t["path"]:
+        continue
+    assert len(t["path"]) == t["s"] + t["t"]
+    assert t["vertices"][-1]["kind"] == "camera"
+    d = t["densities"]
+    own = d[t["s"]]
+    counted = [x for x in d if x["counted"]]
+    if not own["counted"]:
+        continue
+    n = lambda x: n_ratio if x["t"] == 1 else 1.0
+    for name, b in [("balance", 1.0), ("power", j["beta"])]:
+        w = 1.0 / sum((n(x) * x["pdfA"] / (n(own) * own["pdfA"])) ** b for x in counted)
+        assert math.isclose(w, t["weights"][name], rel_tol=1e-6), (name, w, t["weights"][name])
+    assert math.isclose(t["weights"]["uniform"], 1.0 / len(counted), rel_tol=1e-9)
+    if not t["blocked"] and any(t["contribution"]):
+        assert math.isclose(t["weight"], t["weights"][heuristic], rel_tol=1e-5, abs_tol=1e-7), (t["weight"], t["weights"])
+    # The densities multiply out from the path's vertex densities (a zero counts one).
+    for x in d:
+        if not x["possible"]:
+            continue
+        p = 1.0
+        for i, v in enumerate(t["vertices"]):
+            q = v["pdfFromLightA"] if i < x["s"] else v["pdfFromCameraA"]
+            p *= q if q != 0 else 1.0
+        assert math.isclose(p, x["pdfA"], rel_tol=1e-9), (p, x["pdfA"])
+    checked += 1
+assert checked >= 2, checked
+PY
+}
+
+for h in balance power; do
+  if "$PATHLAB" inspect "$BOX" --pixel 200,300 --sample 3 --max-length 4 --mis "$h" --json "$TMP/$h.json" \
+       >"$TMP/out" 2>"$TMP/err" </dev/null &&
+     grep -q "this path under every technique" "$TMP/out" && check_json "$TMP/$h.json" "$h" 2>"$TMP/py"; then ok
+  else fail "inspect --mis $h: $(cat "$TMP/err" "$TMP/py" 2>/dev/null | tail -5)"; fi
+done
+# Not overwritten without --force; with it, it is.
+expect_error "existing JSON" "exists" inspect "$BOX" --pixel 1,1 --json "$TMP/balance.json"
+"$PATHLAB" inspect "$VEACH" --pixel 100,100 --json "$TMP/balance.json" --force >/dev/null 2>&1 && ok || fail "--force"
+expect_error "pixel outside" "outside the 512 x 341 image" inspect "$VEACH" --pixel 600,10
+expect_error "pixel syntax" "is not X,Y" inspect "$BOX" --pixel 10
+expect_error "sample past the limit" "past the last sample" inspect "$BOX" --pixel 1,1 --sample 99999999
+expect_error "missing scene" "nope.gltf" inspect "$TMP/nope.gltf" --pixel 1,1
+expect_error "path tracer" "bpt or lt" inspect "$BOX" --pixel 1,1 --integrator pt
+
+echo "inspect_cli: $passes passed, $failures failed"
+[ "$failures" -eq 0 ]
