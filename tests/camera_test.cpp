@@ -253,8 +253,15 @@ TEST(CameraFrame, FrameBoundsFitsTheSphere) {
   const Vec3 centre = 0.5f * (lo + hi);
   const float radius = 0.5f * glm::length(hi - lo);
   const Camera camera(desc, 100, 100);
-  EXPECT_NEAR(glm::dot(camera.forward(), Vec3(0.f, 0.f, -1.f)), 1.f, 1e-6f);
-  const Vec3 expectedEye = centre + Vec3(0.f, 0.f, radius / std::sin(0.5f * yfov) * 1.1f);
+  // A three-quarter view: from the front right and above, image up toward +y.
+  const Vec3 view = camera.forward();
+  EXPECT_NEAR(glm::length(view), 1.f, 1e-6f);
+  EXPECT_LT(view.x, -0.3f);
+  EXPECT_LT(view.y, -0.3f);
+  EXPECT_LT(view.z, -0.5f);
+  EXPECT_GT(desc.cameraToWorld[1].y, 0.8f);  // camera +y (image up) mostly world +y
+  EXPECT_NEAR(desc.cameraToWorld[0].y, 0.f, 1e-6f);  // no roll: the image's x is level
+  const Vec3 expectedEye = centre - view * (radius / std::sin(0.5f * yfov) * 1.1f);
   EXPECT_NEAR(glm::length(camera.position() - expectedEye), 0.f, 1e-5f);
   EXPECT_FLOAT_EQ(desc.yfov, yfov);
   Pcg32 rng(17, 18);

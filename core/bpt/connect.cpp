@@ -40,7 +40,7 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     const PathVertex& pt = cameraPath[t - 1];
     if (t < 2 || pt.type != VertexType::Surface || pt.light < 0) return false;
     const Light& light = scene.lights()[static_cast<size_t>(pt.light)];
-    c.L = pt.beta * light.radiance(pt.ng, pt.uv, pt.wo);
+    c.L = pt.beta * light.radiance(pt.ng, scene.emissionUv(pt.material, pt.uv, pt.uv1), pt.wo);
     return !isBlack(c.L);
   }
 

@@ -41,7 +41,7 @@ float pdfArea(const Scene& scene, const Camera& camera, const PathVertex& v, con
       return pdfLightToward(scene, v, next);
     case VertexType::Surface: {
       if (!prev) return 0.f;
-      const Bsdf bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), v.uv, scene.textures()));
+      const Bsdf bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), ShadingInputs{v.uv, v.uv1, v.color}, scene.textures()));
       const float pdfW = bsdf.pdf(glm::normalize(prev->p - v.p), glm::normalize(next.p - v.p), mode);
       return convertDensity(pdfW, v, next);
     }

@@ -18,7 +18,9 @@ struct PathVertex {
   Vec3 ns{0.f};          // shading normal (surfaces only)
   Vec3 wo{0.f};          // unit direction toward the previous vertex of its own subpath (0 at x0)
   Vec3 pError{0.f};      // floating-point error bound of p (ray.h interpolationError); 0 off surfaces
-  Vec2 uv{0.f};
+  Vec2 uv{0.f};          // TEXCOORD_0 (light vertices: in the light's emission uv set)
+  Vec2 uv1{0.f};         // TEXCOORD_1 (surfaces)
+  Spectrum color{1.f};   // COLOR_0 (surfaces)
   int material = -1;     // surfaces
   int light = -1;        // light vertices, and surfaces lying on an area light (index in LightSet)
   Spectrum beta{0.f};    // throughput of the subpath up to and including this vertex

@@ -28,6 +28,8 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     v.ng = hit->ng;
     v.ns = hit->ns;
     v.uv = hit->uv;
+    v.uv1 = hit->uv1;
+    v.color = hit->color;
     // From the stored positions, not the (offset) ray: the densities below are then those of
     // the path the vertices describe, which is what misWeight re-evaluates.
     const Vec3 back = prev.p - v.p;
@@ -52,7 +54,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     v.areaToPrev = convertDensity(1.f, v, prev);
     // Every surface vertex, the last included, gets its BSDF: connect() evaluates it.
     Bsdf& bsdf = path.bsdfs[static_cast<size_t>(path.count)];
-    bsdf = scene.bsdf(v.material, v.uv, v.ns, v.ng);
+    bsdf = scene.bsdf(v.material, ShadingInputs{v.uv, v.uv1, v.color}, v.ns, v.ng);
     ++path.count;
     if (path.count >= options.maxVertices) break;
 

@@ -173,9 +173,12 @@ CameraDesc frameBounds(const Vec3& boundsMin, const Vec3& boundsMax, float yfov)
   if (!(radius > 0.f) || !std::isfinite(radius)) radius = 1.f;
   // The sphere is tangent to the view cone at distance radius / sin(yfov / 2); 10% margin.
   const float distance = radius / std::sin(0.5f * yfov) * 1.1f;
+  // The camera looks down its -z: z points from the centre to the eye; x = up x z, y = z x x.
+  const Vec3 z = glm::normalize(kFrameDirection);
+  const Vec3 x = glm::normalize(glm::cross(Vec3(0.f, 1.f, 0.f), z));
+  const Vec3 y = glm::cross(z, x);
   CameraDesc desc;
-  desc.cameraToWorld = Mat4(1.f);
-  desc.cameraToWorld[3] = Vec4(center + Vec3(0.f, 0.f, distance), 1.f);
+  desc.cameraToWorld = Mat4(Vec4(x, 0.f), Vec4(y, 0.f), Vec4(z, 0.f), Vec4(center + distance * z, 1.f));
   desc.yfov = yfov;
   desc.name = "frameBounds";
   return desc;

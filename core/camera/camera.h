@@ -90,8 +90,11 @@ class Camera {
   std::optional<Vec2> rasterOfCameraRay(const Vec3& oCam, const Vec3& dCam) const;
 };
 
-// Frame the scene's bounds when the file has no camera: look along -z at the centre from far
-// enough that the bounding sphere fits the vertical field of view.
+// Frame the scene's bounds when the file has no camera: a three-quarter view (from the front
+// right and above, kFrameDirection, +y up as in glTF) of the centre, from far enough that the
+// bounding sphere fits the vertical field of view. Neither a flat model facing +z nor one lying
+// in the xz plane is then seen edge-on.
+constexpr Vec3 kFrameDirection{0.5198f, 0.4226f, 0.7424f};  // azimuth 35 deg from +z, elevation 25 deg
 CameraDesc frameBounds(const Vec3& boundsMin, const Vec3& boundsMax, float yfov = 0.6911f);
 
 }  // namespace pathlab

@@ -18,8 +18,10 @@ struct Ray {
 struct SurfaceHit {
   Vec3 p{0.f};
   Vec3 ng{0.f, 0.f, 1.f};  // geometric normal from the triangle's winding (unit)
-  Vec3 ns{0.f, 0.f, 1.f};  // interpolated shading normal (unit), flipped into ng's hemisphere
-  Vec2 uv{0.f};
+  Vec3 ns{0.f, 0.f, 1.f};  // shading normal (unit; interpolated, normal-mapped), in ng's hemisphere
+  Vec2 uv{0.f};            // TEXCOORD_0
+  Vec2 uv1{0.f};           // TEXCOORD_1
+  Spectrum color{1.f};     // COLOR_0 (rgb), 1 without vertex colours
   float t = 0.f;
   uint32_t meshId = 0, primId = 0;
   int material = 0;

@@ -46,7 +46,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) co
 
     if (hit->light >= 0) {
       const Light& light = scene_.lights()[static_cast<size_t>(hit->light)];
-      const Spectrum Le = light.radiance(hit->ng, hit->uv, wo);
+      const Spectrum Le = light.radiance(hit->ng, scene_.emissionUv(hit->material, hit->uv, hit->uv1), wo);
       if (!isBlack(Le)) {
         float weight = 1.f;
         if (!prevDelta) {
@@ -58,7 +58,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) co
     }
     if (edges >= maxLength_) break;
 
-    const Bsdf bsdf = scene_.bsdf(hit->material, hit->uv, hit->ns, hit->ng);
+    const Bsdf bsdf = scene_.bsdf(hit->material, ShadingInputs{hit->uv, hit->uv1, hit->color}, hit->ns, hit->ng);
     if (bsdf.hasNonDelta()) L += beta * sampleDirect(*hit, bsdf, wo, rng, counters);
 
     const float uLobe = rng.next1D();

@@ -166,6 +166,20 @@ std::vector<Vec2> readVec2(const tinygltf::Model& model, int accessor, const std
   return readVectors<Vec2>(model, accessor, what, 2, "VEC2");
 }
 
+std::vector<Vec4> readVec4(const tinygltf::Model& model, int accessor, const std::string& what) {
+  return readVectors<Vec4>(model, accessor, what, 4, "VEC4");
+}
+
+std::vector<Vec4> readColors(const tinygltf::Model& model, int accessor, const std::string& what) {
+  const AccessorView view = viewAccessor(model, accessor, what);
+  if (view.components == 4) return readVec4(model, accessor, what);
+  // glTF 2.0 sec. 3.7.2.1: COLOR_n is VEC3 or VEC4; a VEC3 colour is opaque.
+  const std::vector<Vec3> rgb = readVectors<Vec3>(model, accessor, what, 3, "VEC3 or VEC4");
+  std::vector<Vec4> out(rgb.size());
+  for (size_t i = 0; i < rgb.size(); ++i) out[i] = Vec4(rgb[i], 1.f);
+  return out;
+}
+
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor,
                                   const std::string& what) {
   const AccessorView view = viewAccessor(model, accessor, what);

@@ -10,11 +10,6 @@
 
 namespace pathlab::gltf {
 
-void Warnings::add(const std::string& message) {
-  std::string line = oneLine(message);
-  if (seen_.insert(line).second) list_.push_back(std::move(line));
-}
-
 namespace {
 
 // Length of the well-formed UTF-8 sequence starting at s[i], or 0.

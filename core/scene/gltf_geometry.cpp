@@ -1,6 +1,7 @@
 // Triangle primitives: decoding in mesh-local space (indices, normals, uvs) and instancing into
 // world space with the node's transform.
 #include "core/scene/gltf_internal.h"
+#include "core/scene/tangents.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +25,9 @@ void makeFlat(LocalPrimitive& p) {
   const size_t triangles = p.indices.size() / 3;
   std::vector<Vec3> positions(3 * triangles), normals(3 * triangles);
   std::vector<Vec2> uvs(p.uvs.empty() ? 0 : 3 * triangles);
+  std::vector<Vec2> uvs1(p.uvs1.empty() ? 0 : 3 * triangles);
+  std::vector<Vec4> colors(p.colors.empty() ? 0 : 3 * triangles);
+  std::vector<Vec4> tangents(p.tangents.empty() ? 0 : 3 * triangles);
   for (size_t t = 0; t < triangles; ++t) {
     const uint32_t* idx = &p.indices[3 * t];
     Vec3 n = glm::cross(p.positions[idx[1]] - p.positions[idx[0]],
@@ -35,11 +39,17 @@ void makeFlat(LocalPrimitive& p) {
       positions[3 * t + k] = p.positions[idx[k]];
       normals[3 * t + k] = n;
       if (!uvs.empty()) uvs[3 * t + k] = p.uvs[idx[k]];
+      if (!uvs1.empty()) uvs1[3 * t + k] = p.uvs1[idx[k]];
+      if (!colors.empty()) colors[3 * t + k] = p.colors[idx[k]];
+      if (!tangents.empty()) tangents[3 * t + k] = p.tangents[idx[k]];
     }
   }
   p.positions = std::move(positions);
   p.normals = std::move(normals);
   p.uvs = std::move(uvs);
+  p.uvs1 = std::move(uvs1);
+  p.colors = std::move(colors);
+  p.tangents = std::move(tangents);
   std::iota(p.indices.begin(), p.indices.end(), 0u);
 }
 
@@ -85,16 +95,34 @@ const std::vector<Vec3>& AttributeCache::positions(const tinygltf::Model& model,
   return vec3_.emplace(accessor, std::move(p)).first->second;
 }
 
+namespace {
+// The decoded accessor from `cache`, decoded by `read` on first use.
+template <class V, class Read>
+const std::vector<V>& cached(std::unordered_map<int, std::vector<V>>& cache, int accessor,
+                             Read read) {
+  if (auto it = cache.find(accessor); it != cache.end()) return it->second;
+  return cache.emplace(accessor, read()).first->second;
+}
+}  // namespace
+
 const std::vector<Vec3>& AttributeCache::vec3(const tinygltf::Model& model, int accessor,
                                               const std::string& what) {
-  if (auto it = vec3_.find(accessor); it != vec3_.end()) return it->second;
-  return vec3_.emplace(accessor, readVec3(model, accessor, what)).first->second;
+  return cached(vec3_, accessor, [&] { return readVec3(model, accessor, what); });
 }
 
 const std::vector<Vec2>& AttributeCache::vec2(const tinygltf::Model& model, int accessor,
                                               const std::string& what) {
-  if (auto it = vec2_.find(accessor); it != vec2_.end()) return it->second;
-  return vec2_.emplace(accessor, readVec2(model, accessor, what)).first->second;
+  return cached(vec2_, accessor, [&] { return readVec2(model, accessor, what); });
+}
+
+const std::vector<Vec4>& AttributeCache::vec4(const tinygltf::Model& model, int accessor,
+                                              const std::string& what) {
+  return cached(vec4_, accessor, [&] { return readVec4(model, accessor, what); });
+}
+
+const std::vector<Vec4>& AttributeCache::colors(const tinygltf::Model& model, int accessor,
+                                                const std::string& what) {
+  return cached(colors_, accessor, [&] { return readColors(model, accessor, what); });
 }
 
 std::vector<uint32_t>& AttributeCache::remap(size_t size) {
@@ -103,7 +131,8 @@ std::vector<uint32_t>& AttributeCache::remap(size_t size) {
 }
 
 LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int primitiveIndex,
-                               AttributeCache& cache, Warnings& warnings) {
+                               const VertexNeeds& needs, AttributeCache& cache,
+                               Warnings& warnings) {
   const tinygltf::Mesh& mesh = model.meshes[size_t(meshIndex)];
   const tinygltf::Primitive& prim = mesh.primitives[size_t(primitiveIndex)];
   std::string label = "mesh " + std::to_string(meshIndex) + quoted(mesh.name);
@@ -116,7 +145,7 @@ LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int 
   const int positionAccessor = attribute(prim, "POSITION");
   if (positionAccessor < 0) {
     // glTF 2.0 spec, sec. 3.7.2.1: without positions a client SHOULD skip the primitive.
-    warnings.add(label + " has no POSITION attribute; skipped");
+    warnings.add(label, "no POSITION attribute; skipped");
     return out;
   }
   const std::vector<Vec3>& positions = cache.positions(model, positionAccessor, label);
@@ -129,14 +158,26 @@ LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int 
                       " elements but POSITION has " + std::to_string(vertexCount));
     }
   }
-  const std::vector<Vec2>* uvs = nullptr;
-  if (const int accessor = attribute(prim, "TEXCOORD_0"); accessor >= 0) {
-    uvs = &cache.vec2(model, accessor, "TEXCOORD_0 of " + label);
-    if (uvs->size() != vertexCount) {
-      throw LoadError(label + ": TEXCOORD_0 has " + std::to_string(uvs->size()) +
+  // An optional attribute's data, checked to have one element per vertex.
+  auto optional = [&](const char* name, auto read) -> decltype(read(0, std::string())) {
+    const int accessor = attribute(prim, name);
+    if (accessor < 0) return nullptr;
+    const auto* data = read(accessor, std::string(name) + " of " + label);
+    if (data->size() != vertexCount) {
+      throw LoadError(label + ": " + name + " has " + std::to_string(data->size()) +
                       " elements but POSITION has " + std::to_string(vertexCount));
     }
-  }
+    return data;
+  };
+  auto readUv = [&](int a, const std::string& what) { return &cache.vec2(model, a, what); };
+  const std::vector<Vec2>* uvs = optional("TEXCOORD_0", readUv);
+  const std::vector<Vec2>* uvs1 = optional("TEXCOORD_1", readUv);
+  const std::vector<Vec4>* colors =
+      optional("COLOR_0", [&](int a, const std::string& what) { return &cache.colors(model, a, what); });
+  const std::vector<Vec4>* tangents =
+      needs.tangents && normals
+          ? optional("TANGENT", [&](int a, const std::string& what) { return &cache.vec4(model, a, what); })
+          : nullptr;
 
   if (prim.indices >= 0) {
     out.indices = readIndices(model, prim.indices, "indices of " + label);
@@ -152,7 +193,7 @@ LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int 
     std::iota(out.indices.begin(), out.indices.end(), 0u);
   }
   if (const size_t extra = out.indices.size() % 3; extra != 0) {
-    warnings.add(label + ": " + std::to_string(out.indices.size()) +
+    warnings.add(label, std::to_string(out.indices.size()) +
                  " indices is not a multiple of 3; the last " + std::to_string(extra) + " ignored");
     out.indices.resize(out.indices.size() - extra);
   }
@@ -171,27 +212,56 @@ LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int 
   for (uint32_t v : used) remap[v] = AttributeCache::kUnused;
   out.positions.reserve(used.size());
   for (uint32_t v : used) out.positions.push_back(positions[v]);
-  if (uvs) {
-    out.uvs.reserve(used.size());
+  // Non-finite texture coordinates and colours would poison every lookup: repaired, counted.
+  auto gatherUvs = [&](const std::vector<Vec2>* from, std::vector<Vec2>& to, const char* name) {
+    if (!from) return;
+    to.reserve(used.size());
     size_t bad = 0;
     for (uint32_t v : used) {
-      const Vec2 uv = (*uvs)[v];
+      const Vec2 uv = (*from)[v];
       const bool finite = std::isfinite(uv.x) && std::isfinite(uv.y);
-      out.uvs.push_back(finite ? uv : Vec2(0.f));
+      to.push_back(finite ? uv : Vec2(0.f));
       bad += !finite;
     }
-    if (bad > 0)
-      warnings.add(label + ": " + std::to_string(bad) + " non-finite TEXCOORD_0 set to 0");
+    if (bad > 0) warnings.add(label, std::to_string(bad) + " non-finite " + name + " set to 0");
+  };
+  gatherUvs(uvs, out.uvs, "TEXCOORD_0");
+  gatherUvs(uvs1, out.uvs1, "TEXCOORD_1");
+  if (colors) {
+    out.colors.reserve(used.size());
+    for (uint32_t v : used) {
+      const Vec4 c = (*colors)[v];
+      const bool finite = std::isfinite(c.x + c.y + c.z + c.w);
+      out.colors.push_back(finite ? glm::clamp(c, Vec4(0.f), Vec4(1.f)) : Vec4(1.f));
+    }
+  }
+  if (tangents) {
+    out.tangents.reserve(used.size());
+    for (uint32_t v : used) out.tangents.push_back((*tangents)[v]);
   }
   if (normals) {
     out.normals.reserve(used.size());
     for (uint32_t v : used) out.normals.push_back((*normals)[v]);
     if (const size_t repaired = repairNormals(out); repaired > 0) {
-      warnings.add(label + ": " + std::to_string(repaired) +
+      warnings.add(label, std::to_string(repaired) +
                    " zero or non-finite normals replaced by face normals");
     }
   } else {
     makeFlat(out);
+  }
+  if (needs.tangents) {
+    const std::vector<Vec2>& tangentUvs = needs.tangentUvSet == 1 ? out.uvs1 : out.uvs;
+    if (out.tangents.empty()) {
+      out.tangents = generateTangents(out.positions, out.normals, tangentUvs, out.indices);
+    } else {
+      // The file's tangents, made unit and perpendicular to the normal; a degenerate one (zero,
+      // non-finite, parallel to the normal) is replaced by an arbitrary perpendicular.
+      for (size_t v = 0; v < out.tangents.size(); ++v) {
+        const Vec4 t = out.tangents[v];
+        const Vec3 xyz = std::isfinite(t.x + t.y + t.z) ? Vec3(t) : Vec3(0.f);
+        out.tangents[v] = Vec4(orthogonalTangent(out.normals[v], xyz), t.w < 0.f ? -1.f : 1.f);
+      }
+    }
   }
   return out;
 }
@@ -225,6 +295,20 @@ DroppedTriangles instantiatePrimitive(const LocalPrimitive& local, const glm::dm
     out.normals[i] = len > 0.0 && std::isfinite(len) ? Vec3(nw / len) : Vec3(0.f);
   }
   out.uvs = local.uvs;
+  out.uvs1 = local.uvs1;
+  out.colors = local.colors;
+  // A tangent is a surface direction: it transforms by the linear part itself. Under a mirroring
+  // transform M, cross(M n, M t) = det(M) M (n x t) for the (sign-corrected) normal, so the
+  // handedness flips with the sign of det to keep bitangent = w cross(n, t) = M b.
+  out.tangents.resize(local.tangents.size());
+  for (size_t i = 0; i < local.tangents.size(); ++i) {
+    const Vec4 t = local.tangents[i];
+    const glm::dvec3 tw = linear * glm::dvec3(Vec3(t));
+    out.tangents[i] = Vec4(orthogonalTangent(out.normals[i] == Vec3(0.f) ? Vec3(0.f, 0.f, 1.f)
+                                                                         : out.normals[i],
+                                             Vec3(tw / std::max(glm::length(tw), 1e-300))),
+                           float(sign) * t.w);
+  }
 
   out.indices.clear();
   out.indices.reserve(local.indices.size());
@@ -265,17 +349,20 @@ DroppedTriangles instantiatePrimitive(const LocalPrimitive& local, const glm::dm
       if (remap[i] == AttributeCache::kUnused) remap[i] = kept++;
       i = remap[i];
     }
-    std::vector<Vec3> positions(kept), normals(kept);
-    std::vector<Vec2> uvs(out.uvs.empty() ? 0 : kept);
-    for (size_t v = 0; v < n; ++v) {
-      if (remap[v] == AttributeCache::kUnused) continue;
-      positions[remap[v]] = out.positions[v];
-      normals[remap[v]] = out.normals[v];
-      if (!uvs.empty()) uvs[remap[v]] = out.uvs[v];
-    }
-    out.positions = std::move(positions);
-    out.normals = std::move(normals);
-    out.uvs = std::move(uvs);
+    auto compact = [&](auto& attribute) {
+      if (attribute.empty()) return;
+      std::remove_reference_t<decltype(attribute)> packed(kept);
+      for (size_t v = 0; v < n; ++v) {
+        if (remap[v] != AttributeCache::kUnused) packed[remap[v]] = attribute[v];
+      }
+      attribute = std::move(packed);
+    };
+    compact(out.positions);
+    compact(out.normals);
+    compact(out.uvs);
+    compact(out.uvs1);
+    compact(out.colors);
+    compact(out.tangents);
   }
   return dropped;
 }

@@ -20,16 +20,25 @@ class LoadError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The scene's warnings, each distinct message once (an instanced mesh warns once, not per
-// instance).
+// The scene's warnings: each distinct (subject, problem) once (an instanced mesh warns once, not
+// per instance), and the same problem of many subjects folded into one line with a count
+// ("2 zero-area triangles dropped (98 times: mesh 0 'Sphere', mesh 1 'Sphere', ...)"), in the
+// order problems first appeared.
 class Warnings {
  public:
-  void add(const std::string& message);
-  std::vector<std::string> take() { return std::move(list_); }
+  // `subject` names the object ("material 3 'glass'"); "" for a problem of the whole file.
+  void add(const std::string& subject, const std::string& problem);
+  void add(const std::string& message) { add("", message); }
+  std::vector<std::string> take();
 
  private:
-  std::vector<std::string> list_;
-  std::unordered_set<std::string> seen_;
+  struct Problem {
+    std::string text;
+    std::vector<std::string> subjects;
+  };
+  std::vector<Problem> problems_;
+  std::unordered_map<std::string, size_t> index_;  // problem text -> problems_ index
+  std::unordered_set<std::string> seen_;           // subject + '\0' + problem
 };
 
 // Replaces line breaks and tabs by single spaces and trims: SceneError messages are one line.
@@ -113,6 +122,9 @@ InstanceCount countInstances(const tinygltf::Model& model, const std::vector<Nod
 // "POSITION of mesh 'box'".
 std::vector<Vec3> readVec3(const tinygltf::Model& model, int accessor, const std::string& what);
 std::vector<Vec2> readVec2(const tinygltf::Model& model, int accessor, const std::string& what);
+std::vector<Vec4> readVec4(const tinygltf::Model& model, int accessor, const std::string& what);
+// COLOR_n: VEC3 (alpha 1) or VEC4, float or normalized integers.
+std::vector<Vec4> readColors(const tinygltf::Model& model, int accessor, const std::string& what);
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor,
                                   const std::string& what);
 
@@ -134,8 +146,17 @@ struct LocalPrimitive {
   std::string name;
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // unit, one per position (flat normals generated when absent)
-  std::vector<Vec2> uvs;      // empty or one per position
+  std::vector<Vec2> uvs;      // TEXCOORD_0: empty or one per position
+  std::vector<Vec2> uvs1;     // TEXCOORD_1: empty or one per position
+  std::vector<Vec4> colors;   // COLOR_0 (rgba): empty or one per position
+  std::vector<Vec4> tangents; // TANGENT (xyz, w = handedness): empty or one per position
   std::vector<uint32_t> indices;
+};
+
+// What a primitive's material asks of its vertices beyond positions and normals.
+struct VertexNeeds {
+  bool tangents = false;   // a normal map: TANGENT from the file, else generated
+  int tangentUvSet = 0;    // the uv set the normal map reads (tangents follow its derivatives)
 };
 
 // Vertex attributes decoded once per accessor: the primitives of a mesh often share one vertex
@@ -149,6 +170,10 @@ class AttributeCache {
                                 const std::string& what);
   const std::vector<Vec2>& vec2(const tinygltf::Model& model, int accessor,
                                 const std::string& what);
+  const std::vector<Vec4>& vec4(const tinygltf::Model& model, int accessor,
+                                const std::string& what);
+  const std::vector<Vec4>& colors(const tinygltf::Model& model, int accessor,
+                                  const std::string& what);
   // Scratch old -> new vertex map of at least `size` entries, every entry kUnused between uses.
   std::vector<uint32_t>& remap(size_t size);
   static constexpr uint32_t kUnused = ~0u;
@@ -156,13 +181,16 @@ class AttributeCache {
  private:
   std::unordered_map<int, std::vector<Vec3>> vec3_;
   std::unordered_map<int, std::vector<Vec2>> vec2_;
+  std::unordered_map<int, std::vector<Vec4>> vec4_;
+  std::unordered_map<int, std::vector<Vec4>> colors_;
   std::vector<uint32_t> remap_;
 };
 
 // Decodes mesh `meshIndex`'s primitive `primitiveIndex` (mode TRIANGLES, checked by the caller),
 // keeping only the vertices its indices use.
 LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int primitiveIndex,
-                               AttributeCache& cache, Warnings& warnings);
+                               const VertexNeeds& needs, AttributeCache& cache,
+                               Warnings& warnings);
 
 struct DroppedTriangles {
   size_t zeroArea = 0;   // already without area in the mesh
@@ -175,8 +203,8 @@ DroppedTriangles instantiatePrimitive(const LocalPrimitive& local, const glm::dm
                                       const std::string& label, TriangleMesh& out);
 
 // ---- whole-scene checks (gltf_scene_checks.cpp) ---------------------------------------------
-// Throws LoadError when nothing emits, or when the scene's extent or its lights' total power
+// Throws LoadError when nothing emits (if `requireEmitter`), or when the scene's extent or its lights' total power
 // overflows the floats the renderer computes them in.
-void checkScene(const SceneDesc& desc);
+void checkScene(const SceneDesc& desc, bool requireEmitter);
 
 }  // namespace pathlab::gltf

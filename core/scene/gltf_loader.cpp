@@ -22,7 +22,8 @@ namespace {
 // converts any component type). Their textures where they have any are warned about in place.
 const std::set<std::string> kSupportedExtensions = {
     "KHR_lights_punctual",    "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_specular", "KHR_materials_transmission",      "KHR_mesh_quantization"};
+    "KHR_materials_specular", "KHR_materials_transmission",      "KHR_mesh_quantization",
+    "KHR_texture_transform"};
 
 void checkExtensions(const tinygltf::Model& model, Warnings& warnings) {
   std::string unsupported;
@@ -30,10 +31,17 @@ void checkExtensions(const tinygltf::Model& model, Warnings& warnings) {
     if (!kSupportedExtensions.count(name)) unsupported += (unsupported.empty() ? "" : ", ") + name;
   }
   if (!unsupported.empty()) throw LoadError("unsupported required extension " + unsupported);
+  // One line for all of them: a file lists each extension once, however many materials use it.
+  std::vector<std::string> ignored;
   for (const std::string& name : model.extensionsUsed) {
-    if (!kSupportedExtensions.count(name)) {
-      warnings.add("optional extension " + name + " is not supported; ignored");
-    }
+    if (!kSupportedExtensions.count(name) && std::find(ignored.begin(), ignored.end(), name) == ignored.end())
+      ignored.push_back(name);
+  }
+  if (!ignored.empty()) {
+    std::string list;
+    for (const std::string& name : ignored) list += (list.empty() ? "" : ", ") + name;
+    warnings.add(std::string(ignored.size() > 1 ? "optional extensions " : "optional extension ") +
+                 list + (ignored.size() > 1 ? " are" : " is") + " not supported; ignored");
   }
 }
 
@@ -150,7 +158,7 @@ void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
                     ", which does not exist");
   }
   if (node.skin >= 0) {
-    warnings_.add(nodeLabel(model_, nodeIndex) + ": skinning is not supported; bind pose used");
+    warnings_.add(nodeLabel(model_, nodeIndex), "skinning is not supported; bind pose used");
   }
   const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -163,10 +171,10 @@ void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
                                            "TRIANGLE_FAN"};
       const std::string mode =
           prim.mode >= 0 && prim.mode <= 6 ? kModes[prim.mode] : std::to_string(prim.mode);
-      warnings_.add(label + ": mode " + mode + " is not supported (triangles only); skipped");
+      warnings_.add(label, "mode " + mode + " is not supported (triangles only); skipped");
       continue;
     }
-    if (!prim.targets.empty()) warnings_.add(label + ": morph targets are not supported; ignored");
+    if (!prim.targets.empty()) warnings_.add(label, "morph targets are not supported; ignored");
     int material;
     if (prim.material < 0) {
       material = defaultMaterial();
@@ -179,24 +187,36 @@ void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
     auto key = std::make_pair(node.mesh, int(p));
     auto it = primitives_.find(key);
     if (it == primitives_.end()) {
+      const Material& m = desc_.materials[size_t(material)];
+      const VertexNeeds needs{m.normalTexture.valid(), m.normalTexture.texCoord};
       it = primitives_
-               .emplace(key, decodePrimitive(model_, node.mesh, int(p), attributes_, warnings_))
+               .emplace(key, decodePrimitive(model_, node.mesh, int(p), needs, attributes_, warnings_))
                .first;
     }
     const LocalPrimitive& local = it->second;
     if (local.indices.empty()) continue;
+    if (local.uvs1.empty()) {
+      const Material& m = desc_.materials[size_t(material)];
+      for (const TextureRef* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture,
+                                    &m.emissiveTexture, &m.normalTexture}) {
+        if (ref->valid() && ref->texCoord == 1) {
+          warnings_.add(label, "no TEXCOORD_1, which its material reads; TEXCOORD_0 used");
+          break;
+        }
+      }
+    }
     TriangleMesh out;
     out.name = local.name;
     out.material = material;
     const DroppedTriangles dropped =
         instantiatePrimitive(local, world, nodeLabel(model_, nodeIndex) + ", " + label, out);
     if (dropped.zeroArea > 0) {
-      warnings_.add(label + ": " + std::to_string(dropped.zeroArea) + " zero-area triangle" +
+      warnings_.add(label, std::to_string(dropped.zeroArea) + " zero-area triangle" +
                     (dropped.zeroArea > 1 ? "s" : "") + " dropped");
     }
     if (dropped.collapsed > 0) {
       // Not "zero area": the cause is the transform's scale or distance, lost to float precision.
-      warnings_.add(nodeLabel(model_, nodeIndex) + ", " + label + ": " +
+      warnings_.add(nodeLabel(model_, nodeIndex) + ", " + label,
                     std::to_string(dropped.collapsed) + " triangle" +
                     (dropped.collapsed > 1 ? "s" : "") +
                     " dropped: the node transform leaves them no area in 32-bit floats");
@@ -214,7 +234,7 @@ void SceneBuilder::addCamera(int nodeIndex, const glm::dmat4& world) {
   const tinygltf::Camera& camera = model_.cameras[size_t(index)];
   const std::string label = "camera " + std::to_string(index) + quoted(camera.name);
   if (camera.type != "perspective") {
-    warnings_.add(label + ": " + camera.type + " cameras are not supported; ignored");
+    warnings_.add(label, camera.type + " cameras are not supported; ignored");
     return;
   }
   if (desc_.camera) return;  // the first perspective camera in document order wins
@@ -260,7 +280,7 @@ void SceneBuilder::addLight(int nodeIndex, const glm::dmat4& world) {
   } else if (g.type == "directional") {
     light.type = PunctualLightType::Directional;
   } else {
-    warnings_.add(label + ": light type '" + g.type + "' is not supported; ignored");
+    warnings_.add(label, "light type '" + g.type + "' is not supported; ignored");
     return;
   }
   if (!g.color.empty()) {
@@ -281,7 +301,7 @@ void SceneBuilder::addLight(int nodeIndex, const glm::dmat4& world) {
     // Checked and clamped in double: a huge angle must not pass as float infinity.
     double inner = g.spot.innerConeAngle, outer = g.spot.outerConeAngle;
     if (!(outer > 0.0 && outer <= kPi / 2.0 && inner >= 0.0 && inner < outer)) {
-      warnings_.add(label + ": cone angles (inner " + formatNumber(inner) + ", outer " +
+      warnings_.add(label, "cone angles (inner " + formatNumber(inner) + ", outer " +
                     formatNumber(outer) + ") need 0 <= inner < outer <= pi/2; clamped");
       outer = std::isfinite(outer) ? std::clamp(outer, 1e-4, kPi / 2.0) : kPi / 4.0;
       inner = std::isfinite(inner) ? std::clamp(inner, 0.0, outer * 0.999) : 0.0;
@@ -314,7 +334,7 @@ SceneDesc load(const std::string& path, const LoadOptions& options) {
   desc.path = path;
   convertMaterials(model, desc, warnings);
   SceneBuilder(model, desc, warnings).build(visits);
-  checkScene(desc);
+  checkScene(desc, options.requireEmitter);
   desc.warnings = warnings.take();
   return desc;
 }

@@ -25,6 +25,9 @@ struct LoadOptions {
   // workstation gives one process, and 50 times the largest model pathlab is tested on
   // (MetalRoughSpheresNoTextures, 1.04 M; the bundled scenes have under 10 k).
   uint64_t maxTriangles = 50'000'000;
+  // Refuse a scene in which nothing emits ("no light source"). Off: the description of an unlit
+  // model, to inspect (tests) or to light otherwise; Scene still refuses to render it.
+  bool requireEmitter = true;
 };
 
 // Problems that still leave a correct render (an unsupported optional extension, a skipped

@@ -1,8 +1,10 @@
 // glTF materials (metallic-roughness with KHR_materials_emissive_strength, _ior, _specular and
-// _transmission) and their images, each held once (8-bit as 8-bit) and shared by its textures.
+// _transmission; alpha modes; normal maps; KHR_texture_transform) and their images, each held
+// once (8-bit as 8-bit) and shared by its textures.
 #include "core/scene/gltf_internal.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -64,20 +66,29 @@ class MaterialReader {
       throw LoadError(label_ + ": " + key + " is not a number array");
     return vec3(values, key, fallback);
   }
-  TextureRef texture(int textureIndex, int texCoord, const char* slot, bool srgb);
-  TextureRef textureInfo(const tinygltf::TextureInfo& info, const char* slot, bool srgb) {
-    return texture(info.index, info.texCoord, slot, srgb);
+  Vec2 vec2(const tinygltf::Value& object, const char* key, Vec2 fallback) const {
+    if (!object.Has(key)) return fallback;
+    const tinygltf::Value& v = object.Get(key);
+    if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+      throw LoadError(label_ + ": " + key + " is not an array of 2 numbers");
+    return {finite(v.Get(0).GetNumberAsDouble(), key), finite(v.Get(1).GetNumberAsDouble(), key)};
   }
-  int decodedTexture(int imageIndex, int samplerIndex, bool srgb);
+  TextureRef texture(int textureIndex, int texCoord, const tinygltf::ExtensionMap& extensions,
+                     const char* slot, bool srgb);
+  template <class Info>
+  TextureRef textureInfo(const Info& info, const char* slot, bool srgb) {
+    return texture(info.index, info.texCoord, info.extensions, slot, srgb);
+  }
+  int decodedTexture(int imageIndex, int samplerIndex, bool srgb, const UvTransform& transform);
   const ImagePixels& pixels(int imageIndex);
 
   tinygltf::Model& model_;  // its images' pixels are moved out as they are first used
   SceneDesc& desc_;
   Warnings& warnings_;
   std::string label_;  // "material 'name'" of the material being converted
-  // One Texture per (image, sampler, colour space), all of an image's Textures sharing its
-  // pixels: each image is decoded once (by tinygltf) and held once.
-  std::map<std::tuple<int, int, bool>, int> cache_;
+  // One Texture per (image, sampler, colour space, uv transform), all of an image's Textures
+  // sharing its pixels: each image is decoded once (by tinygltf) and held once.
+  std::map<std::tuple<int, int, bool, std::array<float, 6>>, int> cache_;
   std::map<int, ImagePixels> pixels_;
 };
 
@@ -167,10 +178,14 @@ const ImagePixels& MaterialReader::pixels(int imageIndex) {
   return it->second;
 }
 
-int MaterialReader::decodedTexture(int imageIndex, int samplerIndex, bool srgb) {
-  auto key = std::make_tuple(imageIndex, samplerIndex, srgb);
+int MaterialReader::decodedTexture(int imageIndex, int samplerIndex, bool srgb,
+                                   const UvTransform& transform) {
+  const std::array<float, 6> matrix = {transform.a.x, transform.a.y, transform.b.x,
+                                       transform.b.y, transform.c.x, transform.c.y};
+  auto key = std::make_tuple(imageIndex, samplerIndex, srgb, matrix);
   if (auto it = cache_.find(key); it != cache_.end()) return it->second;
   Texture tex = makeTexture(pixels(imageIndex), srgb);
+  tex.transform = transform;
   if (samplerIndex >= 0) {
     const tinygltf::Sampler& s = model_.samplers[size_t(samplerIndex)];
     tex.wrapS = wrapMode(s.wrapS, warnings_);
@@ -183,16 +198,29 @@ int MaterialReader::decodedTexture(int imageIndex, int samplerIndex, bool srgb) 
   return index;
 }
 
-TextureRef MaterialReader::texture(int textureIndex, int texCoord, const char* slot, bool srgb) {
+TextureRef MaterialReader::texture(int textureIndex, int texCoord,
+                                   const tinygltf::ExtensionMap& extensions, const char* slot,
+                                   bool srgb) {
   if (textureIndex < 0) return {};
   const std::string what = label_ + ": " + slot;
+  // KHR_texture_transform on the textureInfo: offset, rotation, scale, and a texCoord that
+  // overrides the textureInfo's own.
+  UvTransform transform;
+  if (const tinygltf::Value* e = findExtension(extensions, "KHR_texture_transform")) {
+    const std::string saved = label_;
+    label_ = what + " KHR_texture_transform";
+    transform = UvTransform::fromGltf(vec2(*e, "offset", Vec2(0.f)), number(*e, "rotation", 0.f),
+                                      vec2(*e, "scale", Vec2(1.f)));
+    if (e->Has("texCoord")) texCoord = int(number(*e, "texCoord", float(texCoord)));
+    label_ = saved;
+  }
   if (size_t(textureIndex) >= model_.textures.size()) {
     throw LoadError(what + " refers to texture " + std::to_string(textureIndex) +
                     ", which does not exist");
   }
   const tinygltf::Texture& t = model_.textures[size_t(textureIndex)];
   if (t.source < 0) {
-    warnings_.add(what + ": texture " + std::to_string(textureIndex) +
+    warnings_.add(what, "texture " + std::to_string(textureIndex) +
                   " has no image pathlab can decode (only PNG/JPEG sources); ignored");
     return {};
   }
@@ -204,11 +232,12 @@ TextureRef MaterialReader::texture(int textureIndex, int texCoord, const char* s
     throw LoadError(what + ": texture " + std::to_string(textureIndex) + " refers to sampler " +
                     std::to_string(t.sampler) + ", which does not exist");
   }
-  if (texCoord != 0) {
-    warnings_.add(what + " uses TEXCOORD_" + std::to_string(texCoord) +
-                  "; only TEXCOORD_0 is supported, TEXCOORD_0 used");
+  if (texCoord != 0 && texCoord != 1) {
+    warnings_.add(what, "TEXCOORD_" + std::to_string(texCoord) +
+                           " is not supported (TEXCOORD_0 and TEXCOORD_1 are); TEXCOORD_0 used");
+    texCoord = 0;
   }
-  return TextureRef{decodedTexture(t.source, t.sampler, srgb)};
+  return TextureRef{decodedTexture(t.source, t.sampler, srgb, transform), texCoord};
 }
 
 Material MaterialReader::convert(int index) {
@@ -233,12 +262,16 @@ Material MaterialReader::convert(int index) {
   m.emissiveTexture = textureInfo(g.emissiveTexture, "emissiveTexture", /*srgb=*/true);
   m.doubleSided = g.doubleSided;
 
-  if (g.normalTexture.index >= 0) {
-    warnings_.add(label_ + ": normalTexture ignored (normal maps are not supported)");
-  }
+  m.normalTexture = textureInfo(g.normalTexture, "normalTexture", /*srgb=*/false);
+  m.normalScale = finite(g.normalTexture.scale, "normalTexture.scale");
   // occlusionTexture is ignored silently: baked ambient occlusion has no meaning in a path tracer.
-  if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE") {
-    warnings_.add(label_ + ": alphaMode " + g.alphaMode + " is not supported; rendered OPAQUE");
+  if (g.alphaMode == "MASK") {
+    m.alphaMode = AlphaMode::Mask;
+    m.alphaCutoff = std::max(finite(g.alphaCutoff, "alphaCutoff"), 0.f);
+  } else if (g.alphaMode == "BLEND") {
+    m.alphaMode = AlphaMode::Blend;
+  } else if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE") {
+    warnings_.add(label_, "alphaMode " + g.alphaMode + " is not a glTF alpha mode; OPAQUE used");
   }
 
   if (const tinygltf::Value* e = findExtension(g.extensions, "KHR_materials_emissive_strength")) {
@@ -256,7 +289,7 @@ Material MaterialReader::convert(int index) {
     if (ior >= 1.f) {
       m.ior = ior;
     } else {
-      warnings_.add(label_ + ": KHR_materials_ior ior " + formatNumber(ior) +
+      warnings_.add(label_, "KHR_materials_ior ior " + formatNumber(ior) +
                     " is not supported (needs ior >= 1); 1.5 used");
     }
   }
@@ -264,13 +297,13 @@ Material MaterialReader::convert(int index) {
     m.specularFactor = std::clamp(number(*e, "specularFactor", 1.f), 0.f, 1.f);
     m.specularColorFactor = glm::max(vec3(*e, "specularColorFactor", Vec3(1.f)), Vec3(0.f));
     if (e->Has("specularTexture") || e->Has("specularColorTexture")) {
-      warnings_.add(label_ + ": KHR_materials_specular textures are not supported; factors used");
+      warnings_.add(label_, "KHR_materials_specular textures are not supported; factors used");
     }
   }
   if (const tinygltf::Value* e = findExtension(g.extensions, "KHR_materials_transmission")) {
     m.transmissionFactor = std::clamp(number(*e, "transmissionFactor", 0.f), 0.f, 1.f);
     if (e->Has("transmissionTexture")) {
-      warnings_.add(label_ + ": KHR_materials_transmission texture is not supported; factor used");
+      warnings_.add(label_, "KHR_materials_transmission texture is not supported; factor used");
     }
   }
   return m;

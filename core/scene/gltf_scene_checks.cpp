@@ -92,8 +92,8 @@ void checkEmittedPower(const SceneDesc& desc, const Extent& extent) {
 
 }  // namespace
 
-void checkScene(const SceneDesc& desc) {
-  checkHasEmitter(desc);
+void checkScene(const SceneDesc& desc, bool requireEmitter) {
+  if (requireEmitter) checkHasEmitter(desc);
   checkEmittedPower(desc, checkExtent(desc));
 }
 

@@ -17,12 +17,14 @@ Vec4 lookup(const TextureRef& ref, Vec2 uv, const std::vector<Texture>& textures
 
 }  // namespace
 
-MaterialPoint evalMaterial(const Material& m, Vec2 uv, const std::vector<Texture>& textures) {
+MaterialPoint evalMaterial(const Material& m, const ShadingInputs& at,
+                           const std::vector<Texture>& textures) {
   MaterialPoint p;
-  Vec4 base = m.baseColorFactor * lookup(m.baseColorTexture, uv, textures);
-  p.baseColor = glm::clamp(Spectrum(base), Spectrum(0.f), Spectrum(1.f));
+  const Vec4 base = m.baseColorFactor * lookup(m.baseColorTexture, at.uv(m.baseColorTexture), textures);
+  // glTF 2.0 sec. 3.7.2.1: COLOR_0 "acts as an additional linear multiplier to base color".
+  p.baseColor = glm::clamp(Spectrum(base) * at.color, Spectrum(0.f), Spectrum(1.f));
   // glTF 2.0 sec. 3.9.2: roughness in the green channel, metalness in the blue channel.
-  Vec4 mr = lookup(m.metallicRoughnessTexture, uv, textures);
+  const Vec4 mr = lookup(m.metallicRoughnessTexture, at.uv(m.metallicRoughnessTexture), textures);
   p.metallic = std::clamp(m.metallicFactor * mr.b, 0.f, 1.f);
   p.roughness = std::clamp(m.roughnessFactor * mr.g, 0.f, 1.f);
   p.ior = m.ior;
@@ -30,6 +32,12 @@ MaterialPoint evalMaterial(const Material& m, Vec2 uv, const std::vector<Texture
   p.specularColor = m.specularColorFactor;
   p.transmission = std::clamp(m.transmissionFactor, 0.f, 1.f);
   return p;
+}
+
+float evalAlpha(const Material& m, Vec2 uv0, Vec2 uv1, float vertexAlpha,
+                const std::vector<Texture>& textures) {
+  const Vec2 uv = m.baseColorTexture.texCoord == 1 ? uv1 : uv0;
+  return m.baseColorFactor.a * lookup(m.baseColorTexture, uv, textures).a * vertexAlpha;
 }
 
 Spectrum evalEmission(const Material& m, Vec2 uv, const std::vector<Texture>& textures) {

@@ -2,7 +2,9 @@
 #include "core/scene/scene.h"
 
 #include "core/camera/camera.h"
+#include "core/scene/alpha_test.h"
 #include "core/scene/gltf_loader.h"
+#include "core/scene/normal_map.h"
 
 #include <embree3/rtcore.h>
 
@@ -16,6 +18,7 @@ struct Scene::EmbreeState {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   std::atomic<int64_t> bytes{0};  // what the device has allocated, as its memory monitor counts
+  std::vector<AlphaGeometry> alpha;  // per mesh, the alpha filters' user data (fixed size)
   ~EmbreeState() {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
@@ -38,7 +41,8 @@ void embreeError(void* userPtr, RTCError code, const char* message) {
   if (code != RTC_ERROR_NONE && message) *static_cast<std::string*>(userPtr) = message;
 }
 
-RTCScene buildBvh(RTCDevice device, const std::vector<TriangleMesh>& meshes) {
+RTCScene buildBvh(RTCDevice device, const std::vector<TriangleMesh>& meshes,
+                  const std::vector<AlphaGeometry>& alpha) {
   RTCScene scene = rtcNewScene(device);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
   for (size_t m = 0; m < meshes.size(); ++m) {
@@ -51,6 +55,7 @@ RTCScene buildBvh(RTCDevice device, const std::vector<TriangleMesh>& meshes) {
     auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangleCount()));
     std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
+    if (alpha[m].material) attachAlphaFilter(geom, &alpha[m]);
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(scene, geom, static_cast<unsigned>(m));
     rtcReleaseGeometry(geom);
@@ -103,12 +108,16 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
                              ? &desc_.textures.at(static_cast<size_t>(mat.emissiveTexture.texture))
                              : nullptr;
     const Spectrum emission = mat.emissiveFactor * mat.emissiveStrength;
+    // The light reads its emission in the emissive texture's own uv set (emissionUv).
+    // A mesh without TEXCOORD_1 reads TEXCOORD_0 for it, as intersect() does (the loader warns).
+    const std::vector<Vec2>& uvs =
+        mat.emissiveTexture.texCoord == 1 && !mesh.uvs1.empty() ? mesh.uvs1 : mesh.uvs;
     triangleLight[m].assign(mesh.triangleCount(), -1);
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       const uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
-      const Vec2 uv0 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i0];
-      const Vec2 uv1 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i1];
-      const Vec2 uv2 = mesh.uvs.empty() ? Vec2(0.f) : mesh.uvs[i2];
+      const Vec2 uv0 = uvs.empty() ? Vec2(0.f) : uvs[i0];
+      const Vec2 uv1 = uvs.empty() ? Vec2(0.f) : uvs[i1];
+      const Vec2 uv2 = uvs.empty() ? Vec2(0.f) : uvs[i2];
       Light light = Light::area(mesh.positions[i0], mesh.positions[i1], mesh.positions[i2], uv0, uv1,
                                 uv2, emission, tex, mat.doubleSided);
       if (!(maxComponent(light.power()) > 0.f)) continue;
@@ -140,7 +149,12 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
   std::string embreeMessage;
   rtcSetDeviceErrorFunction(embree_->device, embreeError, &embreeMessage);
   rtcSetDeviceMemoryMonitorFunction(embree_->device, embreeMemory, &embree_->bytes);
-  embree_->scene = buildBvh(embree_->device, desc_.meshes);
+  embree_->alpha.resize(desc_.meshes.size());
+  for (size_t m = 0; m < desc_.meshes.size(); ++m) {
+    const Material& mat = desc_.materials.at(static_cast<size_t>(desc_.meshes[m].material));
+    if (mat.hasAlphaTest()) embree_->alpha[m] = AlphaGeometry{&desc_.meshes[m], &mat, &desc_.textures};
+  }
+  embree_->scene = buildBvh(embree_->device, desc_.meshes, embree_->alpha);
   (void)embree_->bytes.load(std::memory_order_acquire);  // see embreeMemory
   rtcSetDeviceErrorFunction(embree_->device, nullptr, nullptr);
   if (rtcGetDeviceError(embree_->device) != RTC_ERROR_NONE)
@@ -159,7 +173,9 @@ size_t Scene::geometryBytes() const {
   size_t bytes = 0;
   for (const TriangleMesh& m : desc_.meshes) {
     bytes += m.positions.capacity() * sizeof(Vec3) + m.normals.capacity() * sizeof(Vec3) +
-             m.uvs.capacity() * sizeof(Vec2) + m.indices.capacity() * sizeof(uint32_t);
+             (m.uvs.capacity() + m.uvs1.capacity()) * sizeof(Vec2) +
+             (m.colors.capacity() + m.tangents.capacity()) * sizeof(Vec4) +
+             m.indices.capacity() * sizeof(uint32_t);
   }
   const int64_t embree = embree_->bytes.load(std::memory_order_relaxed);
   return bytes + size_t(std::max<int64_t>(embree, 0)) + lights_.size() * sizeof(Light);
@@ -167,10 +183,10 @@ size_t Scene::geometryBytes() const {
 
 void* Scene::embreeHandle() const { return embree_->scene; }
 
-Bsdf Scene::bsdf(int material, Vec2 uv, const Vec3& ns, const Vec3& ng) const {
+Bsdf Scene::bsdf(int material, const ShadingInputs& at, const Vec3& ns, const Vec3& ng) const {
   const auto m = static_cast<size_t>(material);
-  if (materialUntextured_[m]) return Bsdf(ns, ng, materialLobes_[m]);
-  return Bsdf(ns, ng, evalMaterial(desc_.materials[m], uv, desc_.textures));
+  if (materialUntextured_[m] && at.color == Spectrum(1.f)) return Bsdf(ns, ng, materialLobes_[m]);
+  return Bsdf(ns, ng, evalMaterial(desc_.materials[m], at, desc_.textures));
 }
 
 std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
@@ -202,13 +218,31 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   hit.p = b0 * p0 + b1 * p1 + b2 * p2;
   hit.pError = interpolationError(b0, p0, b1, p1, b2, p2);
   hit.ng = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  auto interpolate = [&](const auto& values) {
+    return b0 * values[tri[0]] + b1 * values[tri[1]] + b2 * values[tri[2]];
+  };
+  if (!mesh.uvs.empty()) hit.uv = interpolate(mesh.uvs);
+  hit.uv1 = mesh.uvs1.empty() ? hit.uv : interpolate(mesh.uvs1);
+  if (!mesh.colors.empty()) hit.color = Spectrum(interpolate(mesh.colors));
   hit.ns = hit.ng;
   if (!mesh.normals.empty()) {
-    const Vec3 ns = b0 * mesh.normals[tri[0]] + b1 * mesh.normals[tri[1]] + b2 * mesh.normals[tri[2]];
+    Vec3 ns = interpolate(mesh.normals);
     const float len = glm::length(ns);
-    if (len > 1e-8f && std::isfinite(len)) hit.ns = glm::dot(ns, hit.ng) < 0.f ? -ns / len : ns / len;
+    if (len > 1e-8f && std::isfinite(len)) {
+      ns /= len;
+      if (!mesh.tangents.empty()) {
+        // A normal map perturbs the shading normal; the BSDF's shading-normal handling (and
+        // Veach's adjoint correction on light subpaths) takes it from here like any other.
+        const Vec3 mapped = mappedNormal(desc_.materials[static_cast<size_t>(mesh.material)],
+                                         ShadingInputs{hit.uv, hit.uv1, hit.color}, ns,
+                                         interpolate(mesh.tangents), desc_.textures);
+        // A mapped normal below the surface (on the far side of ng from the interpolated one)
+        // has no meaning for a one-sided shading frame: the interpolated normal is kept there.
+        if (glm::dot(mapped, hit.ng) * glm::dot(ns, hit.ng) > 0.f) ns = mapped;
+      }
+      hit.ns = glm::dot(ns, hit.ng) < 0.f ? -ns : ns;
+    }
   }
-  if (!mesh.uvs.empty()) hit.uv = b0 * mesh.uvs[tri[0]] + b1 * mesh.uvs[tri[1]] + b2 * mesh.uvs[tri[2]];
   hit.meshId = rh.hit.geomID;
   hit.primId = rh.hit.primID;
   hit.material = mesh.material;

@@ -38,7 +38,15 @@ class Scene {
   // The BSDF of material `material` at a surface point (uv, shading and geometric normal):
   // Bsdf(ns, ng, evalMaterial(...)). For a material without textures the material evaluation and
   // the lobe set-up are done once, here at construction, and only the frame is built per point.
-  Bsdf bsdf(int material, Vec2 uv, const Vec3& ns, const Vec3& ng) const;
+  Bsdf bsdf(int material, const ShadingInputs& at, const Vec3& ns, const Vec3& ng) const;
+  Bsdf bsdf(int material, Vec2 uv, const Vec3& ns, const Vec3& ng) const {
+    return bsdf(material, ShadingInputs{uv, uv, Spectrum(1.f)}, ns, ng);
+  }
+  // The texture coordinates an area light of `material` reads its emission at (the set its
+  // emissiveTexture uses): what Light::radiance takes for a point hit on it.
+  Vec2 emissionUv(int material, Vec2 uv0, Vec2 uv1) const {
+    return ShadingInputs{uv0, uv1, Spectrum(1.f)}.uv(this->material(material).emissiveTexture);
+  }
   const LightSet& lights() const { return lights_; }
   const CameraDesc& cameraDesc() const { return camera_; }
   const SceneBounds& bounds() const { return bounds_; }
@@ -62,7 +70,7 @@ class Scene {
   SceneBounds bounds_;
   Vec3 boundsMin_{0.f}, boundsMax_{0.f};
   struct EmbreeState;
-  std::unique_ptr<EmbreeState> embree_;
+  std::unique_ptr<EmbreeState> embree_;  // after desc_: its filters read the meshes
 };
 
 }  // namespace pathlab

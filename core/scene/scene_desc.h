@@ -15,7 +15,12 @@ struct TriangleMesh {
   std::string name;
   std::vector<Vec3> positions;   // world space
   std::vector<Vec3> normals;     // world space, unit; same count as positions (generated if absent)
-  std::vector<Vec2> uvs;         // empty or same count as positions
+  std::vector<Vec2> uvs;         // TEXCOORD_0: empty or same count as positions
+  std::vector<Vec2> uvs1;        // TEXCOORD_1: empty or same count as positions
+  std::vector<Vec4> colors;      // COLOR_0 (linear rgba): empty or same count as positions
+  // World space, unit, w = handedness (bitangent = w cross(normal, tangent), glTF 2.0 sec.
+  // 3.7.2.1): empty, or one per position when the material has a normal map.
+  std::vector<Vec4> tangents;
   std::vector<uint32_t> indices; // 3 per triangle
   int material = 0;
 

@@ -79,7 +79,7 @@ Vec4 Texture::fetch(int64_t x, int64_t y) const {
   }
 }
 
-Vec4 Texture::sample(Vec2 uv) const {
+Vec4 Texture::sampleImage(Vec2 uv) const {
   if (!valid()) return Vec4(0.f);
   double u = reduceCoordinate(uv.x, wrapS);
   double v = reduceCoordinate(uv.y, wrapT);

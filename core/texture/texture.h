@@ -1,8 +1,10 @@
-// An image texture with glTF sampler wrap modes and bilinear filtering; 8-bit images stay 8-bit
-// (decoded on lookup), 16-bit images and hand-built textures are held as linear RGBA floats.
+// An image texture with glTF sampler wrap modes, bilinear filtering and a KHR_texture_transform;
+// 8-bit images stay 8-bit (decoded on lookup), 16-bit images and hand-built textures are held as
+// linear RGBA floats.
 #pragma once
 
 #include "core/math/types.h"
+#include "core/texture/uv_transform.h"
 
 #include <cstdint>
 #include <memory>
@@ -28,13 +30,20 @@ struct Texture {
   std::vector<Vec4> texels;
   WrapMode wrapS = WrapMode::Repeat, wrapT = WrapMode::Repeat;
   bool nearest = false;      // glTF magFilter NEAREST
+  // Applied to every uv before the lookup (KHR_texture_transform). Part of the texture, not of
+  // the material: every reader of the texture (the BSDF, the area light's emission and its
+  // integral over a triangle) then sees the same transformed image.
+  UvTransform transform;
 
   // The storage holds width x height texels (a texture that does not reads as black).
   bool valid() const;
   // Texel (x, y) as linear RGBA (grey expanded to RGB, missing alpha 1), the wrap modes applied
   // to an index outside the image. Needs valid().
   Vec4 fetch(int64_t x, int64_t y) const;
-  Vec4 sample(Vec2 uv) const;
+  // The filtered image at `uv` seen through `transform`.
+  Vec4 sample(Vec2 uv) const { return sampleImage(transform.apply(uv)); }
+  // The filtered image at image coordinates `st` (after the transform).
+  Vec4 sampleImage(Vec2 st) const;
   Vec4 average() const;
   // The bytes holding the texels (shared 8-bit storage counted in full).
   size_t texelBytes() const;

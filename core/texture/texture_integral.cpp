@@ -79,7 +79,7 @@ Vec4 quadrature(const Texture& texture, const Vec2 uv[3], int k) {
           Vec2(std::min((float(a) + jitter.x) / float(k), kOneMinusEpsilon),
                std::min((float(b) + jitter.y) / float(k), kOneMinusEpsilon)));
       const Vec2 uvAt = bary.x * uv[0] + bary.y * uv[1] + (1.f - bary.x - bary.y) * uv[2];
-      sum += glm::dvec4(texture.sample(uvAt));
+      sum += glm::dvec4(texture.sampleImage(uvAt));
     }
   }
   return Vec4(sum / double(k * k));
@@ -98,7 +98,10 @@ constexpr double kMaxCoordinate = 1e15;
 }  // namespace
 
 Vec4 meanOverTriangle(const Texture& texture, Vec2 uv0, Vec2 uv1, Vec2 uv2) {
-  const Vec2 uv[3] = {uv0, uv1, uv2};
+  // The transform is affine: it maps the uv triangle onto the image-space triangle with uniform
+  // area measure, so the mean over the one is the mean over the other.
+  const Vec2 uv[3] = {texture.transform.apply(uv0), texture.transform.apply(uv1),
+                      texture.transform.apply(uv2)};
   if (!texture.valid()) return Vec4(0.f);
   const double w = texture.width, h = texture.height;
   // Cell space: bilinear filtering is one polynomial between four texel centres (at half-integer
@@ -110,7 +113,7 @@ Vec4 meanOverTriangle(const Texture& texture, Vec2 uv0, Vec2 uv1, Vec2 uv2) {
   for (int k = 0; k < 3; ++k) {
     p[k] = {double(uv[k].x) * w - shift, double(uv[k].y) * h - shift};
     if (!(std::abs(p[k].x) < kMaxCoordinate && std::abs(p[k].y) < kMaxCoordinate)) {
-      return texture.sample(uv0);  // non-finite or astronomically far: sample() reduces it
+      return texture.sampleImage(uv[0]);  // non-finite or astronomically far: sample() reduces it
     }
     minX = std::min(minX, p[k].x);
     minY = std::min(minY, p[k].y);
@@ -135,7 +138,7 @@ Vec4 meanOverTriangle(const Texture& texture, Vec2 uv0, Vec2 uv1, Vec2 uv2) {
   if (!(area > kMinArea)) {
     // Collinear uvs: the barycentric strata weight the segment as the triangle does. Coincident
     // uvs (a mesh without texture coordinates) need one lookup.
-    if (maxEdge == 0.0) return texture.sample(uv0);
+    if (maxEdge == 0.0) return texture.sampleImage(uv[0]);
     return quadrature(texture, uv, std::clamp(int(std::ceil(16.0 * maxEdge)), 16, 256));
   }
   const double rows = std::ceil(maxY - double(originY)), columns = std::ceil(maxX - double(originX));
@@ -198,7 +201,7 @@ Vec4 meanOverTriangle(const Texture& texture, Vec2 uv0, Vec2 uv1, Vec2 uv2) {
       coveredArea += m.a;
     }
   }
-  if (!(coveredArea > 0.0)) return texture.sample(uv0);
+  if (!(coveredArea > 0.0)) return texture.sampleImage(uv[0]);
   // The pieces partition the triangle: dividing by the sum of their areas, not by the triangle's,
   // keeps the rounding of the clipping out of the mean (a constant texture gives that constant).
   return Vec4(integral / coveredArea);
