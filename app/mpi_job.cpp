@@ -146,6 +146,15 @@ JobTotals MpiJob::combine(RenderSession& session, double seconds) {
   } else {
     MPI_Send(&ownPasses_, 1, MPI_UINT64_T, 0, kDoneTag, progressComm_);
   }
+  // A rank done early waits for the slowest asleep: Open MPI's blocking collectives poll, and on
+  // a machine shared by several ranks that polling would take cores from those still rendering.
+  MPI_Request everyoneDone;
+  MPI_Ibarrier(MPI_COMM_WORLD, &everyoneDone);
+  for (int done = 0;;) {
+    MPI_Test(&everyoneDone, &done, MPI_STATUS_IGNORE);
+    if (done) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
 
   RankTotals mine{ownPasses_, seconds, session.counters()};
   std::vector<RankTotals> all(leader() ? static_cast<size_t>(size_) : 0);
