@@ -1,10 +1,23 @@
 // pathlab: one executable, subcommands wired to the core. Every error becomes one line and exit 1.
+// Started by an MPI launcher (mpirun, srun), `render` runs as one rank of the job (app/job.h).
 #include "app/cli.h"
+#include "app/job.h"
+#ifdef PATHLAB_HAVE_MPI
+#include "app/mpi_job.h"
+#endif
 
 #include <exception>
 #include <iostream>
+#include <memory>
+#include <sstream>
 
 int main(int argc, char** argv) {
+  std::unique_ptr<pathlab::app::Job> job;
+#ifdef PATHLAB_HAVE_MPI
+  job = pathlab::app::MpiJob::startIfLaunched(&argc, &argv);
+#endif
+  if (!job) job = std::make_unique<pathlab::app::Job>();
+
   CLI::App app{"pathlab: a bidirectional path tracer for studying the path integral formulation of light transport"};
   app.require_subcommand(1);
   // One line per error, as for every other failure (CLI11's default adds a second line).
@@ -14,16 +27,34 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // Every rank parsed the same command line: the leader alone says what is wrong (or --help).
+    if (job->leader()) return app.exit(e);
+    std::ostringstream discard;
+    return app.exit(e, discard, discard);
   }
   try {
-    if (app.got_subcommand("render")) return pathlab::app::runRender(options.render);
+    if (app.got_subcommand("render")) return pathlab::app::runRender(options.render, *job);
+    if (job->size() > 1)
+      throw pathlab::app::JobStopped(job->leader() ? "only render runs as an MPI job: start " +
+                                                         app.get_subcommands().front()->get_name() +
+                                                         " as one process, without mpirun"
+                                                   : "");
     if (app.got_subcommand("converge")) return pathlab::app::runConverge(options.converge);
     if (app.got_subcommand("view")) return pathlab::app::runView(options.view);
     if (app.got_subcommand("check")) return pathlab::app::runCheck(options.check);
     if (app.got_subcommand("inspect")) return pathlab::app::runInspect(options.inspect);
+  } catch (const pathlab::app::JobStopped& e) {
+    // Every rank stops together (Job::agree); the leader's line says why.
+    if (*e.what()) std::cerr << "pathlab: " << e.what() << "\n";
+    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "pathlab: " << e.what() << "\n";
+    if (job->size() == 1) {
+      std::cerr << "pathlab: " << e.what() << "\n";
+      return 1;
+    }
+    // One rank failed while the others may wait for it in a collective: end the whole job.
+    std::cerr << "pathlab: rank " << job->rank() << " of " << job->size() << ": " << e.what() << "\n" << std::flush;
+    job->abort(1);
     return 1;
   }
   return 1;

@@ -2,6 +2,7 @@
 // time budget is spent, write the image atomically, print a summary.
 #include "app/render_command.h"
 
+#include "app/job.h"
 #include "app/output_check.h"
 #include "app/progress.h"
 #include "app/pyramid_output.h"
@@ -21,6 +22,7 @@
 #include <optional>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 #include <unistd.h>
@@ -129,11 +131,25 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_flag("-f,--force", o.force, "Overwrite the output file if it exists");
 }
 
-int runRender(RenderOptions o) {
+namespace {
+
+// Everything a render needs before its first pass.
+struct PreparedRender {
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<RenderSession> session;
+  std::optional<ReplayRequest> replay;
+  int pyramidOutput = 0;
+};
+
+// Options checked, outputs checked (by the leader, which alone writes them), the scene loaded and
+// the session built: every failure before the first pass happens here, on any rank.
+PreparedRender prepareRender(RenderOptions& o, const Job& job) {
+  std::ostream& log = job.log();
+  PreparedRender p;
   finishEstimatorOptions(o.estimator);
   // The maps read the pyramid's films (and their sampleable parts); --pyramid still decides which
   // pyramid images are written.
-  const int pyramidOutput = o.estimator.settings.pyramidLength;
+  p.pyramidOutput = o.estimator.settings.pyramidLength;
   if (o.techniqueMaps > 0) {
     RenderSettings& s = o.estimator.settings;
     if (s.integrator == IntegratorKind::Pt)
@@ -147,6 +163,8 @@ int runRender(RenderOptions o) {
   RenderSettings& settings = o.estimator.settings;
   if (o.output.empty() && o.replay.empty())
     throw std::runtime_error("render needs an output image (-o OUT) or --replay X,Y,SAMPLE");
+  if (!o.replay.empty() && job.size() > 1)
+    throw std::runtime_error("--replay recomputes one sample: run it as one process, without mpirun");
   // Until the camera's aspect is known, a side not given may be as large as allowed: the syntax of
   // --replay and a too large --width x --height are still refused before any work.
   settings.width = o.width > 0 ? o.width : kMaxImageSide;
@@ -160,24 +178,24 @@ int runRender(RenderOptions o) {
   if (settings.integrator != IntegratorKind::Pt) {
     const TechniqueSet techniques = enabledTechniques(settings);
     for (int k : techniques.uncoveredLengths(settings.maxLength))
-      std::cerr << fmt::format("pathlab: warning: no enabled technique samples paths of length {}\n", k);
+      log << fmt::format("pathlab: warning: no enabled technique samples paths of length {}\n", k);
     if (settings.isolate && !settings.isolate->unweighted &&
         !techniques.contains(settings.isolate->s, settings.isolate->t))
-      std::cerr << fmt::format("pathlab: warning: technique ({},{}) is not enabled, so its weighted share is zero\n",
-                               settings.isolate->s, settings.isolate->t);
+      log << fmt::format("pathlab: warning: technique ({},{}) is not enabled, so its weighted share is zero\n",
+                         settings.isolate->s, settings.isolate->t);
   }
-  std::optional<ReplayRequest> replay;
-  if (!o.replay.empty()) replay = parseReplay(o.replay, settings);
-  if (!replay) checkOutput(o.output, o.force);
-  if (!replay && pyramidOutput > 0)
-    for (const std::string& path : pyramidPaths(o.output, pyramidOutput)) checkOutput(path, o.force);
-  if (!replay && o.techniqueMaps > 0)
-    for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps)) checkOutput(path, o.force);
-  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  if (!o.replay.empty()) p.replay = parseReplay(o.replay, settings);
+  if (!p.replay && job.leader()) {
+    checkOutput(o.output, o.force);
+    if (p.pyramidOutput > 0)
+      for (const std::string& path : pyramidPaths(o.output, p.pyramidOutput)) checkOutput(path, o.force);
+    if (o.techniqueMaps > 0)
+      for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps)) checkOutput(path, o.force);
+  }
 
   const auto loadStart = std::chrono::steady_clock::now();
-  Scene scene(loadGltf(o.scene, o.load));
+  p.scene = std::make_unique<Scene>(loadGltf(o.scene, o.load));
+  const Scene& scene = *p.scene;
   // The image has the camera's shape, so nothing the camera frames is cropped (image_size.h).
   const Vec2i size = imageSizeForAspect(cameraAspect(settings.camera, scene.cameraDesc()),
                                         o.width > 0 ? std::optional(o.width) : std::nullopt,
@@ -185,44 +203,87 @@ int runRender(RenderOptions o) {
   settings.width = size.x;
   settings.height = size.y;
   checkPixels();
-  if (replay) replay = parseReplay(o.replay, settings);
-  for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
-  if (const std::string w = misOffWarning(scene, settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";
-  if (const std::string w = biasInjectionWarning(settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";
+  if (p.replay) p.replay = parseReplay(o.replay, settings);
+  for (const std::string& w : scene.warnings()) log << "pathlab: warning: " << w << "\n";
+  if (const std::string w = misOffWarning(scene, settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
+  if (const std::string w = biasInjectionWarning(settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
-  std::cerr << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene,
-                           scene.triangleCount(), scene.lights().size(), double(scene.geometryBytes()) / 1e6,
-                           loadSeconds);
+  log << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene,
+                     scene.triangleCount(), scene.lights().size(), double(scene.geometryBytes()) / 1e6, loadSeconds);
+  // This rank's share of the passes (Job::passSchedule): all of them for one process.
+  p.session = std::make_unique<RenderSession>(scene, settings, job.passSchedule());
+  return p;
+}
 
-  RenderSession session(scene, settings);
-  if (replay) return runReplay(session, *replay);
+}  // namespace
+
+int runRender(RenderOptions o) {
+  Job process;
+  return runRender(std::move(o), process);
+}
+
+int runRender(RenderOptions o, Job& job) {
+  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  // Every rank prepares, then all agree before the first collective of the render: a rank that
+  // could not load the scene (or build its film) stops the job at once instead of leaving the
+  // others waiting for it in a reduction.
+  PreparedRender prepared;
+  std::string error;
+  try {
+    prepared = prepareRender(o, job);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  job.agree(error, prepared.session ? shapeOf(*prepared.session) : 0);
+  RenderSession& session = *prepared.session;
+  const RenderSettings& settings = session.settings();
+  if (prepared.replay) return runReplay(session, *prepared.replay);
+
   session.setTiming(o.stats);  // two clock reads a connection: only when the shares are printed
   const bool timed = o.seconds > 0.0;
   const uint64_t targetSpp = timed ? 0 : static_cast<uint64_t>(o.spp > 0 ? o.spp : kDefaultSpp);
+  // --spp is the job's: this rank renders its share of the pass indices below it; --time holds
+  // for every rank (each starts its clock as the agreement returns).
+  const uint64_t ownPasses = job.passesOf(targetSpp);
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  JobTotals totals;
   {
+    // One progress bar for the whole job, on the leader: the passes of every rank it has heard of.
     const double pixels = static_cast<double>(session.film().pixelCount());
-    ProgressBar bar([&] {
-      const double passFraction = static_cast<double>(session.pixelsDoneInPass()) / pixels;
-      const double done = timed ? elapsed() / o.seconds
-                                : (static_cast<double>(session.passes()) + passFraction) / static_cast<double>(targetSpp);
-      return std::pair{done, fmt::format("{} spp  {:.1f} s", session.passes(), elapsed())};
-    });
-    while (timed ? (session.passes() == 0 || elapsed() < o.seconds) : session.passes() < targetSpp)
+    std::optional<ProgressBar> bar;
+    if (job.leader())
+      bar.emplace([&] {
+        const double passFraction = static_cast<double>(session.pixelsDoneInPass()) / pixels;
+        const uint64_t passes = job.jobPasses();
+        const double done = timed ? elapsed() / o.seconds
+                                  : (static_cast<double>(passes) + passFraction) / static_cast<double>(targetSpp);
+        return std::pair{done, fmt::format("{} spp  {:.1f} s", passes, elapsed())};
+      });
+    while (timed ? (session.passes() == 0 || elapsed() < o.seconds) : session.passes() < ownPasses) {
       session.renderPass();
+      job.notePasses(session.passes());
+    }
+    totals = job.combine(session, elapsed());
   }
-  const double seconds = elapsed();
+  if (!job.leader()) return 0;
+  const double seconds = totals.slowestSeconds;
   writeImage(o.output, session.image(), o.exposure);
-  if (pyramidOutput > 0) writePyramid(o.output, session, o.exposure, pyramidOutput);
+  if (prepared.pyramidOutput > 0) writePyramid(o.output, session, o.exposure, prepared.pyramidOutput);
   if (o.techniqueMaps > 0) writeTechniqueMaps(o.output, session, o.techniqueMaps);
 
+  // Under MPI: every rank's samples, rays and discards, over the slowest rank's time.
   const Counters& c = session.counters();
   std::cerr << fmt::format(
-      "{}: {} spp ({}) in {:.2f} s, {} samples/s, {} rays/s, {} discarded samples (NaN {}, Inf {}, negative {})\n",
-      o.output, session.passes(), integratorName(settings.integrator), seconds,
+      "{}: {} spp ({}{}) in {:.2f} s, {} samples/s, {} rays/s, {} discarded samples (NaN {}, Inf {}, negative {})\n",
+      o.output, totals.passes, integratorName(settings.integrator),
+      job.size() > 1 ? fmt::format(", {} ranks", job.size()) : "", seconds,
       humanCount(static_cast<double>(c.cameraSamples) / seconds), humanCount(static_cast<double>(c.totalRays()) / seconds),
       c.discarded(), c.discardedCounts().nan, c.discardedCounts().inf, c.discardedCounts().negative);
+  if (job.size() > 1)
+    std::cerr << fmt::format("{} ranks: their sums were added into rank 0 in {:.3f} s\n",
+                             job.size(), totals.reduceSeconds);
   if (settings.integrator != IntegratorKind::Pt) printTechniqueCounters(c, settings.maxLength, seconds, o.stats);
   if (settings.checkMis)
     std::cerr << fmt::format("MIS check: {} of {} paths whose weights do not sum to one\n", c.misPartitionFailures,

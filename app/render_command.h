@@ -10,6 +10,8 @@
 
 namespace pathlab::app {
 
+class Job;
+
 struct RenderOptions {
   std::string scene;
   std::string output;
@@ -31,5 +33,7 @@ struct RenderOptions {
 void addRenderCommand(CLI::App& app, RenderOptions& options);
 // Returns the process exit code. Errors are exceptions, reported by main.
 int runRender(RenderOptions options);
+// As one rank of `job` (app/job.h): its share of the passes; the leader writes the outputs.
+int runRender(RenderOptions options, Job& job);
 
 }  // namespace pathlab::app

@@ -25,6 +25,12 @@ void Film::addSplatSums(const std::vector<float>& rgb) {
   for (size_t i = 0; i < splatSum_.size() && i < rgb.size(); ++i) splatSum_[i] += static_cast<double>(rgb[i]);
 }
 
+std::array<std::span<double>, 2> Film::sums() {
+  static_assert(sizeof(DVec3) == 3 * sizeof(double), "DVec3 must be three packed doubles");
+  return {std::span<double>(reinterpret_cast<double*>(cameraSum_.data()), 3 * cameraSum_.size()),
+          std::span<double>(splatSum_)};
+}
+
 void Film::finishPass(uint64_t samplesPerPixel, uint64_t lightSubpaths) {
   samplesPerPixel_ += samplesPerPixel;
   lightSubpaths_ += lightSubpaths;

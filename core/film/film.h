@@ -8,7 +8,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <array>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace pathlab {
@@ -51,6 +53,10 @@ class Film {
   void clear();
 
   uint64_t samplesPerPixel() const { return samplesPerPixel_; }
+  // The camera-sample sums and the splat sums as flat arrays of doubles (3 a pixel): films that
+  // rendered disjoint samples of one image combine by adding these element by element (then
+  // finishPass with the other films' counts). Not concurrent with a pass.
+  std::array<std::span<double>, 2> sums();
   uint64_t lightSubpaths() const { return lightSubpaths_; }
 
   // pixel = cameraSum / spp + splatSum * pixelCount / lightSubpaths.

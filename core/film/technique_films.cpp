@@ -69,6 +69,13 @@ void TechniqueFilms::clear() {
   for (std::vector<double>& b : sampleable_) std::fill(b.begin(), b.end(), 0.0);
 }
 
+std::vector<std::span<double>> TechniqueFilms::sums() {
+  std::vector<std::span<double>> all;
+  for (std::vector<double>& b : buffers_) all.emplace_back(b);
+  for (std::vector<double>& b : sampleable_) all.emplace_back(b);
+  return all;
+}
+
 namespace {
 
 // Film::readout's normalisation: camera samples by samples per pixel, splats by the number of

@@ -19,6 +19,7 @@
 #include "core/sampling/technique.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace pathlab {
@@ -43,6 +44,9 @@ class TechniqueFilms {
   // splat when `splat`). Needs keepsSampleable().
   void addSampleable(int k, uint64_t sampleableBy, Vec2 pRaster, bool splat, double weightedLuminance);
   void clear();
+  // Every buffer as a flat array of doubles, in a fixed order: pyramids that accumulated disjoint
+  // samples of one image combine by adding these element by element (Film::sums).
+  std::vector<std::span<double>> sums();
 
   // Normalised like Film::readout: t >= 2 by camera samples per pixel, t = 1 by the number of
   // light subpaths over the pixel count.

@@ -6,6 +6,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <stdexcept>
+
 namespace pathlab {
 
 namespace {
@@ -17,6 +19,11 @@ constexpr size_t kMaxThreadSplatBytes = size_t{512} << 20;
 const RenderSettings& validated(const RenderSettings& settings) {
   validateSettings(settings);
   return settings;
+}
+
+PassSchedule validated(PassSchedule schedule) {
+  if (schedule.stride == 0) throw std::invalid_argument("a pass schedule's stride must be at least 1");
+  return schedule;
 }
 }  // namespace
 
@@ -32,9 +39,10 @@ struct RenderSession::ThreadChecks {
 
 RenderSession::~RenderSession() = default;
 
-RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings)
+RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings, PassSchedule schedule)
     : scene_(scene),
       settings_(validated(settings)),
+      schedule_(validated(schedule)),
       camera_(settings.camera.value_or(scene.cameraDesc()), settings.width, settings.height, settings.lens),
       pathTracer_(scene, pathTracerOptions(settings)),
       film_(settings.width, settings.height) {
@@ -68,6 +76,19 @@ std::vector<float> RenderSession::sampleableLuminance(int s, int t) const {
   return pyramid_->readoutSampleable(s, t, film_.samplesPerPixel(), film_.lightSubpaths());
 }
 
+std::vector<std::span<double>> RenderSession::sums() {
+  std::vector<std::span<double>> all;
+  for (std::span<double> s : film_.sums()) all.push_back(s);
+  if (pyramid_)
+    for (std::span<double> s : pyramid_->sums()) all.push_back(s);
+  return all;
+}
+
+void RenderSession::addForeignPasses(uint64_t passes, const Counters& counters) {
+  film_.finishPass(passes, bidirTracer_ ? passes * lightSubpathsPerPass(film_.pixelCount()) : 0);
+  counters_ += counters;
+}
+
 Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const {
   const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(settings_.width) + static_cast<uint64_t>(x);
   Pcg32 rng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Camera);
@@ -86,7 +107,7 @@ Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTarget
 bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   tbb::enumerable_thread_specific<Counters> local;
   pixelsDone_.store(0, std::memory_order_relaxed);
-  const uint64_t pass = passes_.load(std::memory_order_relaxed);
+  const uint64_t pass = schedule_.pass(passes_.load(std::memory_order_relaxed));
   const SampleTargets shared{&film_, pyramid_.get(), nullptr, {}};
   std::atomic<bool> cancelled{false};
   tbb::parallel_for(

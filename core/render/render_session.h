@@ -14,13 +14,25 @@
 
 #include <atomic>
 #include <memory>
+#include <span>
+#include <vector>
 
 namespace pathlab {
+
+// Which pass indices a session renders: first, first + stride, first + 2 stride, ... Sample i of
+// a pixel is keyed by pass index i, so the sessions of N processes given (first = r, stride = N),
+// r = 0..N-1, render together exactly the samples of one session rendering all passes.
+struct PassSchedule {
+  uint64_t first = 0;
+  uint64_t stride = 1;
+  // The pass index of this session's n-th pass.
+  uint64_t pass(uint64_t n) const { return first + stride * n; }
+};
 
 class RenderSession {
  public:
   // Throws std::invalid_argument for settings validateSettings refuses.
-  RenderSession(const Scene& scene, const RenderSettings& settings);
+  RenderSession(const Scene& scene, const RenderSettings& settings, PassSchedule schedule = {});
   ~RenderSession();
 
   // Renders one more pass over the whole film (blocking; uses the TBB arena of the caller).
@@ -49,6 +61,14 @@ class RenderSession {
   // The consistency check's sums (settings.checkTechniques), else null.
   const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }
+  // Every sum the passes accumulate (film, splats, pyramid), flat arrays of doubles in an order
+  // fixed by the settings: sessions with the same settings that rendered disjoint passes combine
+  // by adding these element by element, then addForeignPasses. Not concurrent with a pass.
+  std::vector<std::span<double>> sums();
+  // Counts `passes` passes rendered by other sessions whose sums were added to sums(): the film's
+  // normalisation and the counters follow; passes() stays this session's own count.
+  void addForeignPasses(uint64_t passes, const Counters& counters);
+  // This session's own passes (not those of addForeignPasses).
   uint64_t passes() const { return passes_.load(std::memory_order_relaxed); }
   const RenderSettings& settings() const { return settings_; }
   const Camera& camera() const { return camera_; }
@@ -58,6 +78,7 @@ class RenderSession {
  private:
   const Scene& scene_;
   RenderSettings settings_;
+  PassSchedule schedule_;
   Camera camera_;
   PathTracer pathTracer_;
   std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt and Lt

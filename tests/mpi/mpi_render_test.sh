@@ -1,0 +1,83 @@
+#!/bin/bash
+# `mpirun -n 2 pathlab render` on loopback (issue 17): two ranks of P passes each give the image of
+# one process rendering 2P passes with the same seed, to 1e-6 relative per pixel (the same samples,
+# added in another order), for the path tracer and for BPT with its light-tracing splats and the
+# technique pyramid; `mpirun -n 1` is the plain process bit for bit; a rank that cannot load the
+# scene stops the job within seconds with one line naming it; SIGINT leaves no output behind.
+# Usage: mpi_render_test.sh PATHLAB SOURCE_DIR MPIEXEC
+. "$(dirname "$0")/../cli_lib.sh"
+MPIEXEC=$3
+COMPARE="python3 $(dirname "$0")/compare_pfm.py"
+BOX="$SRC/assets/cornell-box.gltf"
+# CI runs as root; Open MPI refuses to without these. Shared memory without ptrace (containers).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
+mpirun2() { timeout 60 "$MPIEXEC" -n 2 --oversubscribe "$@"; }
+# One thread a rank: the splats of a pass are then summed in the same order as in one process.
+small=(--width 24 --height 16 --seed 9 --threads 1 --max-length 4)
+
+# compare NAME A1 B1 [A2 B2 ...]: each pair of PFM files holds the same values to 1e-6 relative.
+compare() {
+  local what=$1
+  shift
+  if out=$($COMPARE "$@" 2>&1); then ok; else fail "$what: $out"; fi
+}
+
+# Path tracer: 2 ranks x 3 passes against 6 passes.
+"$PATHLAB" render "$BOX" -o "$TMP/pt1.pfm" "${small[@]}" --integrator pt --spp 6 2>"$TMP/err" || fail "pt, one process: $(cat "$TMP/err")"
+if mpirun2 "$PATHLAB" render "$BOX" -o "$TMP/pt2.pfm" "${small[@]}" --integrator pt --spp 6 2>"$TMP/err"; then
+  compare "pt, 2 ranks" "$TMP/pt1.pfm" "$TMP/pt2.pfm"
+  grep -q "pt2.pfm: 6 spp (pt, 2 ranks)" "$TMP/err" && ok || fail "pt summary: $(cat "$TMP/err")"
+  [ "$(grep -c 'pt2.pfm: 6 spp' "$TMP/err")" -eq 1 ] && ok || fail "not one summary: $(cat "$TMP/err")"
+  [ "$(grep -c 'loaded in' "$TMP/err")" -eq 1 ] && ok || fail "the load line more than once: $(cat "$TMP/err")"
+else fail "pt, 2 ranks: $(cat "$TMP/err")"; fi
+
+# BPT (camera sums and splats) with the pyramid, and an odd count: 5 = 3 passes + 2 passes.
+"$PATHLAB" render "$BOX" -o "$TMP/b1.pfm" "${small[@]}" --spp 5 --pyramid 3 2>"$TMP/err" || fail "bpt, one process: $(cat "$TMP/err")"
+if mpirun2 "$PATHLAB" render "$BOX" -o "$TMP/b2.pfm" "${small[@]}" --spp 5 --pyramid 3 2>"$TMP/err"; then
+  pairs=("$TMP/b1.pfm" "$TMP/b2.pfm")
+  for one in "$TMP"/b1-s*.pfm; do pairs+=("$one" "${one/b1-/b2-}"); done
+  # 9 techniques up to length 3, weighted and unweighted, and the image.
+  [ "${#pairs[@]}" -eq 38 ] && ok || fail "pyramid: $(( ${#pairs[@]} / 2 - 1 )) technique images, not 18"
+  compare "bpt and its pyramid, 2 ranks" "${pairs[@]}"
+  [ -s "$TMP/b2-pyramid.png" ] && ok || fail "no pyramid mosaic"
+  grep -q "b2.pfm: 5 spp (bpt, 2 ranks)" "$TMP/err" && ok || fail "bpt summary: $(cat "$TMP/err")"
+else fail "bpt, 2 ranks: $(cat "$TMP/err")"; fi
+
+# The same job under one rank is the plain process, bit for bit.
+if timeout 60 "$MPIEXEC" -n 1 "$PATHLAB" render "$BOX" -o "$TMP/b1rank.pfm" "${small[@]}" --spp 5 2>"$TMP/err"; then
+  cmp -s "$TMP/b1.pfm" "$TMP/b1rank.pfm" && ok || fail "mpirun -n 1 differs from one process"
+else fail "mpirun -n 1: $(cat "$TMP/err")"; fi
+
+# --time: every rank stops at T, the leader writes the image.
+mpirun2 "$PATHLAB" render "$BOX" -o "$TMP/t.pfm" "${small[@]}" --time 0.5 2>"$TMP/err" && [ -s "$TMP/t.pfm" ] && ok ||
+  fail "--time under 2 ranks: $(cat "$TMP/err")"
+
+# Rank 1 is given a scene that does not exist: one line from pathlab naming rank 1 and the file,
+# a non-zero exit within seconds (no rank left waiting in a collective), no image.
+begin=$(date +%s)
+timeout 30 "$MPIEXEC" -n 1 "$PATHLAB" render "$BOX" -o "$TMP/f.pfm" "${small[@]}" --spp 2 : \
+  -n 1 "$PATHLAB" render "$TMP/missing.gltf" -o "$TMP/f.pfm" "${small[@]}" --spp 2 >"$TMP/out" 2>"$TMP/err" </dev/null
+code=$?
+took=$(( $(date +%s) - begin ))
+[ "$code" -ne 0 ] && [ "$code" -ne 124 ] && ok || fail "missing scene on rank 1: exit code $code"
+[ "$took" -le 10 ] && ok || fail "missing scene on rank 1: $took s to stop"
+grep -qE "^pathlab: rank 1 of 2: .*missing.gltf" "$TMP/err" && ok || fail "missing scene: no line naming rank 1: $(cat "$TMP/err")"
+[ "$(grep -c '^pathlab:' "$TMP/err")" -eq 1 ] && ok || fail "missing scene: not one line: $(cat "$TMP/err")"
+[ -e "$TMP/f.pfm" ] && fail "missing scene: an image was written"
+
+# Only render runs as a job.
+mpirun2 "$PATHLAB" check "$BOX" >"$TMP/out" 2>"$TMP/err" </dev/null && fail "check under 2 ranks: exit code 0"
+[ "$(grep -c '^pathlab: only render runs as an MPI job' "$TMP/err")" -eq 1 ] && ok || fail "check under 2 ranks: $(cat "$TMP/err")"
+
+# SIGINT to mpirun during a render: the job ends, and neither the image nor a temporary is left.
+"$MPIEXEC" -n 2 --oversubscribe "$PATHLAB" render "$BOX" -o "$TMP/int.pfm" "${small[@]}" --time 60 2>"$TMP/err" &
+job=$!
+sleep 3
+kill -INT "$job"
+for _ in $(seq 50); do kill -0 "$job" 2>/dev/null || break; sleep 0.2; done
+if kill -0 "$job" 2>/dev/null; then fail "SIGINT: the job still runs after 10 s"; kill -KILL "$job"; else ok; fi
+wait "$job" 2>/dev/null
+ls -a "$TMP" | grep -qE '^int\.pfm$|^\.int\.pfm\.tmp' && fail "SIGINT left output: $(ls -a "$TMP")" || ok
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]
