@@ -6,6 +6,7 @@
 #include "core/scene/scene_desc.h"
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -25,6 +26,13 @@ struct LoadOptions {
   // workstation gives one process, and 50 times the largest model pathlab is tested on
   // (MetalRoughSpheresNoTextures, 1.04 M; the bundled scenes have under 10 k).
   uint64_t maxTriangles = 50'000'000;
+  // An environment light added to the scene (the command line's --environment), lights of the
+  // file or not.
+  std::shared_ptr<const EnvironmentDesc> environment;
+  // A file with no light of its own, and no `environment`, is lit by a uniform white environment
+  // of radiance 1 (as Blender's default world), with a notice among the warnings, instead of being
+  // refused. Off here, on for the command line (--no-default-light turns it off).
+  bool defaultLight = false;
 };
 
 // Problems that still leave a correct render (an unsupported optional extension, a skipped
