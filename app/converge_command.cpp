@@ -140,6 +140,7 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  addEnvironmentOptions(cmd, o.environment);
   cmd->add_flag("-f,--force", o.force, "Overwrite convergence.csv, convergence.svg and efficiency.md");
 }
 
@@ -183,6 +184,7 @@ int runConverge(ConvergeOptions o) {
 
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  finishEnvironmentOptions(o.environment, o.load);
   Scene scene(loadGltf(o.scene, o.load));
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
   for (const ConvergenceConfig& c : configs)

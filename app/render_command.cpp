@@ -162,6 +162,7 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  addEnvironmentOptions(cmd, o.environment);
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
@@ -218,6 +219,7 @@ int runRender(RenderOptions o) {
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 
   const auto loadStart = std::chrono::steady_clock::now();
+  finishEnvironmentOptions(o.environment, o.load);
   Scene scene(loadGltf(o.scene, o.load));
   // The image has the camera's shape, so nothing the camera frames is cropped (image_size.h).
   const Vec2i size = imageSizeForAspect(cameraAspect(settings.camera, scene.cameraDesc()),

@@ -1,0 +1,25 @@
+// The options that light a scene, shared by render, view, converge and check: --environment
+// FILE.exr|FILE.hdr|R,G,B, --environment-strength, --environment-rotation and --no-default-light.
+#pragma once
+
+#include "core/scene/gltf_loader.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace pathlab::app {
+
+struct EnvironmentOptions {
+  std::string spec;  // empty: none
+  float strength = 1.f;
+  float rotationDegrees = 0.f;
+  bool noDefaultLight = false;
+};
+
+void addEnvironmentOptions(CLI::App* cmd, EnvironmentOptions& options);
+// Reads the environment into load.environment and sets load.defaultLight; throws one line naming
+// the file and the problem (EnvironmentError).
+void finishEnvironmentOptions(const EnvironmentOptions& options, LoadOptions& load);
+
+}  // namespace pathlab::app
