@@ -209,7 +209,9 @@ int runConverge(ConvergeOptions o) {
       refBudget.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceFactor * budget.seconds;
       budgetText = fmt::format("{}={}", budget.clock == ClockKind::Cpu ? "cputime" : "time", refBudget.seconds);
     }
-    const fs::path cached = dir / fmt::format("reference-{}.exr", referenceKey(o.scene, best.settings, budgetText));
+    // The environment lights the reference too: a cached one rendered under another is not reused.
+    const std::string lighting = budgetText + environmentKeyText(o.load);
+    const fs::path cached = dir / fmt::format("reference-{}.exr", referenceKey(o.scene, best.settings, lighting));
     if (fs::exists(cached)) {
       reference = readImage(cached.string());
       std::cerr << fmt::format("reference: reusing {}\n", cached.string());

@@ -3,6 +3,8 @@
 
 #include "core/lights/environment_file.h"
 
+#include <fmt/core.h>
+
 namespace pathlab::app {
 
 void addEnvironmentOptions(CLI::App* cmd, EnvironmentOptions& o) {
@@ -28,6 +30,19 @@ void finishEnvironmentOptions(const EnvironmentOptions& o, LoadOptions& load) {
   desc->strength = o.strength;
   desc->rotationDegrees = o.rotationDegrees;
   load.environment = std::move(desc);
+}
+
+std::string environmentKeyText(const LoadOptions& load) {
+  if (!load.environment) return "";
+  const EnvironmentDesc& e = *load.environment;
+  uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a, 64 bit
+  auto add = [&](const void* data, size_t bytes) {
+    for (size_t i = 0; i < bytes; ++i) hash = (hash ^ static_cast<const unsigned char*>(data)[i]) * 0x100000001b3ull;
+  };
+  add(e.texels.data(), e.texels.size() * sizeof(Spectrum));
+  add(&e.constant, sizeof(Spectrum));
+  return fmt::format(";environment={}x{},strength={},rotation={},radiance={:016x}", e.width, e.height, e.strength,
+                     e.rotationDegrees, hash);
 }
 
 }  // namespace pathlab::app

@@ -21,5 +21,8 @@ void addEnvironmentOptions(CLI::App* cmd, EnvironmentOptions& options);
 // Reads the environment into load.environment and sets load.defaultLight; throws one line naming
 // the file and the problem (EnvironmentError).
 void finishEnvironmentOptions(const EnvironmentOptions& options, LoadOptions& load);
+// What of `load` lights the scene, as text for a reference image's cache key: empty without an
+// environment, else its size, strength, rotation and an FNV-1a hash of its radiance.
+std::string environmentKeyText(const LoadOptions& load);
 
 }  // namespace pathlab::app

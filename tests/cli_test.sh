@@ -120,5 +120,14 @@ expect_error "check: environment missing" "missing\.exr: no such file" check "$B
 expect_error "converge: environment missing" "missing\.exr: no such file" converge "$BOX" -o "$TMP/conv-env" \
   --environment "$TMP/missing.exr"
 
+# converge caches its reference by scene, settings, budget and environment: another environment
+# renders a new reference instead of reusing one lit differently.
+ENVSCENE="$SRC/tests/scenes/environment.gltf"
+for env in "" "--environment=0.5,0.5,0.5" "--environment=0.5,0.5,0.5"; do
+  "$PATHLAB" converge "$ENVSCENE" -o "$TMP/conv-key" --spp 2 --reference-spp 2 --width 8 --height 8 --force $env \
+    >/dev/null 2>&1 || fail "converge $env"
+done
+[ "$(ls "$TMP/conv-key" | grep -c '^reference-.*\.exr$')" -eq 2 ] && ok || fail "reference keys: $(ls "$TMP/conv-key")"
+
 echo "cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]
