@@ -46,6 +46,7 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  addEnvironmentOptions(cmd, o.environment);
 }
 
 int runCheck(CheckCommandOptions o) {
@@ -56,6 +57,7 @@ int runCheck(CheckCommandOptions o) {
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 
+  finishEnvironmentOptions(o.environment, o.load);
   Scene scene(loadGltf(o.scene, o.load));
   // The camera's shape, as `render` (core/camera/image_size.h).
   const Vec2i size = imageSizeForAspect(cameraAspect(settings.camera, scene.cameraDesc()),

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "app/estimator_options.h"
+#include "app/environment_options.h"
 #include "core/check/check_report.h"
 #include "core/scene/gltf_loader.h"
 
@@ -25,6 +26,7 @@ struct CheckCommandOptions {
   int threads = 0;
   CheckOptions check;
   LoadOptions load;
+  EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
 void addCheckCommand(CLI::App& app, CheckCommandOptions& options);

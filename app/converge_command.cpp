@@ -131,6 +131,7 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  addEnvironmentOptions(cmd, o.environment);
   cmd->add_flag("-f,--force", o.force, "Overwrite convergence.csv, convergence.svg and efficiency.md");
 }
 
@@ -174,6 +175,7 @@ int runConverge(ConvergeOptions o) {
 
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  finishEnvironmentOptions(o.environment, o.load);
   Scene scene(loadGltf(o.scene, o.load));
   if (o.reference.empty() && (o.width == 0 || o.height == 0)) {
     // As `render`: the image has the camera's shape (longest side 256 unless given), never cropped.
@@ -210,7 +212,9 @@ int runConverge(ConvergeOptions o) {
       refBudget.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceFactor * budget.seconds;
       budgetText = fmt::format("{}={}", budget.clock == ClockKind::Cpu ? "cputime" : "time", refBudget.seconds);
     }
-    const fs::path cached = dir / fmt::format("reference-{}.exr", referenceKey(o.scene, best.settings, budgetText));
+    // The environment lights the reference too: a cached one rendered under another is not reused.
+    const std::string lighting = budgetText + environmentKeyText(o.load);
+    const fs::path cached = dir / fmt::format("reference-{}.exr", referenceKey(o.scene, best.settings, lighting));
     if (fs::exists(cached)) {
       reference = readImage(cached.string());
       std::cerr << fmt::format("reference: reusing {}\n", cached.string());

@@ -2,6 +2,7 @@
 // error against a reference recorded over time, an efficiency table and a log-log plot.
 #pragma once
 
+#include "app/environment_options.h"
 #include "core/scene/gltf_loader.h"
 
 #include <CLI/CLI.hpp>
@@ -29,6 +30,7 @@ struct ConvergeOptions {
   int threads = 0;
   bool force = false;
   LoadOptions load;
+  EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
 void addConvergeCommand(CLI::App& app, ConvergeOptions& options);

@@ -34,6 +34,7 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
   cmd->add_option("--height", o.height, "Image height (default: the camera's shape, longest side 512)")
       ->check(CLI::Range(1, 16384));
   addEstimatorOptions(cmd, o.estimator);
+  addEnvironmentOptions(cmd, o.environment);
   cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
   cmd->add_flag("-f,--force", o.force, "Overwrite the JSON file if it exists");
@@ -55,6 +56,7 @@ int runInspect(InspectOptions o) {
     if (!o.force && std::filesystem::exists(o.json))
       throw std::runtime_error(o.json + ": file exists (pass --force to overwrite it)");
   }
+  finishEnvironmentOptions(o.environment, o.load);
   Scene scene(loadGltf(o.scene, o.load));
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
   const Vec2i size = imageSizeForAspect(cameraAspect(settings.camera, scene.cameraDesc()),

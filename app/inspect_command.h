@@ -3,6 +3,7 @@
 // JSON (issue 12, "On the command line"; app/sample_inspection.h).
 #pragma once
 
+#include "app/environment_options.h"
 #include "app/estimator_options.h"
 #include "core/scene/gltf_loader.h"
 
@@ -21,6 +22,7 @@ struct InspectOptions {
   uint64_t sample = 0;        // the pass index: samples are keyed by (seed, pixel, pass)
   std::string json;           // write the inspection here as JSON
   bool force = false;
+  EnvironmentOptions environment;  // into `load` before the scene loads
   LoadOptions load;
 };
 

@@ -123,6 +123,7 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  addEnvironmentOptions(cmd, o.environment);
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
@@ -194,6 +195,7 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   }
 
   const auto loadStart = std::chrono::steady_clock::now();
+  finishEnvironmentOptions(o.environment, o.load);
   p.scene = std::make_unique<Scene>(loadGltf(o.scene, o.load));
   const Scene& scene = *p.scene;
   // The image has the camera's shape, so nothing the camera frames is cropped (image_size.h).

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "app/estimator_options.h"
+#include "app/environment_options.h"
 #include "core/scene/gltf_loader.h"
 
 #include <CLI/CLI.hpp>
@@ -28,6 +29,7 @@ struct RenderOptions {
   std::string replay;   // "X,Y,SAMPLE": print that one sample's techniques instead of rendering
   int techniqueMaps = 0;  // > 0: also write the technique maps up to this length
   LoadOptions load;
+  EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& options);

@@ -36,6 +36,7 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--threads", v.threads, "Render threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
   cmd->add_option("--max-triangles", v.load.maxTriangles, "Refuse scenes that instance more triangles than this")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
+  addEnvironmentOptions(cmd, o.environment);
   cmd->add_option("--width", v.windowWidth, "Window width in pixels (the image keeps the camera's aspect in the room the panels leave)")
       ->check(CLI::Range(64, 16384));
   cmd->add_option("--height", v.windowHeight, "Window height in pixels")->check(CLI::Range(64, 16384));
@@ -85,6 +86,7 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
 
 int runView(ViewOptions o) {
   finishEstimatorOptions(o.estimator);
+  finishEnvironmentOptions(o.environment, o.viewer.load);
   if (o.viewer.headless && o.viewer.frames == 0) o.viewer.frames = 60;
   o.viewer.settings = o.estimator.settings;
   if (!o.zMap.empty()) {

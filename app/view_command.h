@@ -1,6 +1,7 @@
 // `pathlab view`: the interactive viewer's options (the estimator options are render's).
 #pragma once
 
+#include "app/environment_options.h"
 #include "app/estimator_options.h"
 #include "ui/viewer_options.h"
 
@@ -11,6 +12,7 @@ namespace pathlab::app {
 struct ViewOptions {
   EstimatorOptions estimator;
   ui::ViewerOptions viewer;
+  EnvironmentOptions environment;  // into viewer.load before the scene loads
   std::string zMap;  // --z-map S,T
 };
 

@@ -727,6 +727,63 @@ def caustic():
     return b
 
 
+def environment_objects(eye, target, yfov, aspect):
+    """No light of its own: lit by an environment (the default light, or --environment). A
+    Lambertian floor (0.5), a rough gold sphere (metal, roughness 0.3), a glass sphere and a
+    Lambertian box (0.7, 0.3, 0.2), all floating 5 cm above the floor: no concave edge, so every
+    connection's geometry term is bounded (the uniform heuristic's variance stays finite)."""
+    b = GltfBuilder()
+    floor = b.add_material("floor", (0.5, 0.5, 0.5), lambertian=True)
+    gold = b.add_material("gold", (1.0, 0.78, 0.34), metallic=1.0, roughness=0.3)
+    glass = b.add_material("glass", (1.0, 1.0, 1.0), roughness=0.0, glass=True)
+    clay = b.add_material("clay", (0.7, 0.3, 0.2), lambertian=True)
+    nodes = [
+        b.add_node("floor", b.add_geom(rect((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 2.0, 2.0), floor, "floor")),
+        b.add_node("goldSphere", b.add_geom(uv_sphere((-0.55, 0.45, 0.0), 0.4), gold, "goldSphere")),
+        b.add_node("glassSphere", b.add_geom(uv_sphere((0.5, 0.4, 0.35), 0.35), glass, "glassSphere")),
+        b.add_node("box", b.add_geom(box((0.35, 0.3, -0.6), (0.25, 0.25, 0.25)), clay, "box")),
+        b.add_camera_node(eye, target, yfov, aspect),
+    ]
+    b.add_scene("environment", nodes)
+    return b
+
+
+def sky_texel(direction):
+    """Radiance of the bundled sky: a sun of radiance 1500 (2.5 degrees in radius) at
+    elevation 35 deg toward -z+x, a blue gradient above the horizon, dim brown ground below."""
+    x, y, z = direction
+    sun = normalize((0.45, math.sin(math.radians(35.0)), -0.75))
+    if dot(direction, sun) > math.cos(math.radians(2.5)):
+        return (1500.0, 1350.0, 1100.0)
+    if y < 0.0:
+        return (0.12, 0.10, 0.08)
+    t = y ** 0.5
+    return (0.9 - 0.6 * t, 1.0 - 0.45 * t, 1.2 - 0.1 * t)
+
+
+def rgbe(c):
+    m = max(c)
+    if m < 1e-32:
+        return bytes(4)
+    mantissa, exponent = math.frexp(m)
+    scale = mantissa * 256.0 / m
+    return bytes([int(c[0] * scale), int(c[1] * scale), int(c[2] * scale), exponent + 128])
+
+
+def sky_hdr(width=128, height=64):
+    """An equirectangular Radiance HDR of sky_texel, pathlab's lat-long convention (environment_light.h):
+    row 0 straight up, the centre column toward -z, the right half toward +x. Uncompressed RGBE
+    scanlines (readers accept them)."""
+    out = bytearray(f"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {height} +X {width}\n".encode("ascii"))
+    for row in range(height):
+        theta = math.pi * (row + 0.5) / height
+        for col in range(width):
+            phi = 2.0 * math.pi * ((col + 0.5) / width - 0.5)
+            d = (math.sin(theta) * math.sin(phi), math.cos(theta), -math.sin(theta) * math.cos(phi))
+            out += rgbe(sky_texel(d))
+    return bytes(out)
+
+
 # ---------------------------------------------------------------------------------------------
 # Test scenes (closed-form answers and loader coverage; facts in assets/README.md)
 
@@ -950,6 +1007,13 @@ def main():
     write(ASSETS / "veach-mis.gltf", veach_mis().gltf_bytes())
     write(ASSETS / "bidir-lamp.gltf", bidir_lamp().gltf_bytes())
     write(ASSETS / "caustic.gltf", caustic().gltf_bytes())
+    write(ASSETS / "environment.gltf",
+          environment_objects((1.2, 1.1, 2.6), (0.0, 0.3, 0.0), 0.75, 1.5).gltf_bytes())
+    write(ASSETS / "sky.hdr", sky_hdr())
+    # Looking down: every pixel sees the floor or an object (light tracing never sees the
+    # environment directly, so the agreement test compares no background).
+    write(TESTS / "environment.gltf",
+          environment_objects((0.0, 2.4, 1.3), (0.0, 0.2, 0.0), 0.8, 1.0).gltf_bytes())
     write(TESTS / "furnace.gltf", furnace().gltf_bytes())
     write(TESTS / "square-light.gltf", square_light().gltf_bytes())
     write(TESTS / "punctual.gltf", punctual().gltf_bytes())

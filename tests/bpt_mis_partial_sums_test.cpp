@@ -7,6 +7,7 @@
 #include "core/bpt/bidir_tracer.h"
 #include "core/bpt/connect.h"
 #include "core/bpt/mis_partial_sums.h"
+#include "core/lights/environment_file.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"
 
@@ -92,6 +93,18 @@ TEST(MisPartialSums, EqualTheExplicitWeightsOnCaustic) { checkScene(bundled("cau
 TEST(MisPartialSums, EqualTheExplicitWeightsWithDeltaComponents) {
   checkScene(Scene(test::deltaScene(test::DeltaLight::Area)), "delta/area", 7);
   checkScene(Scene(test::deltaScene(test::DeltaLight::Point)), "delta/point", 7);
+}
+// An environment light (the bundled sky map) with a glossy and a glass sphere: escaping camera
+// paths (s = 0), next-event estimation toward it and light subpaths from it, at infinity.
+TEST(MisPartialSums, EqualTheExplicitWeightsUnderAnEnvironment) {
+  const std::string source = PATHLAB_SOURCE_DIR;
+  LoadOptions load;
+  load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
+  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment", 6);
+  // The default light (a constant environment) where the file has none.
+  load.environment = nullptr;
+  load.defaultLight = true;
+  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment/default", 6);
 }
 // A thin lens: the t = 1 technique's lens point and the camera subpath's differ in density.
 TEST(MisPartialSums, EqualTheExplicitWeightsThroughAThinLens) {

@@ -5,6 +5,7 @@
 #include "core/bpt/connect.h"
 #include "core/bsdf/bsdf.h"
 #include "core/scene/gltf_loader.h"
+#include "tests/support/bpt_scenes.h"
 #include "tests/support/test_scenes.h"
 
 #include <gtest/gtest.h>
@@ -17,12 +18,19 @@ using test::quad;
 
 // Area density at x_to of sampling it at x_at, having come from x_from (nullptr at a light
 // origin or the camera): the oracle's own evaluation, written from the definitions.
+// An environment vertex (at infinity, ng the direction its light travels) is a direction: from it
+// the next vertex's density is the emission disk's, per unit area normal to the light, times the
+// receiver's cosine; toward it a solid-angle density stays one (pbrt-v4 ConvertDensity).
 double oracleDensity(const Scene& scene, const Camera& camera, const PathVertex& at, const PathVertex* from,
                      const PathVertex& to, TransportMode mode) {
   const Vec3 d = to.p - at.p;
   const double dist2 = glm::dot(d, d);
-  const Vec3 w = glm::normalize(d);
-  const double cosTo = to.type == VertexType::Camera || to.ng == Vec3(0.f) ? 1.0 : absDot(to.ng, w);
+  const Vec3 w = at.isInfinite ? at.ng : to.isInfinite ? -to.ng : glm::normalize(d);
+  const double cosTo = to.type == VertexType::Camera || to.ng == Vec3(0.f) || to.isInfinite ? 1.0 : absDot(to.ng, w);
+  if (at.isInfinite) {
+    const Light& light = scene.lights()[static_cast<size_t>(at.light)];
+    return light.pdfLe(at.p, at.ng, w).pdfPosA * cosTo;
+  }
   double pdfW = 0.0;
   if (at.type == VertexType::Camera) {
     pdfW = camera.pdfWe(Ray{at.p, w}).pdfDirW;
@@ -31,9 +39,9 @@ double oracleDensity(const Scene& scene, const Camera& camera, const PathVertex&
     pdfW = light.pdfLe(at.p, at.ng, w).pdfDirW;
   } else {
     const Bsdf bsdf(at.ns, at.ng, evalMaterial(scene.material(at.material), at.uv, scene.textures()));
-    pdfW = bsdf.pdf(glm::normalize(from->p - at.p), w, mode);
+    pdfW = bsdf.pdf(from->isInfinite ? -from->ng : glm::normalize(from->p - at.p), w, mode);
   }
-  return pdfW * cosTo / dist2;
+  return to.isInfinite ? pdfW : pdfW * cosTo / dist2;
 }
 
 struct FullPath {
@@ -46,8 +54,11 @@ FullPath densities(const Scene& scene, const Camera& camera, std::vector<PathVer
   const int n = static_cast<int>(x.size());
   f.pL.assign(static_cast<size_t>(n), 0.0);
   f.pE.assign(static_cast<size_t>(n), 0.0);
-  f.pL[0] = scene.lights().pmf(x[0].light) *
-            scene.lights()[static_cast<size_t>(x[0].light)].pdfLe(x[0].p, x[0].ng, Vec3(0, 0, 1)).pdfPosA;
+  // The origin's density: a point on the light, or the environment's direction (toward -ng).
+  const Light& light = scene.lights()[static_cast<size_t>(x[0].light)];
+  f.pL[0] = scene.lights().pmf(x[0].light) * (light.type() == LightType::Environment
+                                                  ? light.environmentLight()->pdfDirection(-x[0].ng)
+                                                  : light.pdfLe(x[0].p, x[0].ng, Vec3(0, 0, 1)).pdfPosA);
   for (int i = 1; i < n; ++i)
     f.pL[static_cast<size_t>(i)] = oracleDensity(scene, camera, x[static_cast<size_t>(i - 1)],
                                                  i >= 2 ? &x[static_cast<size_t>(i - 2)] : nullptr,
@@ -68,8 +79,12 @@ std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled
                                   double minDistance) {
   const int n = static_cast<int>(f.x.size());
   std::vector<double> p(static_cast<size_t>(n), 0.0), w(static_cast<size_t>(n), 0.0);
-  const bool x0Hittable = !f.x[0].isDeltaPosition && !f.x[0].isInfinite;
-  auto candidate = [&](int sp) { return enabled.contains(sp, n - sp) && (sp != 0 || x0Hittable); };
+  const bool x0Hittable = !f.x[0].isDeltaPosition && !f.x[0].isDeltaDirection;
+  // No lens point connects to the environment: (1, 1) cannot form the path environment -> camera.
+  const bool lensToInfinity = n == 2 && f.x[0].isInfinite;
+  auto candidate = [&](int sp) {
+    return enabled.contains(sp, n - sp) && (sp != 0 || x0Hittable) && !(sp == 1 && lensToInfinity);
+  };
   auto shortEdge = [&](int sp) {
     return sp >= 1 && glm::distance(f.x[static_cast<size_t>(sp - 1)].p, f.x[static_cast<size_t>(sp)].p) < minDistance;
   };
@@ -140,6 +155,25 @@ SceneDesc pointLight() {
   l.position = Vec3(0.2f, 0.5f, -0.1f);
   desc.punctualLights = {l};
   desc.camera = test::lookAt(Vec3(0.1f, 0.2f, 0.3f), Vec3(1.f, -0.3f, -0.5f), Vec3(0, 1, 0), 1.2f);
+  return desc;
+}
+
+// The square emitter's floor with a floating sphere, lit also by an environment map (a sky gradient
+// over a black lower half and a bright patch): light selection between the two, camera paths
+// that escape to it (s = 0), next-event estimation toward it (s = 1) and light subpaths from it.
+SceneDesc environmentAndSquare() {
+  SceneDesc desc = squareEmitter();
+  desc.path = "environment";
+  desc.materials.push_back(lambertian(0.7f));
+  desc.meshes.push_back(test::uvSphere(Vec3(-1.f, 0.6f, 0.f), 0.3f, 2, 16, 8));
+  auto env = std::make_shared<EnvironmentDesc>();
+  env->width = 16;
+  env->height = 8;
+  env->rotationDegrees = 25.f;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 16; ++x)
+      env->texels.push_back(y >= 4 ? Spectrum(0.f) : (x == 5 && y == 1) ? Spectrum(40.f) : Spectrum(0.3f + 0.1f * y));
+  desc.environment = env;
   return desc;
 }
 
@@ -218,6 +252,7 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
 TEST(BptMis, PartitionOfUnityFurnace) { checkPartition(Scene(furnace()), 5, "furnace"); }
 TEST(BptMis, PartitionOfUnitySquareEmitter) { checkPartition(Scene(squareEmitter()), 4, "square"); }
 TEST(BptMis, PartitionOfUnityPointLight) { checkPartition(Scene(pointLight()), 4, "point"); }
+TEST(BptMis, PartitionOfUnityEnvironment) { checkPartition(Scene(environmentAndSquare()), 4, "environment"); }
 TEST(BptMis, PartitionOfUnityCornellBox) {
   checkPartition(Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf")), 5, "cornell");
 }

@@ -3,11 +3,12 @@
 # contain no NaN, and bad input that gives one line naming the problem and a non-zero exit.
 source "$(dirname "$0")/cli_lib.sh"
 
-# Bad scenes: the message names the file.
+# Bad scenes: the message names the file (no-emitter.gltf is bad only without the default light).
 for f in "$SRC"/tests/scenes/bad/*.gltf "$SRC"/tests/scenes/bad/*.glb; do
   [ -e "$f" ] || continue
   case "$(basename "$f")" in degenerate.gltf) continue ;; esac
-  expect_error "bad scene $(basename "$f")" "$(basename "$f")" render "$f" -o "$TMP/x.pfm" --spp 1 --width 8 --height 8
+  expect_error "bad scene $(basename "$f")" "$(basename "$f")" render "$f" -o "$TMP/x.pfm" --spp 1 --width 8 --height 8 \
+    --no-default-light
 done
 expect_error "missing scene" "nope\.gltf" render "$TMP/nope.gltf" -o "$TMP/x.pfm"
 
@@ -95,6 +96,38 @@ done
 "$PATHLAB" render "$BOX" -o "$TMP/box.exr" --spp 1 --width 16 --height 16 2>/dev/null && [ -s "$TMP/box.exr" ] && ok || fail "exr output"
 "$PATHLAB" render "$BOX" -o "$TMP/box.png" --time 0.2 --width 16 --height 16 2>/dev/null && [ -s "$TMP/box.png" ] && ok || fail "png output with --time"
 "$PATHLAB" render --help | grep -q -- "--max-length" && ok || fail "render --help lacks --max-length"
+
+# Lighting: a file without lights renders under the default light with one notice; an environment
+# from a map or a colour; bad environments are one line naming the input.
+NOLIGHT="$SRC/tests/scenes/bad/no-emitter.gltf"
+if "$PATHLAB" render "$NOLIGHT" -o "$TMP/default.pfm" --spp 2 --width 8 --height 8 2>"$TMP/err" >/dev/null \
+  && [ "$(grep -c "uniform white environment" "$TMP/err")" -eq 1 ]; then ok; else fail "default light: $(cat "$TMP/err")"; fi
+for env in "$SRC/assets/sky.hdr" "0.2,0.3,0.4"; do
+  "$PATHLAB" render "$SRC/assets/environment.gltf" -o "$TMP/env.pfm" --spp 1 --width 8 --height 8 --force \
+    --environment "$env" --environment-strength 2 --environment-rotation 30 2>/dev/null && ok || fail "--environment $env"
+done
+"$PATHLAB" render "$BOX" -o "$TMP/box-env.pfm" --spp 1 --width 8 --height 8 --integrator pt --environment 1,1,1 \
+  2>/dev/null && ok || fail "--environment with the scene's own lights"
+printf 'not an image' > "$TMP/broken.exr"
+expect_error "environment missing" "missing\.hdr: no such file" render "$BOX" -o "$TMP/x.pfm" --environment "$TMP/missing.hdr"
+expect_error "environment broken" "broken\.exr: cannot read EXR" render "$BOX" -o "$TMP/x.pfm" --environment "$TMP/broken.exr"
+expect_error "environment not a map" "x\.png: an environment is" render "$BOX" -o "$TMP/x.pfm" --environment "$TMP/x.png"
+expect_error "environment colour" "1,-1,1: an environment colour" render "$BOX" -o "$TMP/x.pfm" --environment 1,-1,1
+expect_error "environment strength alone" "environment-strength.*requires.*environment|environment-strength.*--environment" \
+  render "$BOX" -o "$TMP/x.pfm" --environment-strength 2
+expect_error "no default light" "no light source" render "$NOLIGHT" -o "$TMP/x.pfm" --no-default-light
+expect_error "check: environment missing" "missing\.exr: no such file" check "$BOX" --environment "$TMP/missing.exr"
+expect_error "converge: environment missing" "missing\.exr: no such file" converge "$BOX" -o "$TMP/conv-env" \
+  --environment "$TMP/missing.exr"
+
+# converge caches its reference by scene, settings, budget and environment: another environment
+# renders a new reference instead of reusing one lit differently.
+ENVSCENE="$SRC/tests/scenes/environment.gltf"
+for env in "" "--environment=0.5,0.5,0.5" "--environment=0.5,0.5,0.5"; do
+  "$PATHLAB" converge "$ENVSCENE" -o "$TMP/conv-key" --spp 2 --reference-spp 2 --width 8 --height 8 --force $env \
+    >/dev/null 2>&1 || fail "converge $env"
+done
+[ "$(ls "$TMP/conv-key" | grep -c '^reference-.*\.exr$')" -eq 2 ] && ok || fail "reference keys: $(ls "$TMP/conv-key")"
 
 echo "cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

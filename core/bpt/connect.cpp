@@ -19,7 +19,8 @@ Spectrum emittedOverOriginPdf(const Scene& scene, const PathVertex& x0, const Ve
     case LightType::Spot:
       return light.intensity(w) / pmf;  // position density 1
     case LightType::Directional:
-      return Spectrum(0.f);  // a delta direction is never met by a connection
+    case LightType::Environment:
+      return Spectrum(0.f);  // at infinity: never met by a connection
   }
   return Spectrum(0.f);
 }
@@ -38,8 +39,14 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
   if (s == 0) {
     // The camera subpath found an emitter by itself (Veach's s = 0).
     const PathVertex& pt = cameraPath[t - 1];
-    if (t < 2 || pt.type != VertexType::Surface || pt.light < 0) return false;
+    if (t < 2 || pt.light < 0) return false;
     const Light& light = scene.lights()[static_cast<size_t>(pt.light)];
+    if (pt.type == VertexType::Light) {
+      // The walk escaped to the environment, which it sees in direction -wo.
+      c.L = pt.beta * light.environmentLight()->Le(-pt.wo);
+      return !isBlack(c.L);
+    }
+    if (pt.type != VertexType::Surface) return false;
     c.L = pt.beta * light.radiance(pt.ng, scene.emissionUv(pt.material, pt.uv, pt.uv1), pt.wo);
     return !isBlack(c.L);
   }
@@ -82,8 +89,9 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
   if (s == 1) {
     // Next-event estimation: a fresh light sample instead of the light subpath's x0. The density
     // divided by is pmf x sampleLi's pdf; for every light type pathlab has, that is the same
-    // position density pmf x pdfLe().pdfPosA (uniform on the triangle, or a delta) that the
-    // light subpath uses for x0, so `sampled.pdfFwdA` below is the view misWeight must use.
+    // density the light subpath gives x0: pmf x pdfLe().pdfPosA (uniform on the triangle, or a
+    // delta), at infinity pmf x pdfLe().pdfDirW (the environment's direction density, a
+    // directional light's delta), so `sampled.pdfFwdA` below is the view misWeight must use.
     float pmf = 0.f;
     const float uLight = rng.next1D();
     const Vec2 uPos = rng.next2D();
@@ -110,10 +118,11 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     v.uv = ls.uv;
     v.light = li;
     v.isDeltaPosition = light.isDeltaPosition();
+    v.isDeltaDirection = light.isDeltaDirection();
     v.isInfinite = light.isInfinite();
     v.ng = light.type() == LightType::Area ? ls.nLight : (v.isInfinite ? -ls.wi : Vec3(0.f));
     const EmissionPdf e = light.pdfLe(v.p, v.ng, -ls.wi);
-    v.pdfFwdA = v.isInfinite ? pmf : pmf * e.pdfPosA;
+    v.pdfFwdA = v.isInfinite ? pmf * e.pdfDirW : pmf * e.pdfPosA;
     v.beta = ls.Li / (pmf * ls.pdfW);
     c.hasSampled = true;
     return true;

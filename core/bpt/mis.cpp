@@ -20,12 +20,14 @@ float pdfLightToward(const Scene& scene, const PathVertex& v, const PathVertex& 
   return convertDensity(v.isInfinite ? e.pdfPosA : e.pdfDirW, v, next);
 }
 
-// Density of x0 = v as the origin of a light subpath: pmf x pdfPosA (directional: pmf, sec. above).
+// Density of x0 = v as the origin of a light subpath: pmf x pdfPosA; at infinity pmf x the
+// density of its direction (pbrt-v4 PdfLightOrigin, InfiniteLightDensity): the disk's position
+// density belongs to x1. A directional light's delta direction counts as one.
 float pdfLightOrigin(const Scene& scene, const PathVertex& v) {
   if (v.light < 0) return 0.f;
   const Light& light = scene.lights()[static_cast<size_t>(v.light)];
   const float pmf = scene.lights().pmf(v.light);
-  if (light.isInfinite()) return pmf;
+  if (light.isInfinite()) return pmf * light.pdfLe(v.p, v.ng, v.ng).pdfDirW;
   return pmf * light.pdfLe(v.p, v.ng, Vec3(0.f, 0.f, 1.f)).pdfPosA;
 }
 
@@ -42,7 +44,9 @@ float pdfArea(const Scene& scene, const Camera& camera, const PathVertex& v, con
     case VertexType::Surface: {
       if (!prev) return 0.f;
       const Bsdf bsdf(v.ns, v.ng, evalMaterial(scene.material(v.material), ShadingInputs{v.uv, v.uv1, v.color}, scene.textures()));
-      const float pdfW = bsdf.pdf(glm::normalize(prev->p - v.p), glm::normalize(next.p - v.p), mode);
+      // Toward a light at infinity the direction is -ng exactly; its p is only a far point.
+      auto toward = [&](const PathVertex& w) { return w.isInfinite ? -w.ng : glm::normalize(w.p - v.p); };
+      const float pdfW = bsdf.pdf(toward(*prev), toward(next), mode);
       return convertDensity(pdfW, v, next);
     }
   }
@@ -164,6 +168,7 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
 
   for (int i = 0; i + 1 < n; ++i) d.edgeLength2[static_cast<size_t>(i)] = edgeLength2(vertex(i), vertex(i + 1));
   d.x0CanBeHit = canBeHitAsOrigin(vertex(0));
+  d.x0Infinite = vertex(0).isInfinite;
 }
 
 uint64_t sampleableTechniques(const MisPath& path) {
@@ -180,7 +185,8 @@ uint64_t sampleableTechniques(const MisPath& path) {
   if (canBeHitAsOrigin(vertex(0)) && !previousDelta) bits |= 1;
   for (int sp = 1; sp < n; ++sp) {
     const bool d = delta(sp);
-    if (!previousDelta && !d) bits |= uint64_t{1} << sp;
+    const bool lensToInfinity = sp == 1 && n == 2 && vertex(0).isInfinite;
+    if (!previousDelta && !d && !lensToInfinity) bits |= uint64_t{1} << sp;
     previousDelta = d;
   }
   return bits;

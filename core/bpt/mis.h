@@ -87,12 +87,13 @@ struct PathDensities {
   // |x(i+1) - x(i)|^2 of edge i, the connection edge of technique s' = i + 1; infinite toward a
   // directional light.
   std::vector<float> edgeLength2;
-  bool x0CanBeHit = false;   // x0 is on an area light (technique s = 0 possible)
+  bool x0CanBeHit = false;   // x0 is on an area light or the environment (technique s = 0 possible)
+  bool x0Infinite = false;   // x0 is at infinity: no lens point connects to it (s' = 1, t' = 1)
 };
 // Whether vertex x0 of a path can be found by a camera subpath (technique s = 0 possible): on an
-// area light, not a point, spot or directional one.
+// area light or the environment, not a point, spot or directional one.
 inline bool canBeHitAsOrigin(const PathVertex& x0) {
-  return !x0.isDeltaPosition && !x0.isInfinite && x0.light >= 0 && x0.type != VertexType::Camera;
+  return !x0.isDeltaPosition && !x0.isDeltaDirection && x0.light >= 0 && x0.type != VertexType::Camera;
 }
 PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path);
 // The same into `d`, reusing its storage (no allocation once it has grown to the path length).
@@ -108,6 +109,7 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
 inline bool techniquePossible(const PathDensities& d, int sp) {
   if (sp < 0 || sp >= d.n) return false;  // t' >= 1
   if (sp == 0) return d.x0CanBeHit && !d.delta[0];
+  if (sp == 1 && d.n == 2 && d.x0Infinite) return false;  // light tracing from infinity
   // The connection joins x(s'-1) and x(s'): neither may scatter by a delta lobe.
   return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
 }

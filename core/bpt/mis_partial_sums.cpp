@@ -100,7 +100,9 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
       beyond = power(ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA)) *
                ((usable ? count(t - 2) : 0.0) + cameraSums.sum[static_cast<size_t>(t - 2)]);
     }
-    const bool usable = !e.ptMinus->isDelta;
+    // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
+    // infinity (the path environment -> camera, s = 0, t = 2).
+    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite);
     right = power(ratio(c.ptFromLight, pt.pdfFwdA)) * ((usable ? count(t - 1) : 0.0) + beyond);
   }
   // Veach eq. 10.9 relative to the technique's own (n_s p_s)^beta.

@@ -35,7 +35,11 @@ struct PathVertex {
   float areaToPrev = 0.f;
   bool isDelta = false;          // a delta BSDF lobe was sampled here: cannot be connected
   bool isDeltaPosition = false;  // point / spot light, pinhole: cannot be hit by a ray
-  bool isInfinite = false;       // directional light: densities toward it are planar, not 1/d^2
+  // Directional or environment light, at infinity: the density of the next vertex from it is
+  // planar (the emission disk's), and a density toward it stays in solid angle (pbrt-v4
+  // ConvertDensity). ng is then the direction light travels, p a far point along -ng.
+  bool isInfinite = false;
+  bool isDeltaDirection = false;  // directional light: an escaping camera ray never meets it
 
   bool onSurface() const { return type == VertexType::Surface || (type == VertexType::Light && ng != Vec3(0.f) && !isInfinite); }
 };
@@ -44,20 +48,22 @@ static_assert(std::is_trivially_copyable_v<PathVertex>);
 
 // Solid-angle density at `from` of the direction toward `to` -> area density at `to`
 // (pbrt-v4 Vertex::ConvertDensity): |cos| at the receiving vertex over distance squared; no
-// cosine when the receiver is a camera or punctual light. From a directional light (`from`
+// cosine when the receiver is a camera or punctual light. From a light at infinity (`from`
 // infinite) the given value is already an area density on a plane normal to the light, so only
-// the receiver's cosine applies.
+// the receiver's cosine applies; toward one (`to` infinite) a direction is all there is to sample,
+// and the density stays in solid angle.
 inline float convertDensity(float pdfW, const PathVertex& from, const PathVertex& to) {
   const Vec3 d = to.p - from.p;
   const float dist2 = glm::dot(d, d);
   if (from.isInfinite) return to.onSurface() ? pdfW * absDot(to.ng, glm::normalize(from.ng)) : pdfW;
+  if (to.isInfinite) return pdfW;
   if (!(dist2 > 0.f)) return 0.f;
   float pdf = pdfW / dist2;
   if (to.onSurface()) pdf *= absDot(to.ng, d) / std::sqrt(dist2);
   return pdf;
 }
 
-// |b - a|^2, the squared length of an edge; infinite toward a directional light.
+// |b - a|^2, the squared length of an edge; infinite toward a light at infinity.
 inline float edgeLength2(const PathVertex& a, const PathVertex& b) {
   if (a.isInfinite || b.isInfinite) return std::numeric_limits<float>::infinity();
   const Vec3 e = b.p - a.p;

@@ -8,19 +8,47 @@ namespace pathlab {
 
 namespace {
 
+// A camera ray that leaves the scene ends on the environment (pbrt-v4 RandomWalk's escaped ray):
+// a light vertex at infinity in direction ray.d, far along it from `prev`.
+void setEnvironmentVertex(const Scene& scene, const Ray& ray, const PathVertex& prev, int light, PathVertex& v) {
+  v = PathVertex{};
+  v.type = VertexType::Light;
+  v.light = light;
+  v.isInfinite = true;
+  v.ng = -ray.d;  // the direction light travels
+  v.wo = -ray.d;
+  v.p = prev.p + ray.d * (2.f * scene.bounds().radius);
+}
+
 // pbrt-v4 RandomWalk: extends `path` from its last vertex along `ray`. `pdfFwdW` is the density
-// (solid angle, or planar area from a directional light) with which `ray.d` was chosen. Each new
-// vertex gets pdfFwdA; each sampled direction fills in pdfRevA of the vertex before it.
+// (solid angle, or planar area from a light at infinity) with which `ray.d` was chosen. Each new
+// vertex gets pdfFwdA; each sampled direction fills in pdfRevA of the vertex before it. A camera
+// walk whose ray escapes ends on the environment light, when the scene has one.
 void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, TransportMode mode, Pcg32& rng,
                 const WalkOptions& options, Subpath& path, Counters& counters) {
   const Spectrum betaStart = beta;
   const Bsdf* prevBsdf = nullptr;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
+  const int environment = mode == TransportMode::Radiance ? scene.lights().environment() : -1;
   while (path.count < options.maxVertices) {
     ++counters.rays;
     const std::optional<SurfaceHit> hit = scene.intersect(ray);
-    if (!hit) break;
+    if (!hit && environment < 0) break;
     PathVertex& prev = path[path.count - 1];
     PathVertex& v = path[path.count];
+    if (!hit) {
+      setEnvironmentVertex(scene, ray, prev, environment, v);
+      v.beta = beta;
+      if (prevBsdf) {
+        const BsdfDensities ev = prevBsdf->densities(prev.wo, ray.d);
+        pdfFwdW = ev.pdfFwdW;
+        PathVertex& prevPrev = path[path.count - 2];
+        prevPrev.pdfRevA = convertDensity(ev.pdfRevW, prev, prevPrev);
+      }
+      v.pdfFwdA = convertDensity(pdfFwdW, prev, v);  // a solid angle: v is at infinity
+      v.areaToPrev = convertDensity(1.f, v, prev);
+      ++path.count;
+      break;
+    }
     v = PathVertex{};
     v.type = VertexType::Surface;
     v.p = hit->p;
@@ -139,10 +167,12 @@ int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& opti
   x0.ng = light.type() == LightType::Area || light.isInfinite() ? le.n : Vec3(0.f);
   x0.light = li;
   x0.isDeltaPosition = light.isDeltaPosition();
+  x0.isDeltaDirection = light.isDeltaDirection();
   x0.isInfinite = light.isInfinite();
-  // A directional light's origin is a delta direction (density one, remapped) chosen with the
-  // light; the disk position density moves to x1, in area measure there (pbrt-v4).
-  x0.pdfFwdA = x0.isInfinite ? pmf : pmf * le.pdfPosA;
+  // The origin of a light at infinity is its direction, chosen with the light (a directional
+  // light's is a delta: density one, remapped); the disk position density moves to x1, in area
+  // measure there (pbrt-v4 GenerateLightSubpath).
+  x0.pdfFwdA = x0.isInfinite ? pmf * le.pdfDirW : pmf * le.pdfPosA;
   x0.beta = le.Le / (pmf * le.pdfPosA);
   path.count = 1;
 

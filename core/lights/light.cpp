@@ -1,4 +1,4 @@
-// Emitters: sampling and evaluation of area, point, spot and directional lights (see light.h).
+// Emitters: sampling and evaluation of area, point, spot, directional and environment lights (light.h).
 #include "core/lights/light.h"
 
 #include "core/sampling/warp.h"
@@ -97,6 +97,13 @@ Light Light::directional(const Vec3& direction, const Spectrum& irradiance,
   return l;
 }
 
+Light Light::environment(const EnvironmentLight* environment) {
+  Light l;
+  l.type_ = LightType::Environment;
+  l.environment_ = environment;
+  return l;
+}
+
 LightLiSample Light::sampleLi(const Vec3& ref, Vec2 u) const {
   LightLiSample s;
   switch (type_) {
@@ -147,6 +154,16 @@ LightLiSample Light::sampleLi(const Vec3& ref, Vec2 u) const {
       s.pdfW = 1.f;
       s.isDelta = true;
       s.pLight = ref - n_ * (2.f * bounds_.radius);
+      s.dist = std::numeric_limits<float>::infinity();
+      return s;
+    }
+    case LightType::Environment: {
+      const EnvironmentDirection d = environment_->sampleDirection(u);
+      if (!(d.pdfW > 0.f)) return s;
+      s.wi = d.w;
+      s.pdfW = d.pdfW;
+      s.Li = environment_->Le(d.w);
+      s.pLight = ref + d.w * (2.f * environment_->radius());
       s.dist = std::numeric_limits<float>::infinity();
       return s;
     }
@@ -227,6 +244,17 @@ LightLeSample Light::sampleLe(Vec2 uPos, Vec2 uDir) const {
       s.Le = emission_;
       return s;
     }
+    case LightType::Environment: {
+      // pbrt-v4 ImageInfiniteLight::SampleLe: the direction from the map, the origin on the disk.
+      const EnvironmentDirection d = environment_->sampleDirection(uDir);
+      if (!(d.pdfW > 0.f)) return s;
+      s.ray = Ray{environment_->diskPoint(d.w, uPos), -d.w};
+      s.n = -d.w;
+      s.pdfPosA = environment_->pdfPosition();
+      s.pdfDirW = d.pdfW;
+      s.Le = environment_->Le(d.w);
+      return s;
+    }
   }
   return s;
 }
@@ -256,6 +284,10 @@ EmissionPdf Light::pdfLe(const Vec3& p, const Vec3& n, const Vec3& dir) const {
       // direction is a delta; following pbrt's "remap zero to one", its density is 1.
       e.pdfPosA = 1.f / (kPi * sqr(bounds_.radius));
       e.pdfDirW = 1.f;
+      return e;
+    case LightType::Environment:
+      e.pdfPosA = environment_->pdfPosition();
+      e.pdfDirW = environment_->pdfDirection(-dir);
       return e;
   }
   return e;
@@ -296,6 +328,8 @@ Spectrum Light::power() const {
       return emission_ * static_cast<float>(spotFalloffIntegral(cosInner_, cosOuter_));
     case LightType::Directional:
       return emission_ * (kPi * sqr(bounds_.radius));
+    case LightType::Environment:
+      return environment_->power();
   }
   return Spectrum(0.f);
 }

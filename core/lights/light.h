@@ -1,4 +1,5 @@
-// Emitters: area (one emissive triangle), point, spot and directional (KHR_lights_punctual).
+// Emitters: area (one emissive triangle), point, spot and directional (KHR_lights_punctual), and
+// the environment (environment_light.h), which this class refers to but does not own.
 // Each provides what path tracing and bidirectional path tracing ask of a light:
 //  - sampleLi: a point on the light seen from a reference point, with its solid-angle pdf;
 //  - sampleLe: an emitted ray, position pdf in area measure and direction pdf in solid angle;
@@ -7,6 +8,7 @@
 // Light selection probabilities are the LightSet's business, never included here.
 #pragma once
 
+#include "core/lights/environment_light.h"
 #include "core/math/frame.h"
 #include "core/math/types.h"
 #include "core/math/ray.h"
@@ -14,16 +16,16 @@
 
 namespace pathlab {
 
-enum class LightType { Area, Point, Spot, Directional };
+enum class LightType { Area, Point, Spot, Directional, Environment };
 
 struct LightLiSample {
   Spectrum Li{0.f};      // radiance (area) or intensity / d^2 (point, spot) or irradiance (directional)
   Vec3 wi{0.f};          // from the reference point toward the light
-  Vec3 pLight{0.f};      // the point on the light (far along -direction for directional)
+  Vec3 pLight{0.f};      // the point on the light (far along wi for directional and environment)
   Vec3 nLight{0.f};      // light surface normal (area); zero for punctual lights
   Vec3 pError{0.f};      // error bound of pLight (area lights, interpolationError)
   Vec2 uv{0.f};          // texture coordinates of pLight (area lights)
-  float dist = 0.f;      // distance to pLight (infinity for directional)
+  float dist = 0.f;      // distance to pLight (infinity for directional and environment)
   float pdfW = 0.f;      // solid angle at the reference point; 1 for delta lights
   bool isDelta = false;  // delta in position or direction: cannot be hit by a ray
 };
@@ -33,7 +35,7 @@ struct LightLeSample {
   Ray ray;               // origin on the light, unit direction of travel
   Vec3 pError{0.f};      // error bound of ray.o (area lights, interpolationError)
   Vec2 uv{0.f};          // texture coordinates of ray.o (area lights): where radiance() is read
-  Vec3 n{0.f};           // light surface normal (area); for directional, the direction itself
+  Vec3 n{0.f};           // light surface normal (area); for directional and environment, ray.d
   float pdfPosA = 0.f;   // area measure (1 for a point position)
   float pdfDirW = 0.f;   // solid angle (1 for a delta direction)
 };
@@ -58,12 +60,15 @@ class Light {
                     float innerConeAngle, float outerConeAngle);
   static Light directional(const Vec3& direction, const Spectrum& irradiance,
                            const SceneBounds& bounds);
+  // `environment` must outlive the light (Scene owns both).
+  static Light environment(const EnvironmentLight* environment);
 
   LightType type() const { return type_; }
   bool isDeltaPosition() const { return type_ == LightType::Point || type_ == LightType::Spot; }
   bool isDeltaDirection() const { return type_ == LightType::Directional; }
-  bool isDelta() const { return type_ != LightType::Area; }
-  bool isInfinite() const { return type_ == LightType::Directional; }
+  bool isDelta() const { return type_ != LightType::Area && type_ != LightType::Environment; }
+  bool isInfinite() const { return type_ == LightType::Directional || type_ == LightType::Environment; }
+  const EnvironmentLight* environmentLight() const { return environment_; }
 
   LightLiSample sampleLi(const Vec3& ref, Vec2 u) const;
   // Solid-angle density at `ref` of sampleLi choosing pLight on this area light (0 for delta).
@@ -71,7 +76,8 @@ class Light {
 
   LightLeSample sampleLe(Vec2 uPos, Vec2 uDir) const;
   // For an area light `p` is on the light and `dir` leaves it; for a point or spot light `p` is
-  // ignored; for a directional light `p` is any point on the emitted ray.
+  // ignored; for a directional or environment light `p` is any point on the emitted ray (the
+  // position density is the disk's, the direction density the map's at -dir).
   EmissionPdf pdfLe(const Vec3& p, const Vec3& n, const Vec3& dir) const;
 
   // Radiance leaving an area light at surface point (with uv) in direction `w` (away from the
@@ -98,6 +104,7 @@ class Light {
   const Texture* texture_ = nullptr;
   float cosInner_ = 1.f, cosOuter_ = 0.f;
   SceneBounds bounds_;
+  const EnvironmentLight* environment_ = nullptr;
 };
 
 }  // namespace pathlab

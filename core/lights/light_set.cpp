@@ -10,6 +10,7 @@ LightSet::LightSet(std::vector<Light> lights, std::vector<std::vector<int>> tria
   std::vector<double> weights;
   weights.reserve(lights_.size());
   for (const Light& l : lights_) {
+    if (l.type() == LightType::Environment) environment_ = static_cast<int>(weights.size());
     const double w = luminance(l.power());
     // A light with zero (or non-finite) power is never chosen.
     weights.push_back(std::isfinite(w) && w > 0.0 ? w : 0.0);

@@ -1,5 +1,5 @@
-// All emitters of a scene, chosen in proportion to their power, and the map from emissive
-// triangles to their area lights.
+// All emitters of a scene, chosen in proportion to their power (the environment's over the scene's
+// bounding disk), the map from emissive triangles to their area lights, and the environment's index.
 #pragma once
 
 #include "core/lights/light.h"
@@ -23,6 +23,8 @@ class LightSet {
   // pmf 0 when no light has power.
   int sample(float u, float* pmf, float* uRemapped = nullptr) const;
   float pmf(int light) const { return static_cast<float>(distribution_.pmf(static_cast<size_t>(light))); }
+  // The index of the environment light, -1 without one.
+  int environment() const { return environment_; }
   int lightOfTriangle(uint32_t mesh, uint32_t prim) const {
     return mesh < triangleLight_.size() && prim < triangleLight_[mesh].size()
                ? triangleLight_[mesh][prim] : -1;
@@ -32,6 +34,7 @@ class LightSet {
   std::vector<Light> lights_;
   std::vector<std::vector<int>> triangleLight_;
   Distribution1D distribution_;
+  int environment_ = -1;
 };
 
 }  // namespace pathlab

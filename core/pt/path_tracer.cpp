@@ -32,6 +32,17 @@ Spectrum PathTracer::sampleDirect(const SurfaceHit& hit, const Bsdf& bsdf, const
   return ev.f * ls.Li * (absDot(ls.wi, hit.ns) * weight / pdfLight);
 }
 
+// The environment seen by a ray that left the scene in direction w, weighted against next-event
+// estimation's sampling of the same direction (power heuristic, as for area lights).
+Spectrum PathTracer::environmentSeen(const Vec3& w, bool prevDelta, float prevPdfW) const {
+  const LightSet& lights = scene_.lights();
+  const Light& light = lights[static_cast<size_t>(lights.environment())];
+  const Spectrum Le = light.environmentLight()->Le(w);
+  if (prevDelta || isBlack(Le)) return Le;
+  const float pdfLight = lights.pmf(lights.environment()) * light.environmentLight()->pdfDirection(w);
+  return Le * powerHeuristic(prevPdfW, pdfLight);
+}
+
 Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) const {
   Spectrum L(0.f), beta(1.f);
   Ray ray = cameraRay;
@@ -41,7 +52,10 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) co
   for (int edges = 1;; ++edges) {
     ++counters.rays;
     const std::optional<SurfaceHit> hit = scene_.intersect(ray);
-    if (!hit) break;  // pathlab's scenes have no environment emitter
+    if (!hit) {
+      if (scene_.lights().environment() >= 0) L += beta * environmentSeen(ray.d, prevDelta, prevPdfW);
+      break;
+    }
     const Vec3 wo = -ray.d;
 
     if (hit->light >= 0) {

@@ -24,6 +24,7 @@ class PathTracer {
  private:
   Spectrum sampleDirect(const SurfaceHit& hit, const Bsdf& bsdf, const Vec3& wo, Pcg32& rng,
                         Counters& counters) const;
+  Spectrum environmentSeen(const Vec3& w, bool prevDelta, float prevPdfW) const;
   const Scene& scene_;
   int maxLength_;
   bool russianRoulette_;

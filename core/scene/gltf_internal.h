@@ -1,6 +1,7 @@
 // Internals shared by the glTF loader's source files (gltf_*.cpp); not part of pathlab's interface.
 #pragma once
 
+#include "core/scene/gltf_loader.h"
 #include "core/scene/scene_desc.h"
 
 #include <tiny_gltf.h>
@@ -203,8 +204,14 @@ DroppedTriangles instantiatePrimitive(const LocalPrimitive& local, const glm::dm
                                       const std::string& label, TriangleMesh& out);
 
 // ---- whole-scene checks (gltf_scene_checks.cpp) ---------------------------------------------
-// Throws LoadError when nothing emits (if `requireEmitter`), or when the scene's extent or its lights' total power
-// overflows the floats the renderer computes them in.
+// Throws LoadError when nothing emits (if `requireEmitter`; an environment light counts), or when
+// the scene's extent or its lights' total power overflows the floats the renderer computes them in.
 void checkScene(const SceneDesc& desc, bool requireEmitter);
+// Whether the file's own triangles or punctual lights emit anything.
+bool hasEmitter(const SceneDesc& desc);
+
+// ---- environment light (gltf_environment.cpp) ------------------------------------------------
+// LoadOptions::environment, or the default light for a file without one (a notice in warnings).
+void addEnvironment(const LoadOptions& options, SceneDesc& desc, Warnings& warnings);
 
 }  // namespace pathlab::gltf

@@ -334,6 +334,7 @@ SceneDesc load(const std::string& path, const LoadOptions& options) {
   desc.path = path;
   convertMaterials(model, desc, warnings);
   SceneBuilder(model, desc, warnings).build(visits);
+  addEnvironment(options, desc, warnings);
   checkScene(desc, options.requireEmitter);
   desc.warnings = warnings.take();
   return desc;

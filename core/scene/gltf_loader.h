@@ -6,6 +6,7 @@
 #include "core/scene/scene_desc.h"
 
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -28,6 +29,13 @@ struct LoadOptions {
   // Refuse a scene in which nothing emits ("no light source"). Off: the description of an unlit
   // model, to inspect (tests) or to light otherwise; Scene still refuses to render it.
   bool requireEmitter = true;
+  // An environment light added to the scene (the command line's --environment), lights of the
+  // file or not.
+  std::shared_ptr<const EnvironmentDesc> environment;
+  // A file with no light of its own, and no `environment`, is lit by a uniform white environment
+  // of radiance 1 (as Blender's default world), with a notice among the warnings, instead of being
+  // refused. Off here, on for the command line (--no-default-light turns it off).
+  bool defaultLight = false;
 };
 
 // Problems that still leave a correct render (an unsupported optional extension, a skipped

@@ -11,20 +11,7 @@ namespace {
 
 // A scene that emits nothing renders black whatever the estimator.
 void checkHasEmitter(const SceneDesc& desc) {
-  for (const PunctualLightDesc& light : desc.punctualLights) {
-    if (light.intensity > 0.f && maxComponent(light.color) > 0.f) return;
-  }
-  // Each emissive texture is read once, however many meshes use it.
-  std::vector<int> checked;
-  for (const TriangleMesh& mesh : desc.meshes) {
-    const Material& m = desc.materials[size_t(mesh.material)];
-    if (!m.isEmissive()) continue;
-    const int texture = m.emissiveTexture.texture;
-    if (!m.emissiveTexture.valid()) return;
-    if (std::find(checked.begin(), checked.end(), texture) != checked.end()) continue;
-    checked.push_back(texture);
-    if (maxComponent(Spectrum(desc.textures[size_t(texture)].average())) > 0.f) return;
-  }
+  if (desc.environment || hasEmitter(desc)) return;
   throw LoadError(
       "no light source (no triangle has an emissive material and no "
       "KHR_lights_punctual light is in the scene)");
@@ -91,6 +78,24 @@ void checkEmittedPower(const SceneDesc& desc, const Extent& extent) {
 }
 
 }  // namespace
+
+bool hasEmitter(const SceneDesc& desc) {
+  for (const PunctualLightDesc& light : desc.punctualLights) {
+    if (light.intensity > 0.f && maxComponent(light.color) > 0.f) return true;
+  }
+  // Each emissive texture is read once, however many meshes use it.
+  std::vector<int> checked;
+  for (const TriangleMesh& mesh : desc.meshes) {
+    const Material& m = desc.materials[size_t(mesh.material)];
+    if (!m.isEmissive()) continue;
+    const int texture = m.emissiveTexture.texture;
+    if (!m.emissiveTexture.valid()) return true;
+    if (std::find(checked.begin(), checked.end(), texture) != checked.end()) continue;
+    checked.push_back(texture);
+    if (maxComponent(Spectrum(desc.textures[size_t(texture)].average())) > 0.f) return true;
+  }
+  return false;
+}
 
 void checkScene(const SceneDesc& desc, bool requireEmitter) {
   if (requireEmitter) checkHasEmitter(desc);

@@ -137,6 +137,10 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
         break;
     }
   }
+  if (desc_.environment) {
+    environment_ = std::make_unique<EnvironmentLight>(*desc_.environment, bounds_.center, bounds_.radius);
+    lights.push_back(Light::environment(environment_.get()));
+  }
   bool anyPower = false;
   for (const Light& l : lights) anyPower = anyPower || luminance(l.power()) > 0.f;
   if (!anyPower) throw SceneError(desc_.path + ": the scene has no light source (no emissive material and no KHR_lights_punctual light)");

@@ -17,7 +17,7 @@ namespace pathlab {
 class Scene {
  public:
   // Throws SceneError (naming desc.path) if the scene cannot be rendered: no triangles and no
-  // punctual light, or no emitter at all.
+  // punctual light, or no emitter at all (the environment counts).
   explicit Scene(SceneDesc desc);
   ~Scene();
   Scene(const Scene&) = delete;
@@ -65,6 +65,7 @@ class Scene {
   SceneDesc desc_;
   std::vector<Bsdf> materialLobes_;          // per material, for those without textures
   std::vector<uint8_t> materialUntextured_;  // materialLobes_[i] is valid
+  std::unique_ptr<EnvironmentLight> environment_;  // LightSet's environment light refers to it
   LightSet lights_;
   CameraDesc camera_;
   SceneBounds bounds_;

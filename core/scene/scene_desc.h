@@ -3,8 +3,10 @@
 #pragma once
 
 #include "core/camera/camera_desc.h"
+#include "core/lights/environment_desc.h"
 #include "core/scene/material.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,6 +52,7 @@ struct SceneDesc {
   std::vector<PunctualLightDesc> punctualLights;
   std::optional<CameraDesc> camera;  // none: Scene frames the bounds
   std::vector<std::string> warnings;
+  std::shared_ptr<const EnvironmentDesc> environment;  // none: no environment light
 };
 
 }  // namespace pathlab

@@ -63,6 +63,15 @@ AgreementRun runAgreement(const Scene& scene, const std::vector<EstimatorSpec>& 
   return run;
 }
 
+EstimatorSpec estimatorSpec(const std::string& name, const RenderSettings& base, IntegratorKind kind, MisHeuristic h,
+                            uint64_t seed, int passes) {
+  RenderSettings s = base;
+  s.integrator = kind;
+  s.mis.heuristic = h;
+  s.seed = seed;
+  return {name, s, passes};
+}
+
 uint64_t testSeedBase() {
   const char* env = std::getenv("PATHLAB_TEST_SEED");
   return env ? std::strtoull(env, nullptr, 10) : 0;

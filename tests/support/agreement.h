@@ -47,6 +47,10 @@ AgreementRun runAgreement(const Scene& scene, const std::vector<EstimatorSpec>& 
                           const std::vector<PixelLabels>& labelSets, const std::vector<PairSpec>& pairs,
                           double familyAlpha);
 
+// `base` rendered by another integrator and heuristic with its own seed, for `passes` passes.
+EstimatorSpec estimatorSpec(const std::string& name, const RenderSettings& base, IntegratorKind kind, MisHeuristic h,
+                            uint64_t seed, int passes);
+
 // Base of the fixed seeds of a test: 0, or PATHLAB_TEST_SEED when set (to rerun a test with other
 // seeds and see that its threshold does not depend on one lucky seed).
 uint64_t testSeedBase();

@@ -1,0 +1,28 @@
+// The options that light a scene, shared by render, view, converge and check: --environment
+// FILE.exr|FILE.hdr|R,G,B, --environment-strength, --environment-rotation and --no-default-light.
+#pragma once
+
+#include "core/scene/gltf_loader.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace pathlab::app {
+
+struct EnvironmentOptions {
+  std::string spec;  // empty: none
+  float strength = 1.f;
+  float rotationDegrees = 0.f;
+  bool noDefaultLight = false;
+};
+
+void addEnvironmentOptions(CLI::App* cmd, EnvironmentOptions& options);
+// Reads the environment into load.environment and sets load.defaultLight; throws one line naming
+// the file and the problem (EnvironmentError).
+void finishEnvironmentOptions(const EnvironmentOptions& options, LoadOptions& load);
+// What of `load` lights the scene, as text for a reference image's cache key: empty without an
+// environment, else its size, strength, rotation and an FNV-1a hash of its radiance.
+std::string environmentKeyText(const LoadOptions& load);
+
+}  // namespace pathlab::app

@@ -1,0 +1,91 @@
+// Environment maps from files (EXR, Radiance HDR) and constant environments from "R,G,B".
+#include "core/lights/environment_file.h"
+
+#include "core/film/image_io.h"
+
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace pathlab {
+
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+// "R,G,B" -> the three numbers, or nullopt when the text is not three numbers.
+std::optional<Spectrum> parseColour(const std::string& text) {
+  std::istringstream in(text);
+  Spectrum c;
+  char comma1 = 0, comma2 = 0;
+  if (!(in >> c.r >> comma1 >> c.g >> comma2 >> c.b) || comma1 != ',' || comma2 != ',') return std::nullopt;
+  in >> std::ws;
+  if (!in.eof()) return std::nullopt;
+  return c;
+}
+
+void setTexels(EnvironmentDesc& desc, int width, int height, const float* data, int channels) {
+  desc.width = width;
+  desc.height = height;
+  desc.texels.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+  for (size_t i = 0; i < desc.texels.size(); ++i) {
+    const float* p = data + static_cast<size_t>(channels) * i;
+    const Spectrum c(p[0], p[1], p[2]);
+    if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b))
+      throw EnvironmentError(desc.source + ": texel (" + std::to_string(i % static_cast<size_t>(width)) + ", " +
+                             std::to_string(i / static_cast<size_t>(width)) + ") is not a finite number");
+    desc.texels[i] = glm::max(c, Spectrum(0.f));  // negative radiance emits nothing
+  }
+}
+
+}  // namespace
+
+EnvironmentDesc readEnvironment(const std::string& spec) {
+  EnvironmentDesc desc;
+  desc.source = spec;
+  if (const std::optional<Spectrum> c = parseColour(spec)) {
+    if (!std::isfinite(c->r + c->g + c->b) || glm::any(glm::lessThan(*c, Spectrum(0.f))))
+      throw EnvironmentError(spec + ": an environment colour needs three finite non-negative numbers");
+    desc.constant = *c;
+    return desc;
+  }
+  const std::string ext = lowerExtension(spec);
+  if (ext != ".exr" && ext != ".hdr")
+    throw EnvironmentError(spec + ": an environment is an .exr or .hdr file or a colour R,G,B");
+  if (!std::filesystem::is_regular_file(spec)) throw EnvironmentError(spec + ": no such file");
+  if (ext == ".exr") {
+    Image image;
+    try {
+      image = readImage(spec);
+    } catch (const ImageError& e) {
+      throw EnvironmentError(e.what());
+    }
+    if (image.width <= 0 || image.height <= 0) throw EnvironmentError(spec + ": the image is empty");
+    setTexels(desc, image.width, image.height, image.rgb.data(), 3);
+  } else {
+    int w = 0, h = 0, channels = 0;
+    float* data = stbi_loadf(spec.c_str(), &w, &h, &channels, 3);
+    if (!data) {
+      const char* why = stbi_failure_reason();
+      throw EnvironmentError(spec + ": cannot read the HDR image (" + (why ? why : "unknown error") + ")");
+    }
+    try {
+      setTexels(desc, w, h, data, 3);
+    } catch (...) {
+      stbi_image_free(data);
+      throw;
+    }
+    stbi_image_free(data);
+  }
+  return desc;
+}
+
+}  // namespace pathlab

@@ -1,0 +1,20 @@
+// The environment light a loaded scene gets: the one asked for, or the default light for a file
+// that brings no light of its own (ordinary glTF models: viewers light them with an environment).
+#include "core/scene/gltf_internal.h"
+
+namespace pathlab::gltf {
+
+void addEnvironment(const LoadOptions& options, SceneDesc& desc, Warnings& warnings) {
+  if (options.environment) {
+    desc.environment = options.environment;
+    return;
+  }
+  if (!options.defaultLight || hasEmitter(desc)) return;
+  auto white = std::make_shared<EnvironmentDesc>();
+  white->source = "default light";
+  white->constant = Spectrum(1.f);
+  desc.environment = std::move(white);
+  warnings.add("the file has no light: lit by a uniform white environment of radiance 1 (the default light)");
+}
+
+}  // namespace pathlab::gltf

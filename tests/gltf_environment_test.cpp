@@ -1,0 +1,74 @@
+// The environment a loaded scene gets (LoadOptions): the one asked for, whether or not the file
+// has lights; the default light (a uniform white environment of radiance 1, one notice) for a file
+// with no light of its own; and today's refusal without it.
+#include "core/scene/gltf_loader.h"
+#include "core/scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace pathlab {
+namespace {
+
+const std::string kSource = PATHLAB_SOURCE_DIR;
+const std::string kNoLight = kSource + "/tests/scenes/bad/no-emitter.gltf";
+
+int notices(const SceneDesc& d) {
+  return static_cast<int>(std::count_if(d.warnings.begin(), d.warnings.end(), [](const std::string& w) {
+    return w.find("uniform white environment of radiance 1") != std::string::npos;
+  }));
+}
+
+TEST(GltfEnvironment, DefaultLightForAFileWithoutLights) {
+  LoadOptions options;
+  options.defaultLight = true;
+  const SceneDesc d = loadGltf(kNoLight, options);
+  ASSERT_TRUE(d.environment);
+  EXPECT_TRUE(d.environment->isConstant());
+  EXPECT_EQ(d.environment->constant, Spectrum(1.f));
+  EXPECT_EQ(d.environment->strength, 1.f);
+  EXPECT_EQ(notices(d), 1);
+  const Scene scene{SceneDesc(d)};
+  ASSERT_EQ(scene.lights().size(), 1u);
+  EXPECT_EQ(scene.lights().environment(), 0);
+  EXPECT_EQ(scene.lights()[0].type(), LightType::Environment);
+}
+
+TEST(GltfEnvironment, WithoutTheDefaultLightAFileWithoutLightsIsRefused) {
+  try {
+    loadGltf(kNoLight);
+    FAIL() << "loaded";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("no light source"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GltfEnvironment, TheFilesOwnLightsNeedNoDefault) {
+  LoadOptions options;
+  options.defaultLight = true;
+  const SceneDesc d = loadGltf(kSource + "/assets/cornell-box.gltf", options);
+  EXPECT_FALSE(d.environment);
+  EXPECT_EQ(notices(d), 0);
+}
+
+// An environment asked for lights the scene beside its own lights, with no notice, and is chosen
+// among them by power.
+TEST(GltfEnvironment, AnEnvironmentJoinsTheFilesLights) {
+  LoadOptions options;
+  auto env = std::make_shared<EnvironmentDesc>();
+  env->constant = Spectrum(0.5f);
+  options.environment = env;
+  options.defaultLight = true;
+  const Scene scene(loadGltf(kSource + "/assets/cornell-box.gltf", options));
+  const int e = scene.lights().environment();
+  ASSERT_GE(e, 0);
+  EXPECT_GT(scene.lights().size(), 1u);
+  double total = 0.0;
+  for (size_t i = 0; i < scene.lights().size(); ++i) total += luminance(scene.lights()[i].power());
+  EXPECT_NEAR(scene.lights().pmf(e), luminance(scene.lights()[static_cast<size_t>(e)].power()) / total, 1e-5);
+  EXPECT_EQ(notices(loadGltf(kNoLight, options)), 0);  // the environment asked for is no default
+}
+
+}  // namespace
+}  // namespace pathlab
