@@ -106,13 +106,14 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
   j["cameraEstimate"] = rgb(in.cameraEstimate);
   j["cameraSubpath"] = subpathJson(trace.cameraSubpath);
   j["lightSubpath"] = subpathJson(trace.lightSubpath);
+  const TechniqueSet enabled = enabledTechniques(settings);
   nlohmann::json techniques = nlohmann::json::array();
   for (size_t i = 0; i < trace.records.size(); ++i) {
     const TechniqueResult& r = trace.records[i];
     nlohmann::json t;
     t["s"] = r.s;
     t["t"] = r.t;
-    t["enabled"] = enabledTechniques(settings).contains(r.s, r.t);
+    t["enabled"] = enabled.contains(r.s, r.t);
     t["blocked"] = r.blocked();
     t["contribution"] = rgb(r.unweighted);
     t["weight"] = r.weight;

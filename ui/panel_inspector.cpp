@@ -145,7 +145,7 @@ void drawInspectorSection(PathInspectorState& state, PanelRequests& requests) {
         ImGui::Dummy(ImVec2(barWidth, ImGui::GetTextLineHeight()));
         ImGui::SameLine();
         ImGui::Text("%.3g%s%s", x.pdfA, x.enabled ? "" : " off", x.s == r.s ? "  <" : "");
-        if (ImGui::IsItemHovered() || ImGui::IsItemHovered())
+        if (ImGui::IsItemHovered())
           ImGui::SetTooltip("(%d,%d): p_A %.4g, balance %.4f, power %.4f, uniform %.4f%s", x.s, x.t, x.pdfA, x.balance,
                             x.power, x.uniform, x.connectionEdge < 0 ? ", hits the emitter" : "");
       }

@@ -89,12 +89,14 @@ std::unique_ptr<ProgressiveRenderer> Viewer::makeRenderer(const RenderSettings& 
                                                         compare_.on ? threadsPerSide(threads_) : threads_);
   renderer->setTargetSpp(run_.targetSpp);
   renderer->setThumbnailSide(pyramidImages_.side);
+  renderer->setPassObserver(passObserver(lane));
+  return renderer;
+}
+
+PassObserver Viewer::passObserver(int lane) const {
   // Errors are measured on the render thread after each full pass (no copy of the image, no wait
   // for the UI's refresh); the tracker outlives the renderer through this shared pointer.
-  renderer->setPassObserver([errors = reference_.errors, lane](const PassInfo& info, const Image& mean) {
-    errors->observe(info, mean, lane);
-  });
-  return renderer;
+  return [errors = reference_.errors, lane](const PassInfo& info, const Image& mean) { errors->observe(info, mean, lane); };
 }
 
 void Viewer::syncCompare() {
@@ -168,10 +170,8 @@ void Viewer::swapCompareSides() {
   std::swap(pausedApplied_, b.pausedApplied);
   std::swap(targetApplied_, b.targetApplied);
   std::swap(run_.idleForNoTechnique, b.idle);
-  for (int lane = 0; lane < 2; ++lane)
-    (lane == 0 ? renderer_ : b.renderer)->setPassObserver([errors = reference_.errors, lane](const PassInfo& info, const Image& mean) {
-      errors->observe(info, mean, lane);
-    });
+  renderer_->setPassObserver(passObserver(0));
+  b.renderer->setPassObserver(passObserver(1));
   b.renderer->setTiming(false);
   renderer_->setTiming(timingApplied_);
   renderer_->setThumbnailSide(pyramidImages_.side);

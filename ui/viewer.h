@@ -121,6 +121,8 @@ class Viewer {
   void drawSidePanel(float width, float height, PanelRequests& requests);
   // A renderer for one side (lane 0: A, 1: B) with the viewer's target, observer and thumbnails.
   std::unique_ptr<ProgressiveRenderer> makeRenderer(const RenderSettings& settings, int lane);
+  // The error tracker's observer of the renderer on side `lane` (ErrorTracker::observe).
+  PassObserver passObserver(int lane) const;
   // Starts or ends the comparison when compare_.on changed: both sides restart together, each on
   // half of the threads (the main renderer back on all of them when it ends).
   void syncCompare();
