@@ -13,12 +13,13 @@ const char* kindName(TracedVertexKind k) {
     case TracedVertexKind::Camera: return "camera";
     case TracedVertexKind::Light: return "light";
     case TracedVertexKind::Surface: return "surface";
+    case TracedVertexKind::Medium: return "medium";
   }
   return "surface";
 }
 
 const char* kindName(VertexType t) {
-  return t == VertexType::Camera ? "camera" : t == VertexType::Light ? "light" : "surface";
+  return t == VertexType::Camera ? "camera" : t == VertexType::Light ? "light" : t == VertexType::Medium ? "medium" : "surface";
 }
 
 nlohmann::json vec(Vec3 v) { return {v.x, v.y, v.z}; }

@@ -382,7 +382,7 @@ class GltfBuilder:
     def add_material(self, name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=1.0, *,
                      lambertian=False, glass=False, emission=None, double_sided=False,
                      base_color_texture=None, metallic_roughness_texture=None,
-                     emissive_texture=None):
+                     emissive_texture=None, ior=None, volume=None, scatter=None):
         """emission is the radiance Le (any magnitude): stored as a factor with max component 1
         times KHR_materials_emissive_strength."""
         pbr = {"baseColorFactor": list(base_color) + [1.0]}
@@ -404,7 +404,16 @@ class GltfBuilder:
             ext["KHR_materials_specular"] = {"specularFactor": 0.0}
         if glass:
             ext["KHR_materials_transmission"] = {"transmissionFactor": 1.0}
-            ext["KHR_materials_ior"] = {"ior": 1.5}
+            ext["KHR_materials_ior"] = {"ior": 1.5 if ior is None else ior}
+        if volume is not None:
+            # (attenuationColor, attenuationDistance): a closed mesh bounding a medium.
+            color, distance = volume
+            ext["KHR_materials_volume"] = {"thicknessFactor": 1.0, "attenuationColor": list(color),
+                                           "attenuationDistance": distance}
+        if scatter is not None:
+            # (multiscatterColor, scatterAnisotropy): the KHR_materials_volume_scatter draft.
+            color, g = scatter
+            ext["KHR_materials_volume_scatter"] = {"multiscatterColor": list(color), "scatterAnisotropy": g}
         if ext:
             mat["extensions"] = ext
             self.used.update(ext)
@@ -727,6 +736,46 @@ def caustic():
     return b
 
 
+def fog():
+    """A room filled with thin fog, lit by a spot light shining down through a glass sphere: the
+    beam is visible in the fog, and the sphere focuses it into a volumetric caustic (light ->
+    glass -> glass -> fog -> camera, which no technique with a short light subpath can sample).
+    A block of coloured glass absorbs along its length. The camera stands inside the fog."""
+    b = GltfBuilder()
+    wall = b.add_material("wall", (0.6, 0.6, 0.6), lambertian=True)
+    floor = b.add_material("floor", (0.45, 0.4, 0.35), lambertian=True)
+    glass = b.add_material("glass", (1.0, 1.0, 1.0), roughness=0.0, glass=True)
+    # Fog: sigma_t = -ln(0.82) / 1 m = 0.2 per metre, white (albedo 1), mildly forward scattering;
+    # bounded by an index-matched box (ior 1, smooth, fully transmissive) just inside the walls.
+    fog_boundary = b.add_material("fog", (1.0, 1.0, 1.0), roughness=0.0, glass=True, ior=1.0,
+                                  volume=((0.82, 0.82, 0.82), 1.0),
+                                  scatter=((1.0, 1.0, 1.0), 0.3))
+    # Coloured glass: absorbs red and green over a few centimetres, blue much less.
+    blue_glass = b.add_material("blueGlass", (1.0, 1.0, 1.0), roughness=0.0, glass=True,
+                                volume=((0.2, 0.45, 0.9), 0.1))
+    nodes = []
+
+    def part(name, geom, material):
+        nodes.append(b.add_node(name, b.add_geom(geom, material, name)))
+
+    # Room 3 x 2.5 x 3 m: x, z in [-1.5, 1.5], y in [0, 2.5], faces inward.
+    part("floor", rect((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 1.5, 1.5), floor)
+    part("ceiling", rect((0.0, 2.5, 0.0), (0.0, -1.0, 0.0), 1.5, 1.5), wall)
+    part("walls", merged(*(rect((1.5 * sx, 1.25, 1.5 * sz), (-sx, 0.0, -sz), 1.5, 1.25)
+                           for sx, sz in ((1, 0), (-1, 0), (0, 1), (0, -1)))), wall)
+    part("fogVolume", box((0.0, 1.25, 0.0), (1.49, 1.245, 1.49)), fog_boundary)
+    part("glassSphere", uv_sphere((-0.3, 1.3, -0.2), 0.3), glass)
+    # Volumes nest but must not overlap: the block floats 1 cm up, inside the fog.
+    part("glassBlock", box((0.3, 0.21, -0.55), (0.12, 0.2, 0.12)), blue_glass)
+    # 2.2 m up, straight down onto the sphere: its cone (outer 0.2 rad) is mostly caught by it.
+    spot = b.add_light("spot", "spot", 60.0, (1.0, 0.92, 0.8), inner=0.14, outer=0.2)
+    nodes.append(b.add_node("spot", light=spot, translation=(-0.3, 2.3, -0.2),
+                            rotation=quat_axis_angle((1.0, 0.0, 0.0), -math.pi / 2.0)))
+    nodes.append(b.add_camera_node((0.9, 1.2, 1.4), (-0.25, 0.8, -0.2), 1.0))
+    b.add_scene("fog", nodes)
+    return b
+
+
 def environment_objects(eye, target, yfov, aspect):
     """No light of its own: lit by an environment (the default light, or --environment). A
     Lambertian floor (0.5), a rough gold sphere (metal, roughness 0.3), a glass sphere and a
@@ -1007,6 +1056,7 @@ def main():
     write(ASSETS / "veach-mis.gltf", veach_mis().gltf_bytes())
     write(ASSETS / "bidir-lamp.gltf", bidir_lamp().gltf_bytes())
     write(ASSETS / "caustic.gltf", caustic().gltf_bytes())
+    write(ASSETS / "fog.gltf", fog().gltf_bytes())
     write(ASSETS / "environment.gltf",
           environment_objects((1.2, 1.1, 2.6), (0.0, 0.3, 0.0), 0.75, 1.5).gltf_bytes())
     write(ASSETS / "sky.hdr", sky_hdr())

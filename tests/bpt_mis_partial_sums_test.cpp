@@ -39,7 +39,7 @@ Tally compare(const Scene& scene, const Camera& camera, int maxLength, float lig
   const float minDistance = minConnection * scene.bounds().radius;
   for (int sample = 0; sample < samples; ++sample) {
     const Vec2 pRaster(rng.next1D() * static_cast<float>(camera.width()), rng.next1D() * static_cast<float>(camera.height()));
-    const int nt = generateCameraSubpath(scene, camera, pRaster, rng.next2D(), rng, WalkOptions{maxLength + 1, true}, cp,
+    const int nt = generateCameraSubpath(scene, camera, pRaster, rng.next2D(), rng, WalkOptions{maxLength + 1, true, scene.mediumAt(camera.position())}, cp,
                                          counters);
     const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, true}, lp, counters);
     for (const MisOptions& o : options) {
@@ -89,6 +89,8 @@ TEST(MisPartialSums, EqualTheExplicitWeightsOnTheCornellBox) { checkScene(bundle
 TEST(MisPartialSums, EqualTheExplicitWeightsOnVeachMis) { checkScene(bundled("veach-mis"), "veach-mis", 6); }
 TEST(MisPartialSums, EqualTheExplicitWeightsOnBidirLamp) { checkScene(bundled("bidir-lamp"), "bidir-lamp", 8); }
 TEST(MisPartialSums, EqualTheExplicitWeightsOnCaustic) { checkScene(bundled("caustic"), "caustic", 8); }
+// Medium vertices (issue 16): fog, a glass sphere and absorbing glass, a camera in the fog.
+TEST(MisPartialSums, EqualTheExplicitWeightsInFog) { checkScene(bundled("fog"), "fog", 8); }
 // Delta BSDFs (mirror, glass) with an area light and with a point light, seen by a pinhole.
 TEST(MisPartialSums, EqualTheExplicitWeightsWithDeltaComponents) {
   checkScene(Scene(test::deltaScene(test::DeltaLight::Area)), "delta/area", 7);

@@ -37,6 +37,12 @@ double oracleDensity(const Scene& scene, const Camera& camera, const PathVertex&
   } else if (!from) {  // light origin
     const Light& light = scene.lights()[static_cast<size_t>(at.light)];
     pdfW = light.pdfLe(at.p, at.ng, w).pdfDirW;
+  } else if (at.type == VertexType::Medium) {
+    // Henyey-Greenstein from its definition, the scattering angle's cosine between the direction
+    // light travelled into `at` and the one it leaves in.
+    const Vec3 in = glm::normalize(at.p - from->p);
+    const double g = scene.medium(at.media.inside).g;
+    pdfW = (1.0 - g * g) / (4.0 * 3.14159265358979 * std::pow(1.0 + g * g - 2.0 * g * glm::dot(in, w), 1.5));
   } else {
     const Bsdf bsdf(at.ns, at.ng, evalMaterial(scene.material(at.material), at.uv, scene.textures()));
     pdfW = bsdf.pdf(from->isInfinite ? -from->ng : glm::normalize(from->p - at.p), w, mode);
@@ -189,7 +195,8 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
   int checked = 0, shortExcluded = 0;
   for (int sample = 0; sample < 400; ++sample) {
     const int nt = generateCameraSubpath(scene, camera, Vec2(rng.next1D() * size, rng.next1D() * size), rng.next2D(),
-                                         rng, WalkOptions{maxLength + 1, false}, cp, counters);
+                                         rng, WalkOptions{maxLength + 1, false, scene.mediumAt(camera.position())}, cp,
+                                         counters);
     const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, false}, lp, counters);
     for (int t = 1; t <= nt; ++t)
       for (int s = 0; s <= ns && s + t - 1 <= maxLength; ++s) {
@@ -250,6 +257,10 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
 }
 
 TEST(BptMis, PartitionOfUnityFurnace) { checkPartition(Scene(furnace()), 5, "furnace"); }
+// Medium vertices (issue 16) anywhere on the path: densities in the volume measure, no cosine.
+TEST(BptMis, PartitionOfUnityFoggyFurnace) {
+  checkPartition(Scene(test::foggyFurnace(0.5f, 1.f, 1.5f, 0.4f)), 5, "foggy furnace");
+}
 TEST(BptMis, PartitionOfUnitySquareEmitter) { checkPartition(Scene(squareEmitter()), 4, "square"); }
 TEST(BptMis, PartitionOfUnityPointLight) { checkPartition(Scene(pointLight()), 4, "point"); }
 TEST(BptMis, PartitionOfUnityEnvironment) { checkPartition(Scene(environmentAndSquare()), 4, "environment"); }

@@ -53,6 +53,7 @@ void drawInspectorOverlay(const InspectorOverlay& overlay, const PathInspectorSt
     const float r = 4.f * s;
     if (m.type == VertexType::Light) draw->AddTriangleFilled(ImVec2(p.x, p.y - r), ImVec2(p.x - r, p.y + r), ImVec2(p.x + r, p.y + r), c);
     else if (m.type == VertexType::Camera) draw->AddRectFilled(ImVec2(p.x - r, p.y - r), ImVec2(p.x + r, p.y + r), c);
+    else if (m.type == VertexType::Medium) draw->AddQuadFilled(ImVec2(p.x, p.y - r), ImVec2(p.x + r, p.y), ImVec2(p.x, p.y + r), ImVec2(p.x - r, p.y), c);  // in a medium: a diamond
     else if (m.delta) draw->AddCircle(p, r, c, 0, 2.f * s);  // a delta lobe: hollow (no connection can reach it)
     else draw->AddCircleFilled(p, r, c);
   }

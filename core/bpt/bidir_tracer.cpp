@@ -49,6 +49,7 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
                                                                             : MisEvaluation::Explicit;
   }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
+  cameraMedium_ = scene.mediumAt(camera.position());
   // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
   // with t >= 2 samples its light vertex afresh (next-event estimation).
   auto need = [&](int s, int t) {
@@ -112,7 +113,15 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   }
   if (needsShadowRay(s)) {
     ++counters.shadowRays;
-    if (!unoccluded(scene_, c.shadowRay)) {
+    if (scene_.hasMedia()) {
+      // The connection edge's transmittance through the media it crosses (the seed's T_r).
+      const Spectrum T = transmittance(scene_, c.shadowRay);
+      if (isBlack(T)) {
+        r.outcome = TechniqueOutcome::Blocked;
+        return;
+      }
+      c.L *= T;
+    } else if (!unoccluded(scene_, c.shadowRay)) {
       r.outcome = TechniqueOutcome::Blocked;
       return;
     }
@@ -160,8 +169,8 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
 }
 
 int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, Walks& walks, Counters& counters) const {
-  const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, rng, WalkOptions{vertices, options_.russianRoulette},
-                                       walks.camera, counters);
+  const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, rng,
+                                       WalkOptions{vertices, options_.russianRoulette, cameraMedium_}, walks.camera, counters);
   if (misEvaluation_ == MisEvaluation::PartialSums) accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums);
   return nt;
 }

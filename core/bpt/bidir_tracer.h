@@ -77,6 +77,7 @@ class BidirTracer {
   MisPower misPower_;
   std::vector<float> offWeights_;  // MisEvaluation::Constant: 1 / n_k by length k
   float minConnectionDistance_ = 0.f;
+  int cameraMedium_ = -1;  // the medium the camera is in (Scene::mediumAt), where its walks start
   int cameraVerticesNeeded_ = 1;  // the camera vertex itself is always there
   int lightVerticesNeeded_ = 0;
   bool timing_ = false;

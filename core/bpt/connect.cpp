@@ -2,6 +2,7 @@
 #include "core/bpt/connect.h"
 
 #include "core/bsdf/bsdf.h"
+#include "core/media/phase_function.h"
 
 namespace pathlab {
 
@@ -29,6 +30,22 @@ bool unoccluded(const Scene& scene, const ShadowRay& r) {
   return r.toInfinity ? scene.visibleToInfinity(r.a, r.na, r.ea, r.direction)
                       : scene.visible(r.a, r.na, r.ea, r.b, r.nb, r.eb);
 }
+
+Spectrum transmittance(const Scene& scene, const ShadowRay& r) {
+  return r.toInfinity ? scene.transmittanceToInfinity(r.a, r.na, r.ea, r.direction, r.medium)
+                      : scene.transmittance(r.a, r.na, r.ea, r.b, r.nb, r.eb, r.medium);
+}
+
+namespace {
+
+// The scattering at a medium vertex toward wi, as connect() uses a BSDF evaluation: the phase
+// function is value and density in both directions (it is symmetric), and there is no cosine.
+BsdfEval phaseEval(const Scene& scene, const PathVertex& v, const Vec3& wi) {
+  const float p = phaseHG(v.wo, wi, scene.medium(v.media.inside).g);
+  return BsdfEval{Spectrum(p), p, p};
+}
+
+}  // namespace
 
 bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s, const Subpath& cameraPath,
                     int t, Pcg32& rng, Connection& c) {
@@ -61,14 +78,17 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     if (qs.type == VertexType::Light) {
       L = emittedOverOriginPdf(scene, qs, cs->wi) * (qs.onSurface() ? absDot(qs.ng, cs->wi) : 1.f);
     } else {
-      const BsdfEval ev = lightPath.bsdf(s - 1).eval(qs.wo, cs->wi, TransportMode::Importance);
-      L = qs.beta * ev.f * absDot(cs->wi, qs.ns);
+      const bool medium = qs.type == VertexType::Medium;
+      const BsdfEval ev = medium ? phaseEval(scene, qs, cs->wi)
+                                 : lightPath.bsdf(s - 1).eval(qs.wo, cs->wi, TransportMode::Importance);
+      L = qs.beta * ev.f * (medium ? 1.f : absDot(cs->wi, qs.ns));
       c.pdfs.atLight = true;
       c.pdfs.qsToPt = ev.pdfFwdW;
       c.pdfs.qsToPrev = ev.pdfRevW;
     }
     if (isBlack(L)) return false;
     c.shadowRay.between(qs.p, qs.onSurface() ? qs.ng : Vec3(0.f), qs.pError, cs->pLens, Vec3(0.f), Vec3(0.f));
+    c.shadowRay.medium = mediumToward(qs, cs->wi);
     c.L = L * cs->We / cs->pdfW;
     c.pRaster = cs->pRaster;
     c.pdfs.atLens = true;
@@ -84,7 +104,8 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
   }
 
   const PathVertex& pt = cameraPath[t - 1];
-  if (pt.isDelta || pt.type != VertexType::Surface) return false;
+  const bool ptMedium = pt.type == VertexType::Medium;
+  if (pt.isDelta || (pt.type != VertexType::Surface && !ptMedium)) return false;
 
   if (s == 1) {
     // Next-event estimation: a fresh light sample instead of the light subpath's x0. The density
@@ -100,16 +121,18 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     const Light& light = scene.lights()[static_cast<size_t>(li)];
     const LightLiSample ls = light.sampleLi(pt.p, uPos);
     if (!(ls.pdfW > 0.f) || isBlack(ls.Li)) return false;
-    const BsdfEval ev = cameraPath.bsdf(t - 1).eval(pt.wo, ls.wi, TransportMode::Radiance);
+    const BsdfEval ev = ptMedium ? phaseEval(scene, pt, ls.wi)
+                                 : cameraPath.bsdf(t - 1).eval(pt.wo, ls.wi, TransportMode::Radiance);
     c.pdfs.atCamera = true;
     c.pdfs.ptToQs = ev.pdfFwdW;
     c.pdfs.ptToPrev = ev.pdfRevW;
-    c.L = pt.beta * ev.f * ls.Li * (absDot(ls.wi, pt.ns) / (pmf * ls.pdfW));
+    c.L = pt.beta * ev.f * ls.Li * ((ptMedium ? 1.f : absDot(ls.wi, pt.ns)) / (pmf * ls.pdfW));
     if (isBlack(c.L)) return false;
     if (light.isInfinite())
       c.shadowRay.toward(pt.p, pt.ng, pt.pError, ls.wi);
     else
       c.shadowRay.between(pt.p, pt.ng, pt.pError, ls.pLight, ls.nLight, ls.pError);
+    c.shadowRay.medium = mediumToward(pt, ls.wi);
     PathVertex& v = c.sampled;
     v = PathVertex{};
     v.type = VertexType::Light;
@@ -120,6 +143,7 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     v.isDeltaPosition = light.isDeltaPosition();
     v.isDeltaDirection = light.isDeltaDirection();
     v.isInfinite = light.isInfinite();
+    v.media = scene.lightMedia(li);
     v.ng = light.type() == LightType::Area ? ls.nLight : (v.isInfinite ? -ls.wi : Vec3(0.f));
     const EmissionPdf e = light.pdfLe(v.p, v.ng, -ls.wi);
     v.pdfFwdA = v.isInfinite ? pmf * e.pdfDirW : pmf * e.pdfPosA;
@@ -128,23 +152,26 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     return true;
   }
 
-  // s >= 2, t >= 2: both ends are surface vertices found by the walks.
+  // s >= 2, t >= 2: both ends are surface or medium vertices found by the walks.
   const PathVertex& qs = lightPath[s - 1];
-  if (qs.isDelta || qs.type != VertexType::Surface) return false;
+  const bool qsMedium = qs.type == VertexType::Medium;
+  if (qs.isDelta || (qs.type != VertexType::Surface && !qsMedium)) return false;
   Vec3 d = qs.p - pt.p;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > 0.f)) return false;
   d /= std::sqrt(dist2);
-  const BsdfEval fq = lightPath.bsdf(s - 1).eval(qs.wo, -d, TransportMode::Importance);
+  const BsdfEval fq = qsMedium ? phaseEval(scene, qs, -d) : lightPath.bsdf(s - 1).eval(qs.wo, -d, TransportMode::Importance);
   if (isBlack(fq.f)) return false;
-  const BsdfEval fp = cameraPath.bsdf(t - 1).eval(pt.wo, d, TransportMode::Radiance);
+  const BsdfEval fp = ptMedium ? phaseEval(scene, pt, d) : cameraPath.bsdf(t - 1).eval(pt.wo, d, TransportMode::Radiance);
   if (isBlack(fp.f)) return false;
   c.pdfs = ConnectionPdfs{true, fq.pdfFwdW, fq.pdfRevW, true, fp.pdfFwdW, fp.pdfRevW};
-  // Geometry term with shading normals (pbrt-v4 G), matching the walks' |cos| with ns.
-  const float G = absDot(qs.ns, d) * absDot(pt.ns, d) / dist2;
+  // Geometry term with shading normals (pbrt-v4 G), matching the walks' |cos| with ns; a medium
+  // vertex has no cosine (volume measure).
+  const float G = (qsMedium ? 1.f : absDot(qs.ns, d)) * (ptMedium ? 1.f : absDot(pt.ns, d)) / dist2;
   c.L = qs.beta * fq.f * fp.f * pt.beta * G;
   if (isBlack(c.L)) return false;
   c.shadowRay.between(pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError);
+  c.shadowRay.medium = mediumToward(pt, d);
   return true;
 }
 
@@ -157,7 +184,8 @@ Connection connect(const Scene& scene, const Camera& camera, const Subpath& ligh
   }
   if (needsShadowRay(s)) {
     ++counters.shadowRays;
-    if (!unoccluded(scene, c.shadowRay)) c.L = Spectrum(0.f);
+    if (scene.hasMedia()) c.L *= transmittance(scene, c.shadowRay);
+    else if (!unoccluded(scene, c.shadowRay)) c.L = Spectrum(0.f);
   }
   return c;
 }

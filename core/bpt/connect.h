@@ -33,6 +33,7 @@ struct ShadowRay {
   Vec3 b{0.f}, nb{0.f}, eb{0.f};  // second endpoint (unused toward infinity)
   Vec3 direction{0.f};            // toward the directional light, when toInfinity
   bool toInfinity = false;
+  int medium = -1;                // scenes with media: the medium it leaves a in (set by formConnection)
 
   // Set in place, field by field: assigning a braced temporary made the compiler build it on the
   // stack and copy it in wider pieces than it was written in, a store-forwarding stall per field
@@ -48,6 +49,9 @@ struct ShadowRay {
 };
 // True when nothing lies between the endpoints (one Embree occlusion query).
 bool unoccluded(const Scene& scene, const ShadowRay& ray);
+// Scenes with media: the transmittance between the endpoints through the media and index-matched
+// boundaries on the way, zero when a surface blocks it (Scene::transmittance).
+Spectrum transmittance(const Scene& scene, const ShadowRay& ray);
 
 struct Connection {
   Spectrum L{0.f};     // unweighted contribution if the shadow ray is unoccluded

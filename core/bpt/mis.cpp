@@ -3,6 +3,7 @@
 #include "core/bpt/mis.h"
 
 #include "core/bsdf/bsdf.h"
+#include "core/media/phase_function.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,6 +50,11 @@ float pdfArea(const Scene& scene, const Camera& camera, const PathVertex& v, con
       const float pdfW = bsdf.pdf(toward(*prev), toward(next), mode);
       return convertDensity(pdfW, v, next);
     }
+    case VertexType::Medium: {
+      if (!prev) return 0.f;
+      auto toward = [&](const PathVertex& w) { return w.isInfinite ? -w.ng : glm::normalize(w.p - v.p); };
+      return convertDensity(phaseHG(toward(*prev), toward(next), scene.medium(v.media.inside).g), v, next);
+    }
   }
   return 0.f;
 }
@@ -87,8 +93,9 @@ ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera
   // Density at `next` of scattering at v (from prev): the connection's own evaluation when it
   // made one at v (`known`), else a fresh one.
   const ConnectionPdfs* given = path.pdfs;
-  const bool atLight = given && given->atLight && e.qs && e.qs->type == VertexType::Surface;
-  const bool atCamera = given && given->atCamera && pt.type == VertexType::Surface;
+  auto scatters = [](const PathVertex& v) { return v.type == VertexType::Surface || v.type == VertexType::Medium; };
+  const bool atLight = given && given->atLight && e.qs && scatters(*e.qs);
+  const bool atCamera = given && given->atCamera && scatters(pt);
   auto scatter = [&](const PathVertex& v, const PathVertex* prev, const PathVertex& next, TransportMode mode,
                      bool known, float knownPdfW) {
     return known ? convertDensity(knownPdfW, v, next) : pdfArea(scene, camera, v, prev, next, mode);
@@ -104,9 +111,12 @@ ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera
     // regrouped.
     const Vec3 d = e.qs->p - pt.p;
     const float dist2 = glm::dot(d, d);
-    const float invDist3 = 1.f / (dist2 * std::sqrt(dist2));
-    c.qsFromCamera = given->ptToQs * (absDot(e.qs->ng, d) * invDist3);
-    c.ptFromLight = given->qsToPt * (absDot(pt.ng, d) * invDist3);
+    const float dist = std::sqrt(dist2);
+    const float invDist3 = 1.f / (dist2 * dist);
+    // A medium vertex receives with the volume measure: no cosine (|d| in its place).
+    auto cosine = [&](const PathVertex& v) { return v.type == VertexType::Medium ? dist : absDot(v.ng, d); };
+    c.qsFromCamera = given->ptToQs * (cosine(*e.qs) * invDist3);
+    c.ptFromLight = given->qsToPt * (cosine(pt) * invDist3);
     if (e.qsMinus) c.qsMinusFromCamera = given->qsToPrev * e.qs->areaToPrev;
     if (t >= 3) c.ptMinusFromLight = given->ptToPrev * pt.areaToPrev;
     return c;

@@ -46,7 +46,8 @@ void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, Tr
     out.p.push_back(v.p);
     out.kind.push_back(v.type == VertexType::Camera  ? TracedVertexKind::Camera
                        : v.type == VertexType::Light ? TracedVertexKind::Light
-                                                     : TracedVertexKind::Surface);
+                       : v.type == VertexType::Medium ? TracedVertexKind::Medium
+                                                      : TracedVertexKind::Surface);
     out.delta.push_back(d.delta[static_cast<size_t>(i)]);
     out.deltaPosition.push_back(v.isDeltaPosition ? 1 : 0);
     out.pFromLight.push_back(d.pFromLight[static_cast<size_t>(i)]);

@@ -3,13 +3,16 @@
 #pragma once
 
 #include "core/math/types.h"
+#include "core/math/medium_interface.h"
 
 #include <limits>
 #include <type_traits>
 
 namespace pathlab {
 
-enum class VertexType : uint8_t { Camera, Light, Surface };
+// Medium: a scattering point inside a participating medium (issue 16), integrated with the volume
+// measure: no normal, no cosine in its densities, the phase function as its BSDF.
+enum class VertexType : uint8_t { Camera, Light, Surface, Medium };
 
 struct PathVertex {
   VertexType type = VertexType::Surface;
@@ -22,6 +25,9 @@ struct PathVertex {
   Vec2 uv1{0.f};         // TEXCOORD_1 (surfaces)
   Spectrum color{1.f};   // COLOR_0 (surfaces)
   int material = -1;     // surfaces
+  // Scenes with media: the media either side of a surface (as ng orients them), the medium a
+  // medium vertex, camera or punctual light lies in (both sides the same). mediumToward().
+  MediumInterface media;
   int light = -1;        // light vertices, and surfaces lying on an area light (index in LightSet)
   Spectrum beta{0.f};    // throughput of the subpath up to and including this vertex
   // Density of this vertex when sampled from its own subpath's side (pdfFwdA) and from the other
@@ -45,6 +51,9 @@ struct PathVertex {
 };
 
 static_assert(std::is_trivially_copyable_v<PathVertex>);
+
+// The medium a segment leaving v in direction w travels through (-1: none).
+inline int mediumToward(const PathVertex& v, const Vec3& w) { return v.media.toward(v.ng, w); }
 
 // Solid-angle density at `from` of the direction toward `to` -> area density at `to`
 // (pbrt-v4 Vertex::ConvertDensity): |cos| at the receiving vertex over distance squared; no

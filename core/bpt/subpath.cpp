@@ -2,6 +2,8 @@
 #include "core/bpt/subpath.h"
 
 #include "core/bsdf/bsdf.h"
+#include "core/scene/media_step.h"
+#include "core/media/phase_function.h"
 #include "core/sampling/russian_roulette.h"
 
 namespace pathlab {
@@ -23,23 +25,60 @@ void setEnvironmentVertex(const Scene& scene, const Ray& ray, const PathVertex& 
 // pbrt-v4 RandomWalk: extends `path` from its last vertex along `ray`. `pdfFwdW` is the density
 // (solid angle, or planar area from a light at infinity) with which `ray.d` was chosen. Each new
 // vertex gets pdfFwdA; each sampled direction fills in pdfRevA of the vertex before it. A camera
-// walk whose ray escapes ends on the environment light, when the scene has one.
+// walk whose ray escapes ends on the environment light, when the scene has one. In a scene with
+// media the ray starts in `medium`; the distance to the next vertex is sampled in every medium it
+// crosses (media_step.h), and a scattering point in a medium becomes a Medium vertex whose
+// densities, in the volume measure, have no cosine (convertDensity) and whose direction the phase
+// function samples. The distance sampling's own probabilities stay out of pdfFwdA / pdfRevA, as
+// Russian roulette's do: every technique's density omits the same factors, so the MIS weights
+// remain a partition of unity (pbrt-v3's BDPT does the same).
 void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, TransportMode mode, Pcg32& rng,
-                const WalkOptions& options, Subpath& path, Counters& counters) {
+                const WalkOptions& options, Subpath& path, Counters& counters, int medium) {
   const Spectrum betaStart = beta;
   const Bsdf* prevBsdf = nullptr;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
+  float prevPhaseG = 0.f;          // the anisotropy of the phase function that chose `ray`...
+  bool prevPhase = false;          // ...when a medium vertex did
   const int environment = mode == TransportMode::Radiance ? scene.lights().environment() : -1;
+  const bool media = scene.hasMedia();
+  // Both densities at prev of the direction pair (prev.wo, dir), from the scattering that chose
+  // dir there; false when no scattering at prev did (an origin vertex, or a delta lobe).
+  auto prevDensities = [&](const PathVertex& prev, const Vec3& dir, BsdfDensities& ev) {
+    if (prevBsdf) {
+      ev = prevBsdf->densities(prev.wo, dir);
+      return true;
+    }
+    if (prevPhase) {
+      ev.pdfFwdW = ev.pdfRevW = phaseHG(prev.wo, dir, prevPhaseG);  // symmetric
+      return true;
+    }
+    return false;
+  };
   while (path.count < options.maxVertices) {
-    ++counters.rays;
-    const std::optional<SurfaceHit> hit = scene.intersect(ray);
-    if (!hit && environment < 0) break;
+    std::optional<SurfaceHit> hit;
+    bool inMedium = false;
+    Vec3 mediumPoint(0.f);
+    if (!media) {
+      ++counters.rays;
+      hit = scene.intersect(ray);
+    } else {
+      MediaStep step = traceThroughMedia(scene, ray, medium, rng, counters);
+      beta *= step.weight;
+      if (step.kind == MediaStepKind::Absorbed) break;
+      inMedium = step.kind == MediaStepKind::Medium;
+      mediumPoint = step.p;
+      // The step may have crossed index-matched boundaries: a scattering point lies in the medium
+      // the step ended in, not necessarily the one the ray started in.
+      if (inMedium) medium = step.medium;
+      hit = std::move(step.hit);
+    }
+    if (!hit && !inMedium && environment < 0) break;
     PathVertex& prev = path[path.count - 1];
     PathVertex& v = path[path.count];
-    if (!hit) {
+    if (!hit && !inMedium) {
       setEnvironmentVertex(scene, ray, prev, environment, v);
       v.beta = beta;
-      if (prevBsdf) {
-        const BsdfDensities ev = prevBsdf->densities(prev.wo, ray.d);
+      BsdfDensities ev;
+      if (prevDensities(prev, ray.d, ev)) {
         pdfFwdW = ev.pdfFwdW;
         PathVertex& prevPrev = path[path.count - 2];
         prevPrev.pdfRevA = convertDensity(ev.pdfRevW, prev, prevPrev);
@@ -50,28 +89,35 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       break;
     }
     v = PathVertex{};
-    v.type = VertexType::Surface;
-    v.p = hit->p;
-    v.pError = hit->pError;
-    v.ng = hit->ng;
-    v.ns = hit->ns;
-    v.uv = hit->uv;
-    v.uv1 = hit->uv1;
-    v.color = hit->color;
+    if (inMedium) {
+      v.type = VertexType::Medium;
+      v.p = mediumPoint;
+      v.media = MediumInterface{static_cast<int16_t>(medium), static_cast<int16_t>(medium)};
+    } else {
+      v.type = VertexType::Surface;
+      v.p = hit->p;
+      v.pError = hit->pError;
+      v.ng = hit->ng;
+      v.ns = hit->ns;
+      v.uv = hit->uv;
+      v.uv1 = hit->uv1;
+      v.color = hit->color;
+      v.material = hit->material;
+      v.light = hit->light;
+      v.media = hit->media;
+    }
     // From the stored positions, not the (offset) ray: the densities below are then those of
     // the path the vertices describe, which is what misWeight re-evaluates.
     const Vec3 back = prev.p - v.p;
     v.wo = glm::dot(back, back) > 0.f && !prev.isInfinite ? glm::normalize(back) : -ray.d;
-    v.material = hit->material;
-    v.light = hit->light;
     v.beta = beta;
     const Vec3 dirGeom = -v.wo;
-    if (prevBsdf) {
+    BsdfDensities ev;
+    if (prevDensities(prev, dirGeom, ev)) {
       // Re-evaluate both densities of the sampled scattering at prev along the directions between
       // the stored points (the ray left from an offset origin; near-coincident vertices would
       // otherwise disagree with misWeight's own evaluation). Densities only: the value f of this
       // pair is never used, and computing it cost as much as the densities.
-      const BsdfDensities ev = prevBsdf->densities(prev.wo, dirGeom);
       pdfFwdW = ev.pdfFwdW;
       PathVertex& prevPrev = path[path.count - 2];
       prevPrev.pdfRevA = convertDensity(ev.pdfRevW, prev, prevPrev);
@@ -80,30 +126,47 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     }
     v.pdfFwdA = convertDensity(pdfFwdW, prev, v);
     v.areaToPrev = convertDensity(1.f, v, prev);
-    // Every surface vertex, the last included, gets its BSDF: connect() evaluates it.
-    Bsdf& bsdf = path.bsdfs[static_cast<size_t>(path.count)];
-    bsdf = scene.bsdf(v.material, ShadingInputs{v.uv, v.uv1, v.color}, v.ns, v.ng);
-    ++path.count;
-    if (path.count >= options.maxVertices) break;
 
-    const float uLobe = rng.next1D();
-    const Vec2 uDir = rng.next2D();
-    const std::optional<BsdfSample> bs = bsdf.sample(v.wo, uDir, uLobe, mode);
-    if (!bs || bs->pdfFwdW <= 0.f || isBlack(bs->f)) break;
-    // In Importance mode f is the adjoint BSDF with Veach's shading-normal correction (bsdf.h).
-    beta *= bs->f * (absDot(bs->wi, v.ns) / bs->pdfFwdW);
-    pdfFwdW = bs->pdfFwdW;
-    float pdfRevW = bs->pdfRevW;
-    prevBsdf = nullptr;
-    if (bs->isDelta) {
-      // pbrt: a delta vertex stores zero densities, remapped to one where ratios are formed.
-      v.isDelta = true;
-      pdfFwdW = pdfRevW = 0.f;
+    if (inMedium) {
+      ++path.count;
+      if (path.count >= options.maxVertices) break;
+      // The phase function samples the next direction exactly (value over density one): the
+      // throughput is unchanged; sigma_s T / pdf is already in beta.
+      prevPhaseG = scene.medium(medium).g;
+      const Vec3 wi = samplePhaseHG(v.wo, prevPhaseG, rng.next2D());
+      pdfFwdW = phaseHG(v.wo, wi, prevPhaseG);
+      prevBsdf = nullptr;
+      prevPhase = true;
+      prev.pdfRevA = convertDensity(pdfFwdW, v, prev);
+      ray = Ray{v.p, wi};
     } else {
-      prevBsdf = &bsdf;
+      // Every surface vertex, the last included, gets its BSDF: connect() evaluates it.
+      Bsdf& bsdf = path.bsdfs[static_cast<size_t>(path.count)];
+      bsdf = scene.bsdf(v.material, ShadingInputs{v.uv, v.uv1, v.color}, v.ns, v.ng);
+      ++path.count;
+      if (path.count >= options.maxVertices) break;
+
+      const float uLobe = rng.next1D();
+      const Vec2 uDir = rng.next2D();
+      const std::optional<BsdfSample> bs = bsdf.sample(v.wo, uDir, uLobe, mode);
+      if (!bs || bs->pdfFwdW <= 0.f || isBlack(bs->f)) break;
+      // In Importance mode f is the adjoint BSDF with Veach's shading-normal correction (bsdf.h).
+      beta *= bs->f * (absDot(bs->wi, v.ns) / bs->pdfFwdW);
+      pdfFwdW = bs->pdfFwdW;
+      float pdfRevW = bs->pdfRevW;
+      prevBsdf = nullptr;
+      prevPhase = false;
+      if (bs->isDelta) {
+        // pbrt: a delta vertex stores zero densities, remapped to one where ratios are formed.
+        v.isDelta = true;
+        pdfFwdW = pdfRevW = 0.f;
+      } else {
+        prevBsdf = &bsdf;
+      }
+      prev.pdfRevA = convertDensity(pdfRevW, v, prev);
+      ray = Ray{offsetRayOrigin(v.p, v.pError, v.ng, bs->wi), bs->wi};
+      medium = v.media.toward(v.ng, bs->wi);
     }
-    prev.pdfRevA = convertDensity(pdfRevW, v, prev);
-    ray = Ray{offsetRayOrigin(v.p, v.pError, v.ng, bs->wi), bs->wi};
 
     // Russian roulette as in the path tracer, on the throughput gained since the walk began
     // (a light subpath starts with the emitted power's scale). Unbiased; the MIS densities leave
@@ -135,9 +198,11 @@ int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster
   c.beta = Spectrum(1.f);
   c.pdfFwdA = pdf.pdfPosA;
   c.isDeltaPosition = camera.isPinhole();
+  c.media = MediumInterface{static_cast<int16_t>(options.cameraMedium), static_cast<int16_t>(options.cameraMedium)};
   path.count = 1;
   if (!(pdf.pdfDirW > 0.f)) return path.count;
-  randomWalk(scene, ray, Spectrum(1.f), pdf.pdfDirW, TransportMode::Radiance, rng, options, path, counters);
+  randomWalk(scene, ray, Spectrum(1.f), pdf.pdfDirW, TransportMode::Radiance, rng, options, path, counters,
+             options.cameraMedium);
   return path.count;
 }
 
@@ -169,6 +234,7 @@ int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& opti
   x0.isDeltaPosition = light.isDeltaPosition();
   x0.isDeltaDirection = light.isDeltaDirection();
   x0.isInfinite = light.isInfinite();
+  x0.media = scene.lightMedia(li);
   // The origin of a light at infinity is its direction, chosen with the light (a directional
   // light's is a delta: density one, remapped); the disk position density moves to x1, in area
   // measure there (pbrt-v4 GenerateLightSubpath).
@@ -180,7 +246,8 @@ int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& opti
   const Spectrum beta = le.Le * (cosLight / (pmf * le.pdfPosA * le.pdfDirW));
   const Ray ray{offsetRayOrigin(le.ray.o, le.pError, le.n, le.ray.d), le.ray.d};
   const float pdfW = x0.isInfinite ? le.pdfPosA : le.pdfDirW;
-  randomWalk(scene, ray, beta, pdfW, TransportMode::Importance, rng, options, path, counters);
+  randomWalk(scene, ray, beta, pdfW, TransportMode::Importance, rng, options, path, counters,
+             mediumToward(x0, le.ray.d));
   return path.count;
 }
 

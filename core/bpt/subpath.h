@@ -15,7 +15,8 @@ namespace pathlab {
 
 // A subpath in a buffer whose capacity is set once (per thread), so that generating a sample
 // never allocates. Vertex 0 is the camera (CameraSubpath) or the point on the light (LightSubpath).
-// The BSDF of every surface vertex is kept beside it: the connections and the walk evaluate it
+// The BSDF of every surface vertex is kept beside it (a medium vertex's phase function is its
+// medium's, looked up): the connections and the walk evaluate it
 // again, and building it (material and texture lookups, frame) is a large part of a sample's cost.
 struct Subpath {
   std::vector<PathVertex> vertices;
@@ -39,6 +40,7 @@ struct LightSubpath : Subpath {};
 struct WalkOptions {
   int maxVertices = 0;         // camera subpath: maxLength + 1; light subpath: maxLength
   bool russianRoulette = true;  // the path tracer's rule (russian_roulette.h), on the walk's own throughput
+  int cameraMedium = -1;        // camera walks: the medium the camera is in (Scene::mediumAt)
 };
 
 // The camera subpath through film position pRaster (pixels). Returns the number of vertices.

@@ -37,7 +37,7 @@ struct TechniqueOnPath {
 // area density of each vertex sampled from either side (PathDensities, mis.h), so every
 // technique's p_{s',t'} = prod_{i<s'} pFromLight[i] * prod_{i>=s'} pFromCamera[i] (a delta
 // vertex's density counts one) can be recomputed from it.
-enum class TracedVertexKind : uint8_t { Camera, Light, Surface };
+enum class TracedVertexKind : uint8_t { Camera, Light, Surface, Medium };
 struct TracedPath {
   std::vector<Vec3> p;
   std::vector<TracedVertexKind> kind;

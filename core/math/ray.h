@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/math/types.h"
+#include "core/math/medium_interface.h"
 
 #include <bit>
 #include <cstdint>
@@ -27,6 +28,10 @@ struct SurfaceHit {
   int material = 0;
   int light = -1;          // index into the scene's LightSet when the triangle emits
   Vec3 pError{0.f};        // bound on |p - exact point| per component (interpolationError)
+  // Scenes with media only (Scene::hasMedia): the media on either side of the triangle, and
+  // whether it is an index-matched boundary rays pass through (core/scene/scene_media.h).
+  MediumInterface media;
+  bool indexMatched = false;
 };
 
 // Conservative bound on the rounding error of p = b0 p0 + b1 p1 + b2 p2 per component: pbrt-v4's

@@ -1,6 +1,11 @@
-// Path tracing with next-event estimation and MIS; path length counted in edges.
+// Path tracing with next-event estimation and MIS; path length counted in edges. In scenes with
+// media, the distance to the next vertex is sampled in every medium (core/scene/media_step.h), a
+// scattering point in a medium is a vertex with the phase function as its BSDF, and every shadow
+// ray carries the transmittance of the media it crosses.
 #include "core/pt/path_tracer.h"
 
+#include "core/scene/media_step.h"
+#include "core/media/phase_function.h"
 #include "core/sampling/mis.h"
 #include "core/sampling/russian_roulette.h"
 
@@ -9,27 +14,76 @@ namespace pathlab {
 PathTracer::PathTracer(const Scene& scene, const PathTracerOptions& options)
     : scene_(scene), maxLength_(options.maxLength), russianRoulette_(options.russianRoulette) {}
 
+namespace {
+
+struct LightChoice {
+  const Light* light = nullptr;
+  float pmf = 0.f;
+  LightLiSample ls;
+};
+
+// A light chosen in proportion to power and a point on it, seen from p.
+std::optional<LightChoice> chooseLight(const Scene& scene, const Vec3& p, Pcg32& rng) {
+  const LightSet& lights = scene.lights();
+  LightChoice c;
+  const float uLight = rng.next1D();
+  const Vec2 uPos = rng.next2D();
+  const int li = lights.sample(uLight, &c.pmf);
+  if (li < 0 || c.pmf <= 0.f) return std::nullopt;
+  c.light = &lights[static_cast<size_t>(li)];
+  c.ls = c.light->sampleLi(p, uPos);
+  if (c.ls.pdfW <= 0.f || isBlack(c.ls.Li)) return std::nullopt;
+  return c;
+}
+
+// The transmittance of the shadow ray from (p, n, e), leaving in medium `medium`, to the light
+// sample: 0 or 1 without media.
+Spectrum shadowTransmittance(const Scene& scene, const LightChoice& c, const Vec3& p, const Vec3& n, const Vec3& e,
+                             int medium) {
+  const LightLiSample& ls = c.ls;
+  if (scene.hasMedia())
+    return c.light->isInfinite() ? scene.transmittanceToInfinity(p, n, e, ls.wi, medium)
+                                 : scene.transmittance(p, n, e, ls.pLight, ls.nLight, ls.pError, medium);
+  const bool unblocked = c.light->isInfinite() ? scene.visibleToInfinity(p, n, e, ls.wi)
+                                               : scene.visible(p, n, e, ls.pLight, ls.nLight, ls.pError);
+  return Spectrum(unblocked ? 1.f : 0.f);
+}
+
+}  // namespace
+
 // One light sample for the vertex `hit`: the (s = 1) connection of the path tracer. Weighted
 // against BSDF sampling of the same path with the power heuristic.
 Spectrum PathTracer::sampleDirect(const SurfaceHit& hit, const Bsdf& bsdf, const Vec3& wo,
                                   Pcg32& rng, Counters& counters) const {
-  const LightSet& lights = scene_.lights();
-  float lightPmf = 0.f, uLight = rng.next1D();
-  const Vec2 uPos = rng.next2D();
-  const int li = lights.sample(uLight, &lightPmf);
-  if (li < 0 || lightPmf <= 0.f) return Spectrum(0.f);
-  const Light& light = lights[static_cast<size_t>(li)];
-  const LightLiSample ls = light.sampleLi(hit.p, uPos);
-  if (ls.pdfW <= 0.f || isBlack(ls.Li)) return Spectrum(0.f);
+  const std::optional<LightChoice> c = chooseLight(scene_, hit.p, rng);
+  if (!c) return Spectrum(0.f);
+  const LightLiSample& ls = c->ls;
   const BsdfEval ev = bsdf.eval(wo, ls.wi, TransportMode::Radiance);
   if (isBlack(ev.f)) return Spectrum(0.f);
   ++counters.shadowRays;
-  const bool unblocked = light.isInfinite() ? scene_.visibleToInfinity(hit.p, hit.ng, hit.pError, ls.wi)
-                                            : scene_.visible(hit.p, hit.ng, hit.pError, ls.pLight, ls.nLight, ls.pError);
-  if (!unblocked) return Spectrum(0.f);
-  const float pdfLight = lightPmf * ls.pdfW;
+  const Spectrum T = shadowTransmittance(scene_, *c, hit.p, hit.ng, hit.pError, hit.media.toward(hit.ng, ls.wi));
+  if (isBlack(T)) return Spectrum(0.f);
+  const float pdfLight = c->pmf * ls.pdfW;
   const float weight = ls.isDelta ? 1.f : powerHeuristic(pdfLight, ev.pdfFwdW);
-  return ev.f * ls.Li * (absDot(ls.wi, hit.ns) * weight / pdfLight);
+  return T * ev.f * ls.Li * (absDot(ls.wi, hit.ns) * weight / pdfLight);
+}
+
+// Next-event estimation from a point in a medium: the phase function is both the "BSDF" and the
+// density phase sampling would give the direction. The MIS densities leave out the distance
+// sampling's probabilities on both sides, as they leave out Russian roulette: the weights stay a
+// partition of unity (pbrt-v3's VolPathIntegrator does the same).
+Spectrum PathTracer::sampleDirectInMedium(const Vec3& p, int medium, const Vec3& wo, Pcg32& rng,
+                                          Counters& counters) const {
+  const std::optional<LightChoice> c = chooseLight(scene_, p, rng);
+  if (!c) return Spectrum(0.f);
+  const LightLiSample& ls = c->ls;
+  const float phase = phaseHG(wo, ls.wi, scene_.medium(medium).g);
+  ++counters.shadowRays;
+  const Spectrum T = shadowTransmittance(scene_, *c, p, Vec3(0.f), Vec3(0.f), medium);
+  if (isBlack(T)) return Spectrum(0.f);
+  const float pdfLight = c->pmf * ls.pdfW;
+  const float weight = ls.isDelta ? 1.f : powerHeuristic(pdfLight, phase);
+  return T * ls.Li * (phase * weight / pdfLight);
 }
 
 // The environment seen by a ray that left the scene in direction w, weighted against next-event
@@ -43,15 +97,52 @@ Spectrum PathTracer::environmentSeen(const Vec3& w, bool prevDelta, float prevPd
   return Le * powerHeuristic(prevPdfW, pdfLight);
 }
 
-Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) const {
+Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, int medium) const {
   Spectrum L(0.f), beta(1.f);
   Ray ray = cameraRay;
   bool prevDelta = true;  // the camera vertex: emitters seen directly get weight one
   float prevPdfW = 0.f;
   Vec3 prevP = ray.o;
+  const bool media = scene_.hasMedia();
+  // Russian roulette on the throughput (unbiased: survivors are reweighted by 1/q). The survival
+  // probability is not capped below one: with a cap of 0.95, paths of the mean length
+  // 1 / (1 - albedo) = 1000 of an albedo-0.999 furnace survive with probability 0.95^1000, and
+  // the estimate, unbiased in theory, is wrong for any practical sample count.
+  auto survivesRoulette = [&](int edges) {
+    if (!russianRoulette_ || edges < kRussianRouletteStart) return true;
+    const float q = glm::min(maxComponent(beta), 1.f);
+    if (!(q > 0.f) || rng.next1D() >= q) return false;
+    beta /= q;
+    return true;
+  };
   for (int edges = 1;; ++edges) {
-    ++counters.rays;
-    const std::optional<SurfaceHit> hit = scene_.intersect(ray);
+    std::optional<SurfaceHit> hit;
+    if (!media) {
+      ++counters.rays;
+      hit = scene_.intersect(ray);
+    } else {
+      MediaStep step = traceThroughMedia(scene_, ray, medium, rng, counters);
+      beta *= step.weight;
+      if (step.kind == MediaStepKind::Absorbed) break;
+      if (step.kind == MediaStepKind::Medium) {
+        // A scattering point: NEE, then the phase function samples the next direction. Its value
+        // over its density is one, so the throughput is unchanged (sigma_s T / pdf is in weight).
+        if (edges >= maxLength_) break;
+        // The step may have crossed index-matched boundaries into another medium.
+        medium = step.medium;
+        const Vec3 wo = -ray.d;
+        L += beta * sampleDirectInMedium(step.p, medium, wo, rng, counters);
+        const float g = scene_.medium(step.medium).g;
+        const Vec3 wi = samplePhaseHG(wo, g, rng.next2D());
+        prevDelta = false;
+        prevPdfW = phaseHG(wo, wi, g);
+        prevP = step.p;
+        ray = Ray{step.p, wi};
+        if (!survivesRoulette(edges)) break;
+        continue;
+      }
+      hit = std::move(step.hit);  // empty when the ray escaped
+    }
     if (!hit) {
       if (scene_.lights().environment() >= 0) L += beta * environmentSeen(ray.d, prevDelta, prevPdfW);
       break;
@@ -84,16 +175,9 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) co
     prevPdfW = bs->pdfFwdW;
     prevP = hit->p;
     ray = Ray{offsetRayOrigin(hit->p, hit->pError, hit->ng, bs->wi), bs->wi};
+    medium = hit->media.toward(hit->ng, bs->wi);
 
-    // Russian roulette on the throughput (unbiased: survivors are reweighted by 1/q). The survival
-    // probability is not capped below one: with a cap of 0.95, paths of the mean length
-    // 1 / (1 - albedo) = 1000 of an albedo-0.999 furnace survive with probability 0.95^1000, and
-    // the estimate, unbiased in theory, is wrong for any practical sample count.
-    if (russianRoulette_ && edges >= kRussianRouletteStart) {
-      const float q = glm::min(maxComponent(beta), 1.f);
-      if (!(q > 0.f) || rng.next1D() >= q) break;
-      beta /= q;
-    }
+    if (!survivesRoulette(edges)) break;
   }
   return L;
 }

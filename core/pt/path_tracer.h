@@ -18,12 +18,15 @@ struct PathTracerOptions {
 class PathTracer {
  public:
   PathTracer(const Scene& scene, const PathTracerOptions& options);
-  // Radiance arriving along a camera ray (the estimate of one camera sample, unfiltered).
-  Spectrum Li(const Ray& cameraRay, Pcg32& rng, Counters& counters) const;
+  // Radiance arriving along a camera ray (the estimate of one camera sample, unfiltered) whose
+  // origin lies in `medium` (Scene::mediumAt of the camera; -1: none).
+  Spectrum Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, int medium = -1) const;
 
  private:
   Spectrum sampleDirect(const SurfaceHit& hit, const Bsdf& bsdf, const Vec3& wo, Pcg32& rng,
                         Counters& counters) const;
+  // The same at a scattering point p in medium `medium` (phase function, no cosine).
+  Spectrum sampleDirectInMedium(const Vec3& p, int medium, const Vec3& wo, Pcg32& rng, Counters& counters) const;
   Spectrum environmentSeen(const Vec3& w, bool prevDelta, float prevPdfW) const;
   const Scene& scene_;
   int maxLength_;

@@ -45,6 +45,7 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
       schedule_(validated(schedule)),
       camera_(settings.camera.value_or(scene.cameraDesc()), settings.width, settings.height, settings.lens),
       pathTracer_(scene, pathTracerOptions(settings)),
+      cameraMedium_(scene.mediumAt(camera_.position())),
       film_(settings.width, settings.height) {
   if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
   const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
@@ -101,7 +102,7 @@ Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTarget
     return bidirTracer_->sample(pRaster, uLens, rng, lightRng, targets, counters);
   }
   const Ray ray = camera_.generateRay(pRaster, uLens);
-  return pathTracer_.Li(ray, rng, counters);
+  return pathTracer_.Li(ray, rng, counters, cameraMedium_);
 }
 
 bool RenderSession::renderPass(const std::atomic<bool>* cancel) {

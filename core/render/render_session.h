@@ -81,6 +81,7 @@ class RenderSession {
   PassSchedule schedule_;
   Camera camera_;
   PathTracer pathTracer_;
+  int cameraMedium_ = -1;  // the medium the camera is in (Scene::mediumAt), for the path tracer
   std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt and Lt
 
   Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;

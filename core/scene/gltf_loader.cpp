@@ -23,7 +23,7 @@ namespace {
 const std::set<std::string> kSupportedExtensions = {
     "KHR_lights_punctual",    "KHR_materials_emissive_strength", "KHR_materials_ior",
     "KHR_materials_specular", "KHR_materials_transmission",      "KHR_mesh_quantization",
-    "KHR_texture_transform"};
+    "KHR_texture_transform",  "KHR_materials_volume",            "KHR_materials_volume_scatter"};
 
 void checkExtensions(const tinygltf::Model& model, Warnings& warnings) {
   std::string unsupported;

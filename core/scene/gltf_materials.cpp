@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -37,6 +38,39 @@ class MaterialReader {
       : model_(model), desc_(desc), warnings_(warnings) {}
 
   Material convert(int index);
+
+ private:
+  // KHR_materials_volume and the KHR_materials_volume_scatter draft (glTF PR 2453): the medium a
+  // closed transmissive mesh bounds. thicknessFactor 0 is glTF's thin-walled surface (no medium);
+  // any other thickness is only a rasteriser's estimate, so pathlab uses the geometry instead and
+  // ignores thicknessTexture.
+  void readVolume(const tinygltf::Material& g, Material& m) {
+    const tinygltf::Value* e = findExtension(g.extensions, "KHR_materials_volume");
+    const tinygltf::Value* scatter = findExtension(g.extensions, "KHR_materials_volume_scatter");
+    if (!e) {
+      if (scatter) warnings_.add(label_, "KHR_materials_volume_scatter without KHR_materials_volume is ignored");
+      return;
+    }
+    if (!(number(*e, "thicknessFactor", 0.f) > 0.f)) return;
+    VolumeDesc v;
+    v.attenuationColor = glm::clamp(vec3(*e, "attenuationColor", Vec3(1.f)), Vec3(0.f), Vec3(1.f));
+    v.attenuationDistance = number(*e, "attenuationDistance", std::numeric_limits<float>::infinity());
+    if (!(v.attenuationDistance > 0.f)) {
+      warnings_.add(label_, "KHR_materials_volume attenuationDistance " + formatNumber(v.attenuationDistance) +
+                    " is not positive; no attenuation used");
+      v.attenuationDistance = std::numeric_limits<float>::infinity();
+    }
+    if (scatter) {
+      v.scatters = true;
+      v.multiscatterColor = glm::clamp(vec3(*scatter, "multiscatterColor", Vec3(0.f)), Vec3(0.f), Vec3(1.f));
+      v.anisotropy = std::clamp(number(*scatter, "scatterAnisotropy", 0.f), -1.f, 1.f);
+      if (scatter->Has("multiscatterColorTexture"))
+        warnings_.add(label_, "KHR_materials_volume_scatter texture is not supported; factor used");
+    }
+    if (m.transmissionFactor <= 0.f)
+      warnings_.add(label_, "KHR_materials_volume without transmission bounds no medium (the surface is opaque)");
+    m.volume = v;
+  }
 
  private:
   float finite(double v, const std::string& what) const {
@@ -306,6 +340,7 @@ Material MaterialReader::convert(int index) {
       warnings_.add(label_, "KHR_materials_transmission texture is not supported; factor used");
     }
   }
+  readVolume(g, m);
   return m;
 }
 

@@ -3,8 +3,10 @@
 #pragma once
 
 #include "core/bsdf/bsdf.h"
+#include "core/media/medium.h"
 #include "core/texture/texture.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +48,9 @@ struct Material {
   float specularFactor = 1.f;          // KHR_materials_specular
   Spectrum specularColorFactor{1.f};
   float transmissionFactor = 0.f;      // KHR_materials_transmission
+  // KHR_materials_volume with thicknessFactor > 0 (and _volume_scatter): with transmission, the
+  // closed mesh bounds a homogeneous medium (core/media). Thickness 0 is glTF's thin-walled case.
+  std::optional<VolumeDesc> volume;
   bool doubleSided = false;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
@@ -54,6 +59,14 @@ struct Material {
 
   // Whether rays must ask the material whether they meet the surface (alpha < 1 somewhere).
   bool hasAlphaTest() const { return alphaMode != AlphaMode::Opaque; }
+
+  // An index-matched interface: fully transmissive, ior 1, smooth, not metallic, untextured. Rays
+  // pass straight through it; in a scene with media it is never a path vertex (only the medium
+  // changes), elsewhere it is the delta glass it describes.
+  bool isIndexMatched() const {
+    return transmissionFactor >= 1.f && ior == 1.f && roughnessFactor == 0.f && metallicFactor == 0.f &&
+           !metallicRoughnessTexture.valid() && !isEmissive() && alphaMode == AlphaMode::Opaque;
+  }
 
   bool isEmissive() const {
     return emissiveStrength > 0.f && maxComponent(emissiveFactor) > 0.f;

@@ -66,7 +66,8 @@ RTCScene buildBvh(RTCDevice device, const std::vector<TriangleMesh>& meshes,
 
 }  // namespace
 
-Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<EmbreeState>()) {
+Scene::Scene(SceneDesc desc)
+    : desc_(std::move(desc)), media_(desc_), embree_(std::make_unique<EmbreeState>()) {
   // evalMaterial reads only the base colour and metallic-roughness textures; without them the
   // MaterialPoint, and so the BSDF's lobes, are the same at every point (Scene::bsdf).
   for (const Material& m : desc_.materials) {
@@ -99,6 +100,7 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
   // radiance is zero wherever it is hit, so leaving it out of the light set (hit.light = -1)
   // changes no estimate, and the power-proportional choice never wastes a sample on it.
   std::vector<Light> lights;
+  std::vector<MediumInterface> lightMedia;  // per light, filled only with media
   std::vector<std::vector<int>> triangleLight(desc_.meshes.size());
   for (size_t m = 0; m < desc_.meshes.size(); ++m) {
     const TriangleMesh& mesh = desc_.meshes[m];
@@ -123,6 +125,7 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
       if (!(maxComponent(light.power()) > 0.f)) continue;
       triangleLight[m][t] = static_cast<int>(lights.size());
       lights.push_back(light);
+      if (hasMedia()) lightMedia.push_back(media_.mesh(m));
     }
   }
   for (const PunctualLightDesc& l : desc_.punctualLights) {
@@ -137,10 +140,18 @@ Scene::Scene(SceneDesc desc) : desc_(std::move(desc)), embree_(std::make_unique<
         break;
     }
   }
+  if (hasMedia())
+    for (const PunctualLightDesc& l : desc_.punctualLights) {
+      // A light at infinity starts its subpaths outside every (bounded) volume.
+      const int16_t m = static_cast<int16_t>(l.type == PunctualLightType::Directional ? -1 : mediumAt(l.position));
+      lightMedia.push_back(MediumInterface{m, m});
+    }
   if (desc_.environment) {
     environment_ = std::make_unique<EnvironmentLight>(*desc_.environment, bounds_.center, bounds_.radius);
     lights.push_back(Light::environment(environment_.get()));
+    if (hasMedia()) lightMedia.push_back(MediumInterface{});
   }
+  lightMedia_ = std::move(lightMedia);
   bool anyPower = false;
   for (const Light& l : lights) anyPower = anyPower || luminance(l.power()) > 0.f;
   if (!anyPower) throw SceneError(desc_.path + ": the scene has no light source (no emissive material and no KHR_lights_punctual light)");
@@ -251,6 +262,10 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   hit.primId = rh.hit.primID;
   hit.material = mesh.material;
   hit.light = lights_.lightOfTriangle(hit.meshId, hit.primId);
+  if (hasMedia()) {
+    hit.media = media_.mesh(hit.meshId);
+    hit.indexMatched = media_.indexMatched(hit.meshId);
+  }
   return hit;
 }
 
@@ -283,6 +298,42 @@ bool Scene::visible(const Vec3& a, const Vec3& na, const Vec3& ea, const Vec3& b
 
 bool Scene::visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& e, const Vec3& dir) const {
   return !occluded(embree_->scene, offsetRayOrigin(p, e, n, dir), dir, std::numeric_limits<float>::infinity());
+}
+
+namespace {
+// More crossings than any sensible nesting of volumes: a segment grazing along a boundary's
+// triangles ends as blocked rather than looping.
+constexpr int kMaxBoundaryCrossings = 64;
+}  // namespace
+
+Spectrum Scene::transmittance(const Vec3& a, const Vec3& na, const Vec3& ea, const Vec3& b, const Vec3& nb,
+                              const Vec3& eb, int medium) const {
+  const Vec3 o = offsetRayOrigin(a, ea, na, b - a);
+  const Vec3 ob = offsetRayOrigin(b, eb, nb, a - b);
+  const Vec3 d = ob - o;
+  const float length = glm::length(d);
+  if (!(length > 0.f)) return Spectrum(1.f);
+  return transmittanceAlong(o, d / length, &ob, medium);
+}
+
+Spectrum Scene::transmittanceToInfinity(const Vec3& p, const Vec3& n, const Vec3& e, const Vec3& dir, int medium) const {
+  return transmittanceAlong(offsetRayOrigin(p, e, n, dir), dir, nullptr, medium);
+}
+
+Spectrum Scene::transmittanceAlong(Vec3 o, const Vec3& dir, const Vec3* end, int medium) const {
+  Spectrum T(1.f);
+  for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
+    const float distance = end ? glm::length(*end - o) : std::numeric_limits<float>::infinity();
+    // As in `visible`: no promise about hits exactly at the far end.
+    const std::optional<SurfaceHit> hit = intersect(Ray{o, dir, end ? distance * (1.f - 1e-4f) : distance});
+    if (!hit) return medium >= 0 ? T * media_[medium].transmittance(distance) : T;
+    if (!hit->indexMatched) return Spectrum(0.f);
+    if (medium >= 0) T *= media_[medium].transmittance(hit->t);
+    if (isBlack(T)) return T;
+    medium = hit->media.toward(hit->ng, dir);
+    o = offsetRayOrigin(hit->p, hit->pError, hit->ng, dir);
+  }
+  return Spectrum(0.f);
 }
 
 }  // namespace pathlab

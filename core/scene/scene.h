@@ -5,6 +5,7 @@
 #include "core/bsdf/bsdf.h"
 #include "core/lights/light_set.h"
 #include "core/math/ray.h"
+#include "core/scene/scene_media.h"
 #include "core/scene/scene_desc.h"
 
 #include <cstdint>
@@ -30,6 +31,27 @@ class Scene {
   bool visible(const Vec3& a, const Vec3& na, const Vec3& ea, const Vec3& b, const Vec3& nb, const Vec3& eb) const;
   // True when nothing blocks the ray from a surface point toward infinity (directional lights).
   bool visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& e, const Vec3& dir) const;
+
+  // Participating media (issue 16). A scene without them pays nothing: hits carry no interface,
+  // and the estimators take their surface-only paths.
+  bool hasMedia() const { return !media_.empty(); }
+  const HomogeneousMedium& medium(int i) const { return media_[i]; }
+  const SceneMedia& media() const { return media_; }
+  // The innermost medium containing p (-1: none); a test against every volume's triangles, for
+  // set-up (a camera's position), not per sample.
+  int mediumAt(const Vec3& p) const { return media_.mediumAt(p); }
+  // The media either side of light `light` (an area light's mesh; a punctual light's
+  // surroundings on both sides; none at infinity).
+  MediumInterface lightMedia(int light) const {
+    return lightMedia_.empty() ? MediumInterface{} : lightMedia_[static_cast<size_t>(light)];
+  }
+  // Transmittance of the open segment between two points (offset as in `visible`) whose first
+  // part lies in `medium`: zero when a surface blocks it; index-matched boundaries are crossed,
+  // each changing the medium, and every medium's T_r multiplied in (the seed's T_r per edge).
+  Spectrum transmittance(const Vec3& a, const Vec3& na, const Vec3& ea, const Vec3& b, const Vec3& nb, const Vec3& eb,
+                         int medium) const;
+  // The same from a point toward infinity: zero in a medium that extinguishes.
+  Spectrum transmittanceToInfinity(const Vec3& p, const Vec3& n, const Vec3& e, const Vec3& dir, int medium) const;
 
   const std::vector<TriangleMesh>& meshes() const { return desc_.meshes; }
   const std::vector<Material>& materials() const { return desc_.materials; }
@@ -63,6 +85,8 @@ class Scene {
 
  private:
   SceneDesc desc_;
+  SceneMedia media_;                        // after desc_: it reads its meshes
+  std::vector<MediumInterface> lightMedia_;  // per light, with media only
   std::vector<Bsdf> materialLobes_;          // per material, for those without textures
   std::vector<uint8_t> materialUntextured_;  // materialLobes_[i] is valid
   std::unique_ptr<EnvironmentLight> environment_;  // LightSet's environment light refers to it
@@ -70,6 +94,8 @@ class Scene {
   CameraDesc camera_;
   SceneBounds bounds_;
   Vec3 boundsMin_{0.f}, boundsMax_{0.f};
+  // Both transmittances: from o along dir to *end (nullptr: to infinity), starting in `medium`.
+  Spectrum transmittanceAlong(Vec3 o, const Vec3& dir, const Vec3* end, int medium) const;
   struct EmbreeState;
   std::unique_ptr<EmbreeState> embree_;  // after desc_: its filters read the meshes
 };

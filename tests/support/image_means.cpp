@@ -6,7 +6,7 @@
 
 namespace pathlab::test {
 
-MeanEstimate passMeans(const Scene& scene, const RenderSettings& settings, int passes) {
+MeanEstimate passMeans(const Scene& scene, const RenderSettings& settings, int passes, int channel) {
   RenderSession session(scene, settings);
   RunningStats stats;
   double previousTotal = 0.0;
@@ -14,7 +14,7 @@ MeanEstimate passMeans(const Scene& scene, const RenderSettings& settings, int p
     session.renderPass();
     const Image img = session.image();
     double sum = 0.0;
-    for (size_t i = 0; i < img.rgb.size(); i += 3) sum += img.rgb[i];
+    for (size_t i = static_cast<size_t>(channel); i < img.rgb.size(); i += 3) sum += img.rgb[i];
     const double total = sum / static_cast<double>(img.width * img.height) * pass;
     stats.add(total - previousTotal);
     previousTotal = total;

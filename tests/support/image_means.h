@@ -6,10 +6,10 @@
 
 namespace pathlab::test {
 
-// Per-pass means of channel r of the image, film splats included: pass n adds
+// Per-pass means of channel `channel` (0 = r) of the image, film splats included: pass n adds
 // n m_n - (n - 1) m_(n-1) to the running sums (both film terms scale as 1/n). Expects (gtest)
 // that no sample was discarded.
-MeanEstimate passMeans(const Scene& scene, const RenderSettings& settings, int passes);
+MeanEstimate passMeans(const Scene& scene, const RenderSettings& settings, int passes, int channel = 0);
 
 // Whole-image means (every channel) of `seeds` independent renders of `passes` passes each,
 // seeds firstSeed, firstSeed + 1, ...: each render one sample. Expects no discarded sample.

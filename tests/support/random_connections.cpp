@@ -11,7 +11,7 @@ void forEachConnection(const Scene& scene, const Camera& camera, int maxLength, 
   const float w = static_cast<float>(camera.width()), h = static_cast<float>(camera.height());
   for (int sample = 0; sample < samples; ++sample) {
     const Vec2 pRaster(rng.next1D() * w, rng.next1D() * h);
-    const int nt = generateCameraSubpath(scene, camera, pRaster, rng.next2D(), rng, WalkOptions{maxLength + 1, true}, cp, counters);
+    const int nt = generateCameraSubpath(scene, camera, pRaster, rng.next2D(), rng, WalkOptions{maxLength + 1, true, scene.mediumAt(camera.position())}, cp, counters);
     const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, true}, lp, counters);
     for (int t = 1; t <= nt; ++t)
       for (int s = 0; s <= std::max(ns, 1) && s + t - 1 <= maxLength; ++s) {

@@ -38,7 +38,13 @@ std::vector<int> surfaceHits(const Scene& scene, const RenderSettings& s, const 
         for (int i = 0; i < n; ++i) {
           const Vec2 p(static_cast<float>(x) + (static_cast<float>(i) + 0.5f) / static_cast<float>(n),
                        static_cast<float>(y) + (static_cast<float>(j) + 0.5f) / static_cast<float>(n));
-          const auto hit = scene.intersect(camera.generateRay(p, Vec2(0.5f)));
+          // Through index-matched boundaries (media, issue 16): the surface the camera sees.
+          Ray ray = camera.generateRay(p, Vec2(0.5f));
+          auto hit = scene.intersect(ray);
+          for (int crossing = 0; hit && hit->indexMatched && crossing < 16; ++crossing) {
+            ray.o = offsetRayOrigin(hit->p, hit->pError, hit->ng, ray.d);
+            hit = scene.intersect(ray);
+          }
           if (hit && which(scene.material(hit->material))) ++hits[static_cast<size_t>(y * s.width + x)];
         }
   return hits;

@@ -56,6 +56,42 @@ SceneDesc furnace(float rho, float Le) {
   return desc;
 }
 
+Material mediumBoundary(Spectrum sigmaT, bool scatters, float g) {
+  Material m;
+  m.name = "medium boundary";
+  m.transmissionFactor = 1.f;
+  m.ior = 1.f;
+  m.roughnessFactor = 0.f;
+  m.metallicFactor = 0.f;
+  VolumeDesc v;
+  v.attenuationColor = glm::exp(-sigmaT);
+  v.attenuationDistance = 1.f;
+  v.scatters = scatters;
+  v.multiscatterColor = Spectrum(1.f);
+  v.anisotropy = g;
+  m.volume = v;
+  return m;
+}
+
+std::vector<TriangleMesh> outwardBox(const Vec3& lo, const Vec3& hi, int material) {
+  const Vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                     {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+  return {quad(c[3], c[2], c[1], c[0], material),   // z = lo, normal -z
+          quad(c[4], c[5], c[6], c[7], material),   // z = hi, normal +z
+          quad(c[7], c[3], c[0], c[4], material),   // x = lo, normal -x
+          quad(c[1], c[2], c[6], c[5], material),   // x = hi, normal +x
+          quad(c[0], c[1], c[5], c[4], material),   // y = lo, normal -y
+          quad(c[7], c[6], c[2], c[3], material)};  // y = hi, normal +y
+}
+
+SceneDesc foggyFurnace(float rho, float Le, float sigmaT, float g) {
+  SceneDesc desc = furnace(rho, Le);
+  desc.path = "foggy furnace";
+  desc.materials.push_back(mediumBoundary(Spectrum(sigmaT), true, g));
+  for (TriangleMesh& m : outwardBox(Vec3(-0.999f), Vec3(0.999f), 1)) desc.meshes.push_back(std::move(m));
+  return desc;
+}
+
 SceneDesc floorScene(float rho) {
   SceneDesc desc;
   desc.path = "floor";

@@ -22,6 +22,18 @@ std::vector<TriangleMesh> inwardBox(float h, int material);
 // and a camera inside it.
 SceneDesc furnace(float rho, float Le);
 
+// An index-matched boundary (transmission 1, ior 1, smooth) around a homogeneous medium of
+// extinction sigmaT per unit length (attenuationDistance 1); scattering with single-scattering
+// albedo 1 and anisotropy g when `scatters` (multiscatterColor 1), else purely absorbing.
+Material mediumBoundary(Spectrum sigmaT, bool scatters, float g = 0.f);
+
+// Axis-aligned box [lo, hi] with faces pointing outward (a closed volume seen from outside).
+std::vector<TriangleMesh> outwardBox(const Vec3& lo, const Vec3& hi, int material);
+
+// The furnace filled with a scattering, non-absorbing medium (sigmaT, g) bounded by an
+// index-matched box just inside the walls: still Le / (1 - rho) everywhere for long paths.
+SceneDesc foggyFurnace(float rho, float Le, float sigmaT, float g);
+
 // A 100 m x 100 m Lambertian floor at y = 0 facing +y (no light, no camera).
 SceneDesc floorScene(float rho);
 

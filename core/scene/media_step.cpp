@@ -1,0 +1,50 @@
+// The walk's step through media and index-matched boundaries.
+#include "core/scene/media_step.h"
+
+namespace pathlab {
+
+namespace {
+// A ray crossing more boundaries than this without meeting anything (a numerical loop along
+// coplanar boundary triangles) is dropped: a finite walk, at the cost of one path.
+constexpr int kMaxBoundaryCrossings = 64;
+}  // namespace
+
+MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng, Counters& counters) {
+  MediaStep step;
+  for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
+    ++counters.rays;
+    std::optional<SurfaceHit> hit = scene.intersect(ray);
+    const float tMax = hit ? hit->t : std::numeric_limits<float>::infinity();
+    if (medium >= 0) {
+      const HomogeneousMedium& m = scene.medium(medium);
+      if (m.scatters()) {
+        const float uChannel = rng.next1D(), u = rng.next1D();
+        const DistanceSample ds = sampleDistance(m, tMax, uChannel, u);
+        step.weight *= ds.weight;
+        if (ds.scattered) {
+          step.kind = isBlack(step.weight) ? MediaStepKind::Absorbed : MediaStepKind::Medium;
+          step.p = ray.o + ds.t * ray.d;
+          step.medium = medium;
+          return step;
+        }
+      } else {
+        step.weight *= m.transmittance(tMax);
+      }
+      if (isBlack(step.weight)) return step;  // Absorbed
+    }
+    if (!hit) {
+      step.kind = MediaStepKind::Escaped;
+      return step;
+    }
+    if (!hit->indexMatched) {
+      step.kind = MediaStepKind::Surface;
+      step.hit = std::move(hit);
+      return step;
+    }
+    medium = hit->media.toward(hit->ng, ray.d);
+    ray = Ray{offsetRayOrigin(hit->p, hit->pError, hit->ng, ray.d), ray.d};
+  }
+  return step;  // Absorbed
+}
+
+}  // namespace pathlab

@@ -1,0 +1,32 @@
+// One step of a random walk in a scene with media (issue 16): from a ray in a known medium to
+// what it meets next, a surface, a scattering event in a medium, or nothing, sampling the distance
+// in every medium it crosses (pbrt-v3 HomogeneousMedium::Sample, spectral MIS over the channels)
+// and passing straight through index-matched boundaries, which change only the medium.
+#pragma once
+
+#include "core/math/rng.h"
+#include "core/metrics/counters.h"
+#include "core/scene/scene.h"
+
+#include <optional>
+
+namespace pathlab {
+
+enum class MediaStepKind : uint8_t { Surface, Medium, Escaped, Absorbed };
+
+struct MediaStep {
+  MediaStepKind kind = MediaStepKind::Absorbed;
+  std::optional<SurfaceHit> hit;  // Surface
+  Vec3 p{0.f};                    // Medium: the scattering point
+  int medium = -1;                // Medium: the medium it lies in (after any boundary the step crossed)
+  // The segments' transmittance (and sigma_s at a scattering point) over the probability with
+  // which the distance sampling produced this outcome; one in vacuum.
+  Spectrum weight{1.f};
+};
+
+// Traces `ray` starting in `medium` (-1: none), counting each ray it casts in counters.rays.
+// Consumes two random numbers per medium segment it samples a distance in (none in vacuum, and none
+// in a purely absorbing medium, whose transmittance is applied as a weight).
+MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng, Counters& counters);
+
+}  // namespace pathlab

@@ -1,0 +1,116 @@
+// Media of a scene: the volumes' media, each mesh's interface, point containment.
+#include "core/scene/scene_media.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace pathlab {
+
+namespace {
+
+bool isVolumeMaterial(const Material& m) { return m.volume && m.transmissionFactor > 0.f; }
+
+// Moller-Trumbore, both faces, t > 0: whether the ray o + t d crosses triangle (a, b, c).
+bool crosses(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 e1 = b - a, e2 = c - a, pv = glm::cross(d, e2);
+  const float det = glm::dot(e1, pv);
+  if (std::abs(det) < 1e-20f) return false;
+  const float inv = 1.f / det;
+  const Vec3 tv = o - a;
+  const float u = glm::dot(tv, pv) * inv;
+  if (u < 0.f || u > 1.f) return false;
+  const Vec3 qv = glm::cross(tv, e1);
+  const float v = glm::dot(d, qv) * inv;
+  if (v < 0.f || u + v > 1.f) return false;
+  return glm::dot(e2, qv) * inv > 0.f;
+}
+
+}  // namespace
+
+SceneMedia::SceneMedia(const SceneDesc& desc) {
+  const size_t meshCount = desc.meshes.size();
+  meshes_.assign(meshCount, MediumInterface{});
+  indexMatched_.assign(meshCount, 0);
+  // One medium per volume material: the closed surfaces of all its meshes bound it.
+  std::vector<int> materialVolume(desc.materials.size(), -1);
+  for (size_t i = 0; i < desc.materials.size(); ++i) {
+    const Material& m = desc.materials[i];
+    if (!isVolumeMaterial(m)) continue;
+    Volume v;
+    v.material = static_cast<int>(i);
+    const HomogeneousMedium medium = HomogeneousMedium::fromVolume(*m.volume);
+    if (!medium.isVacuum()) {
+      v.medium = static_cast<int>(media_.size());
+      media_.push_back(medium);
+    }
+    v.lo = Vec3(std::numeric_limits<float>::max());
+    v.hi = Vec3(-std::numeric_limits<float>::max());
+    materialVolume[i] = static_cast<int>(volumes_.size());
+    volumes_.push_back(v);
+  }
+  if (media_.empty()) {  // nothing to track: a scene pays nothing for media it does not have
+    volumes_.clear();
+    return;
+  }
+  meshes_.reserve(meshCount);
+  meshList_ = &desc.meshes;
+  for (size_t m = 0; m < meshCount; ++m) {
+    const int vi = materialVolume[static_cast<size_t>(desc.meshes[m].material)];
+    if (vi < 0) continue;
+    Volume& v = volumes_[static_cast<size_t>(vi)];
+    for (const Vec3& p : desc.meshes[m].positions) {
+      v.lo = glm::min(v.lo, p);
+      v.hi = glm::max(v.hi, p);
+    }
+  }
+  for (Volume& v : volumes_) {
+    const Vec3 e = glm::max(v.hi - v.lo, Vec3(0.f));
+    v.size = e.x * e.y * e.z;
+  }
+  for (size_t m = 0; m < meshCount; ++m) {
+    const TriangleMesh& mesh = desc.meshes[m];
+    if (mesh.triangleCount() == 0) continue;
+    const Material& mat = desc.materials[static_cast<size_t>(mesh.material)];
+    // A point of the mesh: its first triangle's centroid.
+    const Vec3 c = (mesh.positions[mesh.indices[0]] + mesh.positions[mesh.indices[1]] + mesh.positions[mesh.indices[2]]) / 3.f;
+    const Volume* around = innermost(c, mesh.material);
+    const int16_t outside = static_cast<int16_t>(around ? around->medium : -1);
+    MediumInterface& mi = meshes_[m];
+    mi.outside = outside;
+    mi.inside = outside;  // an opaque surface, or an invisible one: the same medium on both sides
+    const int vi = materialVolume[static_cast<size_t>(mesh.material)];
+    if (vi >= 0) mi.inside = static_cast<int16_t>(volumes_[static_cast<size_t>(vi)].medium);
+    else if (mat.transmissionFactor > 0.f && !mat.isIndexMatched()) mi.inside = -1;  // solid glass, no medium in it
+    indexMatched_[m] = mat.isIndexMatched() ? 1 : 0;
+  }
+}
+
+bool SceneMedia::contains(const Volume& v, const Vec3& p) const {
+  if (glm::any(glm::lessThan(p, v.lo)) || glm::any(glm::greaterThan(p, v.hi))) return false;
+  // A direction no axis-aligned or diagonal wall is parallel to, so that grazing hits are rare.
+  const Vec3 d = glm::normalize(Vec3(0.5773f, 0.6213f, 0.5297f));
+  int crossings = 0;
+  for (const TriangleMesh& mesh : *meshList_) {
+    if (mesh.material != v.material) continue;
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const uint32_t* i = &mesh.indices[3 * t];
+      crossings += crosses(p, d, mesh.positions[i[0]], mesh.positions[i[1]], mesh.positions[i[2]]) ? 1 : 0;
+    }
+  }
+  return crossings % 2 == 1;
+}
+
+const SceneMedia::Volume* SceneMedia::innermost(const Vec3& p, int excludeMaterial) const {
+  const Volume* best = nullptr;
+  for (const Volume& v : volumes_)
+    if (v.material != excludeMaterial && (!best || v.size < best->size) && contains(v, p)) best = &v;
+  return best;
+}
+
+int SceneMedia::mediumAt(const Vec3& p) const {
+  if (media_.empty()) return -1;
+  const Volume* v = innermost(p, -1);
+  return v ? v->medium : -1;
+}
+
+}  // namespace pathlab
