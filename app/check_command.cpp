@@ -16,7 +16,7 @@
 namespace pathlab::app {
 
 namespace {
-constexpr double kDefaultSeconds = 10.0;
+constexpr double kDefaultCheckSeconds = 10.0;
 constexpr int kDefaultCheckSide = 128;
 constexpr int kMaxCheckSide = 4096;
 }  // namespace
@@ -71,7 +71,7 @@ int runCheck(CheckCommandOptions o) {
 
   RenderSession session(scene, settings);
   const bool timed = o.spp == 0;
-  const double seconds = o.seconds > 0.0 ? o.seconds : kDefaultSeconds;
+  const double seconds = o.seconds > 0.0 ? o.seconds : kDefaultCheckSeconds;
   const uint64_t targetPasses = static_cast<uint64_t>(o.spp);
   const uint64_t minPasses = std::max<uint64_t>(o.check.minPasses, 2);
   const auto start = std::chrono::steady_clock::now();

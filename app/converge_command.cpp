@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr int kDefaultSide = 256;
-constexpr double kDefaultSeconds = 10.0;
+constexpr double kDefaultConvergeSeconds = 10.0;
 constexpr int kReferenceFactor = 10;
 constexpr const char* kOutputs[] = {"convergence.csv", "convergence.svg", "efficiency.md"};
 
@@ -53,13 +53,6 @@ void checkOutputDir(const ConvergeOptions& o) {
       throw std::runtime_error(path.string() + ": file exists (pass --force to overwrite the results in " + o.outputDir +
                                ")");
   }
-}
-
-std::string humanCount(double v) {
-  if (v >= 1e9) return fmt::format("{:.2f}G", v / 1e9);
-  if (v >= 1e6) return fmt::format("{:.2f}M", v / 1e6);
-  if (v >= 1e3) return fmt::format("{:.1f}k", v / 1e3);
-  return fmt::format("{:.0f}", v);
 }
 
 // Runs one configuration with a progress bar on stderr.
@@ -171,7 +164,7 @@ int runConverge(ConvergeOptions o) {
   budget.factor = o.checkpointFactor;
   budget.clock = o.clock == "cpu" ? ClockKind::Cpu : ClockKind::Wall;
   if (o.spp > 0) budget.spp = static_cast<uint64_t>(o.spp);
-  else budget.seconds = o.seconds > 0 ? o.seconds : kDefaultSeconds;
+  else budget.seconds = o.seconds > 0 ? o.seconds : kDefaultConvergeSeconds;
 
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));

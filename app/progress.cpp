@@ -1,6 +1,8 @@
 // Progress bar drawing: in place on a terminal, a line every 10% otherwise (CI logs).
 #include "app/progress.h"
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <unistd.h>
 
@@ -36,6 +38,13 @@ void ProgressBar::draw(bool final) {
     lastPercentPrinted_ = percent;
   }
   std::fflush(stderr);
+}
+
+std::string humanCount(double v) {
+  if (v >= 1e9) return fmt::format("{:.2f}G", v / 1e9);
+  if (v >= 1e6) return fmt::format("{:.2f}M", v / 1e6);
+  if (v >= 1e3) return fmt::format("{:.1f}k", v / 1e3);
+  return fmt::format("{:.0f}", v);
 }
 
 }  // namespace pathlab::app

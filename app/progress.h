@@ -9,6 +9,9 @@
 
 namespace pathlab::app {
 
+// A count for a progress or summary line: 1.23G, 4.56M, 7.8k or 12.
+std::string humanCount(double v);
+
 class ProgressBar {
  public:
   // `status` returns the fraction done in [0, 1] and a short text; it is called every ~200 ms.

@@ -50,13 +50,6 @@ void checkOutput(const std::string& output, bool force) {
   throw std::runtime_error(output + ": file exists (pass --force to overwrite it)");
 }
 
-std::string humanCount(double v) {
-  if (v >= 1e9) return fmt::format("{:.2f}G", v / 1e9);
-  if (v >= 1e6) return fmt::format("{:.2f}M", v / 1e6);
-  if (v >= 1e3) return fmt::format("{:.1f}k", v / 1e3);
-  return fmt::format("{:.0f}", v);
-}
-
 // Per-technique counters (core/metrics/technique_table.h, the viewer's table): every walk and
 // technique with --stats, otherwise only the techniques that discarded contributions (so a NaN
 // source is named without asking).

@@ -21,7 +21,7 @@ using test::PixelLabels;
 
 // Probability that a test fails although every estimator is unbiased (Bonferroni over all of the
 // test's comparisons). With ~100-250 comparisons a test this gives |z| thresholds of 4.4-4.7.
-constexpr double kFamilyAlpha = 1e-3;
+using test::kFamilyAlpha;
 
 std::string assetPath(const std::string& name) { return std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name; }
 
@@ -71,13 +71,9 @@ RenderSettings sceneSettings(int width, int height, int maxLength) {
 // variance of a coin flip worth its radiance (a partly covered pixel: PT and s = 0 hits, the only
 // technique that can see it through the delta surface), the same for every estimator; they would
 // hide everything else in the image.
-bool emitterOrDelta(const Material& m) { return m.isEmissive() || test::hasDeltaLobe(m); }
+using test::emitterOrDelta;
 
-void report(const test::AgreementRun& run, const std::string& what) {
-  std::string times;
-  for (double t : run.seconds) times += " " + std::to_string(t).substr(0, 5);
-  std::cout << what << ": seconds" << times << "\n" << run.summary();
-}
+using test::report;
 
 // All Lambertian, one area light: every technique can produce every path, so every pair must
 // agree on every region, LT included (no delta surface in view). Not the uniform heuristic, here

@@ -32,13 +32,13 @@ using test::EstimatorSpec;
 using test::PairSpec;
 using test::PixelLabels;
 
-constexpr double kFamilyAlpha = 1e-3;  // as bpt_agreement_test.cpp
-constexpr int kSize = 24;
+using test::kFamilyAlpha;
+constexpr int kDeltaSize = 24;
 
 RenderSettings deltaSettings(int maxLength, IntegratorKind kind, MisHeuristic h, const std::string& techniques,
                             uint64_t seed) {
   RenderSettings s;
-  s.width = s.height = kSize;
+  s.width = s.height = kDeltaSize;
   s.maxLength = maxLength;
   s.integrator = kind;
   s.mis.heuristic = h;
@@ -81,11 +81,7 @@ std::vector<PixelLabels> deltaLabels(const Scene& scene, const RenderSettings& s
   return {grid, clear, delta};
 }
 
-void report(const test::AgreementRun& run, const std::string& what) {
-  std::string times;
-  for (double t : run.seconds) times += " " + std::to_string(t).substr(0, 5);
-  std::cout << what << ": seconds" << times << "\n" << run.summary();
-}
+using test::report;
 
 // Area light: every path that carries light has an area-light x0, which s = 0 can hit through
 // any chain of delta scatterings, so PT and BPT (every heuristic) agree everywhere; LT agrees

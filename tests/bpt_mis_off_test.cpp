@@ -23,7 +23,7 @@ namespace {
 using test::MeanEstimate;
 using test::passMeans;
 
-constexpr double kMaxZ = 4.0;
+using test::kMaxZ;
 
 // The integrating sphere (no concave edge: every connection's geometry term is bounded, so the
 // constant weights of the connections have a finite variance) lit by a point light instead of its

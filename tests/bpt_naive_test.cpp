@@ -21,10 +21,10 @@ using test::EstimatorSpec;
 using test::MeanEstimate;
 using test::PixelLabels;
 
-constexpr double kMaxZ = 4.0;
-constexpr double kFamilyAlpha = 1e-3;  // as bpt_agreement_test.cpp
+using test::kMaxZ;
+using test::kFamilyAlpha;
 
-std::string assetPath(const std::string& name) { return std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name; }
+std::string naiveAssetPath(const std::string& name) { return std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name; }
 
 RenderSettings naive(int width, int height, int maxLength, MisHeuristic h, uint64_t seed) {
   RenderSettings s;
@@ -68,7 +68,7 @@ TEST(NaiveBpt, FurnaceMatchesGeometricSeries) {
 // Every weighted path's enabled weights sum to one (Counters::misPartitionFailures), with the
 // partial sums of each technique's own subpaths.
 TEST(NaiveBpt, WeightsArePartitionOfUnity) {
-  Scene scene(loadGltf(assetPath("cornell-box.gltf")));
+  Scene scene(loadGltf(naiveAssetPath("cornell-box.gltf")));
   for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power}) {
     RenderSettings s = naive(16, 16, 6, h, 5);
     s.checkMis = true;
@@ -82,7 +82,7 @@ TEST(NaiveBpt, WeightsArePartitionOfUnity) {
 // The cost: no shared walks; each technique's row holds its own subpaths' rays, which with the
 // shadow rays are every ray of the render; per sample far more than path reuse.
 TEST(NaiveBpt, RaysAreFiledUnderEachTechnique) {
-  Scene scene(loadGltf(assetPath("cornell-box.gltf")));
+  Scene scene(loadGltf(naiveAssetPath("cornell-box.gltf")));
   const int K = 5;
   RenderSession naiveSession(scene, naive(16, 16, K, MisHeuristic::Balance, 3));
   RenderSettings reuse = naive(16, 16, K, MisHeuristic::Balance, 3);
@@ -113,18 +113,14 @@ TEST(NaiveBpt, RaysAreFiledUnderEachTechnique) {
   EXPECT_GT(c.totalRays(), 3 * reuseSession.counters().totalRays());
 }
 
-void report(const test::AgreementRun& run, const std::string& what) {
-  std::string times;
-  for (double t : run.seconds) times += " " + std::to_string(t).substr(0, 5);
-  std::cout << what << ": seconds" << times << "\n" << run.summary();
-}
+using test::report;
 
 // Path reuse and naive BPT, both balance, region by region (bpt_agreement_test.cpp's method). On
 // the bundled scenes with delta surfaces the pixels that see an emitter or a delta surface are
 // left out as there (the same technique samples them under both, a coin flip worth the emitter).
 void expectReuseAgreesWithNaive(const std::string& file, int width, int height, int maxLength, int passes,
                                 const test::MaterialPredicate& leaveOut) {
-  Scene scene(loadGltf(assetPath(file)));
+  Scene scene(loadGltf(naiveAssetPath(file)));
   RenderSettings all = naive(width, height, maxLength, MisHeuristic::Balance, 1000 * test::testSeedBase() + 1);
   all.connect = ConnectStrategy::All;
   const RenderSettings endpoints = naive(width, height, maxLength, MisHeuristic::Balance, 1000 * test::testSeedBase() + 2);
@@ -136,7 +132,7 @@ void expectReuseAgreesWithNaive(const std::string& file, int width, int height, 
   test::expectAgreement(run, file + " connect all vs endpoints");
 }
 
-bool emitterOrDelta(const Material& m) { return m.isEmissive() || test::hasDeltaLobe(m); }
+using test::emitterOrDelta;
 
 TEST(NaiveBptAgreement, CornellBox) { expectReuseAgreesWithNaive("cornell-box.gltf", 16, 16, 8, 128, {}); }
 TEST(NaiveBptAgreement, VeachMis) { expectReuseAgreesWithNaive("veach-mis.gltf", 24, 16, 4, 256, emitterOrDelta); }

@@ -1,5 +1,5 @@
 // One path, every technique (core/bpt/path_techniques.h): for paths formed by every connectable
-// technique on random subpaths of the bundled scenes and of a scene with a point light, a mirror
+// technique on random subpaths of the loadBundled scenes and of a scene with a point light, a mirror
 // and glass, the absolute densities p_{s',t'}(x) agree with the weights the renderer uses: the
 // balance weight of each technique is its density over the sum of the possible ones', the own
 // technique's weights equal misWeight under each heuristic, the density ratios equal
@@ -17,7 +17,7 @@
 namespace pathlab {
 namespace {
 
-void checkScene(const Scene& scene, const std::string& name, int maxLength) {
+void checkTechniquesOnPath(const Scene& scene, const std::string& name, int maxLength) {
   const Camera camera(scene.cameraDesc(), 16, 12, LensOptions{});
   const TechniqueSet all = TechniqueSet::all();
   const MisOptions options{MisHeuristic::Balance, 2.f, 0.f};  // no short-connection rule: plain ratios
@@ -58,15 +58,15 @@ void checkScene(const Scene& scene, const std::string& name, int maxLength) {
   EXPECT_GT(compared, 300) << name;
 }
 
-Scene bundled(const std::string& name) {
+Scene loadBundled(const std::string& name) {
   return Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name + ".gltf"));
 }
 
-TEST(TechniquesOnPath, AgreeWithTheWeightsOnTheCornellBox) { checkScene(bundled("cornell-box"), "cornell-box", 6); }
-TEST(TechniquesOnPath, AgreeWithTheWeightsOnVeachMis) { checkScene(bundled("veach-mis"), "veach-mis", 5); }
-TEST(TechniquesOnPath, AgreeWithTheWeightsOnTheCausticScene) { checkScene(bundled("caustic"), "caustic", 6); }
+TEST(TechniquesOnPath, AgreeWithTheWeightsOnTheCornellBox) { checkTechniquesOnPath(loadBundled("cornell-box"), "cornell-box", 6); }
+TEST(TechniquesOnPath, AgreeWithTheWeightsOnVeachMis) { checkTechniquesOnPath(loadBundled("veach-mis"), "veach-mis", 5); }
+TEST(TechniquesOnPath, AgreeWithTheWeightsOnTheCausticScene) { checkTechniquesOnPath(loadBundled("caustic"), "caustic", 6); }
 TEST(TechniquesOnPath, AgreeWithTheWeightsWithDeltaLightAndGlass) {
-  checkScene(Scene(test::deltaScene(test::DeltaLight::Point)), "delta scene", 6);
+  checkTechniquesOnPath(Scene(test::deltaScene(test::DeltaLight::Point)), "delta scene", 6);
 }
 
 }  // namespace

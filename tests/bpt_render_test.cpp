@@ -20,7 +20,7 @@ using test::passMeans;
 using test::RunningStats;
 using test::zDifference;
 
-constexpr double kMaxZ = 4.0;
+using test::kMaxZ;
 
 
 

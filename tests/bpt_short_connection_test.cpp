@@ -17,7 +17,7 @@ namespace {
 using test::EstimatorSpec;
 using test::PairSpec;
 
-constexpr double kFamilyAlpha = 1e-3;
+using test::kFamilyAlpha;
 
 RenderSettings settings(IntegratorKind kind, MisHeuristic h, float minConnection, uint64_t seed) {
   RenderSettings s;

@@ -26,14 +26,14 @@ namespace {
 using test::PixelLabels;
 using test::RegionMeans;
 
-constexpr double kFamilyAlpha = 1e-3;  // as bpt_agreement_test.cpp
-constexpr int kSize = 16;
+using test::kFamilyAlpha;
+constexpr int kAgreementSize = 16;
 
 // The bundled Cornell box with its light 3 x 3 times larger (same power, Le / 9), so that the
 // path tracer's hits of the light (at length 1 a coin flip in every pixel the light partly
 // covers) reach a standard error of a few percent within a test's budget. Everything else is the
 // bundled scene.
-const Scene& cornellBox() {
+const Scene& scaledCornellBox() {
   static const Scene scene = [] {
     SceneDesc desc = loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf");
     const float f = 3.f;
@@ -52,7 +52,7 @@ const Scene& cornellBox() {
 RenderSettings bpt(int maxLength, uint64_t seed, const std::string& techniques = "all",
                    MisHeuristic h = MisHeuristic::Balance) {
   RenderSettings s;
-  s.width = s.height = kSize;
+  s.width = s.height = kAgreementSize;
   s.maxLength = maxLength;
   s.integrator = IntegratorKind::Bpt;
   s.techniques = TechniqueSet::parse(techniques);
@@ -99,7 +99,7 @@ Image lengthImage(const RenderSession& session, int k) {
 // (techniques = "s,t") and what isolating it unweighted renders (connection streams are keyed by
 // sample and (s, t), so all three see the same connections).
 TEST(TechniqueAgreement, PyramidIsolationAndTechniqueSetsAreTheSameEstimates) {
-  const Scene& scene = cornellBox();
+  const Scene& scene = scaledCornellBox();
   const int K = 4, passes = 4;
   const std::string enabled = "s=0;1,2;2,2;3,1;k=4";  // a covering subset, to see disabled shares too
   RenderSettings s = bpt(K, 3, enabled, MisHeuristic::Power);
@@ -155,7 +155,7 @@ TEST(TechniqueAgreement, UnweightedTechniquesOfOneLengthAgree) {
   const int K = 4;
   RenderSettings s = bpt(K, 41);
   s.pyramidLength = K;
-  const PixelLabels grid = test::gridLabels(kSize, kSize, 2, 2);
+  const PixelLabels grid = test::gridLabels(kAgreementSize, kAgreementSize, 2, 2);
   std::vector<test::ImageOf> images;
   std::vector<std::pair<int, int>> techniques;
   for (const Technique x : techniquesUpTo(K)) {
@@ -201,11 +201,11 @@ TEST(TechniqueAgreement, UnweightedTechniquesOfOneLengthAgree) {
 // estimate of length k alone, with its own standard error (the paths of the two coincide up to
 // k - 1 edges, and that shared part cancels).
 TEST(TechniqueAgreement, EachLengthMatchesThePathTracer) {
-  const Scene& scene = cornellBox();
+  const Scene& scene = scaledCornellBox();
   const int K = 4;
   RenderSettings s = bpt(K, 51);
   s.pyramidLength = K;
-  const PixelLabels grid = test::gridLabels(kSize, kSize, 4, 4);
+  const PixelLabels grid = test::gridLabels(kAgreementSize, kAgreementSize, 4, 4);
   std::vector<test::ImageOf> images;
   for (int k = 1; k <= K; ++k) images.push_back([=](const RenderSession& r) { return lengthImage(r, k); });
   const auto bptLengths = test::renderRegionMeans(scene, s, 192, {grid}, images);
@@ -250,7 +250,7 @@ TEST(TechniqueAgreement, EachLengthMatchesThePathTracer) {
 TEST(TechniqueAgreement, EveryEstimatorAgreesInTheIntegratingSphere) {
   const Scene& scene = integratingSphere();
   const int K = 6;
-  const PixelLabels grid = test::gridLabels(kSize, kSize, 4, 4);
+  const PixelLabels grid = test::gridLabels(kAgreementSize, kAgreementSize, 4, 4);
   RenderSettings pt = bpt(K, 81);
   pt.integrator = IntegratorKind::Pt;
   RenderSettings lt = bpt(K, 82);
@@ -281,7 +281,7 @@ TEST(TechniqueAgreement, EveryEstimatorAgreesInTheIntegratingSphere) {
 TEST(TechniqueAgreement, CoveringSubsetsGiveTheFullImage) {
   const Scene& scene = integratingSphere();
   const int K = 4;
-  const PixelLabels grid = test::gridLabels(kSize, kSize, 2, 2);
+  const PixelLabels grid = test::gridLabels(kAgreementSize, kAgreementSize, 2, 2);
   std::vector<test::EstimatorSpec> estimators = {{"all", bpt(K, 71), 96}};
   std::vector<std::pair<std::string, MisHeuristic>> subsets = {
       {"s=0", MisHeuristic::Balance}, {"s=1", MisHeuristic::Power},       {"t=1", MisHeuristic::Uniform},

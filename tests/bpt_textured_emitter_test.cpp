@@ -14,7 +14,7 @@
 namespace pathlab {
 namespace {
 
-constexpr double kFamilyAlpha = 1e-3;  // as bpt_agreement_test.cpp
+using test::kFamilyAlpha;
 
 SceneDesc texturedEmitterScene() {
   SceneDesc d;

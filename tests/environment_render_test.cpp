@@ -14,7 +14,7 @@
 namespace pathlab {
 namespace {
 
-constexpr double kFamilyAlpha = 1e-3;
+using test::kFamilyAlpha;
 
 std::shared_ptr<const EnvironmentDesc> constantEnvironment(float L) {
   auto d = std::make_shared<EnvironmentDesc>();

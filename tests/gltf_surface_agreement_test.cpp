@@ -17,7 +17,7 @@ namespace {
 
 using namespace gltf_test;
 
-constexpr double kFamilyAlpha = 1e-3;
+using test::kFamilyAlpha;
 
 test::AgreementRun run(const Scene& scene, int pt, int bpt, int lt) {
   RenderSettings base;
@@ -40,11 +40,7 @@ test::AgreementRun run(const Scene& scene, int pt, int bpt, int lt) {
                             kFamilyAlpha);
 }
 
-void report(const test::AgreementRun& r, const std::string& what) {
-  std::string times;
-  for (double t : r.seconds) times += " " + std::to_string(t).substr(0, 5);
-  std::cout << what << ": seconds" << times << "\n" << r.summary();
-}
+using test::report;
 
 // A diffuse floor with a bumpy normal map (4 x 4 texels of tilts up to ~40 degrees, bilinear,
 // tiled twice) beside a diffuse wall, lit by a point light; the camera looks down.

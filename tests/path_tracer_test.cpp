@@ -18,7 +18,7 @@ using test::MeanEstimate;
 using test::quad;
 using test::RunningStats;
 
-constexpr double kMaxZ = 4.0;  // two-sided; with fixed seeds a failure is a real bias, not luck
+using test::kMaxZ;
 
 // Averages `passes` camera samples of every pixel's estimate (luminance of channel 0 here: the
 // scenes are grey) through RenderSession::replaySample, the same code path as a render pass.

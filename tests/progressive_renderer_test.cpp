@@ -10,7 +10,7 @@
 namespace pathlab {
 namespace {
 
-std::shared_ptr<const Scene> cornellBox() {
+std::shared_ptr<const Scene> sharedCornellBox() {
   static const auto scene =
       std::make_shared<const Scene>(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
   return scene;
@@ -27,7 +27,7 @@ RenderSettings small(IntegratorKind integrator, uint64_t seed) {
 }
 
 Image standalone(const RenderSettings& settings, uint64_t passes) {
-  RenderSession session(*cornellBox(), settings);
+  RenderSession session(*sharedCornellBox(), settings);
   for (uint64_t i = 0; i < passes; ++i) session.renderPass();
   return session.image();
 }
@@ -51,7 +51,7 @@ void expectSameImage(const Image& a, const Image& b) {
 }
 
 TEST(ProgressiveRenderer, AGenerationIsAStandaloneRender) {
-  ProgressiveRenderer renderer(cornellBox(), small(IntegratorKind::Pt, 1), 2);
+  ProgressiveRenderer renderer(sharedCornellBox(), small(IntegratorKind::Pt, 1), 2);
   renderer.setTargetSpp(3);
   RenderSnapshot first = settledSnapshot(renderer, 3);
   EXPECT_FALSE(first.preview);
@@ -84,7 +84,7 @@ TEST(ProgressiveRenderer, PreviewsComeFirstAtLowResolution) {
   RenderSettings s = small(IntegratorKind::Bpt, 2);
   s.width = 160;
   s.height = 120;
-  ProgressiveRenderer renderer(cornellBox(), s, 2);
+  ProgressiveRenderer renderer(sharedCornellBox(), s, 2);
   renderer.setTargetSpp(1);
   ASSERT_TRUE(renderer.waitForSpp(1, 60.0));
   RenderSnapshot snap;
@@ -98,7 +98,7 @@ TEST(ProgressiveRenderer, PreviewsComeFirstAtLowResolution) {
 }
 
 TEST(ProgressiveRenderer, RefusesBadSettingsAndKeepsTheOldOnes) {
-  ProgressiveRenderer renderer(cornellBox(), small(IntegratorKind::Bpt, 3), 1);
+  ProgressiveRenderer renderer(sharedCornellBox(), small(IntegratorKind::Bpt, 3), 1);
   const uint64_t generation = renderer.generation();
   RenderSettings bad = small(IntegratorKind::Bpt, 3);
   bad.techniques = TechniqueSet::parse("7,7");
@@ -110,7 +110,7 @@ TEST(ProgressiveRenderer, RefusesBadSettingsAndKeepsTheOldOnes) {
 TEST(ProgressiveRenderer, PyramidThumbnailsArePublished) {
   RenderSettings s = small(IntegratorKind::Bpt, 4);
   s.pyramidLength = 2;
-  ProgressiveRenderer renderer(cornellBox(), s, 2);
+  ProgressiveRenderer renderer(sharedCornellBox(), s, 2);
   renderer.setThumbnailSide(16);
   renderer.setTargetSpp(3);
   ASSERT_TRUE(renderer.waitForSpp(1, 60.0));
@@ -133,7 +133,7 @@ TEST(ProgressiveRenderer, PyramidThumbnailsArePublished) {
 }
 
 TEST(ProgressiveRenderer, PausedRendersNothingNew) {
-  ProgressiveRenderer renderer(cornellBox(), small(IntegratorKind::Pt, 5), 2);
+  ProgressiveRenderer renderer(sharedCornellBox(), small(IntegratorKind::Pt, 5), 2);
   ASSERT_TRUE(renderer.waitForSpp(1, 60.0));
   renderer.setPaused(true);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the pass in flight ends

@@ -9,7 +9,7 @@
 namespace pathlab {
 namespace {
 
-RenderSettings smallSettings() {
+RenderSettings sessionSettings() {
   RenderSettings s;
   s.width = 24;
   s.height = 16;
@@ -21,7 +21,7 @@ TEST(RenderSession, SameSeedSameImageWhateverTheThreadCount) {
   Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
   auto render = [&](size_t threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    RenderSession session(scene, smallSettings());
+    RenderSession session(scene, sessionSettings());
     for (int i = 0; i < 3; ++i) session.renderPass();
     EXPECT_EQ(session.counters().cameraSamples, 3u * 24u * 16u);
     EXPECT_EQ(session.counters().discarded(), 0u);
@@ -29,7 +29,7 @@ TEST(RenderSession, SameSeedSameImageWhateverTheThreadCount) {
   };
   const Image one = render(1), two = render(2);
   EXPECT_EQ(one.rgb, two.rgb);
-  RenderSettings other = smallSettings();
+  RenderSettings other = sessionSettings();
   other.seed = 6;
   RenderSession different(scene, other);
   different.renderPass();
@@ -41,7 +41,7 @@ TEST(RenderSession, SameSeedSameImageWhateverTheThreadCount) {
 // Any sample can be replayed alone: the sum over passes of replaySample is the film's pixel.
 TEST(RenderSession, ReplayReproducesThePixel) {
   Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
-  RenderSession session(scene, smallSettings());
+  RenderSession session(scene, sessionSettings());
   for (int i = 0; i < 4; ++i) session.renderPass();
   Counters c;
   for (const auto& [x, y] : {std::pair{3, 4}, std::pair{12, 8}, std::pair{23, 15}}) {

@@ -12,7 +12,7 @@
 namespace pathlab {
 namespace {
 
-const Scene& cornellBox() {
+const Scene& countersCornellBox() {
   static const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
   return scene;
 }
@@ -52,7 +52,7 @@ TEST(TechniqueCounters, MergeEveryField) {
 }
 
 TEST(TechniqueCounters, RaysOfEachTechniqueAndWalk) {
-  RenderSession session(cornellBox(), bpt());
+  RenderSession session(countersCornellBox(), bpt());
   for (int i = 0; i < 4; ++i) session.renderPass();
   const Counters& c = session.counters();
   uint64_t shadow = 0;
@@ -77,7 +77,7 @@ TEST(TechniqueCounters, RaysOfEachTechniqueAndWalk) {
 }
 
 TEST(TechniqueCounters, TimingWhenAskedChangesNoCount) {
-  RenderSession timed(cornellBox(), bpt()), untimed(cornellBox(), bpt());
+  RenderSession timed(countersCornellBox(), bpt()), untimed(countersCornellBox(), bpt());
   timed.setTiming(true);
   timed.renderPass();
   untimed.renderPass();

@@ -16,7 +16,7 @@ namespace pathlab::ui {
 
 namespace {
 
-const ImVec4 kWarning(1.f, 0.7f, 0.2f, 1.f);
+const ImVec4 kReferenceWarning(1.f, 0.7f, 0.2f, 1.f);
 
 }  // namespace
 
@@ -46,7 +46,7 @@ void drawReferenceSection(ReferenceState& state, ConvergenceState& convergence, 
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("the error needs the same pixels: off, the image follows the window");
 
   if (!state.status.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
+    ImGui::PushStyleColor(ImGuiCol_Text, kReferenceWarning);
     ImGui::TextWrapped("%s", state.status.c_str());
     ImGui::PopStyleColor();
     if (const auto view = errors.referenceView();

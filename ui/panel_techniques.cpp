@@ -16,7 +16,7 @@ namespace pathlab::ui {
 namespace {
 
 constexpr int kGridMaxLength = 10;  // longer techniques are edited through the SPEC
-const ImVec4 kWarning(1.f, 0.7f, 0.2f, 1.f);
+const ImVec4 kTechniqueWarning(1.f, 0.7f, 0.2f, 1.f);
 const ImVec4 kError(1.f, 0.35f, 0.35f, 1.f);
 
 std::string techniqueTooltip(int s, int t) {
@@ -164,11 +164,11 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
       !uncovered.empty() && enabled.anyUpTo(edited.maxLength)) {
     std::string list;
     for (int k : uncovered) list += (list.empty() ? "" : ", ") + std::to_string(k);
-    ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
+    ImGui::PushStyleColor(ImGuiCol_Text, kTechniqueWarning);
     ImGui::TextWrapped("no enabled technique samples paths of length %s: that light is missing", list.c_str());
     ImGui::PopStyleColor();
   } else if (!enabled.anyUpTo(edited.maxLength)) {
-    ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
+    ImGui::PushStyleColor(ImGuiCol_Text, kTechniqueWarning);
     ImGui::TextWrapped("no technique enabled: nothing is rendered");
     ImGui::PopStyleColor();
   }
@@ -303,7 +303,7 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("click a cell of the grid or a pyramid thumbnail; arrow keys move it");
     if (isolatedTechniqueDisabled(renderSettings(estimator))) {
-      ImGui::PushStyleColor(ImGuiCol_Text, kWarning);
+      ImGui::PushStyleColor(ImGuiCol_Text, kTechniqueWarning);
       ImGui::TextWrapped("(%d,%d) is not enabled: its weighted share is zero (Ctrl+click enables it)", x.s, x.t);
       ImGui::PopStyleColor();
     }

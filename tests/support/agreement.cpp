@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <limits>
 #include <stdexcept>
 
@@ -99,6 +100,12 @@ void expectAgreement(const AgreementRun& run, const std::string& what) {
   for (const RegionMeans& m : run.estimates)
     if (m.discarded != 0) failures += fmt::format("  {} samples discarded (NaN, Inf or negative)\n", m.discarded);
   if (!failures.empty()) ADD_FAILURE() << what << ":\n" << failures << run.summary();
+}
+
+void report(const AgreementRun& run, const std::string& what) {
+  std::string times;
+  for (double t : run.seconds) times += " " + std::to_string(t).substr(0, 5);
+  std::cout << what << ": seconds" << times << "\n" << run.summary();
 }
 
 }  // namespace pathlab::test

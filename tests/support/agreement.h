@@ -9,6 +9,9 @@
 
 namespace pathlab::test {
 
+// The family-wise false-failure rate the agreement tests use (runAgreement's familyAlpha).
+inline constexpr double kFamilyAlpha = 1e-3;
+
 struct EstimatorSpec {
   std::string name;
   RenderSettings settings;  // seeds must differ between estimators (independent errors)
@@ -46,6 +49,9 @@ struct AgreementRun {
 AgreementRun runAgreement(const Scene& scene, const std::vector<EstimatorSpec>& estimators,
                           const std::vector<PixelLabels>& labelSets, const std::vector<PairSpec>& pairs,
                           double familyAlpha);
+
+// Prints the run's seconds per estimator and its summary to stdout, headed by `what`.
+void report(const AgreementRun& run, const std::string& what);
 
 // `base` rendered by another integrator and heuristic with its own seed, for `passes` passes.
 EstimatorSpec estimatorSpec(const std::string& name, const RenderSettings& base, IntegratorKind kind, MisHeuristic h,

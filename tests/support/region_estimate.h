@@ -39,6 +39,7 @@ PixelLabels onlySeenDirectly(const Scene& scene, const RenderSettings& s, PixelL
 // alpha = roughness^2 below kDeltaAlpha). Textured roughness is not looked at.
 bool hasDeltaLobe(const Material& m);
 inline bool isEmissive(const Material& m) { return m.isEmissive(); }
+inline bool emitterOrDelta(const Material& m) { return m.isEmissive() || hasDeltaLobe(m); }
 
 int labelledPixels(const PixelLabels& labels);
 

@@ -32,6 +32,10 @@ class RunningStats {
   double mean_ = 0.0, m2_ = 0.0;
 };
 
+// The |zDifference| beyond which the mean tests fail: two-sided; with fixed seeds a failure is a
+// real bias, not luck.
+inline constexpr double kMaxZ = 4.0;
+
 // (a - b) / sqrt(se_a^2 + se_b^2) of two independent estimates; 0 when both are exactly equal,
 // +-inf when they differ with no standard error (two exact results that disagree).
 inline double zDifference(const MeanEstimate& a, const MeanEstimate& b) {

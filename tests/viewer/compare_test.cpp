@@ -156,19 +156,19 @@ double maxBlockZ(const Image& x, const Image& y) {
   return worst;
 }
 
-const std::string kTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_compare";
-const std::string kBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
+const std::string kCompareTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_compare";
+const std::string kCompareBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
 
 TEST(CompareHeadless, TwoLabelledHalvesEachConvergeToTheirOwnConfiguration) {
   // A: direct light only (length 2, techniques k=2); B: the path tracer (every length up to 3). They
   // differ by the indirect light, so each half must match its own configuration's render only.
-  const std::string work = kTmp + "/halves";
+  const std::string work = kCompareTmp + "/halves";
   fs::remove_all(work);
   fs::create_directories(work);
   const std::string shot = work + "/shot.png";
   const pathlab::test::CommandRun view = pathlab::test::runPathlab(
       work,
-      "view " + kBox + " --headless --width 800 --height 400 --hide-ui --render-scale 0.25 --threads 2 --max-length 3 "
+      "view " + kCompareBox + " --headless --width 800 --height 400 --hide-ui --render-scale 0.25 --threads 2 --max-length 3 "
       "--integrator bpt --techniques k=2 --compare pt --seed 3 --spp 24 --frames 10 "
       "--script '6:wait=24;8:key=Ctrl+S' --screenshot " + shot,
       "cd " + work + " &&");
@@ -203,7 +203,7 @@ TEST(CompareHeadless, TwoLabelledHalvesEachConvergeToTheirOwnConfiguration) {
   auto render = [&](const std::string& name, const std::string& flags) {
     const std::string out = work + "/" + name + ".exr";
     const pathlab::test::CommandRun r = pathlab::test::runPathlab(
-        work, "render " + kBox + " -o " + out + " --width " + std::to_string(a.width) + " --height " +
+        work, "render " + kCompareBox + " -o " + out + " --width " + std::to_string(a.width) + " --height " +
                   std::to_string(a.height) + " --max-length 3 --spp 48 --seed 11 --threads 2 --force " + flags);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return readImage(out);
@@ -225,7 +225,7 @@ TEST(CompareHeadless, TwoLabelledHalvesEachConvergeToTheirOwnConfiguration) {
 
 TEST(CompareHeadless, ABadConfigIsOneLineAndAnError) {
   const pathlab::test::CommandRun r =
-      pathlab::test::runPathlab(kTmp, "view " + kBox + " --headless --frames 2 --compare 'bpt:mis=nope'");
+      pathlab::test::runPathlab(kCompareTmp, "view " + kCompareBox + " --headless --frames 2 --compare 'bpt:mis=nope'");
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.err.find("nope"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

@@ -15,7 +15,7 @@ namespace {
 using pathlab::test::Png;
 using pathlab::test::readPng;
 
-const std::string kTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_aspect";
+const std::string kAspectTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_aspect";
 
 struct AspectCase {
   std::string name;
@@ -51,12 +51,12 @@ class ViewerAspect : public testing::TestWithParam<AspectCase> {};
 
 TEST_P(ViewerAspect, ImageRegionHasTheCameraAspect) {
   const AspectCase& c = GetParam();
-  const std::string out = kTmp + "/" + c.name + ".png";
+  const std::string out = kAspectTmp + "/" + c.name + ".png";
   const std::string args = "view " + std::string(PATHLAB_SOURCE_DIR) + "/assets/" + c.scene + " --headless --width " +
                            std::to_string(c.width) + " --height " + std::to_string(c.height) +
                            " --render-scale 0.25 --spp 1 --max-length 3 --threads 2 --frames 8 --force " + c.flags +
                            " --screenshot " + out;
-  const pathlab::test::CommandRun r = pathlab::test::runPathlab(kTmp, args);
+  const pathlab::test::CommandRun r = pathlab::test::runPathlab(kAspectTmp, args);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.err, m, std::regex(R"(image (\d+)x(\d+)\+(\d+)\+(\d+) at \d+ spp, rendered (\d+)x(\d+))")))
@@ -97,18 +97,18 @@ TEST_P(ViewerAspect, ImageRegionHasTheCameraAspect) {
   }
 }
 
-const std::string kBox = "cornell-box.gltf", kVeach = "veach-mis.gltf";
+const std::string kAspectBox = "cornell-box.gltf", kVeach = "veach-mis.gltf";
 
 // Resizing keeps the framing: after a landscape and a portrait resize the picture is the one a
 // window opened at the final size shows (seeded samples: the same pixels).
 TEST(ViewerAspectResize, ResizingKeepsTheFraming) {
   const std::string common = "view " + std::string(PATHLAB_SOURCE_DIR) + "/assets/" + kVeach +
                              " --headless --hide-ui --render-scale 0.25 --spp 1 --max-length 3 --threads 2 --frames 12 --force ";
-  const std::string direct = kTmp + "/resize-direct.png", resized = kTmp + "/resize-resized.png";
-  pathlab::test::CommandRun r = pathlab::test::runPathlab(kTmp, common + "--width 500 --height 900 --screenshot " + direct);
+  const std::string direct = kAspectTmp + "/resize-direct.png", resized = kAspectTmp + "/resize-resized.png";
+  pathlab::test::CommandRun r = pathlab::test::runPathlab(kAspectTmp, common + "--width 500 --height 900 --screenshot " + direct);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const std::string directLine = r.err;
-  r = pathlab::test::runPathlab(kTmp, common + "--width 640 --height 480 --script '1:resize=900,500;3:resize=500,900' --screenshot " + resized);
+  r = pathlab::test::runPathlab(kAspectTmp, common + "--width 640 --height 480 --script '1:resize=900,500;3:resize=500,900' --screenshot " + resized);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   // 500 / 1.5 = 333.3: 500 x 333, centred in 900.
   EXPECT_NE(r.err.find("image 500x333+0+283 "), std::string::npos) << r.err;
@@ -122,14 +122,14 @@ TEST(ViewerAspectResize, ResizingKeepsTheFraming) {
 // The mouse maps to the fitted rectangle: at 800 x 1000 with the UI hidden the Cornell box is
 // 800 x 800 from y = 100, so a drag in the bar above it is nobody's, and one over it orbits.
 TEST(ViewerAspectInput, DragOnTheBarIsNotTheImages) {
-  const std::string common = "view " + std::string(PATHLAB_SOURCE_DIR) + "/assets/" + kBox +
+  const std::string common = "view " + std::string(PATHLAB_SOURCE_DIR) + "/assets/" + kAspectBox +
                              " --headless --width 800 --height 1000 --hide-ui --render-scale 0.25 --spp 1 --max-length 3"
                              " --threads 2 --frames 10 --force ";
-  const std::string still = kTmp + "/bar-still.png", bar = kTmp + "/bar-drag.png", image = kTmp + "/image-drag.png";
-  ASSERT_EQ(pathlab::test::runPathlab(kTmp, common + "--screenshot " + still).exitCode, 0);
-  pathlab::test::CommandRun r = pathlab::test::runPathlab(kTmp, common + "--script '1:drag=400,40>480,70' --screenshot " + bar);
+  const std::string still = kAspectTmp + "/bar-still.png", bar = kAspectTmp + "/bar-drag.png", image = kAspectTmp + "/image-drag.png";
+  ASSERT_EQ(pathlab::test::runPathlab(kAspectTmp, common + "--screenshot " + still).exitCode, 0);
+  pathlab::test::CommandRun r = pathlab::test::runPathlab(kAspectTmp, common + "--script '1:drag=400,40>480,70' --screenshot " + bar);
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  r = pathlab::test::runPathlab(kTmp, common + "--script '1:drag=400,500>480,530' --screenshot " + image);
+  r = pathlab::test::runPathlab(kAspectTmp, common + "--script '1:drag=400,500>480,530' --screenshot " + image);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const Png a = readPng(still), b = readPng(bar), c = readPng(image);
   ASSERT_EQ(a.width, 800);
@@ -139,11 +139,11 @@ TEST(ViewerAspectInput, DragOnTheBarIsNotTheImages) {
 
 INSTANTIATE_TEST_SUITE_P(
     WindowsAndPanels, ViewerAspect,
-    testing::Values(AspectCase{"box_1280x720_lecture", kBox, 1.f, 1280, 720, "--lecture", true},
+    testing::Values(AspectCase{"box_1280x720_lecture", kAspectBox, 1.f, 1280, 720, "--lecture", true},
                     AspectCase{"veach_1280x720_lecture", kVeach, 1.5f, 1280, 720, "--lecture", true},
-                    AspectCase{"box_1920x1080_pyramid", kBox, 1.f, 1920, 1080, "--pyramid 3", true},
+                    AspectCase{"box_1920x1080_pyramid", kAspectBox, 1.f, 1920, 1080, "--pyramid 3", true},
                     AspectCase{"veach_1920x1080_pyramid", kVeach, 1.5f, 1920, 1080, "--pyramid 3", true},
-                    AspectCase{"box_800x1000_hidden", kBox, 1.f, 800, 1000, "--hide-ui", false},
+                    AspectCase{"box_800x1000_hidden", kAspectBox, 1.f, 800, 1000, "--hide-ui", false},
                     AspectCase{"veach_800x1000_hidden", kVeach, 1.5f, 800, 1000, "--hide-ui", false},
                     AspectCase{"veach_1280x720_hidden", kVeach, 1.5f, 1280, 720, "--hide-ui", false},
                     AspectCase{"veach_800x1000_panels", kVeach, 1.5f, 800, 1000, "", true}),

@@ -22,21 +22,21 @@
 
 namespace {
 
-const std::string kTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_error";
-const std::string kBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
+const std::string kErrorTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_error";
+const std::string kErrorBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
 
 using pathlab::test::CommandRun;
 using pathlab::test::Png;
 using pathlab::test::readPng;
 
-CommandRun run(const std::string& args) { return pathlab::test::runPathlab(kTmp, args); }
+CommandRun run(const std::string& args) { return pathlab::test::runPathlab(kErrorTmp, args); }
 
 // A small reference, rendered once for every test of this process (CTest runs each test in a
 // process of its own, in parallel) and removed when the process ends.
 struct Reference {
-  std::string path = kTmp + "/reference-" + std::to_string(getpid()) + ".exr";
+  std::string path = kErrorTmp + "/reference-" + std::to_string(getpid()) + ".exr";
   Reference() {
-    const CommandRun r = run("render " + kBox + " -o " + path +
+    const CommandRun r = run("render " + kErrorBox + " -o " + path +
                              " --width 80 --height 60 --spp 400 --max-length 4 --integrator pt --seed 99 --threads 2 --force");
     EXPECT_EQ(r.exitCode, 0) << r.err;
   }
@@ -78,11 +78,11 @@ std::map<int, std::vector<Point>> readSeries(const std::string& path) {
 }
 
 TEST(ViewerError, TwoConfigurationsTwoSeriesBothFalling) {
-  const std::string csv = kTmp + "/series.csv", shot = kTmp + "/series.png";
+  const std::string csv = kErrorTmp + "/series.csv", shot = kErrorTmp + "/series.png";
   // U at frame 21 switches balance to power: a new generation, a second series. Each runs until it
   // has 8 spp (wait=8), however loaded the machine. The first frame renders a placeholder size
   // until the reference's is applied: no series for that.
-  const CommandRun r = run("view " + kBox + " --reference " + reference() +
+  const CommandRun r = run("view " + kErrorBox + " --reference " + reference() +
                     " --headless --width 640 --height 480 --max-length 4 --threads 2 --frames 42"
                     " --script '20:wait=8;21:key=U;40:wait=8' --error-csv " + csv + " --screenshot " + shot + " --force");
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -106,8 +106,8 @@ TEST(ViewerError, TwoConfigurationsTwoSeriesBothFalling) {
 // The error view shows viridis, whose colours have more blue than red below t = 0.6: the box's
 // red and white walls turn blue-green-purple. Without it the left wall stays red.
 TEST(ViewerError, ErrorViewShowsTheErrorInViridis) {
-  const std::string plain = kTmp + "/plain.png", error = kTmp + "/error.png";
-  const std::string common = "view " + kBox + " --reference " + reference() +
+  const std::string plain = kErrorTmp + "/plain.png", error = kErrorTmp + "/error.png";
+  const std::string common = "view " + kErrorBox + " --reference " + reference() +
                              " --headless --width 640 --height 480 --max-length 4 --threads 2 --frames 12 --spp 4"
                              " --hide-ui --force --screenshot ";
   CommandRun r = run(common + plain);
@@ -134,17 +134,17 @@ void writePfm(const std::string& path, int w, int h, const std::vector<float>& r
 }
 
 TEST(ViewerError, BrokenReferencesAreOneLine) {
-  const std::string nan = kTmp + "/nan.pfm";
+  const std::string nan = kErrorTmp + "/nan.pfm";
   std::vector<float> rgb(3 * 8 * 6, 0.5f);
   rgb[7] = std::numeric_limits<float>::quiet_NaN();
   writePfm(nan, 8, 6, rgb);
-  const std::string png = kTmp + "/reference.png";
+  const std::string png = kErrorTmp + "/reference.png";
   std::ofstream(png) << "not really";
-  const std::string shot = " --headless --frames 2 --force --screenshot " + kTmp + "/x.png";
-  for (const std::string& args : {"view " + kBox + " --reference " + nan + shot,
-                                  "view " + kBox + " --reference " + png + shot,
-                                  "view " + kBox + " --reference /nonexistent/ref.exr" + shot,
-                                  "view " + kBox + " --error-csv " + kTmp + "/e.csv" + shot}) {
+  const std::string shot = " --headless --frames 2 --force --screenshot " + kErrorTmp + "/x.png";
+  for (const std::string& args : {"view " + kErrorBox + " --reference " + nan + shot,
+                                  "view " + kErrorBox + " --reference " + png + shot,
+                                  "view " + kErrorBox + " --reference /nonexistent/ref.exr" + shot,
+                                  "view " + kErrorBox + " --error-csv " + kErrorTmp + "/e.csv" + shot}) {
     const CommandRun r = run(args);
     EXPECT_EQ(r.exitCode, 1) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;

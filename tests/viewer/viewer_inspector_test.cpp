@@ -15,8 +15,8 @@ namespace {
 using pathlab::test::Png;
 using pathlab::test::readPng;
 
-const std::string kTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_inspector";
-const std::string kBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
+const std::string kInspectorTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_inspector";
+const std::string kInspectorBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
 
 // Pixels of the image area (x >= 470 in a 1280 x 720 window with the side panel) within a small
 // distance of a colour.
@@ -32,9 +32,9 @@ int pixelsNear(const Png& png, int r, int g, int b) {
 }
 
 Png view(const std::string& name, const std::string& script) {
-  const std::string out = kTmp + "/" + name + ".png";
+  const std::string out = kInspectorTmp + "/" + name + ".png";
   const pathlab::test::CommandRun r = pathlab::test::runPathlab(
-      kTmp, "view " + kBox + " --headless --width 1280 --height 720 --render-scale 0.25 --max-length 4 --spp 2 "
+      kInspectorTmp, "view " + kInspectorBox + " --headless --width 1280 --height 720 --render-scale 0.25 --max-length 4 --spp 2 "
                 "--threads 2 --frames 16 --force --script '" + script + "' --screenshot " + out);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("at 2 spp"), std::string::npos) << r.err;  // the render ran on undisturbed

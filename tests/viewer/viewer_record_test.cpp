@@ -21,28 +21,28 @@ using pathlab::test::Png;
 using pathlab::test::readPng;
 using pathlab::test::CommandRun;
 
-const std::string kTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_record";
-const std::string kBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
-const std::string kFast = " --headless --width 400 --height 300 --render-scale 0.25 --threads 2 --max-length 3 ";
+const std::string kRecordTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_record";
+const std::string kRecordBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
+const std::string kRecordFast = " --headless --width 400 --height 300 --render-scale 0.25 --threads 2 --max-length 3 ";
 // No ffmpeg on the path (whatever the machine has): the clip is frames only.
 const std::string kNoFfmpeg = "PATH=/nonexistent";
 
-CommandRun runView(const std::string& args, const std::string& prefix = kNoFfmpeg) {
-  return pathlab::test::runPathlab(kTmp, "view " + kBox + args, prefix);
+CommandRun runRecordingView(const std::string& args, const std::string& prefix = kNoFfmpeg) {
+  return pathlab::test::runPathlab(kRecordTmp, "view " + kRecordBox + args, prefix);
 }
 
 // `pathlab view` started in a fresh working directory `work` (for what it writes to out/).
 CommandRun runViewIn(const std::string& work, const std::string& args) {
   fs::remove_all(work);
   fs::create_directories(work);
-  return runView(args, "cd " + work + " && " + kNoFfmpeg);
+  return runRecordingView(args, "cd " + work + " && " + kNoFfmpeg);
 }
 
 // A fresh, absent directory for one test.
 std::string freshDir(const std::string& name) {
-  const std::string dir = kTmp + "/" + name;
+  const std::string dir = kRecordTmp + "/" + name;
   fs::remove_all(dir);
-  fs::create_directories(kTmp);
+  fs::create_directories(kRecordTmp);
   return dir;
 }
 
@@ -68,7 +68,7 @@ void expectNumberedFrames(const std::string& dir, int n) {
 
 TEST(ViewerRecord, HeadlessClockWritesTheExpectedFramesOfTheWindowSize) {
   const std::string dir = freshDir("window");
-  const CommandRun r = runView(kFast + "--frames 40 --record-fps 30 --record " + dir);
+  const CommandRun r = runRecordingView(kRecordFast + "--frames 40 --record-fps 30 --record " + dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectNumberedFrames(dir, 20);
   for (const std::string& name : framesIn(dir)) {
@@ -86,7 +86,7 @@ TEST(ViewerRecord, HeadlessClockWritesTheExpectedFramesOfTheWindowSize) {
 
 TEST(ViewerRecord, ImageOnlyFramesHaveTheImageAreaSizeWithItsCaption) {
   const std::string dir = freshDir("image");
-  const CommandRun r = runView(kFast + "--frames 10 --record-fps 60 --record-image --record " + dir);
+  const CommandRun r = runRecordingView(kRecordFast + "--frames 10 --record-fps 60 --record-image --record " + dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectNumberedFrames(dir, 10);
   // The side panel takes 0.45 of a 400-pixel window, leaving 220 x 300, and the Cornell box's
@@ -109,8 +109,8 @@ TEST(ViewerRecord, ImageOnlyFramesHaveTheImageAreaSizeWithItsCaption) {
 // Without --record, F9 starts a take in a fresh out/pathlab-recording-* and F9 stops it: frames
 // 10..29 are recorded (20 drawn frames, 10 clip frames at 30 fps), nothing before or after.
 TEST(ViewerRecord, TheKeyRecordsOnlyBetweenItsPresses) {
-  const std::string work = kTmp + "/key";
-  const CommandRun r = runViewIn(work, kFast + "--frames 40 --screenshot shot.png --script '10:key=F9;30:key=F9'");
+  const std::string work = kRecordTmp + "/key";
+  const CommandRun r = runViewIn(work, kRecordFast + "--frames 40 --screenshot shot.png --script '10:key=F9;30:key=F9'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::vector<fs::path> takes;
   for (const fs::directory_entry& e : fs::directory_iterator(work + "/out")) takes.push_back(e.path());
@@ -123,7 +123,7 @@ TEST(ViewerRecord, TheKeyRecordsOnlyBetweenItsPresses) {
 // 30..39 (5 + 5 clip frames), numbered without a gap.
 TEST(ViewerRecord, TheKeyPausesAndResumesARecordingFromTheCommandLine) {
   const std::string dir = freshDir("pause");
-  const CommandRun r = runView(kFast + "--frames 40 --record " + dir + " --script '10:key=F9;30:key=F9'");
+  const CommandRun r = runRecordingView(kRecordFast + "--frames 40 --record " + dir + " --script '10:key=F9;30:key=F9'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectNumberedFrames(dir, 10);
 }
@@ -131,8 +131,8 @@ TEST(ViewerRecord, TheKeyPausesAndResumesARecordingFromTheCommandLine) {
 // F12 during a recording: the screenshot is written, but its "screenshot ..." notice (green, at
 // the top of the panel) is not in the recorded frames: the panel's top looks as before the press.
 TEST(ViewerRecord, TransientNoticesStayOutOfTheClip) {
-  const std::string work = kTmp + "/notice";
-  const CommandRun r = runViewIn(work, kFast + "--frames 20 --record-fps 60 --record clip --script '8:key=F12'");
+  const std::string work = kRecordTmp + "/notice";
+  const CommandRun r = runViewIn(work, kRecordFast + "--frames 20 --record-fps 60 --record clip --script '8:key=F12'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   ASSERT_EQ(framesIn(work + "/out").size(), 1u);  // the screenshot was taken
   const Png before = readPng(work + "/clip/frame-00007.png"), after = readPng(work + "/clip/frame-00012.png");
@@ -150,7 +150,7 @@ TEST(ViewerRecord, FfmpegIsCalledWithoutAShellAndItsFailureIsOneWarning) {
   std::ofstream(bin + "/ffmpeg") << "#!/bin/sh\nfor a in \"$@\"; do echo \"$a\"; done > " << args
                                  << "\necho 'frame size mismatch' >&2\nexit 3\n";
   fs::permissions(bin + "/ffmpeg", fs::perms::owner_all);
-  const CommandRun r = runView(kFast + "--frames 4 --record-fps 60 --record " + dir, "PATH=" + bin + ":/usr/bin:/bin");
+  const CommandRun r = runRecordingView(kRecordFast + "--frames 4 --record-fps 60 --record " + dir, "PATH=" + bin + ":/usr/bin:/bin");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectNumberedFrames(dir, 4);
   std::ifstream in(args);
@@ -173,11 +173,11 @@ TEST(ViewerRecord, BadInputIsOneLineAndNothingIsOverwritten) {
   std::ofstream(full + "/lecture-notes.txt") << "precious";
   const std::string ok = freshDir("unused");
   for (const std::string& args :
-       {kFast + "--frames 2 --record " + full, kFast + "--frames 2 --record-fps 0 --record " + ok,
-        kFast + "--frames 2 --record-fps 121 --record " + ok,
-        kFast + "--frames 2 --record-image --screenshot " + kTmp + "/x.png --force",
-        kFast + "--frames 2 --record /nonexistent/deeper/clip", kFast + "--frames 2 --record " + full + "/lecture-notes.txt"}) {
-    const CommandRun r = runView(args);
+       {kRecordFast + "--frames 2 --record " + full, kRecordFast + "--frames 2 --record-fps 0 --record " + ok,
+        kRecordFast + "--frames 2 --record-fps 121 --record " + ok,
+        kRecordFast + "--frames 2 --record-image --screenshot " + kRecordTmp + "/x.png --force",
+        kRecordFast + "--frames 2 --record /nonexistent/deeper/clip", kRecordFast + "--frames 2 --record " + full + "/lecture-notes.txt"}) {
+    const CommandRun r = runRecordingView(args);
     EXPECT_NE(r.exitCode, 0) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
   }
