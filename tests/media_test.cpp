@@ -17,8 +17,6 @@
 namespace pathlab {
 namespace {
 
-constexpr double kMaxZ = 4.0;  // two-sided; with fixed seeds a failure is a real bias, not luck
-
 // --- The medium model ---------------------------------------------------------------------------
 
 TEST(Medium, ExtinctionFromAttenuationColourAndDistance) {
@@ -129,13 +127,13 @@ RenderSettings settingsFor(IntegratorKind integrator, MisHeuristic h, int width,
   return s;
 }
 
-struct Case {
+struct MediaCase {
   const char* name;
   IntegratorKind integrator;
   MisHeuristic heuristic;
   const char* techniques;  // nullptr: all
 };
-const Case kCases[] = {
+const MediaCase kMediaCases[] = {
     {"pt", IntegratorKind::Pt, MisHeuristic::Balance, nullptr},
     {"bpt balance", IntegratorKind::Bpt, MisHeuristic::Balance, nullptr},
     {"bpt power", IntegratorKind::Bpt, MisHeuristic::Power, nullptr},
@@ -166,13 +164,13 @@ TEST(MediaRender, AbsorbingSlabTransmitsExpMinusSigmaD) {
   const Scene scene(absorbingSlab(sigmaT, d));
   ASSERT_TRUE(scene.hasMedia());
   uint64_t seed = 1;
-  for (const Case& c : kCases) {
+  for (const MediaCase& c : kMediaCases) {
     RenderSettings s = settingsFor(c.integrator, c.heuristic, 8, 4, seed++);
     if (c.techniques) s.techniques = TechniqueSet::parse(c.techniques);
     for (int channel = 0; channel < 3; ++channel) {
       const double expected = std::exp(-double(sigmaT[channel]) * d);
       const test::MeanEstimate m = test::passMeans(scene, s, 24, channel);
-      EXPECT_LT(std::abs(m.mean - expected), kMaxZ * m.standardError + 1e-4 * expected)
+      EXPECT_LT(std::abs(m.mean - expected), test::kMaxZ * m.standardError + 1e-4 * expected)
           << c.name << " channel " << channel << ": mean " << m.mean << " expected " << expected << " se "
           << m.standardError;
     }
@@ -189,14 +187,14 @@ TEST(MediaRender, FoggyFurnaceKeepsLeOverOneMinusRho) {
   ASSERT_EQ(scene.mediumAt(Vec3(0.1f, 0.2f, 0.3f)), 0);  // the camera is in the fog
   const double expected = Le / (1.0 - rho);
   uint64_t seed = 40;
-  for (const Case& c : kCases) {
+  for (const MediaCase& c : kMediaCases) {
     RenderSettings s = settingsFor(c.integrator, c.heuristic, 8, 60, seed++);
     if (c.techniques) s.techniques = TechniqueSet::parse(c.techniques);
     // A subset without every technique of some length misses the paths only those sample: its
     // image is not the furnace's (light tracing alone samples every path here).
     if (c.techniques && std::string(c.techniques) != "t=1") continue;
     const test::MeanEstimate m = test::passMeans(scene, s, 256);
-    EXPECT_LT(std::abs(m.zScore(expected)), kMaxZ)
+    EXPECT_LT(std::abs(m.zScore(expected)), test::kMaxZ)
         << c.name << ": mean " << m.mean << " expected " << expected << " se " << m.standardError;
     // Precise enough to see a bias of 20 %. Light tracing in a medium around a pinhole has infinite
     // variance (a point at distance r from the lens contributes ~1/r^2, and the volume near it

@@ -68,7 +68,7 @@ std::string oneLine(const std::string& text) {
   return out;
 }
 
-std::string quoted(const std::string& name) { return name.empty() ? "" : " '" + name + "'"; }
+std::string quotedName(const std::string& name) { return name.empty() ? "" : " '" + name + "'"; }
 
 namespace {
 

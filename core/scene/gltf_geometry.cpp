@@ -135,7 +135,7 @@ LocalPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, int 
                                Warnings& warnings) {
   const tinygltf::Mesh& mesh = model.meshes[size_t(meshIndex)];
   const tinygltf::Primitive& prim = mesh.primitives[size_t(primitiveIndex)];
-  std::string label = "mesh " + std::to_string(meshIndex) + quoted(mesh.name);
+  std::string label = "mesh " + std::to_string(meshIndex) + quotedName(mesh.name);
   if (mesh.primitives.size() > 1) label += " primitive " + std::to_string(primitiveIndex);
 
   LocalPrimitive out;

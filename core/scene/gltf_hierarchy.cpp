@@ -64,7 +64,7 @@ uint64_t meshTriangles(const tinygltf::Model& model, int mesh) {
 }  // namespace
 
 std::string nodeLabel(const tinygltf::Model& model, int index) {
-  return "node " + std::to_string(index) + quoted(model.nodes[size_t(index)].name);
+  return "node " + std::to_string(index) + quotedName(model.nodes[size_t(index)].name);
 }
 
 std::vector<NodeVisit> walkHierarchy(const tinygltf::Model& model) {

@@ -47,7 +47,7 @@ std::string oneLine(const std::string& text);
 // Shortens every base64 data URI in tinygltf's messages to its header: a message is one line,
 // not megabytes of an embedded buffer.
 std::string elideDataUris(const std::string& text);
-std::string quoted(const std::string& name);  // " 'name'", or "" for an unnamed object
+std::string quotedName(const std::string& name);  // " 'name'", or "" for an unnamed object
 
 // Reads and parses `path` (.gltf or .glb, told apart by the magic bytes); tinygltf's warnings are
 // added to `warnings`. Throws LoadError for a missing, unreadable, truncated or invalid file, and

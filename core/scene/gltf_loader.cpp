@@ -163,7 +163,7 @@ void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
   const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
     const tinygltf::Primitive& prim = mesh.primitives[p];
-    const std::string label = "mesh " + std::to_string(node.mesh) + quoted(mesh.name) +
+    const std::string label = "mesh " + std::to_string(node.mesh) + quotedName(mesh.name) +
                               (mesh.primitives.size() > 1 ? " primitive " + std::to_string(p) : "");
     if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
       static const char* const kModes[] = {"POINTS",      "LINES",     "LINE_LOOP",
@@ -232,7 +232,7 @@ void SceneBuilder::addCamera(int nodeIndex, const glm::dmat4& world) {
                     ", which does not exist");
   }
   const tinygltf::Camera& camera = model_.cameras[size_t(index)];
-  const std::string label = "camera " + std::to_string(index) + quoted(camera.name);
+  const std::string label = "camera " + std::to_string(index) + quotedName(camera.name);
   if (camera.type != "perspective") {
     warnings_.add(label, camera.type + " cameras are not supported; ignored");
     return;
@@ -270,7 +270,7 @@ void SceneBuilder::addLight(int nodeIndex, const glm::dmat4& world) {
     throw LoadError(nodeName + " refers to light " + index.str() + ", which does not exist");
   }
   const tinygltf::Light& g = model_.lights[size_t(lightIndex)];
-  const std::string label = "light " + std::to_string(size_t(lightIndex)) + quoted(g.name);
+  const std::string label = "light " + std::to_string(size_t(lightIndex)) + quotedName(g.name);
   PunctualLightDesc light;
   light.name = !g.name.empty() ? g.name : label;
   if (g.type == "point") {

@@ -140,7 +140,7 @@ WrapMode wrapMode(int mode, Warnings& warnings) {
 // tinygltf's stb loader yields row 0 at the top, as Texture and glTF uv (0, 0) expect, with the
 // file's own channels (loadImageChecked asks it to preserve them).
 ImagePixels takePixels(tinygltf::Image& image, int imageIndex) {
-  const std::string name = "image " + std::to_string(imageIndex) + quoted(image.name);
+  const std::string name = "image " + std::to_string(imageIndex) + quotedName(image.name);
   if (image.image.empty()) {
     if (!image.uri.empty() && !tinygltf::IsDataURI(image.uri)) {
       throw LoadError(name + ": cannot load image file '" + image.uri + "'");
@@ -276,7 +276,7 @@ TextureRef MaterialReader::texture(int textureIndex, int texCoord,
 
 Material MaterialReader::convert(int index) {
   const tinygltf::Material& g = model_.materials[size_t(index)];
-  label_ = "material " + std::to_string(index) + quoted(g.name);
+  label_ = "material " + std::to_string(index) + quotedName(g.name);
   Material m;
   m.name = !g.name.empty() ? g.name : "material " + std::to_string(index);
 

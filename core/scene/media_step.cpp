@@ -6,12 +6,12 @@ namespace pathlab {
 namespace {
 // A ray crossing more boundaries than this without meeting anything (a numerical loop along
 // coplanar boundary triangles) is dropped: a finite walk, at the cost of one path.
-constexpr int kMaxBoundaryCrossings = 64;
+constexpr int kMaxStepCrossings = 64;
 }  // namespace
 
 MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng, Counters& counters) {
   MediaStep step;
-  for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
+  for (int crossing = 0; crossing < kMaxStepCrossings; ++crossing) {
     ++counters.rays;
     std::optional<SurfaceHit> hit = scene.intersect(ray);
     const float tMax = hit ? hit->t : std::numeric_limits<float>::infinity();
