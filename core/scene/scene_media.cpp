@@ -52,7 +52,6 @@ SceneMedia::SceneMedia(const SceneDesc& desc) {
     volumes_.clear();
     return;
   }
-  meshes_.reserve(meshCount);
   meshList_ = &desc.meshes;
   for (size_t m = 0; m < meshCount; ++m) {
     const int vi = materialVolume[static_cast<size_t>(desc.meshes[m].material)];
