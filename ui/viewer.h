@@ -55,6 +55,11 @@ class Viewer {
   bool quitRequested() const { return ui_.quit; }
   bool takeScreenshotRequest() { return std::exchange(ui_.screenshotRequested, false); }
   bool takeRecordingToggleRequest() { return std::exchange(ui_.recordingToggleRequested, false); }
+  // Where the 3D view was drawn in the last frame (nothing when it is off).
+  std::optional<PixelRect> drawnView3D() const {
+    if (!view3dTextureInUse_) return std::nullopt;
+    return view3dRect_;
+  }
   // Where the 3D view was drawn when its export (Ctrl+E) was asked for, else nothing: the caller
   // reads it back after the frame is drawn and writes it as a PNG.
   std::optional<PixelRect> takeView3DExportRequest() {
