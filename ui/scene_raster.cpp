@@ -33,10 +33,13 @@ void SceneRaster::release() {
 void SceneRaster::upload(const Scene& scene) {
   release();
   std::vector<float> interleaved;
+  const std::vector<PreviewColour> colours = previewColours(scene);
   for (const TriangleMesh& mesh : scene.meshes()) {
     if (mesh.indices.empty()) continue;
     Mesh m;
-    const PreviewColour c = previewColour(scene, mesh.material);
+    const PreviewColour c = mesh.material >= 0 && static_cast<size_t>(mesh.material) < colours.size()
+                                ? colours[static_cast<size_t>(mesh.material)]
+                                : PreviewColour{};
     m.colour = c.rgba;
     m.emitter = c.emitter;
     m.indexCount = static_cast<int>(mesh.indices.size());

@@ -141,18 +141,28 @@ InspectorOverlay view3DOverlay(const View3DState& state, const PathInspectorStat
   return overlay;
 }
 
-PreviewColour previewColour(const Scene& scene, int material) {
-  const Material& m = scene.material(material);
+std::vector<PreviewColour> previewColours(const Scene& scene) {
+  std::vector<std::optional<Vec4>> averages(scene.textures().size());
   auto textureAverage = [&](const TextureRef& ref) {
-    return ref.valid() ? scene.textures()[static_cast<size_t>(ref.texture)].average() : Vec4(1.f);
+    if (!ref.valid()) return Vec4(1.f);
+    std::optional<Vec4>& a = averages[static_cast<size_t>(ref.texture)];
+    if (!a) a = scene.textures()[static_cast<size_t>(ref.texture)].average();
+    return *a;
   };
-  const Vec3 emission = Vec3(m.emissiveFactor) * m.emissiveStrength * Vec3(textureAverage(m.emissiveTexture));
-  const float peak = std::max({emission.x, emission.y, emission.z});
-  if (peak > 0.f) return {Vec4(emission / peak, 1.f), true};
-  const Vec4 base = m.baseColorFactor * textureAverage(m.baseColorTexture);
-  float alpha = m.alphaMode == AlphaMode::Blend ? base.a : 1.f;
-  if (m.transmissionFactor > 0.f) alpha = std::min(alpha, 0.3f);  // glass and media: see the paths inside
-  return {Vec4(Vec3(base), alpha), false};
+  std::vector<PreviewColour> colours;
+  for (const Material& m : scene.materials()) {
+    const Vec3 emission = Vec3(m.emissiveFactor) * m.emissiveStrength * Vec3(textureAverage(m.emissiveTexture));
+    const float peak = std::max({emission.x, emission.y, emission.z});
+    if (peak > 0.f) {
+      colours.push_back({Vec4(emission / peak, 1.f), true});
+      continue;
+    }
+    const Vec4 base = m.baseColorFactor * textureAverage(m.baseColorTexture);
+    float alpha = m.alphaMode == AlphaMode::Blend ? base.a : 1.f;
+    if (m.transmissionFactor > 0.f) alpha = std::min(alpha, 0.3f);  // glass and media: see the paths inside
+    colours.push_back({Vec4(Vec3(base), alpha), false});
+  }
+  return colours;
 }
 
 }  // namespace pathlab::ui

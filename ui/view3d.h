@@ -73,6 +73,7 @@ struct PreviewColour {
   Vec4 rgba{1.f};
   bool emitter = false;
 };
-PreviewColour previewColour(const Scene& scene, int material);
+// Every material's, in order; each texture is averaged once.
+std::vector<PreviewColour> previewColours(const Scene& scene);
 
 }  // namespace pathlab::ui

@@ -133,8 +133,10 @@ TEST(View3D, DepthRangeHoldsTheSceneAndColoursFollowTheMaterials) {
     EXPECT_LT(depth, range.y);
   }
   int emitters = 0;
+  const std::vector<PreviewColour> colours = previewColours(scene);
+  ASSERT_EQ(colours.size(), scene.materials().size());
   for (size_t m = 0; m < scene.materials().size(); ++m) {
-    const PreviewColour c = previewColour(scene, static_cast<int>(m));
+    const PreviewColour& c = colours[m];
     const Material& material = scene.material(static_cast<int>(m));
     if (c.emitter) {
       ++emitters;

@@ -100,6 +100,26 @@ TEST(ViewerInspector, The3DViewDrawsTheSampleFromItsOwnCameraAndOrbitingItRestar
   EXPECT_LT(picked.png.meanDifference(orbited.png, i.x0, i.y0, i.x1, i.y1), 1e-9);
 }
 
+// Warm pixels (the particles run from dim red to bright yellow).
+int warmPixels(const Png& png, Rect r) {
+  int n = 0;
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) {
+      const int red = png.rgb[png.index(x, y, 0)], green = png.rgb[png.index(x, y, 1)], blue = png.rgb[png.index(x, y, 2)];
+      n += red > green && green > blue && red - blue > 70 ? 1 : 0;
+    }
+  return n;
+}
+
+TEST(ViewerInspector, LightParticlesAreDrawnInThe3DView) {
+  const ViewRun plain = view("particles-none", "2:key=O;6:wait=2");
+  const ViewRun particles = view("particles", "2:key=O;3:key=L;6:wait=2");
+  ASSERT_GT(particles.view3d.x1, particles.view3d.x0) << particles.err;
+  const int before = warmPixels(plain.png, plain.view3d), after = warmPixels(particles.png, particles.view3d);
+  EXPECT_GT(after, before + 500) << before << " " << after;
+  EXPECT_EQ(particles.generation, plain.generation);  // replaying them restarts nothing
+}
+
 TEST(ViewerInspector, ExportsTheSampleAsJsonAndThe3DViewAsPng) {
   const std::string dir = kInspectorTmp + "/export";
   std::filesystem::remove_all(dir);
