@@ -15,13 +15,13 @@
 namespace pathlab::ui {
 namespace {
 
-std::shared_ptr<const Scene> box() {
+std::shared_ptr<const Scene> sharedBox() {
   static const std::shared_ptr<const Scene> scene =
       std::make_shared<const Scene>(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
   return scene;
 }
 
-RenderSettings boxSettings() {
+RenderSettings particleBoxSettings() {
   RenderSettings s;
   s.width = 64;
   s.height = 64;
@@ -31,8 +31,8 @@ RenderSettings boxSettings() {
 }
 
 TEST(View3D, ParticlesAreTheLightSubpathsTheRenderTraced) {
-  const RenderSettings s = boxSettings();
-  const RenderSession session(*box(), s);
+  const RenderSettings s = particleBoxSettings();
+  const RenderSession session(*sharedBox(), s);
   int compared = 0;
   for (int i = 0; i < 40; ++i) {
     const int x = (i * 37) % s.width, y = (i * 11) % s.height;
@@ -52,34 +52,34 @@ TEST(View3D, ParticlesAreTheLightSubpathsTheRenderTraced) {
   EXPECT_GT(compared, 30);
   RenderSettings pt = s;
   pt.integrator = IntegratorKind::Pt;
-  EXPECT_TRUE(RenderSession(*box(), pt).replayLightSubpath(3, 4, 0).empty());
+  EXPECT_TRUE(RenderSession(*sharedBox(), pt).replayLightSubpath(3, 4, 0).empty());
 }
 
 TEST(View3D, ParticlesAreReplayedOncePerPassAndSettings) {
   LightParticles particles;
   particles.count = 16;
-  const RenderSettings s = boxSettings();
-  EXPECT_FALSE(refreshLightParticles(particles, box(), s, 3));  // off
+  const RenderSettings s = particleBoxSettings();
+  EXPECT_FALSE(refreshLightParticles(particles, sharedBox(), s, 3));  // off
   particles.on = true;
-  EXPECT_FALSE(refreshLightParticles(particles, box(), s, 0));  // no pass finished yet
-  ASSERT_TRUE(refreshLightParticles(particles, box(), s, 3));
+  EXPECT_FALSE(refreshLightParticles(particles, sharedBox(), s, 0));  // no pass finished yet
+  ASSERT_TRUE(refreshLightParticles(particles, sharedBox(), s, 3));
   EXPECT_EQ(particles.pass, 2u);
   EXPECT_GT(particles.subpaths.size(), 8u);
   EXPECT_LE(particles.subpaths.size(), 16u);
   const std::vector<std::vector<PathVertex>> first = particles.subpaths;
-  EXPECT_FALSE(refreshLightParticles(particles, box(), s, 3));
-  ASSERT_TRUE(refreshLightParticles(particles, box(), s, 4));
+  EXPECT_FALSE(refreshLightParticles(particles, sharedBox(), s, 3));
+  ASSERT_TRUE(refreshLightParticles(particles, sharedBox(), s, 4));
   EXPECT_NE(first.front().back().p, particles.subpaths.front().back().p);  // another pass, other paths
   RenderSettings pt = s;
   pt.integrator = IntegratorKind::Pt;
-  EXPECT_TRUE(refreshLightParticles(particles, box(), pt, 4));
+  EXPECT_TRUE(refreshLightParticles(particles, sharedBox(), pt, 4));
   EXPECT_TRUE(particles.subpaths.empty());
   EXPECT_NE(particles.error.find("path tracer"), std::string::npos);
 }
 
 TEST(View3D, OverlayShowsTheRenderCameraAndTheSampleWhereTheViewSeesThem) {
-  const Scene& scene = *box();
-  const RenderSettings s = boxSettings();
+  const Scene& scene = *sharedBox();
+  const RenderSettings s = particleBoxSettings();
   View3DState state;
   ensureView3DCamera(state, scene, scene.cameraDesc());
   ASSERT_TRUE(state.orbit.has_value());
@@ -118,7 +118,7 @@ TEST(View3D, OverlayShowsTheRenderCameraAndTheSampleWhereTheViewSeesThem) {
 }
 
 TEST(View3D, DepthRangeHoldsTheSceneAndColoursFollowTheMaterials) {
-  const Scene& scene = *box();
+  const Scene& scene = *sharedBox();
   View3DState state;
   ensureView3DCamera(state, scene, scene.cameraDesc());
   const CameraDesc view = view3DCameraDesc(state);

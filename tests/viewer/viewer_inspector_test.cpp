@@ -23,12 +23,12 @@ using pathlab::test::readPng;
 const std::string kInspectorTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_inspector";
 const std::string kInspectorBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
 
-struct Rect {
+struct ScreenRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
 // Pixels of `r` within a small distance of a colour.
-int pixelsNear(const Png& png, Rect r, int red, int green, int blue) {
+int pixelsNear(const Png& png, ScreenRect r, int red, int green, int blue) {
   int n = 0;
   for (int y = r.y0; y < r.y1; ++y)
     for (int x = r.x0; x < r.x1; ++x) {
@@ -40,41 +40,41 @@ int pixelsNear(const Png& png, Rect r, int red, int green, int blue) {
 }
 
 // Camera subpath (90,200,255), light subpath (255,165,60), connections (120,240,120).
-int pathPixels(const Png& png, Rect r) {
+int pathPixels(const Png& png, ScreenRect r) {
   return pixelsNear(png, r, 90, 200, 255) + pixelsNear(png, r, 255, 165, 60) + pixelsNear(png, r, 120, 240, 120);
 }
 
-struct ViewRun {
+struct InspectorRun {
   Png png;
   std::string err;
-  Rect image, view3d;  // as the closing line reports them
+  ScreenRect image, view3d;  // as the closing line reports them
   int generation = -1;
 };
 
-Rect rectIn(const std::string& err, const std::string& label) {
+ScreenRect rectIn(const std::string& err, const std::string& label) {
   std::smatch m;
   if (!std::regex_search(err, m, std::regex(label + R"( (\d+)x(\d+)\+(\d+)\+(\d+))"))) return {};
   const int w = std::stoi(m[1]), h = std::stoi(m[2]), x = std::stoi(m[3]), y = std::stoi(m[4]);
   return {x, y, x + w, y + h};
 }
 
-ViewRun view(const std::string& name, const std::string& script, const std::string& dir = kInspectorTmp) {
+InspectorRun view(const std::string& name, const std::string& script, const std::string& dir = kInspectorTmp) {
   const std::string out = kInspectorTmp + "/" + name + ".png";
   const pathlab::test::CommandRun r = pathlab::test::runPathlab(
       dir, "view " + kInspectorBox + " --headless --width 1280 --height 720 --render-scale 0.25 --max-length 4 --spp 2 "
                 "--threads 2 --frames 20 --force --script '" + script + "' --screenshot " + out, "cd " + dir + " &&");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("at 2 spp"), std::string::npos) << r.err;  // the render ran on undisturbed
-  ViewRun v{readPng(out), r.err, rectIn(r.err, "image"), rectIn(r.err, "3D view")};
+  InspectorRun v{readPng(out), r.err, rectIn(r.err, "image"), rectIn(r.err, "3D view")};
   std::smatch m;
   if (std::regex_search(r.err, m, std::regex(R"(\(generation (\d+)\))"))) v.generation = std::stoi(m[1]);
   return v;
 }
 
 TEST(ViewerInspector, AClickDrawsTheSamplesPathsAndNextSampleChangesThem) {
-  const ViewRun none = view("none", "2:key=K;6:wait=2");
-  const ViewRun picked = view("picked", "2:key=K;6:wait=2;8:click=760,330");
-  const ViewRun next = view("next", "2:key=K;6:wait=2;8:click=760,330;13:key=N");
+  const InspectorRun none = view("none", "2:key=K;6:wait=2");
+  const InspectorRun picked = view("picked", "2:key=K;6:wait=2;8:click=760,330");
+  const InspectorRun next = view("next", "2:key=K;6:wait=2;8:click=760,330;13:key=N");
   ASSERT_GT(picked.png.width, 0);
   ASSERT_GT(picked.image.x1, picked.image.x0);
   EXPECT_GT(pathPixels(picked.png, picked.image), 300);
@@ -85,23 +85,23 @@ TEST(ViewerInspector, AClickDrawsTheSamplesPathsAndNextSampleChangesThem) {
 }
 
 TEST(ViewerInspector, The3DViewDrawsTheSampleFromItsOwnCameraAndOrbitingItRestartsNothing) {
-  const ViewRun plain = view("view3d-none", "2:key=K;3:key=O;6:wait=2");
-  const ViewRun picked = view("view3d-picked", "2:key=K;3:key=O;6:wait=2;8:click=560,300");
-  const ViewRun orbited = view("view3d-orbited", "2:key=K;3:key=O;6:wait=2;8:click=560,300;12:drag=1000,200>1080,240");
+  const InspectorRun plain = view("view3d-none", "2:key=K;3:key=O;6:wait=2");
+  const InspectorRun picked = view("view3d-picked", "2:key=K;3:key=O;6:wait=2;8:click=560,300");
+  const InspectorRun orbited = view("view3d-orbited", "2:key=K;3:key=O;6:wait=2;8:click=560,300;12:drag=1000,200>1080,240");
   ASSERT_GT(picked.view3d.x1, picked.view3d.x0) << picked.err;
   EXPECT_GE(picked.view3d.x0, picked.image.x1);  // beside the image
   // The sample's paths in the 3D view: only the render camera's marker without a pick.
   const int before = pathPixels(plain.png, plain.view3d), after = pathPixels(picked.png, picked.view3d);
   EXPECT_GT(after, before + 150) << before << " " << after;
   // The drag turned the 3D view, and only it: the render kept its generation and its image.
-  const Rect v = picked.view3d, i = picked.image;
+  const ScreenRect v = picked.view3d, i = picked.image;
   EXPECT_GT(picked.png.meanDifference(orbited.png, v.x0, v.y0, v.x1, v.y1), 2.0);
   EXPECT_EQ(orbited.generation, picked.generation);
   EXPECT_LT(picked.png.meanDifference(orbited.png, i.x0, i.y0, i.x1, i.y1), 1e-9);
 }
 
 // Warm pixels (the particles run from dim red to bright yellow).
-int warmPixels(const Png& png, Rect r) {
+int warmPixels(const Png& png, ScreenRect r) {
   int n = 0;
   for (int y = r.y0; y < r.y1; ++y)
     for (int x = r.x0; x < r.x1; ++x) {
@@ -112,8 +112,8 @@ int warmPixels(const Png& png, Rect r) {
 }
 
 TEST(ViewerInspector, LightParticlesAreDrawnInThe3DView) {
-  const ViewRun plain = view("particles-none", "2:key=O;6:wait=2");
-  const ViewRun particles = view("particles", "2:key=O;3:key=L;6:wait=2");
+  const InspectorRun plain = view("particles-none", "2:key=O;6:wait=2");
+  const InspectorRun particles = view("particles", "2:key=O;3:key=L;6:wait=2");
   ASSERT_GT(particles.view3d.x1, particles.view3d.x0) << particles.err;
   const int before = warmPixels(plain.png, plain.view3d), after = warmPixels(particles.png, particles.view3d);
   EXPECT_GT(after, before + 500) << before << " " << after;
@@ -123,7 +123,7 @@ TEST(ViewerInspector, LightParticlesAreDrawnInThe3DView) {
 TEST(ViewerInspector, ExportsTheSampleAsJsonAndThe3DViewAsPng) {
   const std::string dir = kInspectorTmp + "/export";
   std::filesystem::remove_all(dir);
-  const ViewRun run = view("export", "2:key=K;3:key=O;6:wait=2;8:click=560,300;13:key=Ctrl+J;14:key=Ctrl+E", dir);
+  const InspectorRun run = view("export", "2:key=K;3:key=O;6:wait=2;8:click=560,300;13:key=Ctrl+J;14:key=Ctrl+E", dir);
   std::string json, png;
   for (const auto& entry : std::filesystem::directory_iterator(dir + "/out")) {
     const std::string name = entry.path().filename().string();
