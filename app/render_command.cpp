@@ -203,10 +203,12 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   if (const std::string w = misOffWarning(scene, settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
   if (const std::string w = biasInjectionWarning(settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
+  // This rank's share of the passes (Job::passSchedule): all of them for one process. Before the
+  // summary line: settings the scene's camera refuses (light tracing through an orthographic
+  // camera) are then the only line.
+  p.session = std::make_unique<RenderSession>(scene, settings, job.passSchedule());
   log << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene,
                      scene.triangleCount(), scene.lights().size(), double(scene.geometryBytes()) / 1e6, loadSeconds);
-  // This rank's share of the passes (Job::passSchedule): all of them for one process.
-  p.session = std::make_unique<RenderSession>(scene, settings, job.passSchedule());
   return p;
 }
 

@@ -456,6 +456,11 @@ class GltfBuilder:
         return self.add_node(name, camera=self.add_camera(name, yfov, aspect),
                              translation=eye, rotation=look_at(eye, target))
 
+    def add_orthographic_camera_node(self, eye, target, xmag, ymag, name="camera"):
+        camera = self._append("cameras", {"name": name, "type": "orthographic", "orthographic": {
+            "xmag": xmag, "ymag": ymag, "znear": 0.01, "zfar": 100.0}})
+        return self.add_node(name, camera=camera, translation=eye, rotation=look_at(eye, target))
+
     def add_light(self, name, type_, intensity, color=(1.0, 1.0, 1.0), inner=None, outer=None):
         light = {"name": name, "type": type_, "color": list(color), "intensity": intensity}
         if type_ == "spot":
@@ -776,6 +781,36 @@ def fog():
     return b
 
 
+def isometric():
+    """Blocks and a ball on a floor under a square area light, seen by an orthographic camera
+    from the isometric angle (azimuth 45 degrees, elevation 35.26): parallel rays, so equal
+    lengths look equal everywhere. Its importance is a delta in direction: no light subpath can
+    connect to it (t = 1), so light tracing is refused and BPT combines the t >= 2 techniques."""
+    b = GltfBuilder()
+    floor = b.add_material("floor", (0.7, 0.7, 0.7), lambertian=True)
+    red = b.add_material("red", (0.7, 0.12, 0.08), lambertian=True)
+    blue = b.add_material("blue", (0.1, 0.22, 0.65), lambertian=True)
+    gold = b.add_material("gold", (1.0, 0.78, 0.35), metallic=1.0, roughness=0.3)
+    light = b.add_emitter("light", (18.0, 17.0, 15.0))
+    nodes = []
+
+    def part(name, geom, material):
+        nodes.append(b.add_node(name, b.add_geom(geom, material, name)))
+
+    part("floor", rect((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 1.5, 1.5), floor)
+    part("redBlock", box((-0.55, 0.25, -0.35), (0.25, 0.25, 0.25)), red)
+    part("blueTower", box((0.45, 0.45, -0.45), (0.2, 0.45, 0.2)), blue)
+    part("goldBall", uv_sphere((0.15, 0.3, 0.5), 0.3), gold)
+    part("light", rect((-0.3, 2.0, 0.3), (0.0, -1.0, 0.0), 0.4, 0.4), light)
+    d = 5.0  # far enough that the film plane lies outside the scene
+    eye = (d * math.cos(math.radians(35.264)) * math.sin(math.radians(45.0)),
+           d * math.sin(math.radians(35.264)),
+           d * math.cos(math.radians(35.264)) * math.cos(math.radians(45.0)))
+    nodes.append(b.add_orthographic_camera_node(eye, (0.0, 0.3, 0.0), 2.0, 1.5))
+    b.add_scene("isometric", nodes)
+    return b
+
+
 def environment_objects(eye, target, yfov, aspect):
     """No light of its own: lit by an environment (the default light, or --environment). A
     Lambertian floor (0.5), a rough gold sphere (metal, roughness 0.3), a glass sphere and a
@@ -1057,6 +1092,7 @@ def main():
     write(ASSETS / "bidir-lamp.gltf", bidir_lamp().gltf_bytes())
     write(ASSETS / "caustic.gltf", caustic().gltf_bytes())
     write(ASSETS / "fog.gltf", fog().gltf_bytes())
+    write(ASSETS / "isometric.gltf", isometric().gltf_bytes())
     write(ASSETS / "environment.gltf",
           environment_objects((1.2, 1.1, 2.6), (0.0, 0.3, 0.0), 0.75, 1.5).gltf_bytes())
     write(ASSETS / "sky.hdr", sky_hdr())

@@ -5,6 +5,7 @@
 // z-tests whose standard errors are measured from independent passes; one Bonferroni threshold
 // covers all comparisons of a test (tests/support/agreement.h). Fixed seeds; set
 // PATHLAB_TEST_SEED to rerun with other seeds (the threshold must not depend on one lucky seed).
+#include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/agreement.h"
 
@@ -96,6 +97,24 @@ TEST(BundledAgreement, CornellBox) {
                                   {"lt", "balance", 1}});
   report(run, "cornell-box");
   test::expectAgreement(run, "cornell-box");
+}
+
+// The Cornell box through an orthographic camera (issue 15): parallel rays from a film rectangle.
+// No t = 1 technique can connect to it, so light tracing is refused and BPT's weights share each
+// path among the t >= 2 techniques; PT and BPT under both heuristics agree.
+TEST(BundledAgreement, CornellBoxOrthographic) {
+  Scene scene(loadGltf(assetPath("cornell-box.gltf")));
+  RenderSettings base = sceneSettings(16, 16, 8);
+  CameraDesc ortho = scene.cameraDesc();
+  ortho.orthographic = Vec2(0.3f, 0.3f);
+  base.camera = ortho;
+  const auto run = runEstimators(scene, base, {768, 128, 128, 0}, 4,
+                                 {{"balance", "pt"}, {"power", "pt"}, {"power", "balance"}});
+  report(run, "cornell-box orthographic");
+  test::expectAgreement(run, "cornell-box orthographic");
+  RenderSettings lt = base;
+  lt.integrator = IntegratorKind::Lt;
+  EXPECT_THROW({ const RenderSession session(scene, lt); }, std::invalid_argument);
 }
 
 // Veach's MIS scene (1997, fig. 9.2): glossy plates (the top one, roughness 0.03, has GGX alpha

@@ -113,6 +113,18 @@ TEST(MisPartialSums, EqualTheExplicitWeightsThroughAThinLens) {
   checkScene(bundled("cornell-box"), "cornell-box/lens", 6, LensOptions{0.05f, 3.f});
 }
 
+// An orthographic camera (issue 15): the camera vertex cannot be connected to (t = 1) and the
+// first camera vertex's density is planar, as from a directional light.
+TEST(MisPartialSums, EqualTheExplicitWeightsThroughAnOrthographicCamera) {
+  const Scene scene = bundled("cornell-box");
+  CameraDesc ortho = scene.cameraDesc();
+  ortho.orthographic = Vec2(0.4f, 0.3f);
+  const Camera camera(ortho, 16, 12);
+  const Tally tally = compare(scene, camera, 8, 1.f, kDefaultMinConnection, "cornell-box/orthographic");
+  EXPECT_GT(tally.compared, 1000);
+  EXPECT_LT(tally.declined, tally.compared / 100 + 1);
+}
+
 // With connections shorter than 30 % of the bounding radius left out, the sums decline those
 // paths (misWeight then applies the rule) and agree wherever they answer.
 TEST(MisPartialSums, DeclineNearCoincidentConnections) {

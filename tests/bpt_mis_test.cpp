@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 namespace pathlab {
 namespace {
 
@@ -27,6 +29,13 @@ double oracleDensity(const Scene& scene, const Camera& camera, const PathVertex&
   const double dist2 = glm::dot(d, d);
   const Vec3 w = at.isInfinite ? at.ng : to.isInfinite ? -to.ng : glm::normalize(d);
   const double cosTo = to.type == VertexType::Camera || to.ng == Vec3(0.f) || to.isInfinite ? 1.0 : absDot(to.ng, w);
+  if (at.type == VertexType::Camera && camera.isOrthographic()) {
+    // Parallel rays along the view axis, uniform over the film rectangle: a planar density, times
+    // the receiver's cosine to the axis (no distance: the rays do not spread).
+    const Vec3 axis = camera.forward();
+    const double cosAxis = to.type == VertexType::Surface ? absDot(to.ng, axis) : 1.0;
+    return camera.pdfWe(Ray{at.p, axis}).pdfPosA * cosAxis;
+  }
   if (at.isInfinite) {
     const Light& light = scene.lights()[static_cast<size_t>(at.light)];
     return light.pdfLe(at.p, at.ng, w).pdfPosA * cosTo;
@@ -53,6 +62,7 @@ double oracleDensity(const Scene& scene, const Camera& camera, const PathVertex&
 struct FullPath {
   std::vector<PathVertex> x;  // x0 on the light ... x(n-1) the camera
   std::vector<double> pL, pE;
+  bool orthographic = false;  // the camera's importance is a delta in direction: t' = 1 cannot connect
 };
 
 FullPath densities(const Scene& scene, const Camera& camera, std::vector<PathVertex> x) {
@@ -75,6 +85,7 @@ FullPath densities(const Scene& scene, const Camera& camera, std::vector<PathVer
                                                  i + 2 < n ? &x[static_cast<size_t>(i + 2)] : nullptr,
                                                  x[static_cast<size_t>(i)], TransportMode::Radiance);
   f.x = std::move(x);
+  f.orthographic = camera.isOrthographic();
   return f;
 }
 
@@ -89,7 +100,8 @@ std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled
   // No lens point connects to the environment: (1, 1) cannot form the path environment -> camera.
   const bool lensToInfinity = n == 2 && f.x[0].isInfinite;
   auto candidate = [&](int sp) {
-    return enabled.contains(sp, n - sp) && (sp != 0 || x0Hittable) && !(sp == 1 && lensToInfinity);
+    return enabled.contains(sp, n - sp) && (sp != 0 || x0Hittable) && !(sp == 1 && lensToInfinity) &&
+           !(sp == n - 1 && f.orthographic);
   };
   auto shortEdge = [&](int sp) {
     return sp >= 1 && glm::distance(f.x[static_cast<size_t>(sp - 1)].p, f.x[static_cast<size_t>(sp)].p) < minDistance;
@@ -185,9 +197,11 @@ SceneDesc environmentAndSquare() {
 
 // minConnection: MisOptions::minConnection. The default leaves out a connection only at a corner;
 // a large value makes short connections common, the fallback (no long one left) included.
-void checkPartition(const Scene& scene, int maxLength, const char* name, float minConnection = kDefaultMinConnection) {
+// cameraDesc: the camera seeing the scene (none: the scene's own).
+void checkPartition(const Scene& scene, int maxLength, const char* name, float minConnection = kDefaultMinConnection,
+                    const std::optional<CameraDesc>& cameraDesc = std::nullopt) {
   const int size = 8;
-  const Camera camera(scene.cameraDesc(), size, size);
+  const Camera camera(cameraDesc.value_or(scene.cameraDesc()), size, size);
   Pcg32 rng(1234, 5);
   CameraSubpath cp;
   LightSubpath lp;
@@ -264,6 +278,19 @@ TEST(BptMis, PartitionOfUnityFoggyFurnace) {
 TEST(BptMis, PartitionOfUnitySquareEmitter) { checkPartition(Scene(squareEmitter()), 4, "square"); }
 TEST(BptMis, PartitionOfUnityPointLight) { checkPartition(Scene(pointLight()), 4, "point"); }
 TEST(BptMis, PartitionOfUnityEnvironment) { checkPartition(Scene(environmentAndSquare()), 4, "environment"); }
+// An orthographic camera (issue 15): its importance is a delta in direction, so no t = 1
+// technique is counted, and the camera subpath's first vertex is sampled by its film position.
+TEST(BptMis, PartitionOfUnityOrthographicCamera) {
+  const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
+  CameraDesc ortho = scene.cameraDesc();
+  ortho.orthographic = Vec2(0.3f, 0.3f);
+  checkPartition(scene, 5, "cornell orthographic", kDefaultMinConnection, ortho);
+  checkPartition(Scene(pointLight()), 4, "point orthographic", kDefaultMinConnection, [] {
+    CameraDesc c = pointLight().camera.value();
+    c.orthographic = Vec2(0.4f, 0.4f);
+    return c;
+  }());
+}
 TEST(BptMis, PartitionOfUnityCornellBox) {
   checkPartition(Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf")), 5, "cornell");
 }

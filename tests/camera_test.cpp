@@ -246,6 +246,42 @@ TEST(CameraWi, ThinLensDirectionsChi2) {
   EXPECT_TRUE(r.passed) << r.message;
 }
 
+// glTF's orthographic camera (issue 15): parallel rays along the view axis from a film rectangle
+// of 2 xmag x 2 ymag (the image's aspect sets the width), uniform over it; a delta in direction,
+// so no point can connect to it (t = 1) and no given ray carries importance.
+TEST(OrthographicCamera, ParallelRaysFromTheFilmRectangle) {
+  CameraDesc desc;
+  desc.name = "ortho";
+  desc.cameraToWorld = glm::translate(Mat4(1.f), Vec3(1.f, 2.f, 5.f));  // looks down -z
+  desc.orthographic = Vec2(2.f, 1.f);
+  const Camera camera(desc, 200, 100);
+  EXPECT_TRUE(camera.isOrthographic());
+  EXPECT_FALSE(camera.isPinhole());
+  const Vec2 raster[] = {{0.f, 0.f}, {200.f, 100.f}, {100.f, 50.f}, {150.f, 25.f}};
+  const Vec3 origin[] = {{-1.f, 3.f, 5.f}, {3.f, 1.f, 5.f}, {1.f, 2.f, 5.f}, {2.f, 2.5f, 5.f}};
+  for (int i = 0; i < 4; ++i) {
+    const Ray ray = camera.generateRay(raster[i], Vec2(0.3f, 0.8f));
+    EXPECT_NEAR(glm::distance(ray.o, origin[i]), 0.f, 1e-5f) << i;
+    EXPECT_NEAR(glm::distance(ray.d, Vec3(0.f, 0.f, -1.f)), 0.f, 1e-6f) << i;
+    if (i >= 2) {
+      const CameraPdf pdf = camera.pdfWe(ray);
+      EXPECT_FLOAT_EQ(pdf.pdfPosA, 1.f / 8.f);  // 1 / (4 xmag ymag)
+      EXPECT_FLOAT_EQ(pdf.pdfDirW, 1.f);        // the delta, counted as one
+      EXPECT_EQ(camera.We(ray), Spectrum(0.f));
+      // A point straight ahead of the ray lands where the ray started.
+      const std::optional<Vec2> back = camera.rasterPosition(ray.o + 3.f * ray.d);
+      ASSERT_TRUE(back.has_value());
+      EXPECT_NEAR(glm::distance(*back, raster[i]), 0.f, 1e-3f);
+    }
+  }
+  const Ray slanted{Vec3(1.f, 2.f, 5.f), glm::normalize(Vec3(0.1f, 0.f, -1.f))};
+  EXPECT_EQ(camera.pdfWe(slanted).pdfPosA, 0.f);
+  EXPECT_FALSE(camera.sampleWi(Vec3(1.f, 2.f, 0.f), Vec2(0.5f)).has_value());
+  EXPECT_THROW(Camera(desc, 200, 100, LensOptions{0.1f, 2.f}), std::invalid_argument);
+  desc.orthographic = Vec2(1.f, 0.f);
+  EXPECT_THROW(Camera(desc, 200, 100), std::invalid_argument);
+}
+
 TEST(CameraFrame, FrameBoundsFitsTheSphere) {
   const Vec3 lo(-1.f, 0.f, 2.f), hi(3.f, 1.f, 4.f);
   const float yfov = 0.6911f;

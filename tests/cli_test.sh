@@ -93,6 +93,12 @@ sys.exit(0 if bad == 0 and lit > 0 else 1)
 PY
   then ok; else fail "render $name has NaN, Inf, negative or no light"; fi
 done
+# An orthographic camera (assets/isometric.gltf): nothing can connect to it (t = 1), and it has no lens.
+ISO="$SRC/assets/isometric.gltf"
+expect_error "light tracing through an orthographic camera" "orthographic camera.*use bpt or pt" \
+  render "$ISO" -o "$TMP/iso-lt.pfm" --integrator lt --spp 1 --width 8 --height 6
+expect_error "an aperture on an orthographic camera" "orthographic camera has no lens" \
+  render "$ISO" -o "$TMP/iso-lens.pfm" --aperture 0.1 --spp 1 --width 8 --height 6
 "$PATHLAB" render "$BOX" -o "$TMP/box.exr" --spp 1 --width 16 --height 16 2>/dev/null && [ -s "$TMP/box.exr" ] && ok || fail "exr output"
 "$PATHLAB" render "$BOX" -o "$TMP/box.png" --time 0.2 --width 16 --height 16 2>/dev/null && [ -s "$TMP/box.png" ] && ok || fail "png output with --time"
 "$PATHLAB" render --help | grep -q -- "--max-length" && ok || fail "render --help lacks --max-length"

@@ -53,16 +53,15 @@ TEST(GltfLights, PunctualLightsTakePositionAndMinusZFromTheirNode) {
   EXPECT_TRUE(d.warnings.empty()) << ::testing::PrintToString(d.warnings);  // range: no warning
 }
 
-TEST(GltfCamera, TheFirstPerspectiveCameraWithScaleRemoved) {
+TEST(GltfCamera, TheFirstCameraWithScaleRemoved) {
   TestGltf g;
   g.add("cameras",
-        R"({"type":"orthographic","orthographic":{"xmag":1,"ymag":1,"znear":0.1,"zfar":10}})");
+        R"({"name":"unused","type":"perspective","perspective":{"yfov":0.5,"znear":0.1}})");
   g.add(
       "cameras",
       R"({"name":"main","type":"perspective","perspective":{"yfov":0.8,"aspectRatio":1.5,"znear":0.1}})");
   g.add("cameras",
         R"({"name":"later","type":"perspective","perspective":{"yfov":0.3,"znear":0.1}})");
-  g.root(R"({"camera":0})");
   const int later = g.node(R"({"camera":2})");
   // 90 degrees about +y (x -> -z, z -> x), non-uniform scale, translation.
   g.root(R"({"camera":1,"translation":[1,2,3],"rotation":[0,0.70710678,0,0.70710678],
@@ -80,7 +79,36 @@ TEST(GltfCamera, TheFirstPerspectiveCameraWithScaleRemoved) {
   expectNear(Vec3(c.cameraToWorld[2]), {1, 0, 0});
   expectNear(Vec3(c.cameraToWorld[3]), {1, 2, 3});
   EXPECT_FLOAT_EQ(c.cameraToWorld[3][3], 1.f);
-  EXPECT_TRUE(hasWarning(d, "orthographic")) << ::testing::PrintToString(d.warnings);
+  EXPECT_FALSE(c.orthographic.has_value());
+}
+
+// glTF 2.0 sec. 5.13: xmag and ymag are half the view's extent; the aspect ratio follows them.
+TEST(GltfCamera, OrthographicCameraWithItsMagnification) {
+  TestGltf g;
+  g.add("cameras", R"({"name":"plan","type":"orthographic","orthographic":{"xmag":3,"ymag":1.5,"znear":0.1,"zfar":10}})");
+  g.add("cameras", R"({"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}})");
+  g.root(R"({"camera":0,"translation":[0,4,0],"rotation":[-0.70710678,0,0,0.70710678]})");
+  g.root(R"({"camera":1})");
+  const SceneDesc d = loadGltf(g.write("ortho.gltf"));
+  ASSERT_TRUE(d.camera.has_value());
+  ASSERT_TRUE(d.camera->orthographic.has_value());
+  EXPECT_EQ(d.camera->name, "plan");
+  EXPECT_FLOAT_EQ(d.camera->orthographic->x, 3.f);
+  EXPECT_FLOAT_EQ(d.camera->orthographic->y, 1.5f);
+  ASSERT_TRUE(d.camera->aspectRatio.has_value());
+  EXPECT_FLOAT_EQ(*d.camera->aspectRatio, 2.f);
+  expectNear(-Vec3(d.camera->cameraToWorld[2]), {0, -1, 0});  // looking down
+  EXPECT_FALSE(hasWarning(d, "orthographic")) << ::testing::PrintToString(d.warnings);
+
+  TestGltf bad;
+  bad.add("cameras", R"({"type":"orthographic","orthographic":{"xmag":1,"ymag":0,"znear":0.1,"zfar":10}})");
+  bad.root(R"({"camera":0})");
+  try {
+    loadGltf(bad.write("ortho-bad.gltf"));
+    ADD_FAILURE() << "ymag 0 loaded";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("ymag"), std::string::npos) << e.what();
+  }
 }
 
 TEST(GltfCamera, NoCameraAndNoAspectRatioAreFine) {

@@ -28,6 +28,7 @@ OrbitCamera::OrbitCamera(const CameraDesc& scene, const Vec3& boundsMin, const V
   yaw_ = std::atan2(f.x, -f.z);
   yfov_ = scene.yfov;
   aspectRatio_ = scene.aspectRatio;
+  orthographic_ = scene.orthographic;
   const float diagonal = std::max(glm::length(boundsMax - boundsMin), 1e-3f);
   const float ahead = glm::dot(0.5f * (boundsMin + boundsMax) - eye, f);
   distance_ = ahead > 1e-3f * diagonal ? ahead : 0.5f * diagonal;
@@ -48,11 +49,15 @@ void OrbitCamera::pan(float dx, float dy) {
   Vec3 right, up;
   basisOf(forward(), right, up);
   // A fraction of the image height at the pivot's distance, so the pivot follows the cursor.
-  const float height = 2.f * distance_ * std::tan(0.5f * yfov_);
+  const float height = orthographic_ ? 2.f * orthographic_->y : 2.f * distance_ * std::tan(0.5f * yfov_);
   pivot_ += height * (dx * right + dy * up);
 }
 
-void OrbitCamera::zoom(float steps) { distance_ = std::max(distance_ * std::pow(0.85f, steps), minDistance_); }
+void OrbitCamera::zoom(float steps) {
+  const float before = distance_;
+  distance_ = std::max(distance_ * std::pow(0.85f, steps), minDistance_);
+  if (orthographic_) *orthographic_ *= distance_ / before;
+}
 
 void OrbitCamera::fly(const Vec3& forwardRightUp, float seconds) {
   Vec3 right, up;
@@ -68,6 +73,7 @@ CameraDesc OrbitCamera::desc() const {
   d.cameraToWorld = Mat4(Vec4(right, 0.f), Vec4(up, 0.f), Vec4(-f, 0.f), Vec4(eye(), 1.f));
   d.yfov = yfov_;
   d.aspectRatio = aspectRatio_;
+  d.orthographic = orthographic_;
   d.name = "viewer";
   return d;
 }

@@ -29,8 +29,10 @@ void addFrustum(InspectorOverlay& overlay, const Scene& scene, const RenderSetti
     const Ray ray = render.generateRay(corners[i], Vec2(0.5f));
     at[i] = ray.o + ray.d * (depth / std::max(glm::dot(ray.d, axis), 1e-6f));
   }
+  Vec3 from[4];  // the pinhole's eye, or an orthographic camera's film corners (a box, not a pyramid)
+  for (int i = 0; i < 4; ++i) from[i] = render.generateRay(corners[i], Vec2(0.5f)).o;
   for (int i = 0; i < 4; ++i) {
-    addOverlaySegment(overlay, view, eye, at[i], SegmentRole::Frustum);
+    addOverlaySegment(overlay, view, from[i], at[i], SegmentRole::Frustum);
     addOverlaySegment(overlay, view, at[i], at[(i + 1) % 4], SegmentRole::Frustum);
   }
   // The image's top edge marked: a small triangle above it says which way is up.
@@ -78,6 +80,7 @@ void ensureView3DCamera(View3DState& state, const Scene& scene, const CameraDesc
 CameraDesc view3DCameraDesc(const View3DState& state) {
   CameraDesc d = state.orbit ? state.orbit->desc() : CameraDesc{};
   d.aspectRatio.reset();
+  d.orthographic.reset();  // the view is always a perspective one, whatever the render camera
   d.name = "3D view";
   return d;
 }

@@ -307,6 +307,8 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
 float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
                 const MisOptions& options, float lightTracingRatio) {
   if (!techniques.contains(path.s, path.t)) return 0.f;
+  // No light subpath connects to an orthographic camera (a delta in direction): t = 1 samples nothing.
+  if (path.t == 1 && camera.isOrthographic()) return 0.f;
   // Per-thread scratch: misWeight runs for every technique of every sample, so it must not
   // allocate; the result still depends only on the arguments.
   thread_local PathDensities d;

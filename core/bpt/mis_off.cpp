@@ -53,7 +53,8 @@ std::string quotedList(const std::vector<std::string>& names) {
 
 }  // namespace
 
-MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int maxLength, bool pinhole) {
+MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int maxLength, bool pinhole,
+                      bool orthographic) {
   MisOffBias bias;
   std::vector<bool> biased(static_cast<size_t>(std::max(maxLength, 0) + 1), false);
   auto note = [&](const std::vector<int>& lengths, const std::string& why) {
@@ -104,9 +105,17 @@ MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int ma
     note(lengths, fmt::format("s = i and i + 1 cannot connect at a delta-BSDF vertex x_i ({})", quotedList(deltaMaterials)));
   }
 
+  // An orthographic camera's importance is a delta in direction: s = k (t = 1) never joins it.
+  if (orthographic) {
+    std::vector<int> lengths;
+    for (int k = 1; k <= maxLength; ++k)
+      if (splits(techniques, k, {k})) lengths.push_back(k);
+    note(lengths, "t = 1 cannot connect to the orthographic camera (a delta direction)");
+  }
+
   for (int k = 1; k <= maxLength; ++k)
     if (biased[static_cast<size_t>(k)]) bias.lengths.push_back(k);
-  if (pinhole && bias.biased()) bias.reasons.push_back("the pinhole cannot be hit, but there is no t = 0 technique: no bias");
+  if (pinhole && !orthographic && bias.biased()) bias.reasons.push_back("the pinhole cannot be hit, but there is no t = 0 technique: no bias");
   return bias;
 }
 

@@ -28,7 +28,9 @@ struct MisOffBias {
   std::vector<std::string> reasons;  // one phrase each, with the lengths it biases
   bool biased() const { return !lengths.empty(); }
 };
-MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int maxLength, bool pinhole);
+//  - an orthographic camera cannot be connected to: t = 1 samples no path.
+MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int maxLength, bool pinhole,
+                      bool orthographic = false);
 
 // One line for the CLI warning and the viewer's status line, "" when unbiased: "mis off: lengths
 // 1-10 biased (1/n_k also goes to techniques that cannot sample the path): ...".

@@ -200,8 +200,20 @@ int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster
   c.isDeltaPosition = camera.isPinhole();
   c.media = MediumInterface{static_cast<int16_t>(options.cameraMedium), static_cast<int16_t>(options.cameraMedium)};
   path.count = 1;
-  if (!(pdf.pdfDirW > 0.f)) return path.count;
-  randomWalk(scene, ray, Spectrum(1.f), pdf.pdfDirW, TransportMode::Radiance, rng, options, path, counters,
+  if (!(pdf.pdfDirW > 0.f) || !(pdf.pdfPosA > 0.f)) return path.count;
+  float walkPdf = pdf.pdfDirW;
+  if (camera.isOrthographic()) {
+    // The adjoint of a directional light: the direction is a delta (the vertex cannot be
+    // connected to: isDelta rules out t = 1), the position on the film is what is sampled, and
+    // x1's area density is that planar density times its cosine (PathVertex::isInfinite, ng the
+    // direction importance travels: convertDensity).
+    c.isDelta = true;
+    c.isInfinite = true;
+    c.ng = ray.d;
+    c.pdfFwdA = pdf.pdfDirW;
+    walkPdf = pdf.pdfPosA;
+  }
+  randomWalk(scene, ray, Spectrum(1.f), walkPdf, TransportMode::Radiance, rng, options, path, counters,
              options.cameraMedium);
   return path.count;
 }

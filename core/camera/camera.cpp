@@ -4,6 +4,7 @@
 #include "core/sampling/warp.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -25,9 +26,18 @@ Camera::Camera(const CameraDesc& desc, int width, int height, const LensOptions&
   cameraToWorld_ = Mat4(Vec4(right, 0.f), Vec4(up, 0.f), Vec4(-forward_, 0.f), Vec4(origin_, 1.f));
   worldToCamera_ = glm::inverse(cameraToWorld_);
 
-  // The film aspect is the image's; the vertical field of view is the file's.
-  const float yfov = glm::clamp(desc.yfov, 1e-4f, kPi - 1e-4f);
-  tanHalfY_ = std::tan(0.5f * yfov);
+  // The film aspect is the image's; the vertical field of view (or the film's height) is the file's.
+  if (desc.orthographic) {
+    if (!(desc.orthographic->x > 0.f) || !(desc.orthographic->y > 0.f) || !std::isfinite(desc.orthographic->y))
+      throw std::invalid_argument("camera '" + desc.name + "': an orthographic camera needs xmag and ymag > 0");
+    if (lens.apertureRadius > 0.f)
+      throw std::invalid_argument("camera '" + desc.name +
+                                  "': an orthographic camera has no lens (its rays are parallel): set no aperture");
+    orthographic_ = true;
+    tanHalfY_ = desc.orthographic->y;
+  } else {
+    tanHalfY_ = std::tan(0.5f * glm::clamp(desc.yfov, 1e-4f, kPi - 1e-4f));
+  }
   tanHalfX_ = tanHalfY_ * static_cast<float>(width) / static_cast<float>(height);
   filmArea_ = 4.f * tanHalfX_ * tanHalfY_;
   lensRadius_ = std::max(lens.apertureRadius, 0.f);
@@ -70,6 +80,12 @@ std::optional<Vec2> Camera::rasterOfCameraRay(const Vec3& oCam, const Vec3& dCam
 }
 
 Ray Camera::generateRay(Vec2 pRaster, Vec2 uLens) const {
+  if (orthographic_) {
+    Ray ray;
+    ray.o = Vec3(cameraToWorld_ * Vec4(rasterToFilm(pRaster), 0.f, 1.f));
+    ray.d = forward_;
+    return ray;
+  }
   const Vec3 pFilm(rasterToFilm(pRaster), -1.f);
   Vec3 pLens(0.f), d;
   if (isPinhole()) {
@@ -103,6 +119,8 @@ std::optional<Camera::RayImportance> Camera::importance(const Ray& ray) const {
 }
 
 Spectrum Camera::We(const Ray& ray, Vec2* pRaster) const {
+  // An orthographic camera's importance is a delta in direction: no given ray evaluates it.
+  if (orthographic_) return Spectrum(0.f);
   const std::optional<RayImportance> r = importance(ray);
   if (!r) return Spectrum(0.f);
   if (pRaster) *pRaster = r->pRaster;
@@ -110,12 +128,19 @@ Spectrum Camera::We(const Ray& ray, Vec2* pRaster) const {
 }
 
 CameraPdf Camera::pdfWe(const Ray& ray) const {
+  if (orthographic_) {
+    // Uniform over the film rectangle; the direction is the view axis (a delta, counted as one).
+    const Vec2 pRaster = filmToRaster(Vec2(worldToCamera_ * Vec4(ray.o, 1.f)));
+    if (!onFilm(pRaster) || glm::dot(ray.d, forward_) < 1.f - 1e-5f) return {};
+    return {1.f / filmArea_, 1.f};
+  }
   const std::optional<RayImportance> r = importance(ray);
   if (!r) return {};
   return {1.f / lensArea(), r->pdfDirW};
 }
 
 std::optional<CameraWiSample> Camera::sampleWi(const Vec3& ref, Vec2 uLens) const {
+  if (orthographic_) return std::nullopt;  // no point can see it along a direction of its choosing
   // A pinhole's lens point is the camera's origin: no transform.
   const Vec3 pLens = isPinhole()
                          ? origin_
@@ -162,7 +187,7 @@ std::optional<Vec2> Camera::rasterPosition(const Vec3& p) const {
   const Vec3 pCam = Vec3(worldToCamera_ * Vec4(p, 1.f));
   const float depth = -pCam.z;
   if (!(depth > 0.f)) return std::nullopt;
-  const Vec2 pRaster = filmToRaster(Vec2(pCam) / depth);
+  const Vec2 pRaster = rasterOfCameraPoint(pCam);
   if (!onFilm(pRaster)) return std::nullopt;
   return pRaster;
 }

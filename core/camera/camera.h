@@ -36,8 +36,8 @@ struct CameraWiSample {
 };
 
 struct CameraPdf {
-  float pdfPosA = 0.f;  // lens area density (1 for a pinhole)
-  float pdfDirW = 0.f;  // solid-angle density of the direction given the lens point
+  float pdfPosA = 0.f;  // lens area density (1 for a pinhole; orthographic: 1 / A_film on the film)
+  float pdfDirW = 0.f;  // solid-angle density of the direction given the lens point (orthographic: 1, a delta)
 };
 
 class Camera {
@@ -47,7 +47,11 @@ class Camera {
 
   int width() const { return width_; }
   int height() const { return height_; }
-  bool isPinhole() const { return lensRadius_ == 0.f; }
+  bool isPinhole() const { return lensRadius_ == 0.f && !orthographic_; }
+  // Parallel rays from a film rectangle in the scene (glTF orthographic): the importance is a delta
+  // in direction, like a directional light's emission. A camera subpath's first vertex is then
+  // sampled by its position on the film, and no light subpath can connect to the camera (t = 1).
+  bool isOrthographic() const { return orthographic_; }
   Vec3 position() const { return origin_; }
   Vec3 forward() const { return forward_; }
 
@@ -64,14 +68,18 @@ class Camera {
   // path inspector clips them): a world point in camera space (looking down -z), and the raster
   // position of a camera-space point in front of the lens (depth -z > 0), on the film or not.
   Vec3 toCameraSpace(const Vec3& p) const { return Vec3(worldToCamera_ * Vec4(p, 1.f)); }
-  Vec2 rasterOfCameraPoint(const Vec3& pCam) const { return filmToRaster(Vec2(pCam) / -pCam.z); }
+  Vec2 rasterOfCameraPoint(const Vec3& pCam) const {
+    return filmToRaster(orthographic_ ? Vec2(pCam) : Vec2(pCam) / -pCam.z);
+  }
 
  private:
   Mat4 cameraToWorld_{1.f}, worldToCamera_{1.f};
   Vec3 origin_{0.f}, forward_{0.f, 0.f, -1.f};
   int width_ = 1, height_ = 1;
-  float tanHalfY_ = 0.5f, tanHalfX_ = 0.5f;  // film half-extent at distance 1
-  float filmArea_ = 1.f;                    // A_film at distance 1
+  // Film half-extent at distance 1; orthographic: in world units on the film plane.
+  float tanHalfY_ = 0.5f, tanHalfX_ = 0.5f;
+  float filmArea_ = 1.f;  // A_film at distance 1 (orthographic: the film rectangle's area)
+  bool orthographic_ = false;
   float lensRadius_ = 0.f, focusDistance_ = 1.f;
 
   float lensArea() const;

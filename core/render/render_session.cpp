@@ -47,6 +47,10 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
       pathTracer_(scene, pathTracerOptions(settings)),
       cameraMedium_(scene.mediumAt(camera_.position())),
       film_(settings.width, settings.height) {
+  if (settings.integrator == IntegratorKind::Lt && camera_.isOrthographic())
+    throw std::invalid_argument(
+        "light tracing cannot render through an orthographic camera: its rays are parallel (a delta in direction), so "
+        "no light subpath can connect to it; use bpt or pt");
   if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
   const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
   if (bidirTracer_ && threads * SplatBuffer::bytesFor(settings.width, settings.height) <= kMaxThreadSplatBytes)

@@ -26,6 +26,10 @@ void checkCamera(const CameraDesc& c) {
     for (int row = 0; row < 4; ++row)
       if (!std::isfinite(c.cameraToWorld[col][row]))
         throw std::invalid_argument(fmt::format("camera transform entry {} is not finite", c.cameraToWorld[col][row]));
+  if (c.orthographic && !(c.orthographic->x > 0.f && c.orthographic->y > 0.f && std::isfinite(c.orthographic->x) &&
+                         std::isfinite(c.orthographic->y)))
+    throw std::invalid_argument(fmt::format("orthographic camera magnification {} x {} is not positive and finite",
+                                            c.orthographic->x, c.orthographic->y));
   if (!(c.yfov > 0.f && c.yfov < kPi))
     throw std::invalid_argument(fmt::format("camera field of view {} is not in (0, pi)", c.yfov));
   if (c.aspectRatio && !(*c.aspectRatio > 0.f && std::isfinite(*c.aspectRatio)))
@@ -57,8 +61,9 @@ PathTracerOptions pathTracerOptions(const RenderSettings& s) { return PathTracer
 
 std::string misOffWarning(const Scene& scene, const RenderSettings& s) {
   if (s.integrator == IntegratorKind::Pt || s.mis.heuristic != MisHeuristic::Off) return "";
-  const bool pinhole = s.lens.apertureRadius == 0.f;
-  return misOffWarning(misOffBias(scene, enabledTechniques(s), s.maxLength, pinhole));
+  const bool orthographic = s.camera.value_or(scene.cameraDesc()).orthographic.has_value();
+  const bool pinhole = s.lens.apertureRadius == 0.f && !orthographic;
+  return misOffWarning(misOffBias(scene, enabledTechniques(s), s.maxLength, pinhole, orthographic));
 }
 
 void validateSettings(const RenderSettings& s) {

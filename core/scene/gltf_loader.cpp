@@ -233,11 +233,29 @@ void SceneBuilder::addCamera(int nodeIndex, const glm::dmat4& world) {
   }
   const tinygltf::Camera& camera = model_.cameras[size_t(index)];
   const std::string label = "camera " + std::to_string(index) + quotedName(camera.name);
-  if (camera.type != "perspective") {
+  if (camera.type != "perspective" && camera.type != "orthographic") {
     warnings_.add(label, camera.type + " cameras are not supported; ignored");
     return;
   }
-  if (desc_.camera) return;  // the first perspective camera in document order wins
+  if (desc_.camera) return;  // the first camera in document order wins
+  if (camera.type == "orthographic") {
+    // glTF 2.0 sec. 5.13: xmag and ymag are half the view's width and height, never zero (a
+    // negative one would mirror the image, which no viewer does: refused too).
+    const double xmag = camera.orthographic.xmag, ymag = camera.orthographic.ymag;
+    if (!(xmag > 0.0) || !(ymag > 0.0)) {
+      throw LoadError(label + ": orthographic xmag " + formatNumber(xmag) + " and ymag " + formatNumber(ymag) +
+                      " must both be positive");
+    }
+    CameraDesc c;
+    c.name = camera.name;
+    c.orthographic = Vec2(toFiniteFloat(xmag, label + ": xmag"), toFiniteFloat(ymag, label + ": ymag"));
+    if (!(c.orthographic->x > 0.f) || !(c.orthographic->y > 0.f))
+      throw LoadError(label + ": xmag or ymag is 0 as a 32-bit float");
+    c.aspectRatio = c.orthographic->x / c.orthographic->y;
+    c.cameraToWorld = orthonormalCameraToWorld(world, label);
+    desc_.camera = c;
+    return;
+  }
   const double yfov = camera.perspective.yfov;
   if (!(yfov > 0.0 && yfov < glm::pi<double>())) {
     throw LoadError(label + ": yfov " + formatNumber(yfov) + " is not in (0, pi)");

@@ -47,6 +47,24 @@ TEST(OrbitCamera, MovesKeepTheSceneCamerasAspect) {
   EXPECT_FALSE(OrbitCamera(kBoxCamera, kBoxMin, kBoxMax).desc().aspectRatio.has_value());
 }
 
+// An orthographic scene camera stays orthographic; the wheel scales its magnification with the
+// distance (a dolly alone would not change the picture) and a pan moves by its film's height.
+TEST(OrbitCamera, AnOrthographicCameraZoomsByItsMagnification) {
+  CameraDesc ortho = kBoxCamera;
+  ortho.orthographic = Vec2(0.4f, 0.3f);
+  OrbitCamera orbit(ortho, kBoxMin, kBoxMax);
+  ASSERT_TRUE(orbit.desc().orthographic.has_value());
+  const float before = orbit.distance();
+  orbit.zoom(2.f);
+  const float scale = orbit.distance() / before;
+  EXPECT_NEAR(orbit.desc().orthographic->x, 0.4f * scale, kEps);
+  EXPECT_NEAR(orbit.desc().orthographic->y, 0.3f * scale, kEps);
+  const Vec3 pivot = orbit.pivot();
+  orbit.pan(0.f, 0.5f);  // half the image height up
+  expectNear(orbit.pivot() - pivot, {0.f, 0.3f * scale, 0.f});
+  EXPECT_FALSE(OrbitCamera(kBoxCamera, kBoxMin, kBoxMax).desc().orthographic.has_value());
+}
+
 TEST(OrbitCamera, OrbitKeepsTheDistanceAndAFullTurnReturns) {
   OrbitCamera orbit(kBoxCamera, kBoxMin, kBoxMax);
   const Vec3 pivot = orbit.pivot();
