@@ -29,6 +29,32 @@ void sumToLeader(CheckpointExchange& run, const std::array<std::span<const doubl
   for (size_t i = 0; i < N; ++i) run.sumToLeader(own[i], run.leader() ? total[i] : std::span<double>());
 }
 
+struct RunImage {
+  Image mean;
+  TwoBufferEstimate twoBuffer;
+};
+
+// Collective: the run's mean image and two-buffer estimate on the leader, from every process's
+// film and even/odd sums added there; nothing on the other processes. One process's own are the
+// run's: read without copies.
+std::optional<RunImage> runImageOnLeader(CheckpointExchange& run, const RenderSession& session,
+                                         const EvenOddBuffers& buffers, const RunProgress& progress) {
+  if (run.processes() == 1) return RunImage{session.image(), buffers.estimate()};
+  const int width = session.film().width(), height = session.film().height();
+  std::optional<Film> film;
+  std::optional<EvenOddBuffers> runBuffers;
+  if (run.leader()) {
+    film.emplace(width, height);
+    runBuffers.emplace(width, height);
+  }
+  sumToLeader(run, session.film().sums(), film ? film->sums() : std::array<std::span<double>, 2>{});
+  sumToLeader(run, buffers.sums(), runBuffers ? runBuffers->sums() : std::array<std::span<double>, 2>{});
+  if (!run.leader()) return std::nullopt;
+  film->finishPass(progress.passes, progress.lightSubpaths);
+  runBuffers->addForeignPasses(progress.evenPasses, progress.oddPasses);
+  return RunImage{film->readout(), runBuffers->estimate()};
+}
+
 }  // namespace
 
 ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
@@ -92,22 +118,11 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
     c.spp = progress.passes;
     c.cameraSamples = progress.cameraSamples;
     c.rays = progress.rays;
-    // The run's film and even/odd buffers: every process's sums added on the leader.
-    std::optional<Film> film;
-    std::optional<EvenOddBuffers> runBuffers;
-    if (run.leader()) {
-      film.emplace(s.width, s.height);
-      runBuffers.emplace(s.width, s.height);
-    }
-    sumToLeader(run, session.film().sums(), film ? film->sums() : std::array<std::span<double>, 2>{});
-    sumToLeader(run, std::as_const(buffers).sums(), runBuffers ? runBuffers->sums() : std::array<std::span<double>, 2>{});
     Image mean;
-    if (run.leader()) {
-      film->finishPass(progress.passes, progress.lightSubpaths);
-      runBuffers->addForeignPasses(progress.evenPasses, progress.oddPasses);
-      mean = film->readout();
+    if (std::optional<RunImage> image = runImageOnLeader(run, session, buffers, progress)) {
+      mean = std::move(image->mean);
       if (reference) c.error = errorMetrics(mean, *reference);
-      c.twoBuffer = runBuffers->estimate();
+      c.twoBuffer = image->twoBuffer;
     }
     curve.checkpoints.push_back(c);
     if (onCheckpoint) onCheckpoint(c);

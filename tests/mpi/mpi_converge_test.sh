@@ -1,9 +1,10 @@
 #!/bin/bash
 # `mpirun -n 2 pathlab converge` on loopback (issue 17): with a sample budget the two ranks' run is
 # the run of one process (every checkpoint at the same sample count, the same samples, rays and
-# errors to rounding), its CSV saying how many ranks ran; with a time budget every checkpoint's
-# samples are those of whole passes of both ranks; `mpirun -n 1` writes what one process writes; a
-# rank that cannot load the scene stops the job within seconds with one line naming it.
+# errors to rounding), its CSV saying how many ranks ran, also with a reference only rank 0 reads;
+# with a time budget every checkpoint's samples are those of whole passes of both ranks;
+# `mpirun -n 1` writes what one process writes; a rank that cannot load the scene stops the job
+# within seconds with one line naming it.
 # Usage: mpi_converge_test.sh PATHLAB SOURCE_DIR MPIEXEC
 . "$(dirname "$0")/../cli_lib.sh"
 . "$(dirname "$0")/mpi_lib.sh"
@@ -26,6 +27,14 @@ if mpirun2 "$PATHLAB" converge "$BOX" -o "$TMP/two" "${small[@]}" >"$TMP/table" 
   [ "$(grep -c '^bpt: 13 spp (2 ranks)' "$TMP/err")" -eq 1 ] && ok || fail "not one bpt summary: $(cat "$TMP/err")"
   [ "$(grep -c 'reference: wrote' "$TMP/err")" -eq 1 ] && ok || fail "not one reference written: $(cat "$TMP/err")"
 else fail "--spp, 2 ranks: $(cat "$TMP/err")"; fi
+
+# A given reference is rank 0's to read: the image size is its, shared with rank 1. Against the
+# reference the one process rendered, the job's CSV is again that process's.
+REF=$(ls "$TMP"/one/reference-*.exr | head -1)
+given=(--seed 5 --threads 1 --max-length 4 --configs "bpt;pt" --spp 13 --reference "$REF")
+if mpirun2 "$PATHLAB" converge "$BOX" -o "$TMP/given" "${given[@]}" >/dev/null 2>"$TMP/err"; then
+  compare "--reference, 2 ranks" "$TMP/one/convergence.csv" "$TMP/given/convergence.csv" 2
+else fail "--reference, 2 ranks: $(cat "$TMP/err")"; fi
 
 # One rank is the plain process: the same file but for the times.
 if timeout 60 "$MPIEXEC" -n 1 "$PATHLAB" converge "$BOX" -o "$TMP/onerank" "${small[@]}" >/dev/null 2>"$TMP/err"; then
