@@ -15,7 +15,7 @@
 namespace pathlab {
 namespace {
 
-const std::string kBox = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
+const std::string kSplitScene = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
 
 // Processes played by threads: each has an exchange; they meet at one barrier.
 class ThreadProcesses {
@@ -76,7 +76,7 @@ class ThreadProcesses {
 };
 
 // The same samples summed in another order: 1e-6 relative (float read-outs of double sums).
-void expectNear(double a, double b, const std::string& what, double relative = 1e-6) {
+void expectSameToRounding(double a, double b, const std::string& what, double relative = 1e-6) {
   EXPECT_LE(std::abs(a - b), relative * std::max(std::abs(a), std::abs(b)) + 1e-15)
       << what << ": " << a << " against " << b;
 }
@@ -87,7 +87,7 @@ void expectNear(double a, double b, const std::string& what, double relative = 1
 constexpr double kTwoBufferRelative = 1e-4;
 
 TEST(ConvergenceSplit, ThreeProcessesWithASampleBudgetRunTheRunOfOne) {
-  Scene scene(loadGltf(kBox));
+  Scene scene(loadGltf(kSplitScene));
   RenderSettings base;
   base.width = 12;
   base.height = 8;
@@ -111,12 +111,12 @@ TEST(ConvergenceSplit, ThreeProcessesWithASampleBudgetRunTheRunOfOne) {
       EXPECT_EQ(a.cameraSamples, b.cameraSamples) << what;
       EXPECT_EQ(a.rays, b.rays) << what;
       ASSERT_TRUE(a.error && b.error) << what;
-      expectNear(a.error->relMse, b.error->relMse, what + ", relMSE");
-      expectNear(a.error->mape, b.error->mape, what + ", MAPE");
-      expectNear(a.twoBuffer.mse, b.twoBuffer.mse, what + ", two-buffer MSE", kTwoBufferRelative);
+      expectSameToRounding(a.error->relMse, b.error->relMse, what + ", relMSE");
+      expectSameToRounding(a.error->mape, b.error->mape, what + ", MAPE");
+      expectSameToRounding(a.twoBuffer.mse, b.twoBuffer.mse, what + ", two-buffer MSE", kTwoBufferRelative);
     }
     ASSERT_EQ(one.image.rgb.size(), split.image.rgb.size());
-    for (size_t i = 0; i < one.image.rgb.size(); ++i) expectNear(one.image.rgb[i], split.image.rgb[i], "pixel value");
+    for (size_t i = 0; i < one.image.rgb.size(); ++i) expectSameToRounding(one.image.rgb[i], split.image.rgb[i], "pixel value");
     curves.push_back(split);
   }
   const std::string csv = convergenceCsv(curves);
@@ -125,7 +125,7 @@ TEST(ConvergenceSplit, ThreeProcessesWithASampleBudgetRunTheRunOfOne) {
 }
 
 TEST(ConvergenceSplit, WithATimeBudgetEveryCheckpointHoldsWholePassesOfEveryProcess) {
-  Scene scene(loadGltf(kBox));
+  Scene scene(loadGltf(kSplitScene));
   RenderSettings base;
   base.width = base.height = 6;
   base.integrator = IntegratorKind::Pt;
