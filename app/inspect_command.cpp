@@ -1,7 +1,7 @@
 #include "app/inspect_command.h"
 
 #include "app/output_check.h"
-#include "app/sample_inspection.h"
+#include "ui/inspection_report.h"
 #include "core/camera/image_size.h"
 #include "core/render/render_session.h"
 
@@ -69,9 +69,9 @@ int runInspect(InspectOptions o) {
         fmt::format("--pixel {},{} is outside the {} x {} image", x, y, settings.width, settings.height));
   RenderSession session(scene, settings);
   const SampleInspection inspection = inspectSample(session, static_cast<int>(x), static_cast<int>(y), o.sample);
-  printInspection(std::cout, settings, inspection, true);
+  ui::printInspection(std::cout, settings, inspection, true);
   if (!o.json.empty()) {
-    writeTextAtomically(o.json, inspectionJson(settings, inspection).dump(2) + "\n");
+    writeTextAtomically(o.json, ui::inspectionJson(settings, inspection).dump(2) + "\n");
     std::cerr << "wrote " << o.json << "\n";
   }
   return 0;

@@ -1,6 +1,6 @@
 // `pathlab inspect`: one camera sample of one pixel, every (s,t) technique it tried, each full
 // path with its vertex densities and the path under every technique of its length, as text and
-// JSON (issue 12, "On the command line"; app/sample_inspection.h).
+// JSON (issue 12, "On the command line"; ui/inspection_report.h).
 #pragma once
 
 #include "app/environment_options.h"

@@ -79,14 +79,4 @@ void checkOutputDirectory(const std::string& dir) {
   checkWritableDirectory(dir, parent.empty() ? "." : parent.string());
 }
 
-void writeTextAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(tmp + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
-}
-
 }  // namespace pathlab::app

@@ -5,6 +5,8 @@
 // target itself is absent or a regular file.
 #pragma once
 
+#include "ui/output_names.h"
+
 #include <string>
 
 namespace pathlab::app {
@@ -15,8 +17,7 @@ void checkOutputWritable(const std::string& path);
 // The same for a directory pathlab creates when it is missing (converge -o): an existing
 // directory that may be written, or else a parent in which it may be created.
 void checkOutputDirectory(const std::string& dir);
-// Text files are written like images: a temporary beside the target, then a rename. Throws
-// std::runtime_error naming the file when it cannot be written.
-void writeTextAtomically(const std::string& path, const std::string& text);
+// Text files are written like images (ui/output_names.h).
+using ui::writeTextAtomically;
 
 }  // namespace pathlab::app

@@ -6,7 +6,7 @@
 #include "app/output_check.h"
 #include "app/progress.h"
 #include "app/pyramid_output.h"
-#include "app/sample_inspection.h"
+#include "ui/inspection_report.h"
 #include "app/technique_maps_output.h"
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
@@ -81,7 +81,7 @@ ReplayRequest parseReplay(const std::string& text, const RenderSettings& setting
 
 // One sample, exactly as the render computed it, technique by technique (stdout).
 int runReplay(const RenderSession& session, const ReplayRequest& r) {
-  printInspection(std::cout, session.settings(), inspectSample(session, r.x, r.y, r.sample), false);
+  ui::printInspection(std::cout, session.settings(), inspectSample(session, r.x, r.y, r.sample), false);
   return 0;
 }
 

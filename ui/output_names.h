@@ -11,4 +11,8 @@ namespace pathlab::ui {
 // DIR/STEM.EXT exists for any of `extensions` (e.g. {".exr", ".png"}). Creates DIR if missing.
 std::string freshStem(const std::string& dir, const std::string& prefix, const std::vector<std::string>& extensions);
 
+// Text files are written like images: a temporary beside the target, then a rename. Throws
+// std::runtime_error naming the file when it cannot be written.
+void writeTextAtomically(const std::string& path, const std::string& text);
+
 }  // namespace pathlab::ui

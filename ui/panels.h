@@ -9,6 +9,7 @@
 #include "ui/path_inspector.h"
 #include "ui/shortcuts.h"
 #include "ui/technique_map_view.h"
+#include "ui/view3d.h"
 #include "ui/viewer_state.h"
 
 #include <imgui.h>
@@ -51,9 +52,19 @@ void drawPresetSection(const PresetState& presets, PanelRequests& requests);
 // The path inspector (panel_inspector.cpp): its section of the side panel (on / off, the picked
 // sample's techniques, the selected path under every technique) and its overlay over the image
 // (origin and size in ImGui coordinates; `raster` the inspected image's size in pixels).
-void drawInspectorSection(PathInspectorState& state, PanelRequests& requests);
+void drawInspectorSection(PathInspectorState& state, View3DState& view3d, PanelRequests& requests);
 void drawInspectorOverlay(const InspectorOverlay& overlay, const PathInspectorState& state, ImVec2 origin, ImVec2 size,
                           Vec2i raster, float uiScale);
+// The overlay's segments and markers, `raster` (its coordinates' extent) mapped onto origin, size.
+void drawOverlayShapes(ImDrawList* draw, const InspectorOverlay& overlay, ImVec2 origin, ImVec2 size, Vec2i raster,
+                       float uiScale);
+// The picked sample's techniques and its selected path under every technique, in a window of its own
+// at `rect` (below the image).
+void drawInspectorWindow(PathInspectorState& state, PanelRect rect, PanelRequests& requests);
+// The 3D view (panel_view3d.cpp): the raster's texture (OpenGL's rows, bottom first) at origin,
+// size, the overlay over it (its raster coordinates span `raster`) and a caption.
+void drawView3DWindow(void* texture, const InspectorOverlay& overlay, ImVec2 origin, ImVec2 size, Vec2i raster,
+                      const std::string& caption, float uiScale);
 // The A/B comparison (panel_compare.cpp): on / off, side B's CONFIG, swap; `b`: B's shown image.
 void drawCompareSection(CompareState& compare, const RenderSnapshot& b, PanelRequests& requests);
 // `estimator` (its camera and lens) to offer a way back to the reference's view.

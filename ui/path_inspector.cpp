@@ -10,25 +10,34 @@ namespace {
 // segment through the lens plane has no projection.
 constexpr float kNearDepth = 1e-4f;
 
-void addSegment(InspectorOverlay& overlay, const Camera& camera, const Vec3& a, const Vec3& b, SegmentRole role) {
+}  // namespace
+
+void addOverlaySegment(InspectorOverlay& overlay, const Camera& camera, const Vec3& a, const Vec3& b, SegmentRole role,
+                       float shade) {
   Vec3 ca = camera.toCameraSpace(a), cb = camera.toCameraSpace(b);
   const float da = -ca.z, db = -cb.z;
   if (!(da > kNearDepth) && !(db > kNearDepth)) return;  // wholly behind the lens
   // Clip the part behind the near plane (depth kNearDepth) away.
   if (da < kNearDepth) ca = cb + (ca - cb) * ((db - kNearDepth) / (db - da));
   else if (db < kNearDepth) cb = ca + (cb - ca) * ((da - kNearDepth) / (da - db));
-  overlay.segments.push_back({camera.rasterOfCameraPoint(ca), camera.rasterOfCameraPoint(cb), role});
+  overlay.segments.push_back({camera.rasterOfCameraPoint(ca), camera.rasterOfCameraPoint(cb), role, shade});
 }
+
+std::optional<Vec2> overlayPoint(const Camera& camera, const Vec3& p) {
+  const Vec3 c = camera.toCameraSpace(p);
+  if (!(-c.z > kNearDepth)) return std::nullopt;
+  return camera.rasterOfCameraPoint(c);
+}
+
+namespace {
 
 void addSubpath(InspectorOverlay& overlay, const Camera& camera, const std::vector<PathVertex>& subpath, bool cameraSide) {
   for (size_t i = 0; i + 1 < subpath.size(); ++i)
-    addSegment(overlay, camera, subpath[i].p, subpath[i + 1].p,
+    addOverlaySegment(overlay, camera, subpath[i].p, subpath[i + 1].p,
                cameraSide ? SegmentRole::CameraSubpath : SegmentRole::LightSubpath);
-  for (const PathVertex& v : subpath) {
-    const Vec3 c = camera.toCameraSpace(v.p);
-    if (!(-c.z > kNearDepth)) continue;
-    overlay.markers.push_back({camera.rasterOfCameraPoint(c), v.type, v.isDelta || v.isDeltaPosition, cameraSide});
-  }
+  for (const PathVertex& v : subpath)
+    if (const std::optional<Vec2> p = overlayPoint(camera, v.p))
+      overlay.markers.push_back({*p, v.type, v.isDelta || v.isDeltaPosition, cameraSide});
 }
 
 }  // namespace
@@ -90,12 +99,12 @@ InspectorOverlay inspectorOverlay(const PathInspectorState& state, const Camera&
     const TechniqueResult& r = trace.records[i];
     const TracedPath& path = trace.paths[i];
     if (r.s < 1 || path.size() < 2 || static_cast<int>(path.size()) != r.s + r.t) continue;
-    addSegment(overlay, camera, path.p[static_cast<size_t>(r.s - 1)], path.p[static_cast<size_t>(r.s)],
+    addOverlaySegment(overlay, camera, path.p[static_cast<size_t>(r.s - 1)], path.p[static_cast<size_t>(r.s)],
                r.blocked() ? SegmentRole::BlockedConnection : SegmentRole::Connection);
   }
   if (state.selected >= 0 && static_cast<size_t>(state.selected) < trace.paths.size()) {
     const TracedPath& path = trace.paths[static_cast<size_t>(state.selected)];
-    for (size_t v = 0; v + 1 < path.size(); ++v) addSegment(overlay, camera, path.p[v], path.p[v + 1], SegmentRole::Selected);
+    for (size_t v = 0; v + 1 < path.size(); ++v) addOverlaySegment(overlay, camera, path.p[v], path.p[v + 1], SegmentRole::Selected);
   }
   return overlay;
 }

@@ -43,10 +43,12 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
 // estimate plus its weighted t = 1 splats, wherever they land): a firefly hunt.
 uint64_t brightestSample(const Scene& scene, const RenderSettings& settings, Vec2i pixel, uint64_t n);
 
-enum class SegmentRole { CameraSubpath, LightSubpath, Connection, BlockedConnection, Selected };
+// Frustum and Particle: the 3D view's (ui/view3d.h).
+enum class SegmentRole { CameraSubpath, LightSubpath, Connection, BlockedConnection, Selected, Frustum, Particle };
 struct InspectorSegment {
   Vec2 a{0.f}, b{0.f};  // raster positions
   SegmentRole role = SegmentRole::Connection;
+  float shade = 1.f;  // Particle: the throughput at its start, 0 (dim) .. 1 (the brightest)
 };
 struct InspectorMarker {
   Vec2 p{0.f};
@@ -63,5 +65,10 @@ struct InspectorOverlay {
 // inspected settings): each segment clipped to the part in front of the lens (film-plane
 // projection, so it may reach beyond the image; the drawing clips to the image).
 InspectorOverlay inspectorOverlay(const PathInspectorState& state, const Camera& camera);
+// Appends segment a -- b seen through `camera` (the part in front of the lens) to `overlay`.
+void addOverlaySegment(InspectorOverlay& overlay, const Camera& camera, const Vec3& a, const Vec3& b, SegmentRole role,
+                       float shade = 1.f);
+// Where `camera` sees p (none behind the lens).
+std::optional<Vec2> overlayPoint(const Camera& camera, const Vec3& p);
 
 }  // namespace pathlab::ui

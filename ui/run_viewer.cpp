@@ -294,6 +294,15 @@ int runViewer(const ViewerOptions& o) {
           viewer.showMessage(e.what(), true);
         }
       }
+      if (const std::optional<PixelRect> rect = viewer.takeView3DExportRequest()) {
+        try {
+          const std::string path = freshStem("out", "pathlab-3d", {".png"}) + ".png";
+          writePngRgba(path, rect->size, readFramebufferRgba(fb, rect->origin, rect->size));
+          viewer.showMessage("3D view " + path);
+        } catch (const std::exception& e) {
+          viewer.showMessage(e.what(), true);
+        }
+      }
       if (viewer.takeRecordingToggleRequest()) recording.toggle(viewer);
       recording.capture(viewer, fb);
       if (last && !o.screenshot.empty()) {
@@ -322,11 +331,14 @@ int runViewer(const ViewerOptions& o) {
         compare = fmt::format(", B image {}x{}+{}+{} at {} spp", b.size.x, b.size.y, b.origin.x, b.origin.y,
                               viewer.compareSnapshot().samplesPerPixel);
       }
-      std::cerr << fmt::format("{}: {}x{} {}, image {}x{}+{}+{} at {} spp{}, rendered {}x{}; {}{}\n",
+      if (const std::optional<PixelRect> v = viewer.drawnView3D())
+        compare += fmt::format(", 3D view {}x{}+{}+{}", v->size.x, v->size.y, v->origin.x, v->origin.y);
+      // The generation: how often the render restarted (a test's proof that something did not).
+      std::cerr << fmt::format("{}: {}x{} {}, image {}x{}+{}+{} at {} spp{}, rendered {}x{} (generation {}); {}{}\n",
                                o.screenshot.empty() ? "pathlab view" : o.screenshot, fb.x, fb.y,
                                o.headless ? "offscreen" : "window", drawn.size.x, drawn.size.y, drawn.origin.x,
                                drawn.origin.y, s.samplesPerPixel, compare, s.settings.width, s.settings.height,
-                               stats.summary(), series);
+                               s.generation, stats.summary(), series);
     }
     if (!o.errorCsv.empty()) viewer.writeErrorCsv(o.errorCsv, true);  // checked before the first frame
     if (recording.recorder) {

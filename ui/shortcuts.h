@@ -6,7 +6,7 @@
 
 namespace pathlab::ui {
 
-// The last one is BrightestSample (the tests check every action has a key).
+// The last one is ExportView3D (the tests check every action has a key).
 enum class Action {
   TogglePause, ToggleUi, ToggleHelp, TogglePyramid,
   TechniquesAll, TechniquesPathTracing, TechniquesLightTracing, TechniquesOneLength, TechniquesClear,
@@ -19,6 +19,7 @@ enum class Action {
   ResetCamera, ReloadScene, SaveImage, Screenshot, ToggleRecording, Quit,
   ToggleCompare, SwapCompareSides,
   ToggleInspector, NextSample, PreviousSample, BrightestSample,
+  ToggleView3D, ToggleParticles, ExportInspection, ExportView3D,
 };
 
 struct Shortcut {

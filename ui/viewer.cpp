@@ -4,6 +4,7 @@
 
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
+#include "ui/inspection_report.h"
 #include "ui/output_names.h"
 #include "ui/technique_grid.h"
 #include "ui/thread_priority.h"
@@ -213,12 +214,24 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   room.origin = {static_cast<int>(panelWidth * framebufferScale), 0};
   room.size = {std::max(framebufferSize.x - room.origin.x - static_cast<int>(pyramidWidth * framebufferScale), 0),
                std::max(framebufferSize.y - static_cast<int>(bottom * framebufferScale), 0)};
+  // The path inspector's window along the room's bottom: its table and bars never cover the image.
+  inspectorRect_ = {};
+  if (ui_.showUi && inspector_.on) {
+    const int h = std::min(static_cast<int>(0.42f * static_cast<float>(room.size.y)),
+                           static_cast<int>(340.f * scale * framebufferScale));
+    room.size.y -= h;
+    inspectorRect_ = {static_cast<float>(room.origin.x) / framebufferScale,
+                      static_cast<float>(room.origin.y + room.size.y) / framebufferScale,
+                      static_cast<float>(room.size.x) / framebufferScale, static_cast<float>(h) / framebufferScale};
+  }
   PixelRect fitted = fitAspect(room, aspect);
-  if (compare_.on) {
-    // Two images of the same shape, A left (or above), B right (or below).
+  if (compare_.on) view3d_.on = false;  // one image beside the main one
+  view3dRect_ = {};
+  if (compare_.on || view3d_.on) {
+    // Two images of the same shape, A left (or above), B (or the 3D view) right (or below).
     const auto [a, b] = splitRoom(room, aspect, static_cast<int>(8.f * scale * framebufferScale));
     fitted = a;
-    compareSide_.rect = b;
+    (compare_.on ? compareSide_.rect : view3dRect_) = b;
   }
   imageOrigin_ = fitted.origin;
   imageSize_ = fitted.size;
@@ -233,6 +246,7 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
                         scale);
     if (convergence_.show)
       drawConvergenceWindow(convergence_, reference_, snapshot_, {0.f, upper, io.DisplaySize.x, bottom}, scale, requests);
+    if (inspectorRect_.height > 0.f) drawInspectorWindow(inspector_, inspectorRect_, requests);
   }
   if (ui_.showHelp) drawHelpWindow(ui_.showHelp);
   const float fbScale = io.DisplayFramebufferScale.x > 0.f ? io.DisplayFramebufferScale.x : 1.f;
@@ -254,6 +268,7 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
                        ImVec2(static_cast<float>(imageOrigin_.x) / fbScale, static_cast<float>(imageOrigin_.y) / fbScale),
                        ImVec2(static_cast<float>(imageSize_.x) / fbScale, static_cast<float>(imageSize_.y) / fbScale),
                        {inspector_.inspectedSettings.width, inspector_.inspectedSettings.height}, scale);
+  drawView3D(fbScale);
   carryOut(requests);
 
   RenderSettings& edited = estimator_.settings;
@@ -293,6 +308,53 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   }
   syncRenderer();
   updateInspector();
+  updateView3D();
+}
+
+void Viewer::updateView3D() {
+  if (!view3d_.on) {
+    // Its copy of the meshes and its scene go with it, once no frame draws its texture.
+    if (!view3dTextureInUse_) sceneRaster_.reset();
+    view3d_.particles.session.reset();
+    view3d_.particles.scene.reset();
+    return;
+  }
+  if (!sceneRaster_) sceneRaster_ = std::make_unique<SceneRaster>();
+  ensureView3DCamera(view3d_, *scene_.scene, estimator_.settings.camera.value_or(scene_.scene->cameraDesc()));
+  // The particles follow the newest full pass of the image shown.
+  if (!snapshot_.preview && snapshot_.settings.width > 0)
+    refreshLightParticles(view3d_.particles, scene_.scene, snapshot_.settings, snapshot_.samplesPerPixel);
+}
+
+void Viewer::drawView3D(float fbScale) {
+  view3dTextureInUse_ = view3d_.on && sceneRaster_ && view3d_.orbit && view3dRect_.size.x > 0 && view3dRect_.size.y > 0;
+  if (!view3dTextureInUse_) return;
+  const ImVec2 origin(static_cast<float>(view3dRect_.origin.x) / fbScale, static_cast<float>(view3dRect_.origin.y) / fbScale);
+  const ImVec2 size(static_cast<float>(view3dRect_.size.x) / fbScale, static_cast<float>(view3dRect_.size.y) / fbScale);
+  const RenderSettings& shown = snapshot_.settings.width > 0 ? snapshot_.settings : applied_;
+  const Camera view = view3DCamera(view3d_, view3dRect_.size);
+  std::string caption = "3D view: drag orbits, Shift+drag pans, wheel zooms (O hides it)";
+  if (view3d_.particles.on)
+    caption += view3d_.particles.error.empty()
+                   ? fmt::format("\n{} light subpaths of pass {} (L)", view3d_.particles.subpaths.size(),
+                                 view3d_.particles.pass)
+                   : "\n" + view3d_.particles.error;
+  drawView3DWindow(sceneRaster_->texture().imguiId(), view3DOverlay(view3d_, inspector_, *scene_.scene, shown, view),
+                   origin, size, view3dRect_.size, caption, ui_.scale);
+}
+
+void Viewer::exportInspection() {
+  if (!inspector_.on || !inspector_.result) {
+    showMessage("nothing to export: K, then click a pixel of the image");
+    return;
+  }
+  try {
+    const std::string path = freshStem("out", "pathlab-paths", {".json"}) + ".json";
+    writeTextAtomically(path, inspectionJson(inspector_.inspectedSettings, *inspector_.result).dump(2) + "\n");
+    showMessage("wrote " + path);
+  } catch (const std::exception& e) {
+    showMessage(e.what(), true);
+  }
 }
 
 void Viewer::updateInspector() {
@@ -335,8 +397,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
                       requests);
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
     drawEstimatorSection(estimator_, grid_, run_.settingsError, snapshot_.counters, snapshot_.check.get());
-  if (ImGui::CollapsingHeader("Path inspector", inspector_.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
-    drawInspectorSection(inspector_, requests);
+  if (ImGui::CollapsingHeader("Path inspector and 3D view", inspector_.on || view3d_.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+    drawInspectorSection(inspector_, view3d_, requests);
   if (ImGui::CollapsingHeader("Compare A | B", compare_.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawCompareSection(compare_, compareSide_.snapshot, requests);
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
@@ -505,6 +567,8 @@ void Viewer::drawImage(Vec2i framebufferSize) {
   if (compareSide_.renderer && !compareSide_.idle)
     compareSide_.drawn = compareSide_.view->draw(compareSide_.rect.origin, compareSide_.rect.size, framebufferSize.y,
                                                  shownDisplay());
+  if (sceneRaster_ && view3d_.on && view3d_.orbit)
+    sceneRaster_->draw(scene_.scene, view3DCameraDesc(view3d_), view3dRect_.size, view3d_.cullBackFaces);
   if (run_.idleForNoTechnique) return;  // black: nothing is estimated
   drawn_ = imageView_->draw(imageOrigin_, imageSize_, framebufferSize.y, shownDisplay());
 }

@@ -12,6 +12,8 @@
 #include "ui/image_rect.h"
 #include "ui/image_view.h"
 #include "ui/panels.h"
+#include "ui/scene_raster.h"
+#include "ui/view3d.h"
 #include "ui/viewer_options.h"
 #include "ui/viewer_state.h"
 
@@ -53,6 +55,17 @@ class Viewer {
   bool quitRequested() const { return ui_.quit; }
   bool takeScreenshotRequest() { return std::exchange(ui_.screenshotRequested, false); }
   bool takeRecordingToggleRequest() { return std::exchange(ui_.recordingToggleRequested, false); }
+  // Where the 3D view was drawn in the last frame (nothing when it is off).
+  std::optional<PixelRect> drawnView3D() const {
+    if (!view3dTextureInUse_) return std::nullopt;
+    return view3dRect_;
+  }
+  // Where the 3D view was drawn when its export (Ctrl+E) was asked for, else nothing: the caller
+  // reads it back after the frame is drawn and writes it as a PNG.
+  std::optional<PixelRect> takeView3DExportRequest() {
+    if (!std::exchange(ui_.view3dExportRequested, false) || !view3d_.on || view3dRect_.size.x <= 0) return std::nullopt;
+    return view3dRect_;
+  }
   // While recording, transient (non-error) messages are not drawn: they would end up in the clip.
   void setRecording(bool recording) { ui_.recording = recording; }
   // The image area of the last built frame, framebuffer pixels from the top left.
@@ -82,6 +95,11 @@ class Viewer {
   CompareState compare_;
   PathInspectorState inspector_;
   InspectorOverlay inspectorOverlay_;  // of inspector_'s result, recomputed when it replays
+  View3DState view3d_;
+  std::unique_ptr<SceneRaster> sceneRaster_;  // while the 3D view is shown
+  PixelRect view3dRect_;                      // where it goes, framebuffer pixels
+  bool view3dTextureInUse_ = false;           // this frame's draw lists show the raster's texture
+  PanelRect inspectorRect_;                   // the inspector's window, ImGui coordinates (empty: none)
   UiState ui_;
   EstimatorWarning warning_;  // of the shown image's settings
 
@@ -131,6 +149,11 @@ class Viewer {
   void swapCompareSides();
   // The path inspector: replays the picked sample when it or the shown image's settings changed.
   void updateInspector();
+  // The 3D view's particles; its drawing over the triangles (ImGui's lists).
+  void updateView3D();
+  void drawView3D(float fbScale);
+  // Writes the inspected sample as JSON (Ctrl+J) in out/.
+  void exportInspection();
   void carryOut(const PanelRequests& requests);
   void applySettings();
   void syncRenderer();

@@ -112,6 +112,23 @@ void Viewer::perform(Action action) {
       inspector_.sample = brightestSample(*scene_.scene, inspector_.inspectedSettings, *inspector_.pixel, 256);
       showMessage(fmt::format("the brightest of the first 256 samples is sample {}", inspector_.sample));
       break;
+    case Action::ToggleView3D:
+      view3d_.on = !view3d_.on;
+      // One image beside the main one: the 3D view takes the comparison's place.
+      if (view3d_.on && compare_.on) {
+        compare_.on = false;
+        showMessage("the comparison is off while the 3D view is shown");
+      }
+      break;
+    case Action::ToggleParticles:
+      view3d_.particles.on = !view3d_.particles.on;
+      if (view3d_.particles.on && !view3d_.on) perform(Action::ToggleView3D);
+      break;
+    case Action::ExportInspection: exportInspection(); break;
+    case Action::ExportView3D:
+      if (view3d_.on) ui_.view3dExportRequested = true;
+      else showMessage("the 3D view is off (O shows it)");
+      break;
     case Action::SwapCompareSides:
       if (compare_.on) swapCompareSides();
       else showMessage("nothing to swap: the comparison is off (C turns it on)");
@@ -138,9 +155,20 @@ void Viewer::handleCamera(float framebufferScale) {
     inspector_.pick = (mouse - Vec2(imageOrigin_)) / Vec2(imageSize_);
     inspector_.sample = 0;
   }
+  // The 3D view has a camera of its own: drags and the wheel over it move only that camera.
+  const bool over3D = view3d_.on && view3d_.orbit && view3dRect_.contains(mouse) && !io.WantCaptureMouse;
+  const bool pressed = ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2);
+  if (!anyDown) ui_.dragging3D = false;
+  else if (!ui_.dragging && !ui_.dragging3D && over3D && pressed) ui_.dragging3D = true;
+  if (ui_.dragging3D && (io.MouseDelta.x != 0.f || io.MouseDelta.y != 0.f)) {
+    const float height = static_cast<float>(std::max(view3dRect_.size.y, 1)) / framebufferScale;
+    const Vec2 d(io.MouseDelta.x / height, io.MouseDelta.y / height);
+    if (io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift)) view3d_.orbit->pan(-d.x, d.y);
+    else view3d_.orbit->orbit(kPi * d.x, -kPi * d.y);
+  }
+  if (over3D && io.MouseWheel != 0.f) view3d_.orbit->zoom(io.MouseWheel);
   if (!anyDown) ui_.dragging = false;
-  else if (!ui_.dragging && overImage && !io.WantCaptureMouse &&
-           (ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2)))
+  else if (!ui_.dragging && !ui_.dragging3D && overImage && !io.WantCaptureMouse && pressed)
     ui_.dragging = true;
   if (ui_.dragging && (io.MouseDelta.x != 0.f || io.MouseDelta.y != 0.f)) {
     const float height = static_cast<float>(std::max(imageSize_.y, 1)) / framebufferScale;

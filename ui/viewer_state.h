@@ -116,7 +116,9 @@ struct UiState {
   float scale = 1.f;  // 2 in lecture mode, times the display's HiDPI factor
   bool quit = false, screenshotRequested = false, recordingToggleRequested = false;
   bool recording = false;  // transient notices are left out of the recorded frames
+  bool view3dExportRequested = false;
   bool dragging = false;  // a drag that started over the image moves the camera
+  bool dragging3D = false;  // ... over the 3D view: its own camera
   Vec2 pressAt{0.f};      // where the left button went down over the image (a click picks a pixel)
   bool pressOverImage = false;
   double frameMs = 0.0;

@@ -182,6 +182,13 @@ int BidirTracer::walkLight(int vertices, Pcg32& rng, Walks& walks, Counters& cou
   return ns;
 }
 
+int BidirTracer::traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out, Counters& counters) const {
+  thread_local Walks walks;
+  const int ns = lightVerticesNeeded_ > 0 ? walkLight(lightVerticesNeeded_, lightRng, walks, counters) : 0;
+  out.assign(walks.light.data(), walks.light.data() + ns);
+  return ns;
+}
+
 Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
                              Counters& counters) const {
   // The connections' key is drawn first, so that how long the walks below are allowed to grow

@@ -40,6 +40,12 @@ class BidirTracer {
   Spectrum sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
                   Counters& counters) const;
 
+  // The light subpath this tracer walks for a sample whose light stream is `lightRng` (path reuse:
+  // the one every technique of the sample shares; ConnectStrategy::Endpoints draws one per technique
+  // from other streams, so this is one of the same distribution), into `out`: the viewer's light
+  // particles. Returns its vertex count (0 when no technique needs a light walk).
+  int traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out, Counters& counters) const;
+
   const TechniqueSet& techniques() const { return options_.techniques; }
   MisEvaluation misEvaluation() const { return misEvaluation_; }
 

@@ -67,6 +67,16 @@ Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& coun
   return sampleAt(x, y, pass, SampleTargets{splats, nullptr, trace, SampleId{x, y, pass}}, counters);
 }
 
+std::vector<PathVertex> RenderSession::replayLightSubpath(int x, int y, uint64_t pass) const {
+  std::vector<PathVertex> subpath;
+  if (!bidirTracer_) return subpath;
+  const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(settings_.width) + static_cast<uint64_t>(x);
+  Pcg32 lightRng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Light);
+  Counters counters;
+  bidirTracer_->traceLightSubpath(lightRng, subpath, counters);
+  return subpath;
+}
+
 Image RenderSession::techniqueImage(int s, int t, bool unweighted) const {
   if (!pyramid_) return Image{film_.width(), film_.height(), std::vector<float>(3 * film_.pixelCount(), 0.f)};
   return pyramid_->readout(s, t, unweighted, film_.samplesPerPixel(), film_.lightSubpaths());

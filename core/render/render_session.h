@@ -46,6 +46,9 @@ class RenderSession {
   // if given (a film of the same size, normalised by the caller).
   Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats = nullptr,
                         SampleTrace* trace = nullptr) const;
+  // The light subpath sample (pixel x, y; pass) traced, as replaySample's trace holds it (the
+  // viewer's light particles); empty for the path tracer.
+  std::vector<PathVertex> replayLightSubpath(int x, int y, uint64_t pass) const;
 
   // Per-technique and per-walk timing in the counters (BidirTracer::setTiming); between passes only.
   void setTiming(bool on) {

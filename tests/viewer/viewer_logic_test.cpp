@@ -32,7 +32,7 @@ TEST(Shortcuts, UniqueAndClearOfTheFlyKeys) {
         EXPECT_NE(s.key, fly) << s.keyName << " is a fly key";
     }
   }
-  EXPECT_EQ(actions.size(), static_cast<size_t>(Action::BrightestSample) + 1);  // every action has a key
+  EXPECT_EQ(actions.size(), static_cast<size_t>(Action::ExportView3D) + 1);  // every action has a key
 }
 
 TEST(OutputNames, NeverAnExistingFile) {

@@ -1,10 +1,10 @@
-#include "app/sample_inspection.h"
+#include "ui/inspection_report.h"
 
 #include "core/bpt/bidir_tracer.h"
 
 #include <fmt/core.h>
 
-namespace pathlab::app {
+namespace pathlab::ui {
 
 namespace {
 
@@ -157,4 +157,4 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
   return j;
 }
 
-}  // namespace pathlab::app
+}  // namespace pathlab::ui

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <ostream>
 
-namespace pathlab::app {
+namespace pathlab::ui {
 
 // The text `render --replay` prints; with `paths`, every technique's full path too.
 void printInspection(std::ostream& out, const RenderSettings& settings, const SampleInspection& inspection, bool paths);
@@ -24,4 +24,4 @@ void printInspection(std::ostream& out, const RenderSettings& settings, const Sa
 // density and weights under every technique of its length.
 nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspection& inspection);
 
-}  // namespace pathlab::app
+}  // namespace pathlab::ui

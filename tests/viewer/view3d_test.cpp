@@ -1,0 +1,152 @@
+// The 3D view without a window (ui/view3d.h): the light particles are the light subpaths the render
+// traced (replayed from the same streams as the inspector's full replay), start on an emitter and
+// are replayed only when the pass or the settings change; the view's overlay shows the render
+// camera where it is and the inspected sample's vertices where its own camera sees them; the
+// depth range holds the scene; materials get their preview colours.
+#include "ui/view3d.h"
+
+#include "core/render/sample_inspection.h"
+#include "core/scene/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace pathlab::ui {
+namespace {
+
+std::shared_ptr<const Scene> sharedBox() {
+  static const std::shared_ptr<const Scene> scene =
+      std::make_shared<const Scene>(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
+  return scene;
+}
+
+RenderSettings particleBoxSettings() {
+  RenderSettings s;
+  s.width = 64;
+  s.height = 64;
+  s.maxLength = 5;
+  s.integrator = IntegratorKind::Bpt;
+  return s;
+}
+
+TEST(View3D, ParticlesAreTheLightSubpathsTheRenderTraced) {
+  const RenderSettings s = particleBoxSettings();
+  const RenderSession session(*sharedBox(), s);
+  int compared = 0;
+  for (int i = 0; i < 40; ++i) {
+    const int x = (i * 37) % s.width, y = (i * 11) % s.height;
+    const uint64_t pass = static_cast<uint64_t>(i % 5);
+    const std::vector<PathVertex> particle = session.replayLightSubpath(x, y, pass);
+    const SampleInspection full = inspectSample(session, x, y, pass);
+    ASSERT_EQ(particle.size(), full.trace.lightSubpath.size()) << x << "," << y << " pass " << pass;
+    for (size_t v = 0; v < particle.size(); ++v) {
+      EXPECT_EQ(particle[v].p, full.trace.lightSubpath[v].p);
+      EXPECT_EQ(particle[v].beta, full.trace.lightSubpath[v].beta);
+    }
+    if (!particle.empty()) {
+      EXPECT_EQ(particle.front().type, VertexType::Light);  // it starts on the emitter
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 30);
+  RenderSettings pt = s;
+  pt.integrator = IntegratorKind::Pt;
+  EXPECT_TRUE(RenderSession(*sharedBox(), pt).replayLightSubpath(3, 4, 0).empty());
+}
+
+TEST(View3D, ParticlesAreReplayedOncePerPassAndSettings) {
+  LightParticles particles;
+  particles.count = 16;
+  const RenderSettings s = particleBoxSettings();
+  EXPECT_FALSE(refreshLightParticles(particles, sharedBox(), s, 3));  // off
+  particles.on = true;
+  EXPECT_FALSE(refreshLightParticles(particles, sharedBox(), s, 0));  // no pass finished yet
+  ASSERT_TRUE(refreshLightParticles(particles, sharedBox(), s, 3));
+  EXPECT_EQ(particles.pass, 2u);
+  EXPECT_GT(particles.subpaths.size(), 8u);
+  EXPECT_LE(particles.subpaths.size(), 16u);
+  const std::vector<std::vector<PathVertex>> first = particles.subpaths;
+  EXPECT_FALSE(refreshLightParticles(particles, sharedBox(), s, 3));
+  ASSERT_TRUE(refreshLightParticles(particles, sharedBox(), s, 4));
+  EXPECT_NE(first.front().back().p, particles.subpaths.front().back().p);  // another pass, other paths
+  RenderSettings pt = s;
+  pt.integrator = IntegratorKind::Pt;
+  EXPECT_TRUE(refreshLightParticles(particles, sharedBox(), pt, 4));
+  EXPECT_TRUE(particles.subpaths.empty());
+  EXPECT_NE(particles.error.find("path tracer"), std::string::npos);
+}
+
+TEST(View3D, OverlayShowsTheRenderCameraAndTheSampleWhereTheViewSeesThem) {
+  const Scene& scene = *sharedBox();
+  const RenderSettings s = particleBoxSettings();
+  View3DState state;
+  ensureView3DCamera(state, scene, scene.cameraDesc());
+  ASSERT_TRUE(state.orbit.has_value());
+  const Vec2i size(400, 300);
+  const Camera view = view3DCamera(state, size);
+  // The view is pulled back: the render camera's eye and the whole scene are in front of it, on its film.
+  const Vec3 eye(scene.cameraDesc().cameraToWorld[3]);
+  const std::optional<Vec2> eyeAt = overlayPoint(view, eye);
+  ASSERT_TRUE(eyeAt.has_value());
+  auto onFilm = [&](Vec2 p) { return p.x >= 0.f && p.y >= 0.f && p.x < 400.f && p.y < 300.f; };
+  EXPECT_TRUE(onFilm(*eyeAt)) << eyeAt->x << "," << eyeAt->y;
+  EXPECT_TRUE(onFilm(*overlayPoint(view, 0.5f * (scene.boundsMin() + scene.boundsMax()))));
+
+  PathInspectorState inspector;
+  inspector.on = true;
+  inspector.pick = Vec2(0.3f, 0.7f);
+  ASSERT_TRUE(refreshInspection(inspector, scene, s));
+  const InspectorOverlay overlay = view3DOverlay(state, inspector, scene, s, view);
+  auto hasMarker = [&](Vec2 at, VertexType type) {
+    return std::any_of(overlay.markers.begin(), overlay.markers.end(), [&](const InspectorMarker& m) {
+      return m.type == type && glm::length(m.p - at) < 1e-3f;
+    });
+  };
+  EXPECT_TRUE(hasMarker(*eyeAt, VertexType::Camera));
+  int frustum = 0;
+  for (const InspectorSegment& seg : overlay.segments) frustum += seg.role == SegmentRole::Frustum ? 1 : 0;
+  EXPECT_GE(frustum, 8);  // four edges from the eye, four around the image
+  // Every vertex of both subpaths where the view's camera sees it (the render camera would put
+  // the camera subpath's vertices elsewhere).
+  const SampleTrace& trace = inspector.result->trace;
+  ASSERT_GE(trace.cameraSubpath.size(), 2u);
+  for (const std::vector<PathVertex>* subpath : {&trace.cameraSubpath, &trace.lightSubpath})
+    for (const PathVertex& v : *subpath) EXPECT_TRUE(hasMarker(*overlayPoint(view, v.p), v.type)) << v.p.x;
+  const Camera render(scene.cameraDesc(), s.width, s.height);
+  EXPECT_GT(glm::length(*overlayPoint(view, trace.cameraSubpath[1].p) - *overlayPoint(render, trace.cameraSubpath[1].p)), 1.f);
+}
+
+TEST(View3D, DepthRangeHoldsTheSceneAndColoursFollowTheMaterials) {
+  const Scene& scene = *sharedBox();
+  View3DState state;
+  ensureView3DCamera(state, scene, scene.cameraDesc());
+  const CameraDesc view = view3DCameraDesc(state);
+  const Vec2 range = view3DDepthRange(scene, view);
+  const Vec3 eye(view.cameraToWorld[3]), axis = glm::normalize(-Vec3(view.cameraToWorld[2]));
+  EXPECT_GT(range.x, 0.f);
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 corner((i & 1) ? scene.boundsMax().x : scene.boundsMin().x, (i & 2) ? scene.boundsMax().y : scene.boundsMin().y,
+                      (i & 4) ? scene.boundsMax().z : scene.boundsMin().z);
+    const float depth = glm::dot(corner - eye, axis);
+    EXPECT_GT(depth, range.x);
+    EXPECT_LT(depth, range.y);
+  }
+  int emitters = 0;
+  const std::vector<PreviewColour> colours = previewColours(scene);
+  ASSERT_EQ(colours.size(), scene.materials().size());
+  for (size_t m = 0; m < scene.materials().size(); ++m) {
+    const PreviewColour& c = colours[m];
+    const Material& material = scene.material(static_cast<int>(m));
+    if (c.emitter) {
+      ++emitters;
+      EXPECT_FLOAT_EQ(std::max({c.rgba.r, c.rgba.g, c.rgba.b}), 1.f);  // the emission's colour, full brightness
+    } else {
+      EXPECT_FLOAT_EQ(c.rgba.r, material.baseColorFactor.r);
+    }
+  }
+  EXPECT_EQ(emitters, 1);
+}
+
+}  // namespace
+}  // namespace pathlab::ui
