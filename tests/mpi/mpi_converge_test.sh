@@ -4,7 +4,7 @@
 # errors to rounding), its CSV saying how many ranks ran, also with a reference only rank 0 reads;
 # with a time budget every checkpoint's samples are those of whole passes of both ranks;
 # `mpirun -n 1` writes what one process writes; a rank that cannot load the scene stops the job
-# within seconds with one line naming it.
+# within seconds with one line naming it; SIGINT leaves no output behind.
 # Usage: mpi_converge_test.sh PATHLAB SOURCE_DIR MPIEXEC
 . "$(dirname "$0")/../cli_lib.sh"
 . "$(dirname "$0")/mpi_lib.sh"
@@ -64,6 +64,11 @@ else fail "--time, 2 ranks: $(cat "$TMP/err")"; fi
 # Rank 1 is given a scene that does not exist: the job stops at once, naming it; no output
 # directory (rank 0 creates it only once every rank is ready).
 stops_without_scene converge "$TMP/f" "${small[@]}"
+
+# SIGINT to mpirun while the reference renders: the job ends (mpirun sees to that, killing ranks
+# that linger), leaving neither results, nor a reference, nor a temporary in the output directory.
+interrupted converge "$BOX" -o "$TMP/int" --width 16 --height 12 --threads 1 --time 60
+[ -z "$(ls -A "$TMP/int" 2>/dev/null)" ] && ok || fail "SIGINT left output: $(ls -A "$TMP/int")"
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

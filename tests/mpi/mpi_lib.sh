@@ -1,5 +1,6 @@
 # Shared by the MPI tests (sourced after cli_lib.sh): MPIEXEC, the environment Open MPI needs in
-# CI, a 2-rank launcher, and the check that a rank without its scene stops the job.
+# CI, a 2-rank launcher, the check that a rank without its scene stops the job, and a job
+# interrupted.
 MPIEXEC=$3
 BOX="$SRC/assets/cornell-box.gltf"
 # CI runs as root; Open MPI refuses to without these. Shared memory without ptrace (containers).
@@ -24,4 +25,16 @@ stops_without_scene() {
     fail "$command, missing scene: no line naming rank 1: $(cat "$TMP/err")"
   [ "$(grep -c '^pathlab:' "$TMP/err")" -eq 1 ] && ok || fail "$command, missing scene: not one line: $(cat "$TMP/err")"
   [ -e "$output" ] && fail "$command, missing scene: $output was written"
+}
+
+# interrupted ARGS...: `pathlab ARGS...` on 2 ranks gets SIGINT (to mpirun) after 3 s and must
+# have ended 10 s later; what it left behind is the caller's to check.
+interrupted() {
+  "$MPIEXEC" -n 2 --oversubscribe "$PATHLAB" "$@" >/dev/null 2>"$TMP/err" &
+  local job=$!
+  sleep 3
+  kill -INT "$job"
+  for _ in $(seq 50); do kill -0 "$job" 2>/dev/null || break; sleep 0.2; done
+  if kill -0 "$job" 2>/dev/null; then fail "SIGINT: the job still runs after 10 s"; kill -KILL "$job"; else ok; fi
+  wait "$job" 2>/dev/null
 }
