@@ -2,7 +2,7 @@
 // cached by hash), the configurations rendered one after another, the results written.
 #include "app/converge_command.h"
 
-
+#include "app/job.h"
 #include "app/output_check.h"
 #include "app/progress.h"
 #include "core/camera/image_size.h"
@@ -21,6 +21,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -55,25 +57,32 @@ void checkOutputDir(const ConvergeOptions& o) {
   }
 }
 
-// Runs one configuration with a progress bar on stderr.
+// Runs one configuration on every rank of the job, with a progress bar on the leader's stderr.
 ConvergenceCurve runWithProgress(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
-                                 const ConvergenceBudget& budget) {
+                                 const ConvergenceBudget& budget, Job& job, CheckpointExchange& exchange) {
   std::atomic<uint64_t> passes{0};
   const auto start = std::chrono::steady_clock::now();
-  ProgressBar bar([&] {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const uint64_t n = passes.load(std::memory_order_relaxed);
-    const double done = budget.seconds > 0 ? elapsed / budget.seconds : static_cast<double>(n) / static_cast<double>(budget.spp);
-    return std::pair{done, fmt::format("{}: {} spp", config.label, n)};
-  });
-  return runConvergence(scene, config, reference, budget, {}, &passes);
+  std::optional<ProgressBar> bar;
+  if (job.leader())
+    bar.emplace([&] {
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const uint64_t n = passes.load(std::memory_order_relaxed);
+      const double done = budget.seconds > 0 ? elapsed / budget.seconds
+                                             : static_cast<double>(n) / static_cast<double>(job.passesOf(budget.spp));
+      // Between checkpoints the leader knows only its own passes.
+      return std::pair{done, fmt::format("{}: {} spp{}", config.label, n,
+                                         job.size() > 1 ? fmt::format(" on rank 0 of {}", job.size()) : "")};
+    });
+  return runConvergence(scene, config, reference, budget, {}, &passes, &exchange);
 }
 
+// Under MPI: every rank's samples and rays over the slowest rank's time.
 void printSummary(const ConvergenceCurve& curve) {
   const Checkpoint& c = curve.checkpoints.back();
   std::string error = c.error ? fmt::format("relMSE {:.4g}, ", c.error->relMse) : "";
-  std::cerr << fmt::format("{}: {} spp in {:.2f} s, {}two-buffer relMSE {:.4g}, {} samples/s, {} rays/s\n", curve.label,
-                           c.spp, c.seconds, error, c.twoBuffer.relMse,
+  std::cerr << fmt::format("{}: {} spp{} in {:.2f} s, {}two-buffer relMSE {:.4g}, {} samples/s, {} rays/s\n", curve.label,
+                           c.spp, curve.processes > 1 ? fmt::format(" ({} ranks)", curve.processes) : "", c.seconds,
+                           error, c.twoBuffer.relMse,
                            humanCount(static_cast<double>(c.cameraSamples) / c.seconds),
                            humanCount(static_cast<double>(c.rays) / c.seconds));
 }
@@ -128,112 +137,178 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
   cmd->add_flag("-f,--force", o.force, "Overwrite convergence.csv, convergence.svg and efficiency.md");
 }
 
-int runConverge(ConvergeOptions o) {
-  // Every check before any work: configurations, output directory, reference, budget.
+namespace {
+
+// The reference rendered when none is given: bpt with the balance heuristic, for --reference-time
+// or --reference-spp if given, else ten times the budget of a configuration.
+struct ReferenceRun {
+  ConvergenceConfig config;
+  ConvergenceBudget budget;
+  std::string budgetText;  // in the cache key and the table's note
+};
+
+ReferenceRun referenceRun(const ConvergeOptions& o, const RenderSettings& base, const ConvergenceBudget& budget) {
+  ReferenceRun r{{"reference (bpt, balance)", base}, {}, {}};
+  r.config.settings.integrator = IntegratorKind::Bpt;
+  r.config.settings.seed = base.seed + kReferenceSeedOffset;
+  r.budget.factor = 1e9;  // only the first and last checkpoints
+  r.budget.clock = budget.clock;
+  if (o.referenceSpp > 0 || (o.referenceSeconds <= 0 && budget.spp > 0)) {
+    r.budget.spp = o.referenceSpp > 0 ? static_cast<uint64_t>(o.referenceSpp) : kReferenceFactor * budget.spp;
+    r.budgetText = fmt::format("spp={}", r.budget.spp);
+  } else {
+    r.budget.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceFactor * budget.seconds;
+    r.budgetText = fmt::format("{}={}", budget.clock == ClockKind::Cpu ? "cputime" : "time", r.budget.seconds);
+  }
+  return r;
+}
+
+// The cached reference of these settings; the environment lights the reference too, so one
+// rendered under another is not reused.
+fs::path cachedReferencePath(const ConvergeOptions& o, const ReferenceRun& r) {
+  return fs::path(o.outputDir) /
+         fmt::format("reference-{}.exr", referenceKey(o.scene, r.config.settings, r.budgetText + environmentKeyText(o.load)));
+}
+
+// Everything before the first pass. The outputs and the reference are the leader's alone: it
+// checks the directory and reads a given or cached reference.
+struct PreparedConverge {
   RenderSettings base;
-  base.maxLength = o.maxLength;
-  base.russianRoulette = o.russianRoulette;
-  base.seed = o.seed;
-  base.width = o.width > 0 ? o.width : kDefaultSide;
-  base.height = o.height > 0 ? o.height : kDefaultSide;
-  if (static_cast<long long>(base.width) * base.height > 16LL * 1024 * 1024)
-    throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than 16M pixels", base.width, base.height));
-  std::vector<ConvergenceConfig> configs = parseConvergenceConfigs(o.configs, base);
-  for (const ConvergenceConfig& c : configs)
+  std::vector<ConvergenceConfig> configs;
+  ConvergenceBudget budget;
+  std::unique_ptr<Scene> scene;
+  Image reference;  // given, or cached (the leader's)
+};
+
+void setImageSize(PreparedConverge& p, int width, int height) {
+  p.base.width = width;
+  p.base.height = height;
+  for (ConvergenceConfig& c : p.configs) {
+    c.settings.width = width;
+    c.settings.height = height;
+  }
+}
+
+PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
+  std::ostream& log = job.log();
+  // Every check before any work: configurations, output directory, reference, budget.
+  PreparedConverge p;
+  p.base.maxLength = o.maxLength;
+  p.base.russianRoulette = o.russianRoulette;
+  p.base.seed = o.seed;
+  p.base.width = o.width > 0 ? o.width : kDefaultSide;
+  p.base.height = o.height > 0 ? o.height : kDefaultSide;
+  if (static_cast<long long>(p.base.width) * p.base.height > 16LL * 1024 * 1024)
+    throw std::runtime_error(
+        fmt::format("--width x --height = {} x {} is more than 16M pixels", p.base.width, p.base.height));
+  p.configs = parseConvergenceConfigs(o.configs, p.base);
+  for (const ConvergenceConfig& c : p.configs)
     if (c.settings.integrator != IntegratorKind::Pt)
       for (int k : enabledTechniques(c.settings).uncoveredLengths(c.settings.maxLength))
-        std::cerr << fmt::format("pathlab: warning: '{}' has no enabled technique for paths of length {} (biased)\n",
-                                 c.label, k);
-  checkOutputDir(o);
+        log << fmt::format("pathlab: warning: '{}' has no enabled technique for paths of length {} (biased)\n", c.label,
+                           k);
+  if (job.leader()) checkOutputDir(o);
 
-  Image reference;
-  std::string referenceNote = fmt::format("Reference: `{}`.", o.reference);  // under the table
-  if (!o.reference.empty()) {
-    reference = readImage(o.reference);
-    if ((o.width > 0 && o.width != reference.width) || (o.height > 0 && o.height != reference.height))
+  if (!o.reference.empty() && job.leader()) {
+    p.reference = readImage(o.reference);
+    if ((o.width > 0 && o.width != p.reference.width) || (o.height > 0 && o.height != p.reference.height))
       throw std::runtime_error(fmt::format("{}: the reference is {} x {}, not the {} x {} asked for", o.reference,
-                                           reference.width, reference.height, base.width, base.height));
-    for (ConvergenceConfig& c : configs) {
-      c.settings.width = reference.width;
-      c.settings.height = reference.height;
-    }
-    base.width = reference.width;
-    base.height = reference.height;
+                                           p.reference.width, p.reference.height, p.base.width, p.base.height));
+    setImageSize(p, p.reference.width, p.reference.height);
   }
-  ConvergenceBudget budget;
-  budget.factor = o.checkpointFactor;
-  budget.clock = o.clock == "cpu" ? ClockKind::Cpu : ClockKind::Wall;
-  if (o.spp > 0) budget.spp = static_cast<uint64_t>(o.spp);
-  else budget.seconds = o.seconds > 0 ? o.seconds : kDefaultConvergeSeconds;
+  p.budget.factor = o.checkpointFactor;
+  p.budget.clock = o.clock == "cpu" ? ClockKind::Cpu : ClockKind::Wall;
+  if (o.spp > 0) p.budget.spp = static_cast<uint64_t>(o.spp);
+  else p.budget.seconds = o.seconds > 0 ? o.seconds : kDefaultConvergeSeconds;
 
-  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
   finishEnvironmentOptions(o.environment, o.load);
-  Scene scene(loadGltf(o.scene, o.load));
+  p.scene = std::make_unique<Scene>(loadGltf(o.scene, o.load));
   if (o.reference.empty() && (o.width == 0 || o.height == 0)) {
     // As `render`: the image has the camera's shape (longest side 256 unless given), never cropped.
-    const Vec2i size = imageSizeForAspect(cameraAspect(std::nullopt, scene.cameraDesc()),
+    const Vec2i size = imageSizeForAspect(cameraAspect(std::nullopt, p.scene->cameraDesc()),
                                           o.width > 0 ? std::optional(o.width) : std::nullopt,
                                           o.height > 0 ? std::optional(o.height) : std::nullopt, kDefaultSide);
-    base.width = size.x;
-    base.height = size.y;
-    for (ConvergenceConfig& c : configs) {
-      c.settings.width = size.x;
-      c.settings.height = size.y;
-    }
+    setImageSize(p, size.x, size.y);
   }
-  for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
-  for (const ConvergenceConfig& c : configs)
-    if (const std::string w = misOffWarning(scene, c.settings); !w.empty())
-      std::cerr << fmt::format("pathlab: warning: '{}': {}\n", c.label, w);
-  fs::create_directories(o.outputDir);
+  for (const std::string& w : p.scene->warnings()) log << "pathlab: warning: " << w << "\n";
+  for (const ConvergenceConfig& c : p.configs)
+    if (const std::string w = misOffWarning(*p.scene, c.settings); !w.empty())
+      log << fmt::format("pathlab: warning: '{}': {}\n", c.label, w);
+  if (job.leader() && o.reference.empty()) {
+    const fs::path cached = cachedReferencePath(o, referenceRun(o, p.base, p.budget));
+    if (fs::exists(cached)) p.reference = readImage(cached.string());
+  }
+  return p;
+}
+
+}  // namespace
+
+int runConverge(ConvergeOptions o) {
+  Job process;
+  return runConverge(std::move(o), process);
+}
+
+int runConverge(ConvergeOptions o, Job& job) {
+  std::ostream& log = job.log();
+  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  // Every rank prepares, then all agree before the first collective (as `render`): a rank that
+  // cannot load the scene stops the job at once, naming itself.
+  PreparedConverge p;
+  std::string error;
+  try {
+    p = prepareConverge(o, job);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  job.agree(error, 0);
+  // The leader alone read the reference: its size, and whether one has to be rendered, are its.
+  uint64_t shared[3] = {static_cast<uint64_t>(p.base.width), static_cast<uint64_t>(p.base.height),
+                        p.reference.rgb.empty() ? 1u : 0u};
+  job.shareLeaders(shared);
+  setImageSize(p, static_cast<int>(shared[0]), static_cast<int>(shared[1]));
+  const bool renderReference = shared[2] != 0;
+  const Scene& scene = *p.scene;
+  const ConvergenceBudget& budget = p.budget;
+  const std::unique_ptr<CheckpointExchange> exchange = job.checkpointExchange();
   const fs::path dir(o.outputDir);
+  // Only once every rank is ready: a refused run leaves no directory behind.
+  if (job.leader()) fs::create_directories(dir);
 
+  std::string referenceNote = fmt::format("Reference: `{}`.", o.reference);  // under the table
   if (o.reference.empty()) {
-    ConvergenceConfig best{"reference (bpt, balance)", base};
-    best.settings.integrator = IntegratorKind::Bpt;
-    best.settings.seed = base.seed + kReferenceSeedOffset;
-    ConvergenceBudget refBudget;
-    refBudget.factor = 1e9;  // only the first and last checkpoints
-    refBudget.clock = budget.clock;
-    std::string budgetText;
-    // --reference-time or --reference-spp if given, else ten times the budget of a configuration.
-    if (o.referenceSpp > 0 || (o.referenceSeconds <= 0 && budget.spp > 0)) {
-      refBudget.spp = o.referenceSpp > 0 ? static_cast<uint64_t>(o.referenceSpp) : kReferenceFactor * budget.spp;
-      budgetText = fmt::format("spp={}", refBudget.spp);
-    } else {
-      refBudget.seconds = o.referenceSeconds > 0 ? o.referenceSeconds : kReferenceFactor * budget.seconds;
-      budgetText = fmt::format("{}={}", budget.clock == ClockKind::Cpu ? "cputime" : "time", refBudget.seconds);
-    }
-    // The environment lights the reference too: a cached one rendered under another is not reused.
-    const std::string lighting = budgetText + environmentKeyText(o.load);
-    const fs::path cached = dir / fmt::format("reference-{}.exr", referenceKey(o.scene, best.settings, lighting));
-    if (fs::exists(cached)) {
-      reference = readImage(cached.string());
-      std::cerr << fmt::format("reference: reusing {}\n", cached.string());
+    const ReferenceRun ref = referenceRun(o, p.base, budget);
+    const fs::path cached = job.leader() ? cachedReferencePath(o, ref) : fs::path();
+    if (!renderReference) {
+      log << fmt::format("reference: reusing {}\n", cached.string());
       referenceNote = fmt::format("Reference: `{}`, bpt (balance heuristic), {} (cached).", cached.filename().string(),
-                                  budgetText);
+                                  ref.budgetText);
     } else {
-      std::cerr << fmt::format("reference: rendering {} with bpt (balance heuristic)\n", budgetText);
-      const ConvergenceCurve ref = runWithProgress(scene, best, nullptr, refBudget);
-      printSummary(ref);
-      writeImage(cached.string(), ref.image);
-      reference = ref.image;
-      std::cerr << fmt::format("reference: wrote {}\n", cached.string());
-      // The reference's own error adds to every relMSE measured against it: a floor, given here.
-      referenceNote = fmt::format(
-          "Reference: `{}`, bpt (balance heuristic), {} spp in {:.3g} s; its own two-buffer relMSE {:.3g} is a "
-          "floor under every relMSE above.",
-          cached.filename().string(), ref.checkpoints.back().spp, ref.checkpoints.back().seconds,
-          ref.checkpoints.back().twoBuffer.relMse);
+      log << fmt::format("reference: rendering {} with bpt (balance heuristic)\n", ref.budgetText);
+      const ConvergenceCurve curve = runWithProgress(scene, ref.config, nullptr, ref.budget, job, *exchange);
+      if (job.leader()) {
+        printSummary(curve);
+        writeImage(cached.string(), curve.image);
+        p.reference = curve.image;
+        log << fmt::format("reference: wrote {}\n", cached.string());
+        // The reference's own error adds to every relMSE measured against it: a floor, given here.
+        referenceNote = fmt::format(
+            "Reference: `{}`, bpt (balance heuristic), {} spp in {:.3g} s; its own two-buffer relMSE {:.3g} is a "
+            "floor under every relMSE above.",
+            cached.filename().string(), curve.checkpoints.back().spp, curve.checkpoints.back().seconds,
+            curve.checkpoints.back().twoBuffer.relMse);
+      }
     }
   }
 
+  // The error is the leader's to compute: the other ranks render without the reference.
+  const Image* reference = job.leader() ? &p.reference : nullptr;
   std::vector<ConvergenceCurve> curves;
-  for (const ConvergenceConfig& c : configs) {
-    curves.push_back(runWithProgress(scene, c, &reference, budget));
-    printSummary(curves.back());
+  for (const ConvergenceConfig& c : p.configs) {
+    curves.push_back(runWithProgress(scene, c, reference, budget, job, *exchange));
+    if (job.leader()) printSummary(curves.back());
   }
+  if (!job.leader()) return 0;
 
   LogLogPlot plot;
   const bool cpu = budget.clock == ClockKind::Cpu;
@@ -246,9 +321,13 @@ int runConverge(ConvergeOptions o) {
     for (const Checkpoint& c : curve.checkpoints) series.points.emplace_back(c.seconds, c.error->relMse);
     plot.series.push_back(std::move(series));
   }
+  const std::string ranksNote =
+      job.size() > 1 ? fmt::format(" Each configuration rendered by {} MPI ranks together; times are the slowest rank's.",
+                                   job.size())
+                     : "";
   const std::string table =
       efficiencyMarkdown(efficiencyRows(curves), cpu ? "CPU time (s)" : "time (s)") + "\n" + referenceNote +
-      fmt::format(" Images of {} x {} pixels.\n", base.width, base.height);
+      fmt::format(" Images of {} x {} pixels.{}\n", p.base.width, p.base.height, ranksNote);
   writeTextAtomically((dir / "convergence.csv").string(), convergenceCsv(curves));
   writeTextAtomically((dir / "convergence.svg").string(), renderSvg(plot));
   writeTextAtomically((dir / "efficiency.md").string(), table);

@@ -33,8 +33,13 @@ struct ConvergeOptions {
   EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
+class Job;
+
 void addConvergeCommand(CLI::App& app, ConvergeOptions& options);
-// Returns the process exit code. Errors are exceptions, reported by main.
+// Returns the process exit code. Errors are exceptions, reported by main. With a Job, as one rank
+// of it: every configuration (and the reference) rendered by all ranks together, the results
+// written by the leader.
 int runConverge(ConvergeOptions options);
+int runConverge(ConvergeOptions options, Job& job);
 
 }  // namespace pathlab::app

@@ -22,11 +22,6 @@ std::ostream& Job::log() const {
   return leader() ? std::cerr : discard;
 }
 
-uint64_t Job::passesOf(uint64_t totalPasses) const {
-  const uint64_t r = static_cast<uint64_t>(rank()), n = static_cast<uint64_t>(size());
-  return totalPasses > r ? (totalPasses - r + n - 1) / n : 0;
-}
-
 void Job::agree(const std::string& error, uint64_t) {
   if (!error.empty()) throw std::runtime_error(error);
 }

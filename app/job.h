@@ -1,14 +1,17 @@
 // The processes a command runs on: this one alone (the base class, what pathlab does without
-// MPI), or the ranks of an MPI job (app/mpi_job.h). The render command is written once against
-// this interface; with one process every call is a no-op or the identity.
+// MPI), or the ranks of an MPI job (app/mpi_job.h). The render and converge commands are written
+// once against this interface; with one process every call is a no-op or the identity.
 #pragma once
 
+#include "core/converge/checkpoint_exchange.h"
 #include "core/metrics/counters.h"
 #include "core/render/render_session.h"
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <ostream>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -43,7 +46,7 @@ class Job {
     return PassSchedule{static_cast<uint64_t>(rank()), static_cast<uint64_t>(size())};
   }
   // How many of the first `totalPasses` pass indices this rank's schedule holds.
-  uint64_t passesOf(uint64_t totalPasses) const;
+  uint64_t passesOf(uint64_t totalPasses) const { return passSchedule().passesBelow(totalPasses); }
 
   // Collective, the first of a command: each rank says whether it is ready (`error` empty) and
   // the shape of what it will accumulate (RenderSession::sums' sizes, shapeOf). Returns when every
@@ -66,6 +69,13 @@ class Job {
   // Ends every rank at once, for an error on one rank where the others may be waiting in a
   // collective (outside agree). Without MPI it does nothing: the caller returns its exit code.
   virtual void abort(int code) {}
+
+  // Collective: every rank gets the leader's `values`, for what the leader alone decides (the
+  // image size of a reference it read, whether it holds a cached one).
+  virtual void shareLeaders(std::span<uint64_t> values) {}
+  // How this job's ranks meet at the checkpoints of a convergence run (converge): one process
+  // alone, or the ranks together.
+  virtual std::unique_ptr<CheckpointExchange> checkpointExchange() { return std::make_unique<CheckpointExchange>(); }
 
  protected:
   std::atomic<uint64_t> knownPasses_{0};

@@ -1,5 +1,5 @@
 // pathlab: one executable, subcommands wired to the core. Every error becomes one line and exit 1.
-// Started by an MPI launcher (mpirun, srun), `render` runs as one rank of the job (app/job.h).
+// Started by an MPI launcher (mpirun, srun), `render` and `converge` run as one rank of the job (app/job.h).
 #include "app/cli.h"
 #include "app/job.h"
 #ifdef PATHLAB_HAVE_MPI
@@ -34,12 +34,12 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("render")) return pathlab::app::runRender(options.render, *job);
+    if (app.got_subcommand("converge")) return pathlab::app::runConverge(options.converge, *job);
     if (job->size() > 1)
-      throw pathlab::app::JobStopped(job->leader() ? "only render runs as an MPI job: start " +
+      throw pathlab::app::JobStopped(job->leader() ? "only render and converge run as an MPI job: start " +
                                                          app.get_subcommands().front()->get_name() +
                                                          " as one process, without mpirun"
                                                    : "");
-    if (app.got_subcommand("converge")) return pathlab::app::runConverge(options.converge);
     if (app.got_subcommand("view")) return pathlab::app::runView(options.view);
     if (app.got_subcommand("check")) return pathlab::app::runCheck(options.check);
     if (app.got_subcommand("inspect")) return pathlab::app::runInspect(options.inspect);

@@ -1,6 +1,10 @@
-// Job over MPI: the readiness vote after loading, the leader's progress messages, and the
-// reduction of every rank's film sums, pass counts and counters into the leader's session.
+// Job over MPI: the readiness vote after loading, the leader's progress messages, the reduction
+// of every rank's film sums, pass counts and counters into the leader's session, and the leader's
+// decisions shared.
 #include "app/mpi_job.h"
+
+#include "app/mpi_checkpoint_exchange.h"
+#include "app/mpi_collectives.h"
 
 #include <fmt/core.h>
 
@@ -21,8 +25,6 @@ constexpr int kDoneTag = 2;      // its last pass count: it has stopped renderin
 // 200 ms); their last count always.
 constexpr auto kProgressInterval = std::chrono::milliseconds(200);
 constexpr size_t kLineLength = 400;
-// MPI counts are int: large films are reduced in pieces.
-constexpr size_t kReduceChunk = size_t{1} << 26;
 
 // What each rank tells the leader when it is done. Counters is plain data (counters.h) and every
 // rank runs the same build of pathlab, so it travels as bytes.
@@ -64,6 +66,15 @@ MpiJob::~MpiJob() {
 }
 
 void MpiJob::abort(int code) { MPI_Abort(MPI_COMM_WORLD, code); }
+
+void MpiJob::shareLeaders(std::span<uint64_t> values) {
+  MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_UINT64_T, 0, MPI_COMM_WORLD);
+}
+
+std::unique_ptr<CheckpointExchange> MpiJob::checkpointExchange() {
+  if (size_ == 1) return Job::checkpointExchange();  // `mpirun -n 1`: exactly as one process
+  return std::make_unique<MpiCheckpointExchange>(rank_, size_);
+}
 
 void MpiJob::agree(const std::string& error, uint64_t shape) {
   if (size_ == 1) return Job::agree(error, shape);  // `mpirun -n 1`: exactly as one process
@@ -146,15 +157,10 @@ JobTotals MpiJob::combine(RenderSession& session, double seconds) {
   } else {
     MPI_Send(&ownPasses_, 1, MPI_UINT64_T, 0, kDoneTag, progressComm_);
   }
-  // A rank done early waits for the slowest asleep: Open MPI's blocking collectives poll, and on
-  // a machine shared by several ranks that polling would take cores from those still rendering.
+  // A rank done early waits for the slowest asleep (waitAsleep).
   MPI_Request everyoneDone;
   MPI_Ibarrier(MPI_COMM_WORLD, &everyoneDone);
-  for (int done = 0;;) {
-    MPI_Test(&everyoneDone, &done, MPI_STATUS_IGNORE);
-    if (done) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  waitAsleep(everyoneDone);
 
   RankTotals mine{ownPasses_, seconds, session.counters()};
   std::vector<RankTotals> all(leader() ? static_cast<size_t>(size_) : 0);
@@ -163,13 +169,7 @@ JobTotals MpiJob::combine(RenderSession& session, double seconds) {
   const auto reduceStart = std::chrono::steady_clock::now();
   // Every sum added element by element into the leader's (agree checked the shapes match). The
   // order of the additions differs from one process's (pass by pass), by rounding only.
-  for (std::span<double> sum : session.sums())
-    for (size_t begin = 0; begin < sum.size(); begin += kReduceChunk) {
-      const int count = static_cast<int>(std::min(kReduceChunk, sum.size() - begin));
-      double* data = sum.data() + begin;
-      if (leader()) MPI_Reduce(MPI_IN_PLACE, data, count, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
-      else MPI_Reduce(data, nullptr, count, MPI_DOUBLE, MPI_SUM, 0, MPI_COMM_WORLD);
-    }
+  for (std::span<double> sum : session.sums()) sumToRank0(sum.data(), sum.data(), sum.size(), leader());
 
   JobTotals totals{ownPasses_, seconds,
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - reduceStart).count()};

@@ -1,5 +1,5 @@
-// One rank of an MPI job (`mpirun -n N pathlab render ...`, or a scheduler's `srun`): Job's
-// collectives over MPI_COMM_WORLD, and the leader's view of the other ranks' progress.
+// One rank of an MPI job (`mpirun -n N pathlab render|converge ...`, or a scheduler's `srun`):
+// Job's collectives over MPI_COMM_WORLD, and the leader's view of the other ranks' progress.
 // Built only with MPI (PATHLAB_HAVE_MPI).
 #pragma once
 
@@ -28,6 +28,8 @@ class MpiJob : public Job {
   void notePasses(uint64_t passes) override;
   JobTotals combine(RenderSession& session, double seconds) override;
   void abort(int code) override;
+  void shareLeaders(std::span<uint64_t> values) override;
+  std::unique_ptr<CheckpointExchange> checkpointExchange() override;
 
  private:
   MpiJob(int rank, int size);

@@ -72,6 +72,25 @@ TEST(TwoBuffer, RunningMeansGiveThePassImages) {
   EXPECT_DOUBLE_EQ(fromMeans.estimate().mse, 2.25);
 }
 
+TEST(TwoBuffer, BuffersOfInterleavedPassesAddUpToOnesOfAll) {
+  // Passes 1, 3, 2, 6 taken by two processes, pass indices 0, 2 and 1, 3 (PassSchedule), each
+  // from its own running means (1, 1.5 and 3, 4.5): their sums added give HandComputedEqualHalves.
+  EvenOddBuffers first(1, 1), second(1, 1);
+  first.addRunningMean(onePixel(1.f, 1.f, 1.f), 0);
+  first.addRunningMean(onePixel(1.5f, 1.5f, 1.5f), 2);
+  second.addRunningMean(onePixel(3.f, 3.f, 3.f), 1);
+  second.addRunningMean(onePixel(4.5f, 4.5f, 4.5f), 3);
+  EXPECT_EQ(second.evenPasses(), 0u);
+  EvenOddBuffers run(1, 1);
+  for (const EvenOddBuffers* b : {&first, &second}) {
+    for (size_t i = 0; i < 2; ++i)
+      for (size_t j = 0; j < 3; ++j) run.sums()[i][j] += b->sums()[i][j];
+    run.addForeignPasses(b->evenPasses(), b->oddPasses());
+  }
+  EXPECT_EQ(run.passes(), 4u);
+  EXPECT_DOUBLE_EQ(run.estimate().mse, 2.25);
+}
+
 // Synthetic passes with known per-pass variance σ²: the estimate averages to σ²/n. Each pixel's
 // (A - B)²/4 is (σ²/n)·χ²₁, so over P pixel-channels the mean has relative standard deviation
 // sqrt(2/P); the tolerance is five of those.

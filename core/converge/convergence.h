@@ -2,6 +2,7 @@
 // checkpoints: the measurement behind `pathlab converge` (and, later, the viewer's live plot).
 #pragma once
 
+#include "core/converge/checkpoint_exchange.h"
 #include "core/converge/convergence_config.h"
 #include "core/metrics/counters.h"
 #include "core/metrics/error_metrics.h"
@@ -42,19 +43,23 @@ struct ConvergenceBudget {
   ClockKind clock = ClockKind::Wall;
 };
 
+// Split over several processes (CheckpointExchange), a checkpoint is the run's: its times are the
+// slowest process's, its counts and its image (errors on the leader only) those of all processes.
 struct ConvergenceCurve {
   std::string label;
   std::vector<Checkpoint> checkpoints;
-  Counters counters;
-  Image image;  // the final mean
+  Counters counters;  // this process's
+  Image image;        // the final mean (on the leader)
+  int processes = 1;  // that rendered it together
 };
 
 using CheckpointCallback = std::function<void(const Checkpoint&)>;
 
 // Blocking; uses the caller's TBB arena. `reference` may be null (then only the two-buffer
 // estimate is recorded). `passesDone`, if given, is updated after each pass (progress display).
+// `exchange`: the processes rendering the run together, each calling this (null: this one alone).
 ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
                                 const ConvergenceBudget& budget, const CheckpointCallback& onCheckpoint = {},
-                                std::atomic<uint64_t>* passesDone = nullptr);
+                                std::atomic<uint64_t>* passesDone = nullptr, CheckpointExchange* exchange = nullptr);
 
 }  // namespace pathlab

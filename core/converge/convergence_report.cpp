@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace pathlab {
@@ -31,15 +32,18 @@ std::string markdownCell(const std::string& s) {
 }  // namespace
 
 std::string convergenceCsv(const std::vector<ConvergenceCurve>& curves) {
-  std::string csv =
-      "config,spp,seconds,rmse,relmse,mape,twobuffer_mse,twobuffer_relmse,camera_samples,rays,wall_seconds,cpu_seconds\n";
+  const bool split = std::any_of(curves.begin(), curves.end(), [](const ConvergenceCurve& c) { return c.processes > 1; });
+  std::string csv = "config,spp,seconds,rmse,relmse,mape,twobuffer_mse,twobuffer_relmse,camera_samples,rays,wall_seconds,"
+                    "cpu_seconds";
+  csv += split ? ",ranks\n" : "\n";
   for (const ConvergenceCurve& curve : curves)
     for (const Checkpoint& c : curve.checkpoints) {
       const std::string errors =
           c.error ? fmt::format("{:.6g},{:.6g},{:.6g}", c.error->rmse, c.error->relMse, c.error->mape) : ",,";
-      csv += fmt::format("{},{},{:.6f},{},{:.6g},{:.6g},{},{},{:.6f},{:.6f}\n", csvQuote(curve.label), c.spp, c.seconds,
+      csv += fmt::format("{},{},{:.6f},{},{:.6g},{:.6g},{},{},{:.6f},{:.6f}", csvQuote(curve.label), c.spp, c.seconds,
                          errors, c.twoBuffer.mse, c.twoBuffer.relMse, c.cameraSamples, c.rays, c.wallSeconds,
                          c.cpuSeconds);
+      csv += split ? fmt::format(",{}\n", curve.processes) : "\n";
     }
   return csv;
 }

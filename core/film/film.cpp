@@ -31,6 +31,11 @@ std::array<std::span<double>, 2> Film::sums() {
           std::span<double>(splatSum_)};
 }
 
+std::array<std::span<const double>, 2> Film::sums() const {
+  return {std::span<const double>(reinterpret_cast<const double*>(cameraSum_.data()), 3 * cameraSum_.size()),
+          std::span<const double>(splatSum_)};
+}
+
 void Film::finishPass(uint64_t samplesPerPixel, uint64_t lightSubpaths) {
   samplesPerPixel_ += samplesPerPixel;
   lightSubpaths_ += lightSubpaths;

@@ -57,6 +57,7 @@ class Film {
   // rendered disjoint samples of one image combine by adding these element by element (then
   // finishPass with the other films' counts). Not concurrent with a pass.
   std::array<std::span<double>, 2> sums();
+  std::array<std::span<const double>, 2> sums() const;
   uint64_t lightSubpaths() const { return lightSubpaths_; }
 
   // pixel = cameraSum / spp + splatSum * pixelCount / lightSubpaths.

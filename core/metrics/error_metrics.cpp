@@ -38,16 +38,20 @@ EvenOddBuffers::EvenOddBuffers(int width, int height)
       odd_(even_.size(), 0.0),
       previousMean_(even_.size(), 0.0) {}
 
-void EvenOddBuffers::addPass(const std::vector<double>& passRgb) {
+void EvenOddBuffers::addPass(const std::vector<double>& passRgb) { addPass(passRgb, passes()); }
+
+void EvenOddBuffers::addPass(const std::vector<double>& passRgb, uint64_t passIndex) {
   if (passRgb.size() != even_.size())
     throw std::invalid_argument(fmt::format("a pass image of {} values for a {} x {} film", passRgb.size(), width_, height_));
-  const bool isEven = passes() % 2 == 0;
+  const bool isEven = passIndex % 2 == 0;
   std::vector<double>& sum = isEven ? even_ : odd_;
   for (size_t i = 0; i < sum.size(); ++i) sum[i] += passRgb[i];
   ++(isEven ? evenPasses_ : oddPasses_);
 }
 
-void EvenOddBuffers::addRunningMean(const Image& mean) {
+void EvenOddBuffers::addRunningMean(const Image& mean) { addRunningMean(mean, passes()); }
+
+void EvenOddBuffers::addRunningMean(const Image& mean, uint64_t passIndex) {
   if (mean.width != width_ || mean.height != height_)
     throw std::invalid_argument(fmt::format("a {} x {} image for a {} x {} film", mean.width, mean.height, width_, height_));
   const double n = static_cast<double>(passes() + 1);
@@ -57,7 +61,7 @@ void EvenOddBuffers::addRunningMean(const Image& mean) {
     pass[i] = n * m - (n - 1.0) * previousMean_[i];
     previousMean_[i] = m;
   }
-  addPass(pass);
+  addPass(pass, passIndex);
 }
 
 TwoBufferEstimate EvenOddBuffers::estimate() const {

@@ -4,7 +4,9 @@
 
 #include "core/film/film.h"
 
+#include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace pathlab {
@@ -49,16 +51,33 @@ class EvenOddBuffers {
  public:
   EvenOddBuffers(int width, int height);
 
-  // One pass's own image (not a running mean): pass 0, 2, 4... go to A, 1, 3, 5... to B.
+  // One pass's own image (not a running mean): pass 0, 2, 4... go to A, 1, 3, 5... to B. Without
+  // `passIndex`, passes are numbered in the order they are added.
   void addPass(const std::vector<double>& passRgb);
+  void addPass(const std::vector<double>& passRgb, uint64_t passIndex);
   // The progressive mean after one more pass (what RenderSession::image() returns after pass n).
   // The pass's own image is n·mean_n − (n−1)·mean_{n−1}: the film's read-out is linear in its
   // sums with a constant number of light subpaths per pass (Film::readout), so this is exact up
   // to the float rounding of the read-out (about n · 6e-8 of the pixel value, far below the
   // noise of one pass for any pass count a run reaches).
+  // `passIndex`: the pass's index in a render split over processes (PassSchedule), whose parity
+  // picks the buffer, so that the processes' buffers add up to those of one process.
   void addRunningMean(const Image& mean);
+  void addRunningMean(const Image& mean, uint64_t passIndex);
 
   uint64_t passes() const { return evenPasses_ + oddPasses_; }
+  uint64_t evenPasses() const { return evenPasses_; }
+  uint64_t oddPasses() const { return oddPasses_; }
+  // The sums of the even and of the odd pass images (3 doubles a pixel): buffers that took
+  // disjoint passes combine by adding these element by element, then addForeignPasses.
+  std::array<std::span<double>, 2> sums() { return {std::span<double>(even_), std::span<double>(odd_)}; }
+  std::array<std::span<const double>, 2> sums() const {
+    return {std::span<const double>(even_), std::span<const double>(odd_)};
+  }
+  void addForeignPasses(uint64_t even, uint64_t odd) {
+    evenPasses_ += even;
+    oddPasses_ += odd;
+  }
   // Needs at least one even and one odd pass; returns zeros before.
   TwoBufferEstimate estimate() const;
 

@@ -27,6 +27,8 @@ struct PassSchedule {
   uint64_t stride = 1;
   // The pass index of this session's n-th pass.
   uint64_t pass(uint64_t n) const { return first + stride * n; }
+  // How many of the pass indices 0 .. total - 1 are this session's.
+  uint64_t passesBelow(uint64_t total) const { return total > first ? (total - first + stride - 1) / stride : 0; }
 };
 
 class RenderSession {

@@ -6,12 +6,8 @@
 # scene stops the job within seconds with one line naming it; SIGINT leaves no output behind.
 # Usage: mpi_render_test.sh PATHLAB SOURCE_DIR MPIEXEC
 . "$(dirname "$0")/../cli_lib.sh"
-MPIEXEC=$3
+. "$(dirname "$0")/mpi_lib.sh"
 COMPARE="python3 $(dirname "$0")/compare_pfm.py"
-BOX="$SRC/assets/cornell-box.gltf"
-# CI runs as root; Open MPI refuses to without these. Shared memory without ptrace (containers).
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-mpirun2() { timeout 60 "$MPIEXEC" -n 2 --oversubscribe "$@"; }
 # One thread a rank: the splats of a pass are then summed in the same order as in one process.
 small=(--width 24 --height 16 --seed 9 --threads 1 --max-length 4)
 
@@ -52,31 +48,15 @@ else fail "mpirun -n 1: $(cat "$TMP/err")"; fi
 mpirun2 "$PATHLAB" render "$BOX" -o "$TMP/t.pfm" "${small[@]}" --time 0.5 2>"$TMP/err" && [ -s "$TMP/t.pfm" ] && ok ||
   fail "--time under 2 ranks: $(cat "$TMP/err")"
 
-# Rank 1 is given a scene that does not exist: one line from pathlab naming rank 1 and the file,
-# a non-zero exit within seconds (no rank left waiting in a collective), no image.
-begin=$(date +%s)
-timeout 30 "$MPIEXEC" -n 1 "$PATHLAB" render "$BOX" -o "$TMP/f.pfm" "${small[@]}" --spp 2 : \
-  -n 1 "$PATHLAB" render "$TMP/missing.gltf" -o "$TMP/f.pfm" "${small[@]}" --spp 2 >"$TMP/out" 2>"$TMP/err" </dev/null
-code=$?
-took=$(( $(date +%s) - begin ))
-[ "$code" -ne 0 ] && [ "$code" -ne 124 ] && ok || fail "missing scene on rank 1: exit code $code"
-[ "$took" -le 10 ] && ok || fail "missing scene on rank 1: $took s to stop"
-grep -qE "^pathlab: rank 1 of 2: .*missing.gltf" "$TMP/err" && ok || fail "missing scene: no line naming rank 1: $(cat "$TMP/err")"
-[ "$(grep -c '^pathlab:' "$TMP/err")" -eq 1 ] && ok || fail "missing scene: not one line: $(cat "$TMP/err")"
-[ -e "$TMP/f.pfm" ] && fail "missing scene: an image was written"
+# Rank 1 is given a scene that does not exist: the job stops at once, naming it; no image.
+stops_without_scene render "$TMP/f.pfm" "${small[@]}" --spp 2
 
-# Only render runs as a job.
+# Only render and converge run as a job.
 mpirun2 "$PATHLAB" check "$BOX" >"$TMP/out" 2>"$TMP/err" </dev/null && fail "check under 2 ranks: exit code 0"
-[ "$(grep -c '^pathlab: only render runs as an MPI job' "$TMP/err")" -eq 1 ] && ok || fail "check under 2 ranks: $(cat "$TMP/err")"
+[ "$(grep -c '^pathlab: only render and converge run as an MPI job' "$TMP/err")" -eq 1 ] && ok || fail "check under 2 ranks: $(cat "$TMP/err")"
 
 # SIGINT to mpirun during a render: the job ends, and neither the image nor a temporary is left.
-"$MPIEXEC" -n 2 --oversubscribe "$PATHLAB" render "$BOX" -o "$TMP/int.pfm" "${small[@]}" --time 60 2>"$TMP/err" &
-job=$!
-sleep 3
-kill -INT "$job"
-for _ in $(seq 50); do kill -0 "$job" 2>/dev/null || break; sleep 0.2; done
-if kill -0 "$job" 2>/dev/null; then fail "SIGINT: the job still runs after 10 s"; kill -KILL "$job"; else ok; fi
-wait "$job" 2>/dev/null
+interrupted render "$BOX" -o "$TMP/int.pfm" "${small[@]}" --time 60
 ls -a "$TMP" | grep -qE '^int\.pfm$|^\.int\.pfm\.tmp' && fail "SIGINT left output: $(ls -a "$TMP")" || ok
 
 echo "$passes passed, $failures failed"
