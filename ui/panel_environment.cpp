@@ -29,8 +29,9 @@ void drawEnvironmentSection(EnvironmentState& env) {
   if (ImGui::Button("Uniform") || (colourChanged && colourShown)) edited.spec = colourSpec(env.colour);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("a constant radiance from every direction");
   if (ImGui::Button("None")) edited.spec.clear();
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("the file's own lights (a file without any: the default light, uniform white)");
+  ImGui::SameLine();
+  ImGui::TextDisabled("the file's own lights only");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("a file without any gets the default light (uniform white)");
   ImGui::BeginDisabled(edited.spec.empty());
   ImGui::SliderFloat("strength", &edited.strength, 0.f, 100.f, "%.3g", ImGuiSliderFlags_Logarithmic);
   edited.strength = std::max(edited.strength, 0.f);

@@ -634,7 +634,9 @@ void Viewer::pollSceneLoad() {
             : fmt::format("loaded {}: {} triangles, {} lights, {:.1f} MB of geometry", scene_.path, scene.triangleCount(),
                   scene.lights().size(), double(scene.geometryBytes()) / 1e6);
   for (const std::string& w : scene.warnings()) text += "; warning: " + w;
-  if (hadReference) text += "; the reference was dropped (it showed the previous scene)";
+  if (hadReference)
+    text += relit ? "; the reference was dropped (it was lit otherwise)"
+                  : "; the reference was dropped (it showed the previous scene)";
   showMessage(text);
 }
 

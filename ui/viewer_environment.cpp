@@ -4,13 +4,17 @@
 #include "ui/viewer.h"
 
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 namespace pathlab::ui {
 
 void Viewer::editEnvironment(const EnvironmentEdit& edit) {
   apply(edit, environment_.edited);
-  if (edit.spec && isEnvironmentFile(*edit.spec)) environment_.typedPath = *edit.spec;
+  if (!edit.spec || edit.spec->empty() || *edit.spec == "none") return;
+  // The section's fields show what was chosen, however it was (a drop, a script).
+  if (isEnvironmentFile(*edit.spec)) environment_.typedPath = *edit.spec;
+  else std::sscanf(edit.spec->c_str(), "%f,%f,%f", &environment_.colour.r, &environment_.colour.g, &environment_.colour.b);
 }
 
 void Viewer::openDropped(const std::string& path) {
@@ -44,9 +48,12 @@ void Viewer::finishLoading(double seconds) {
 bool Viewer::takeLoadedEnvironment(const SceneLoadResult& r) {
   EnvironmentState& e = environment_;
   if (!r.scene) {
-    // The shown scene keeps its environment, and the panel shows it again: retrying the failed
-    // edit would only fail again.
-    e.edited = e.applied;
+    // The shown scene keeps its environment and the panel shows it again (a retry would only fail
+    // again): a map that failed is dropped from the edit, strength and rotation edited meanwhile
+    // stay; anything else reverts the whole edit, so this always ends.
+    const bool mapFailed = r.environment && r.environment->spec == e.edited.spec && e.edited.spec != e.applied.spec;
+    if (mapFailed) e.edited.spec = e.applied.spec;
+    else e.edited = e.applied;
     return false;
   }
   if (r.environment) {

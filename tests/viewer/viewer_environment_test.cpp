@@ -2,7 +2,7 @@
 // scene in the expected direction (a dim map darkens a scene lit by the default light, strength
 // brings it back), strength 0 leaves a scene without lights black, turning a map that is bright
 // on one side changes the image (turning it a full circle does not), and a missing map is one
-// error line while the previous environment, and its image, stay.
+// error line while the previous environment, and its image, stay (a strength set with it applies).
 #include "tests/viewer/pathlab_process.h"
 
 #include "core/film/image_io.h"
@@ -133,6 +133,10 @@ TEST(ViewerEnvironment, AMissingMapIsOneLineAndTheEnvironmentStays) {
   EXPECT_EQ(before.err.find("shown:"), std::string::npos) << before.err;
   // Still the dim map's image, not the default light's.
   EXPECT_LT(after.differenceTo(before), 1.0) << after.err;
+  // Only the map is taken back: a strength set with it still applies, to the previous map.
+  const EnvRun stronger = viewWith("after-missing-x5", "2:drop=" + dim + ";4:wait=1;5:drop=" + missing + ";5:strength=5");
+  EXPECT_NE(stronger.err.find(line), std::string::npos) << stronger.err;
+  EXPECT_GT(stronger.mean(), 1.3 * before.mean()) << stronger.err;
 }
 
 }  // namespace

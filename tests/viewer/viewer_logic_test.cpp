@@ -84,6 +84,36 @@ TEST(SceneLoader, ABrokenSceneIsOneLineNamingTheFile) {
   EXPECT_NE(missing.error.find("/nonexistent/box.gltf"), std::string::npos);
 }
 
+// Relighting (the Environment section): the scene loads with the chosen environment; a map read
+// before is not read again when only strength or rotation change; a missing map is one line naming
+// it, and no scene.
+TEST(SceneLoader, LoadsWithTheChosenEnvironmentReadingAMapOnce) {
+  const std::string box = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
+  SceneLoader loader;
+  loader.start(box, EnvironmentChoice{"0.5,0.5,0.5", 2.f, 0.f}, nullptr);
+  auto r = waitFor(loader);
+  ASSERT_TRUE(r && r->scene) << (r ? r->error : "");
+  ASSERT_TRUE(r->environmentDesc);
+  EXPECT_EQ(r->environmentDesc->strength, 2.f);
+  EXPECT_EQ(r->environment, (EnvironmentChoice{"0.5,0.5,0.5", 2.f, 0.f}));
+  // A map that exists only as already read: turning it must not look for the file.
+  auto read = std::make_shared<EnvironmentDesc>();
+  read->source = "/nonexistent/read-before.exr";
+  read->width = 2;
+  read->height = 1;
+  read->texels = {Spectrum(1.f), Spectrum(0.f)};
+  loader.start(box, EnvironmentChoice{read->source, 1.f, 90.f}, read);
+  r = waitFor(loader);
+  ASSERT_TRUE(r && r->scene) << (r ? r->error : "");
+  EXPECT_EQ(r->environmentDesc->rotationDegrees, 90.f);
+  EXPECT_EQ(r->environmentDesc->texels.size(), 2u);
+  loader.start(box, EnvironmentChoice{"/nonexistent/sky.exr", 1.f, 0.f}, read);
+  r = waitFor(loader);
+  ASSERT_TRUE(r);
+  EXPECT_FALSE(r->scene);
+  EXPECT_EQ(r->error, "/nonexistent/sky.exr: no such file");
+}
+
 }  // namespace
 }  // namespace pathlab::ui
 
