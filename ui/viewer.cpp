@@ -637,6 +637,8 @@ void Viewer::pollSceneLoad() {
   if (hadReference)
     text += relit ? "; the reference was dropped (it was lit otherwise)"
                   : "; the reference was dropped (it showed the previous scene)";
+  // A relight right after a failed one (its strength, say) must not hide the error unread.
+  if (relit && ui_.messageIsError && !ui_.message.empty()) return;
   showMessage(text);
 }
 
