@@ -46,7 +46,7 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
     auto bad = [&](const char* why) { return std::invalid_argument("--script: '" + item + "': " + why); };
     InputEvent e;
     const size_t colon = item.find(':');
-    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:click=X,Y, FRAME:drop=PATH, FRAME:resize=W,H or FRAME:wait=SPP");
+    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:click=X,Y, FRAME:drop=PATH, FRAME:resize=W,H, FRAME:environment=SPEC, FRAME:strength=S, FRAME:rotation=DEG or FRAME:wait=SPP");
     try {
       size_t used = 0;
       e.frame = std::stoi(item.substr(0, colon), &used);
@@ -69,6 +69,18 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
         throw bad("expected resize=W,H with sizes in 1..16384");
       e.kind = InputEvent::Kind::Resize;
       e.to = {static_cast<float>(w), static_cast<float>(h)};
+    } else if (action.rfind("environment=", 0) == 0) {
+      e.kind = InputEvent::Kind::Environment;
+      e.environment.spec = action.substr(12);
+      if (e.environment.spec->empty()) throw bad("expected environment=FILE.exr|FILE.hdr|R,G,B|none");
+    } else if (action.rfind("strength=", 0) == 0 || action.rfind("rotation=", 0) == 0) {
+      const bool strength = action[0] == 's';
+      float v = 0.f;
+      char tail;
+      if (std::sscanf(action.c_str() + 9, "%f%c", &v, &tail) != 1 || !std::isfinite(v) || (strength && v < 0.f))
+        throw bad(strength ? "expected strength=S with S a non-negative number" : "expected rotation=DEG");
+      e.kind = InputEvent::Kind::Environment;
+      (strength ? e.environment.strength : e.environment.rotationDegrees) = v;
     } else if (action.rfind("drop=", 0) == 0) {
       e.kind = InputEvent::Kind::Drop;
       e.path = action.substr(5);
@@ -122,6 +134,13 @@ FrameInput inputAt(const std::vector<InputEvent>& events, int frame) {
       if (step == 0) in.resize = Vec2i(e.to);
     } else if (e.kind == InputEvent::Kind::Drop) {
       if (step == 0) in.dropped.push_back(e.path);
+    } else if (e.kind == InputEvent::Kind::Environment) {
+      if (step == 0) {
+        const EnvironmentEdit& x = e.environment;
+        if (x.spec) in.environment.spec = x.spec;
+        if (x.strength) in.environment.strength = x.strength;
+        if (x.rotationDegrees) in.environment.rotationDegrees = x.rotationDegrees;
+      }
     } else if (e.kind == InputEvent::Kind::Key) {
       if (step >= 0 && step < e.holdFrames) {
         in.keysDown.push_back(e.key);

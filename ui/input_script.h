@@ -5,7 +5,9 @@
 // SCRIPT: ';'-separated events "FRAME:key=NAME", "FRAME:drag=X0,Y0>X1,Y1" (window pixels, left
 // button; "Shift+drag=..." pans), "FRAME:click=X,Y" (a left click: a drag that does not move;
 // with the path inspector on it picks the pixel), "FRAME:drop=PATH" (a file dropped on the window),
-// "FRAME:resize=W,H" (the window resized) or "FRAME:wait=SPP" (that frame waits until the current
+// "FRAME:resize=W,H" (the window resized), "FRAME:environment=SPEC" (FILE.exr, FILE.hdr, R,G,B or
+// none), "FRAME:strength=S" and "FRAME:rotation=DEG" (what the Environment section's fields and
+// sliders set) or "FRAME:wait=SPP" (that frame waits until the current
 // image has SPP samples per pixel: scripts that compare configurations run the same on a loaded
 // machine). NAME is a
 // key of the shortcut table ("3", "M", "Space", "F1", "Ctrl+S", "PageDown", "]") or a fly key
@@ -15,6 +17,7 @@
 #pragma once
 
 #include "core/math/types.h"
+#include "ui/environment_choice.h"
 
 #include <cstdint>
 #include <optional>
@@ -24,7 +27,7 @@
 namespace pathlab::ui {
 
 struct InputEvent {
-  enum class Kind { Key, Drag, Drop, Resize, Wait } kind = Kind::Key;
+  enum class Kind { Key, Drag, Drop, Resize, Wait, Environment } kind = Kind::Key;
   int frame = 0;
   int key = 0;        // GLFW key code
   bool ctrl = false;  // Key: with Ctrl
@@ -33,6 +36,7 @@ struct InputEvent {
   Vec2 from{0.f}, to{0.f};  // Drag; Resize: `to` is the size
   std::string path;   // Drop
   uint64_t spp = 0;   // Wait
+  EnvironmentEdit environment;
 };
 
 // Throws std::invalid_argument naming the bad event.
@@ -48,6 +52,7 @@ struct FrameInput {
   std::vector<std::string> dropped;
   std::optional<Vec2i> resize;
   std::optional<uint64_t> waitSpp;
+  EnvironmentEdit environment;
 };
 
 // A drag takes four frames from its start: move to the start, press, move to the end, release.

@@ -49,6 +49,9 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
 void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
 void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
 void drawPresetSection(const PresetState& presets, PanelRequests& requests);
+// The environment (panel_environment.cpp): a map's path, a uniform colour or none, its strength
+// and rotation; edits `environment.edited`, which the viewer applies in the background.
+void drawEnvironmentSection(EnvironmentState& environment);
 // The path inspector (panel_inspector.cpp): its section of the side panel (on / off, the picked
 // sample's techniques, the selected path under every technique) and its overlay over the image
 // (origin and size in ImGui coordinates; `raster` the inspected image's size in pixels).

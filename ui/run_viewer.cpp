@@ -238,6 +238,7 @@ int runViewer(const ViewerOptions& o) {
       const bool last = counted && frame == o.frames - 1;
       if (last && o.spp > 0) {
         // The screenshot shows the requested sample count (settings were applied in earlier frames).
+        viewer.finishLoading(kHeadlessSppTimeout);
         if (!viewer.renderer().waitForSpp(o.spp, kHeadlessSppTimeout))
           std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", o.spp, kHeadlessSppTimeout);
         if (ProgressiveRenderer* b = viewer.compareRenderer(); b && !b->waitForSpp(o.spp, kHeadlessSppTimeout))
@@ -246,6 +247,7 @@ int runViewer(const ViewerOptions& o) {
         viewer.waitForPyramid(5.0);
       }
       if (const std::optional<uint64_t> spp = inputAt(script, frame).waitSpp) {
+        viewer.finishLoading(kHeadlessSppTimeout);
         if (!viewer.renderer().waitForSpp(*spp, kHeadlessSppTimeout))
           std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", *spp, kHeadlessSppTimeout);
         if (ProgressiveRenderer* b = viewer.compareRenderer(); b && !b->waitForSpp(*spp, kHeadlessSppTimeout))
@@ -277,6 +279,7 @@ int runViewer(const ViewerOptions& o) {
       const Vec2i fb = surface->framebufferSize();
       const float fbScale = io.DisplaySize.x > 0.f ? static_cast<float>(fb.x) / io.DisplaySize.x : 1.f;
       viewer.setFrameTime(stats.ms.empty() ? 0.0 : stats.ms.back());
+      if (const EnvironmentEdit edit = inputAt(script, frame - 1).environment; !edit.empty()) viewer.editEnvironment(edit);
       viewer.buildFrame(fb, fbScale, dropped);
       ImGui::Render();
       glViewport(0, 0, fb.x, fb.y);
@@ -339,6 +342,9 @@ int runViewer(const ViewerOptions& o) {
                                o.headless ? "offscreen" : "window", drawn.size.x, drawn.size.y, drawn.origin.x,
                                drawn.origin.y, s.samplesPerPixel, compare, s.settings.width, s.settings.height,
                                s.generation, stats.summary(), series);
+      // Offscreen nobody reads the panel: its error line goes to standard error too.
+      if (const std::string error = viewer.shownError(); !error.empty())
+        std::cerr << "pathlab view: shown: " << error << "\n";
     }
     if (!o.errorCsv.empty()) viewer.writeErrorCsv(o.errorCsv, true);  // checked before the first frame
     if (recording.recorder) {

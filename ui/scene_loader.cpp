@@ -8,7 +8,8 @@
 namespace pathlab::ui {
 
 SceneLoadResult SceneLoader::load(const std::string& path, const LoadOptions& options) {
-  SceneLoadResult r{path, nullptr, {}};
+  SceneLoadResult r;
+  r.path = path;
   try {
     r.scene = std::make_shared<const Scene>(loadGltf(path, options));
   } catch (const std::exception& e) {
@@ -23,6 +24,30 @@ void SceneLoader::start(const std::string& path) {
   if (pending_.valid()) pending_.wait();
   pendingPath_ = path;
   pending_ = std::async(std::launch::async, [path, options = options_] { return load(path, options); });
+}
+
+void SceneLoader::start(const std::string& path, const EnvironmentChoice& environment,
+                        std::shared_ptr<const EnvironmentDesc> read) {
+  if (pending_.valid()) pending_.wait();
+  pendingPath_ = path;
+  pending_ = std::async(std::launch::async, [path, environment, read = std::move(read), options = options_]() mutable {
+    SceneLoadResult r;
+    try {
+      options.environment = environmentOf(environment, read);
+    } catch (const std::exception& e) {
+      // EnvironmentError names the map; others (bad_alloc, ...) get it here. The scene file was
+      // not read.
+      const std::string what = e.what();
+      r.path = path;
+      r.error = what.find(environment.spec) != std::string::npos ? what : environment.spec + ": " + what;
+      r.environment = environment;
+      return r;
+    }
+    r = load(path, options);
+    r.environment = environment;
+    r.environmentDesc = options.environment;
+    return r;
+  });
 }
 
 std::optional<SceneLoadResult> SceneLoader::poll() {

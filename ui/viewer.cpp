@@ -46,6 +46,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
   scene_.scene = std::move(scene);
   scene_.path = options.scene;
   scene_.loader = SceneLoader(options.load);
+  environment_ = EnvironmentState::from(options.load.environment);
   // A preset's camera: orbit from there.
   scene_.orbit = OrbitCamera(estimator_.settings.camera.value_or(scene_.scene->cameraDesc()), scene_.scene->boundsMin(),
                              scene_.scene->boundsMax());
@@ -192,7 +193,7 @@ void Viewer::showMessage(const std::string& text, bool error) {
 
 void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std::vector<std::string>& droppedPaths) {
   ImGuiIO& io = ImGui::GetIO();
-  for (const std::string& path : droppedPaths) openScene(path);
+  for (const std::string& path : droppedPaths) openDropped(path);
   pollSceneLoad();
 
   handleShortcuts();
@@ -270,6 +271,7 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
                        {inspector_.inspectedSettings.width, inspector_.inspectedSettings.height}, scale);
   drawView3D(fbScale);
   carryOut(requests);
+  syncEnvironment();
 
   RenderSettings& edited = estimator_.settings;
   // The image follows its area of the window (a resize is a new generation, like any other change).
@@ -407,6 +409,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
     drawTechniqueMapSection(maps_, estimator_.settings.maxLength, mapImages_.texture.empty());
   if (ImGui::CollapsingHeader("Reference and error", convergence_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawReferenceSection(reference_, convergence_, display_, estimator_.settings, snapshot_.image, requests);
+  if (ImGui::CollapsingHeader("Environment", environment_.applied.spec.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+    drawEnvironmentSection(environment_);
   if (ImGui::CollapsingHeader("Scene and camera"))
     drawSceneSection(scene_, estimator_.settings.camera.has_value(), requests);
   if (ImGui::CollapsingHeader("Presets", presets_.presets.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
@@ -583,15 +587,17 @@ std::optional<float> Viewer::imageAspect() const {
 }
 
 void Viewer::openScene(const std::string& path) {
-  scene_.loader.start(path);
+  // Lit as the shown scene is (the command line's environment, or the one loaded since).
+  scene_.loader.start(path, environment_.applied, environment_.read);
   showMessage("loading " + path + " ...");
 }
 
 void Viewer::pollSceneLoad() {
   std::optional<SceneLoadResult> r = scene_.loader.poll();
   if (!r) return;
-  if (!r->scene) {
-    showMessage(r->error + " (the previous scene is kept)", true);
+  const bool relit = r->path == scene_.path && r->environment && !(*r->environment == environment_.applied);
+  if (!takeLoadedEnvironment(*r)) {
+    showMessage(r->error + (relit ? " (the previous environment is kept)" : " (the previous scene is kept)"), true);
     return;
   }
   // A reload keeps the view (the file is being edited); another scene starts at its own camera.
@@ -624,10 +630,15 @@ void Viewer::pollSceneLoad() {
   refreshSceneFiles();
   const Scene& scene = *scene_.scene;
   std::string text =
-      fmt::format("loaded {}: {} triangles, {} lights, {:.1f} MB of geometry", scene_.path, scene.triangleCount(),
+      relit ? "environment: " + describe(environment_.applied)
+            : fmt::format("loaded {}: {} triangles, {} lights, {:.1f} MB of geometry", scene_.path, scene.triangleCount(),
                   scene.lights().size(), double(scene.geometryBytes()) / 1e6);
   for (const std::string& w : scene.warnings()) text += "; warning: " + w;
-  if (hadReference) text += "; the reference was dropped (it showed the previous scene)";
+  if (hadReference)
+    text += relit ? "; the reference was dropped (it was lit otherwise)"
+                  : "; the reference was dropped (it showed the previous scene)";
+  // A relight right after a failed one (its strength, say) must not hide the error unread.
+  if (relit && ui_.messageIsError && !ui_.message.empty()) return;
   showMessage(text);
 }
 

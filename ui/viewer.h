@@ -36,7 +36,13 @@ class Viewer {
   // whether anything new was uploaded, i.e. whether a frame should be drawn.
   bool pollImage();
   // True while something changes without input (a scene loading): keep drawing frames.
-  bool busy() const { return scene_.loader.busy(); }
+  bool busy() const { return scene_.loader.busy() || !(environment_.edited == environment_.applied); }
+  // An edit of the environment (as the Environment section makes them; scripts, tests): the scene
+  // is relit in the background, keeping the camera (viewer_environment.cpp).
+  void editEnvironment(const EnvironmentEdit& edit);
+  // Headless scripts (FRAME:wait=SPP, the last frame): waits up to `seconds` for the scene or
+  // environment being loaded and shows it, so the samples waited for are the new scene's.
+  void finishLoading(double seconds);
   // Draws the image under the panels (after ImGui::Render, before ImGui's draw data).
   void drawImage(Vec2i framebufferSize);
   // Where the last drawImage put the image (empty when nothing was drawn): what a screenshot shows.
@@ -75,6 +81,8 @@ class Viewer {
   void setUiScale(float scale) { ui_.scale = scale; }
   void setFrameTime(double ms) { ui_.frameMs = ui_.frameMs == 0.0 ? ms : 0.9 * ui_.frameMs + 0.1 * ms; }
   void showMessage(const std::string& text, bool error = false);
+  // The error line the panel shows ("" when none): headless runs report it on exit.
+  std::string shownError() const { return ui_.messageIsError ? ui_.message : std::string(); }
   const RenderSnapshot& shownSnapshot() const { return snapshot_; }
   const ErrorTracker& errors() const { return *reference_.errors; }
   // Writes the error series as CSV (ErrorTracker::csv); throws std::runtime_error naming the file.
@@ -86,6 +94,7 @@ class Viewer {
   TechniqueGridState grid_;
   RunState run_;
   SceneState scene_;
+  EnvironmentState environment_;
   PresetState presets_;
   DisplaySettings display_;
   ReferenceState reference_;
@@ -167,6 +176,12 @@ class Viewer {
   std::optional<float> imageAspect() const;
   void openScene(const std::string& path);
   void pollSceneLoad();
+  // viewer_environment.cpp: a dropped .exr / .hdr lights the scene, any other file opens as one.
+  void openDropped(const std::string& path);
+  // Starts relighting when the edited environment differs from the shown
+  // scene's and no load is running; takes a finished load's environment (false: it failed).
+  void syncEnvironment();
+  bool takeLoadedEnvironment(const SceneLoadResult& result);
   void refreshSceneFiles();
   void resetCamera();
   void applyPreset(int index);

@@ -5,6 +5,7 @@
 #include "core/converge/error_tracker.h"
 #include "core/render/progressive_renderer.h"
 #include "ui/display_settings.h"
+#include "ui/environment_choice.h"
 #include "ui/orbit_camera.h"
 #include "ui/presets.h"
 #include "ui/scene_loader.h"
@@ -47,6 +48,26 @@ struct SceneState {
   std::vector<std::string> files;  // .gltf / .glb beside the scene and in assets/
   std::string typedPath;
   OrbitCamera orbit;
+};
+
+// The environment the scene is lit with (applied: the shown scene was loaded with it) and the one
+// the Environment section edits; when they differ and no load is running, the scene is reloaded
+// with the edited one in the background (a slider dragged during a load coalesces into one more).
+struct EnvironmentState {
+  EnvironmentChoice edited, applied;
+  std::shared_ptr<const EnvironmentDesc> read;  // applied's map as read (null: none or a colour)
+  std::string typedPath;
+  Vec3 colour{1.f};  // the uniform colour offered, kept while a map is shown
+
+  // The command line's environment (LoadOptions::environment, null for none), read already.
+  static EnvironmentState from(const std::shared_ptr<const EnvironmentDesc>& commandLine) {
+    EnvironmentState s;
+    s.edited = s.applied = choiceOf(commandLine.get());
+    s.read = commandLine;
+    if (commandLine && commandLine->isConstant()) s.colour = commandLine->constant;
+    else if (commandLine) s.typedPath = commandLine->source;
+    return s;
+  }
 };
 
 struct PresetState {

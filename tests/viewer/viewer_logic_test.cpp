@@ -84,6 +84,36 @@ TEST(SceneLoader, ABrokenSceneIsOneLineNamingTheFile) {
   EXPECT_NE(missing.error.find("/nonexistent/box.gltf"), std::string::npos);
 }
 
+// Relighting (the Environment section): the scene loads with the chosen environment; a map read
+// before is not read again when only strength or rotation change; a missing map is one line naming
+// it, and no scene.
+TEST(SceneLoader, LoadsWithTheChosenEnvironmentReadingAMapOnce) {
+  const std::string box = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf";
+  SceneLoader loader;
+  loader.start(box, EnvironmentChoice{"0.5,0.5,0.5", 2.f, 0.f}, nullptr);
+  auto r = waitFor(loader);
+  ASSERT_TRUE(r && r->scene) << (r ? r->error : "");
+  ASSERT_TRUE(r->environmentDesc);
+  EXPECT_EQ(r->environmentDesc->strength, 2.f);
+  EXPECT_EQ(r->environment, (EnvironmentChoice{"0.5,0.5,0.5", 2.f, 0.f}));
+  // A map that exists only as already read: turning it must not look for the file.
+  auto read = std::make_shared<EnvironmentDesc>();
+  read->source = "/nonexistent/read-before.exr";
+  read->width = 2;
+  read->height = 1;
+  read->texels = {Spectrum(1.f), Spectrum(0.f)};
+  loader.start(box, EnvironmentChoice{read->source, 1.f, 90.f}, read);
+  r = waitFor(loader);
+  ASSERT_TRUE(r && r->scene) << (r ? r->error : "");
+  EXPECT_EQ(r->environmentDesc->rotationDegrees, 90.f);
+  EXPECT_EQ(r->environmentDesc->texels.size(), 2u);
+  loader.start(box, EnvironmentChoice{"/nonexistent/sky.exr", 1.f, 0.f}, read);
+  r = waitFor(loader);
+  ASSERT_TRUE(r);
+  EXPECT_FALSE(r->scene);
+  EXPECT_EQ(r->error, "/nonexistent/sky.exr: no such file");
+}
+
 }  // namespace
 }  // namespace pathlab::ui
 
@@ -135,8 +165,25 @@ TEST(InputScript, ParsesKeysAndDragsAndReplaysThemFrameByFrame) {
   EXPECT_TRUE(inputAt(drop, 4).dropped.empty());
   EXPECT_EQ(inputAt(parseInputScript("1:resize=640,480"), 1).resize, Vec2i(640, 480));
   for (const char* bad : {"1:resize=0,4", "1:resize=4", "1:drop=", "x:key=3", "1:key=nope", "1:drag=1,2", "1:press=3", "-1:key=3",
-                          "1:drag=nan,2>3,4", "1:drag=1,inf>3,4", "1:drag=1,2>1e999,4"})
+                          "1:drag=nan,2>3,4", "1:drag=1,inf>3,4", "1:drag=1,2>1e999,4", "1:environment=",
+                          "1:strength=-1", "1:strength=x", "1:rotation=nan", "1:rotation=5deg"})
     EXPECT_THROW(parseInputScript(bad), std::invalid_argument) << bad;
+}
+
+// The Environment section's edits as a script sets them: one frame each, the fields it names.
+TEST(InputScript, EnvironmentEditsArriveOnTheirFrame) {
+  const std::vector<InputEvent> script = parseInputScript("2:environment=0.5,1,2;2:strength=4;5:rotation=-90;7:environment=none");
+  const EnvironmentEdit at2 = inputAt(script, 2).environment;
+  EXPECT_EQ(at2.spec, std::optional<std::string>("0.5,1,2"));
+  EXPECT_EQ(at2.strength, std::optional<float>(4.f));
+  EXPECT_FALSE(at2.rotationDegrees);
+  EXPECT_TRUE(inputAt(script, 3).environment.empty());
+  EXPECT_EQ(inputAt(script, 5).environment.rotationDegrees, std::optional<float>(-90.f));
+  EnvironmentChoice choice{"sky.hdr", 2.f, 30.f};
+  apply(inputAt(script, 7).environment, choice);
+  EXPECT_EQ(choice, (EnvironmentChoice{"", 2.f, 30.f}));  // none keeps strength and rotation
+  EXPECT_TRUE(isEnvironmentFile("maps/Sky.EXR"));
+  EXPECT_FALSE(isEnvironmentFile("scene.gltf"));
 }
 
 }  // namespace
