@@ -231,6 +231,15 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
     setImageSize(p, size.x, size.y);
   }
   for (const std::string& w : p.scene->warnings()) log << "pathlab: warning: " << w << "\n";
+  // Before any rendering: a configuration the scene's camera refuses (light tracing through an
+  // orthographic camera) stops the run now, not after the reference and the others.
+  for (const ConvergenceConfig& c : p.configs) {
+    try {
+      validateSettingsForCamera(c.settings, p.scene->cameraDesc());
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("configuration '{}': {}", c.label, e.what()));
+    }
+  }
   for (const ConvergenceConfig& c : p.configs)
     if (const std::string w = misOffWarning(*p.scene, c.settings); !w.empty())
       log << fmt::format("pathlab: warning: '{}': {}\n", c.label, w);

@@ -107,6 +107,32 @@ TEST(ProgressiveRenderer, RefusesBadSettingsAndKeepsTheOldOnes) {
   EXPECT_EQ(renderer.settings(), small(IntegratorKind::Bpt, 3));
 }
 
+// The scene's own camera can refuse settings too: light tracing or a lens through an orthographic
+// camera (issue 15) is refused by setSettings and setScene, on the caller's thread, never by the
+// render thread (where it would end the process).
+TEST(ProgressiveRenderer, RefusesWhatAnOrthographicSceneCameraCannotDo) {
+  SceneDesc desc = loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/isometric.gltf");
+  ASSERT_TRUE(desc.camera && desc.camera->orthographic);
+  const auto iso = std::make_shared<const Scene>(std::move(desc));
+  RenderSettings s;
+  s.width = 16;
+  s.height = 12;
+  ProgressiveRenderer renderer(iso, s, 1);
+  RenderSettings lt = s;
+  lt.integrator = IntegratorKind::Lt;
+  EXPECT_THROW(renderer.setSettings(lt), std::invalid_argument);
+  RenderSettings lens = s;
+  lens.lens.apertureRadius = 0.05f;
+  EXPECT_THROW(renderer.setSettings(lens), std::invalid_argument);
+  EXPECT_EQ(renderer.settings(), s);
+  // A scene with a perspective camera takes light tracing; going back to the orthographic one
+  // with it is refused.
+  ProgressiveRenderer box(sharedCornellBox(), lt, 1);
+  EXPECT_THROW(box.setScene(iso, lt), std::invalid_argument);
+  EXPECT_THROW(ProgressiveRenderer(iso, lt, 1), std::invalid_argument);
+  ASSERT_TRUE(renderer.waitForSpp(1, 30.0));
+}
+
 TEST(ProgressiveRenderer, PyramidThumbnailsArePublished) {
   RenderSettings s = small(IntegratorKind::Bpt, 4);
   s.pyramidLength = 2;

@@ -38,7 +38,10 @@ void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>
     if (!x.possible) {
       const std::string why = x.connectionEdge < 0
                                   ? std::string("its emitter cannot be hit by a ray (point, spot, directional light)")
-                                  : fmt::format("x{} or x{} scatters by a delta lobe", x.connectionEdge, x.connectionEdge + 1);
+                                  : x.t == 1 ? fmt::format("x{} scatters by a delta lobe, or the camera is orthographic "
+                                                           "(a delta direction)", x.connectionEdge)
+                                             : fmt::format("x{} or x{} scatters by a delta lobe", x.connectionEdge,
+                                                           x.connectionEdge + 1);
       out << fmt::format("{:>12}  {:>32} {:>11}  cannot: {}\n", "", name, "0", why);
       continue;
     }

@@ -54,9 +54,13 @@ void OrbitCamera::pan(float dx, float dy) {
 }
 
 void OrbitCamera::zoom(float steps) {
-  const float before = distance_;
+  // An orthographic view zooms by its magnification alone: moving its film plane (where its
+  // parallel rays start) toward the pivot would cut away the scene in front of it.
+  if (orthographic_) {
+    *orthographic_ *= std::pow(0.85f, steps);
+    return;
+  }
   distance_ = std::max(distance_ * std::pow(0.85f, steps), minDistance_);
-  if (orthographic_) *orthographic_ *= distance_ / before;
 }
 
 void OrbitCamera::fly(const Vec3& forwardRightUp, float seconds) {

@@ -43,8 +43,8 @@ class OrbitCamera {
   float yfov_ = 0.6911f;
   // The scene camera's: an orbit or a fly never changes the framing's shape (ui/image_rect.h).
   std::optional<float> aspectRatio_;
-  // An orthographic scene camera stays one: the wheel scales its magnification (a dolly alone
-  // would change nothing), a pan moves by its film's height.
+  // An orthographic scene camera stays one: the wheel scales its magnification and keeps the
+  // distance (a dolly would change nothing but where its rays start), a pan moves by its film's height.
   std::optional<Vec2> orthographic_;
   float flySpeed_ = 1.f;
   float minDistance_ = 1e-3f;

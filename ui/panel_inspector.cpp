@@ -96,7 +96,8 @@ void drawInspectorSection(PathInspectorState& state, View3DState& view3d, PanelR
     if (ImGui::Checkbox("light particles (L)", &particles)) requests.actions.push_back(Action::ToggleParticles);
     if (view3d.particles.on) {
       ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.f);
-      ImGui::SliderInt("light subpaths", &view3d.particles.count, 1, 1024, "%d", ImGuiSliderFlags_Logarithmic);
+      ImGui::SliderInt("light subpaths", &view3d.particles.count, 1, LightParticles::kMaxCount, "%d",
+                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     }
     if (ImGui::SmallButton("export 3D view as PNG (Ctrl+E)")) requests.actions.push_back(Action::ExportView3D);
     ImGui::Unindent();
@@ -157,7 +158,9 @@ void drawEveryTechnique(PathInspectorState& state) {
         ImGui::TextUnformatted(name.c_str());
         ImGui::SameLine(ImGui::GetFontSize() * 3.5f);
         if (!x.possible) {
-          ImGui::TextDisabled(x.connectionEdge < 0 ? "cannot: its light cannot be hit" : "cannot: a delta vertex");
+          ImGui::TextDisabled(x.connectionEdge < 0 ? "cannot: its light cannot be hit"
+                              : x.t == 1           ? "cannot: a delta vertex or an orthographic camera"
+                                                   : "cannot: a delta vertex");
           continue;
         }
         // Three thin bars stacked in one row's height: balance, power, uniform.

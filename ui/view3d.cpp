@@ -70,7 +70,9 @@ void addParticles(InspectorOverlay& overlay, const LightParticles& particles, co
 
 void ensureView3DCamera(View3DState& state, const Scene& scene, const CameraDesc& renderCamera) {
   if (state.orbit && state.orbitScene == &scene) return;
-  OrbitCamera orbit(renderCamera, scene.boundsMin(), scene.boundsMax());
+  CameraDesc from = renderCamera;
+  from.orthographic.reset();  // the view is a perspective one whatever the render camera
+  OrbitCamera orbit(from, scene.boundsMin(), scene.boundsMax());
   orbit.orbit(0.61f, -0.3f);  // 35 degrees to the side, 17 from above
   orbit.zoom(-5.5f);          // 0.85^-5.5: about 2.5 times as far
   state.orbit = orbit;
@@ -105,14 +107,17 @@ Vec2 view3DDepthRange(const Scene& scene, const CameraDesc& view) {
 bool refreshLightParticles(LightParticles& particles, const std::shared_ptr<const Scene>& scene,
                            const RenderSettings& settings, uint64_t passes) {
   if (!particles.on || !scene || passes == 0 || settings.width <= 0 || settings.height <= 0) return false;
-  const bool newSession = !particles.session || particles.scene != scene || particles.session->settings() != settings;
-  if (!newSession && particles.pass == passes - 1 && particles.replayedCount == particles.count) return false;
-  if (newSession) {
+  const int count = std::clamp(particles.count, 1, LightParticles::kMaxCount);
+  const bool newReplay = !particles.replay || particles.scene != scene || particles.replay->settings() != settings;
+  if (!newReplay && particles.pass == passes - 1 && particles.replayedCount == count) return false;
+  if (newReplay) {
+    // Built first, then kept with its scene: a refused one leaves the old pair intact.
+    auto replay = std::make_unique<LightSubpathReplay>(*scene, settings);
+    particles.replay = std::move(replay);
     particles.scene = scene;
-    particles.session = std::make_unique<RenderSession>(*scene, settings);
   }
   particles.pass = passes - 1;
-  particles.replayedCount = particles.count;
+  particles.replayedCount = count;
   particles.subpaths.clear();
   if (settings.integrator == IntegratorKind::Pt) {
     particles.error = "the path tracer traces no light subpaths: switch to bpt or lt (I)";
@@ -120,11 +125,11 @@ bool refreshLightParticles(LightParticles& particles, const std::shared_ptr<cons
   }
   particles.error.clear();
   const uint64_t pixels = static_cast<uint64_t>(settings.width) * static_cast<uint64_t>(settings.height);
-  for (int i = 0; i < particles.count; ++i) {
+  for (int i = 0; i < count; ++i) {
     const uint64_t pixel = mixBits(particles.pass * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(i)) % pixels;
     const int x = static_cast<int>(pixel % static_cast<uint64_t>(settings.width));
     const int y = static_cast<int>(pixel / static_cast<uint64_t>(settings.width));
-    std::vector<PathVertex> subpath = particles.session->replayLightSubpath(x, y, particles.pass);
+    std::vector<PathVertex> subpath = particles.replay->subpath(x, y, particles.pass);
     if (subpath.size() >= 2) particles.subpaths.push_back(std::move(subpath));
   }
   return true;

@@ -8,7 +8,7 @@
 // OpenGL or ImGui: ui/scene_raster.h draws the triangles, ui/panel_view3d.cpp the rest.
 #pragma once
 
-#include "core/render/render_session.h"
+#include "core/render/light_subpath_replay.h"
 #include "ui/orbit_camera.h"
 #include "ui/path_inspector.h"
 
@@ -19,16 +19,17 @@
 namespace pathlab::ui {
 
 // The light subpaths of the newest pass for `count` pixels spread over the image (a fixed
-// sequence per pass), replayed exactly as the render traced them (RenderSession::replayLightSubpath).
+// sequence per pass), replayed exactly as the render traced them (LightSubpathReplay).
 struct LightParticles {
+  static constexpr int kMaxCount = 1024;
   bool on = false;
-  int count = 64;
+  int count = 64;  // clamped to 1 .. kMaxCount where used
   std::vector<std::vector<PathVertex>> subpaths;
   // What `subpaths` were replayed for; a change replays.
   uint64_t pass = 0;
   int replayedCount = 0;
   std::shared_ptr<const Scene> scene;
-  std::unique_ptr<RenderSession> session;  // of `scene` with the shown image's settings
+  std::unique_ptr<LightSubpathReplay> replay;  // of `scene` with the shown image's settings
   std::string error;  // why there are none ("" when there are)
 };
 

@@ -66,6 +66,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
     pyramid_.show = true;
     pyramid_.length = options.pyramidLength;
   }
+  fitEstimatorToCamera();
   applied_ = renderSettings(estimator_);
   // The first frame sets the real image size; start small so nothing big is rendered in vain.
   applied_.width = applied_.height = 64;
@@ -273,6 +274,7 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   carryOut(requests);
   syncEnvironment();
 
+  fitEstimatorToCamera();  // a key or a panel may just have asked for lt through an orthographic camera
   RenderSettings& edited = estimator_.settings;
   // The image follows its area of the window (a resize is a new generation, like any other change).
   // ... unless a reference sets it: an error needs the same pixels.
@@ -313,11 +315,26 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
   updateView3D();
 }
 
+void Viewer::fitEstimatorToCamera() {
+  RenderSettings& e = estimator_.settings;
+  if (!e.camera.value_or(scene_.scene->cameraDesc()).orthographic) return;
+  // Nothing connects to an orthographic camera and it has no lens: the estimator falls back
+  // rather than the scene being refused.
+  if (e.integrator == IntegratorKind::Lt) {
+    e.integrator = IntegratorKind::Bpt;
+    showMessage("light tracing cannot render through this scene's orthographic camera: switched to bpt");
+  }
+  if (e.lens.apertureRadius > 0.f) {
+    e.lens.apertureRadius = 0.f;
+    showMessage("an orthographic camera has no lens: the aperture is 0");
+  }
+}
+
 void Viewer::updateView3D() {
   if (!view3d_.on) {
     // Its copy of the meshes and its scene go with it, once no frame draws its texture.
     if (!view3dTextureInUse_) sceneRaster_.reset();
-    view3d_.particles.session.reset();
+    view3d_.particles.replay.reset();
     view3d_.particles.scene.reset();
     return;
   }
@@ -609,6 +626,7 @@ void Viewer::pollSceneLoad() {
   scene_.scene = r->scene;
   scene_.path = r->path;
   if (!reload) resetCamera();
+  fitEstimatorToCamera();
   applied_ = renderSettings(estimator_);
   if (noTechniqueEnabled(applied_)) applied_.techniques = TechniqueSet::all();
   try {

@@ -160,6 +160,9 @@ class Viewer {
   void updateInspector();
   // The 3D view's particles; its drawing over the triangles (ImGui's lists).
   void updateView3D();
+  // An orthographic scene camera refuses light tracing and a lens: the estimator falls back to
+  // bpt and a pinhole, with a message.
+  void fitEstimatorToCamera();
   void drawView3D(float fbScale);
   // Writes the inspected sample as JSON (Ctrl+J) in out/.
   void exportInspection();

@@ -37,6 +37,8 @@ float pdfArea(const Scene& scene, const Camera& camera, const PathVertex& v, con
               const PathVertex& next, TransportMode mode) {
   switch (v.type) {
     case VertexType::Camera: {
+      // An orthographic camera samples the film position, a planar density (v.isInfinite).
+      if (camera.isOrthographic()) return convertDensity(camera.pdfWe(Ray{v.p, camera.forward()}).pdfPosA, v, next);
       const CameraPdf c = camera.pdfWe(Ray{v.p, glm::normalize(next.p - v.p)});
       return convertDensity(c.pdfDirW, v, next);
     }

@@ -44,7 +44,8 @@ Camera::Camera(const CameraDesc& desc, int width, int height, const LensOptions&
   focusDistance_ = std::max(lens.focusDistance, 1e-4f);
 }
 
-float Camera::lensArea() const { return isPinhole() ? 1.f : kPi * lensRadius_ * lensRadius_; }
+// A pinhole (and an orthographic camera, whose position density is the film's) counts as a lens of area 1.
+float Camera::lensArea() const { return lensRadius_ == 0.f ? 1.f : kPi * lensRadius_ * lensRadius_; }
 
 Vec2 Camera::rasterToFilm(Vec2 pRaster) const {
   return {(2.f * pRaster.x / static_cast<float>(width_) - 1.f) * tanHalfX_,

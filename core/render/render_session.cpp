@@ -16,8 +16,9 @@ constexpr int kTileSize = 16;
 // it (many threads and a large image) splats go to the film atomically.
 constexpr size_t kMaxThreadSplatBytes = size_t{512} << 20;
 
-const RenderSettings& validated(const RenderSettings& settings) {
+const RenderSettings& validated(const RenderSettings& settings, const Scene& scene) {
   validateSettings(settings);
+  validateSettingsForCamera(settings, scene.cameraDesc());
   return settings;
 }
 
@@ -41,16 +42,12 @@ RenderSession::~RenderSession() = default;
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings, PassSchedule schedule)
     : scene_(scene),
-      settings_(validated(settings)),
+      settings_(validated(settings, scene)),
       schedule_(validated(schedule)),
       camera_(settings.camera.value_or(scene.cameraDesc()), settings.width, settings.height, settings.lens),
       pathTracer_(scene, pathTracerOptions(settings)),
       cameraMedium_(scene.mediumAt(camera_.position())),
       film_(settings.width, settings.height) {
-  if (settings.integrator == IntegratorKind::Lt && camera_.isOrthographic())
-    throw std::invalid_argument(
-        "light tracing cannot render through an orthographic camera: its rays are parallel (a delta in direction), so "
-        "no light subpath can connect to it; use bpt or pt");
   if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
   const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
   if (bidirTracer_ && threads * SplatBuffer::bytesFor(settings.width, settings.height) <= kMaxThreadSplatBytes)
@@ -71,14 +68,9 @@ Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& coun
   return sampleAt(x, y, pass, SampleTargets{splats, nullptr, trace, SampleId{x, y, pass}}, counters);
 }
 
-std::vector<PathVertex> RenderSession::replayLightSubpath(int x, int y, uint64_t pass) const {
-  std::vector<PathVertex> subpath;
-  if (!bidirTracer_) return subpath;
-  const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(settings_.width) + static_cast<uint64_t>(x);
-  Pcg32 lightRng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Light);
-  Counters counters;
-  bidirTracer_->traceLightSubpath(lightRng, subpath, counters);
-  return subpath;
+Pcg32 sampleStream(const RenderSettings& settings, int x, int y, uint64_t pass, RngStream stream) {
+  const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(settings.width) + static_cast<uint64_t>(x);
+  return makeSampleRng(settings.seed, pixel, pass, stream);
 }
 
 Image RenderSession::techniqueImage(int s, int t, bool unweighted) const {
@@ -105,14 +97,13 @@ void RenderSession::addForeignPasses(uint64_t passes, const Counters& counters) 
 }
 
 Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const {
-  const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(settings_.width) + static_cast<uint64_t>(x);
-  Pcg32 rng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Camera);
+  Pcg32 rng = sampleStream(settings_, x, y, pass, RngStream::Camera);
   const Vec2 uFilm = rng.next2D();  // box filter: uniform over the pixel
   const Vec2 uLens = rng.next2D();
   const Vec2 pRaster = Vec2(static_cast<float>(x), static_cast<float>(y)) + uFilm;
   ++counters.cameraSamples;
   if (bidirTracer_) {
-    Pcg32 lightRng = makeSampleRng(settings_.seed, pixel, pass, RngStream::Light);
+    Pcg32 lightRng = sampleStream(settings_, x, y, pass, RngStream::Light);
     return bidirTracer_->sample(pRaster, uLens, rng, lightRng, targets, counters);
   }
   const Ray ray = camera_.generateRay(pRaster, uLens);

@@ -31,6 +31,10 @@ struct PassSchedule {
   uint64_t passesBelow(uint64_t total) const { return total > first ? (total - first + stride - 1) / stride : 0; }
 };
 
+// The random stream of sample `pass` of pixel (x, y): streams are keyed by seed, pixel and pass,
+// so any sample can be replayed alone (RenderSession::replaySample, LightSubpathReplay).
+Pcg32 sampleStream(const RenderSettings& settings, int x, int y, uint64_t pass, RngStream stream);
+
 class RenderSession {
  public:
   // Throws std::invalid_argument for settings validateSettings refuses.
@@ -46,9 +50,6 @@ class RenderSession {
   // if given (a film of the same size, normalised by the caller).
   Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats = nullptr,
                         SampleTrace* trace = nullptr) const;
-  // The light subpath sample (pixel x, y; pass) traced, as replaySample's trace holds it (the
-  // viewer's light particles); empty for the path tracer.
-  std::vector<PathVertex> replayLightSubpath(int x, int y, uint64_t pass) const;
 
   // Per-technique and per-walk timing in the counters (BidirTracer::setTiming); between passes only.
   void setTiming(bool on) {

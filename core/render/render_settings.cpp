@@ -66,6 +66,16 @@ std::string misOffWarning(const Scene& scene, const RenderSettings& s) {
   return misOffWarning(misOffBias(scene, enabledTechniques(s), s.maxLength, pinhole, orthographic));
 }
 
+void validateSettingsForCamera(const RenderSettings& s, const CameraDesc& sceneCamera) {
+  if (!s.camera.value_or(sceneCamera).orthographic) return;
+  if (s.integrator == IntegratorKind::Lt)
+    throw std::invalid_argument(
+        "light tracing cannot render through an orthographic camera: its rays are parallel (a delta in direction), so "
+        "no light subpath can connect to it; use bpt or pt");
+  if (s.lens.apertureRadius > 0.f)
+    throw std::invalid_argument("an orthographic camera has no lens (its rays are parallel): set no aperture");
+}
+
 void validateSettings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1)
     throw std::invalid_argument(fmt::format("image size {} x {} is not positive", s.width, s.height));

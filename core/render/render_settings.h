@@ -93,5 +93,9 @@ std::string misOffWarning(const Scene& scene, const RenderSettings& settings);
 // connection, lens aperture and focus distance, an override camera's transform and field of view),
 // whichever route it came by (CLI, converge configurations, viewer presets).
 void validateSettings(const RenderSettings& settings);
+// What the camera the settings render through refuses (their override, else the scene's camera):
+// an orthographic camera has no lens and no light subpath can connect to it, so it refuses an
+// aperture and the light tracer. Throws std::invalid_argument naming the problem.
+void validateSettingsForCamera(const RenderSettings& settings, const CameraDesc& sceneCamera);
 
 }  // namespace pathlab

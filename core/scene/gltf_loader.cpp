@@ -251,7 +251,8 @@ void SceneBuilder::addCamera(int nodeIndex, const glm::dmat4& world) {
     c.orthographic = Vec2(toFiniteFloat(xmag, label + ": xmag"), toFiniteFloat(ymag, label + ": ymag"));
     if (!(c.orthographic->x > 0.f) || !(c.orthographic->y > 0.f))
       throw LoadError(label + ": xmag or ymag is 0 as a 32-bit float");
-    c.aspectRatio = c.orthographic->x / c.orthographic->y;
+    c.aspectRatio = toFiniteFloat(xmag / ymag, label + ": xmag / ymag");
+    if (!(*c.aspectRatio > 0.f)) throw LoadError(label + ": xmag / ymag is 0 as a 32-bit float");
     c.cameraToWorld = orthonormalCameraToWorld(world, label);
     desc_.camera = c;
     return;

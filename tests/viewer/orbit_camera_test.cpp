@@ -47,8 +47,8 @@ TEST(OrbitCamera, MovesKeepTheSceneCamerasAspect) {
   EXPECT_FALSE(OrbitCamera(kBoxCamera, kBoxMin, kBoxMax).desc().aspectRatio.has_value());
 }
 
-// An orthographic scene camera stays orthographic; the wheel scales its magnification with the
-// distance (a dolly alone would not change the picture) and a pan moves by its film's height.
+// An orthographic scene camera stays orthographic; the wheel scales its magnification and keeps
+// the distance (its rays start on its film plane) and a pan moves by its film's height.
 TEST(OrbitCamera, AnOrthographicCameraZoomsByItsMagnification) {
   CameraDesc ortho = kBoxCamera;
   ortho.orthographic = Vec2(0.4f, 0.3f);
@@ -56,7 +56,8 @@ TEST(OrbitCamera, AnOrthographicCameraZoomsByItsMagnification) {
   ASSERT_TRUE(orbit.desc().orthographic.has_value());
   const float before = orbit.distance();
   orbit.zoom(2.f);
-  const float scale = orbit.distance() / before;
+  const float scale = 0.85f * 0.85f;
+  EXPECT_FLOAT_EQ(orbit.distance(), before);  // the film plane stays where it was, out of the scene
   EXPECT_NEAR(orbit.desc().orthographic->x, 0.4f * scale, kEps);
   EXPECT_NEAR(orbit.desc().orthographic->y, 0.3f * scale, kEps);
   const Vec3 pivot = orbit.pivot();

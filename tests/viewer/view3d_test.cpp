@@ -33,11 +33,12 @@ RenderSettings particleBoxSettings() {
 TEST(View3D, ParticlesAreTheLightSubpathsTheRenderTraced) {
   const RenderSettings s = particleBoxSettings();
   const RenderSession session(*sharedBox(), s);
+  const LightSubpathReplay replay(*sharedBox(), s);
   int compared = 0;
   for (int i = 0; i < 40; ++i) {
     const int x = (i * 37) % s.width, y = (i * 11) % s.height;
     const uint64_t pass = static_cast<uint64_t>(i % 5);
-    const std::vector<PathVertex> particle = session.replayLightSubpath(x, y, pass);
+    const std::vector<PathVertex> particle = replay.subpath(x, y, pass);
     const SampleInspection full = inspectSample(session, x, y, pass);
     ASSERT_EQ(particle.size(), full.trace.lightSubpath.size()) << x << "," << y << " pass " << pass;
     for (size_t v = 0; v < particle.size(); ++v) {
@@ -52,7 +53,7 @@ TEST(View3D, ParticlesAreTheLightSubpathsTheRenderTraced) {
   EXPECT_GT(compared, 30);
   RenderSettings pt = s;
   pt.integrator = IntegratorKind::Pt;
-  EXPECT_TRUE(RenderSession(*sharedBox(), pt).replayLightSubpath(3, 4, 0).empty());
+  EXPECT_TRUE(LightSubpathReplay(*sharedBox(), pt).subpath(3, 4, 0).empty());
 }
 
 TEST(View3D, ParticlesAreReplayedOncePerPassAndSettings) {

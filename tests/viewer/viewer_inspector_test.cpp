@@ -68,6 +68,7 @@ InspectorRun view(const std::string& name, const std::string& script, const std:
   InspectorRun v{readPng(out), r.err, rectIn(r.err, "image"), rectIn(r.err, "3D view")};
   std::smatch m;
   if (std::regex_search(r.err, m, std::regex(R"(\(generation (\d+)\))"))) v.generation = std::stoi(m[1]);
+  EXPECT_GE(v.generation, 0) << r.err;  // the closing line names it (the comparisons of it need it)
   return v;
 }
 
