@@ -21,10 +21,16 @@ void addEnvironmentOptions(CLI::App* cmd, EnvironmentOptions& o) {
       ->needs(environment);
   cmd->add_flag("--no-default-light", o.noDefaultLight,
                 "Refuse a file without lights instead of lighting it with a uniform white environment of radiance 1");
+  cmd->add_option("--light-sampler", o.lightSampler,
+                  "How next-event estimation chooses a light: bvh (by what each can send to the receiving point, a "
+                  "light BVH), power (in proportion to power), auto (bvh when the scene has more than one emitter; "
+                  "the default). Light subpaths always start by power")
+      ->check(CLI::IsMember({"auto", "power", "bvh"}));
 }
 
 void finishEnvironmentOptions(const EnvironmentOptions& o, LoadOptions& load) {
   load.defaultLight = !o.noDefaultLight;
+  load.lightSelection = parseLightSelection(o.lightSampler).value_or(LightSelection::Auto);
   if (o.spec.empty()) return;
   auto desc = std::make_shared<EnvironmentDesc>(readEnvironment(o.spec));
   desc->strength = o.strength;

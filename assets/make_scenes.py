@@ -811,6 +811,34 @@ def isometric():
     return b
 
 
+def many_lights():
+    """A wall in the sun's shadow, lit from close by: a sun behind a long wall over a large floor,
+    eight small lantern cubes in front of the wall's shaded face and a small point lamp near its
+    foot. Chosen by
+    power, the sun takes almost every next-event sample, and in the shade it is occluded: the
+    lanterns' and the lamp's light is speckled. A light BVH chooses by what each light can send
+    to the receiving point (--light-sampler bvh, the default for a scene of many emitters)."""
+    b = GltfBuilder()
+    floor = b.add_material("floor", (0.5, 0.5, 0.5), lambertian=True)
+    wall = b.add_material("wall", (0.7, 0.68, 0.62), lambertian=True)
+    nodes = [b.add_node("floor", b.add_geom(rect((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 30.0, 30.0), floor, "floor")),
+             b.add_node("wall", b.add_geom(box((0.0, 1.5, -2.1), (15.0, 1.5, 0.1)), wall, "wall"))]
+    colours = [(1.0, 0.55, 0.2), (1.0, 0.8, 0.45), (0.45, 0.7, 1.0), (1.0, 0.4, 0.35)]
+    for i in range(8):
+        x = -7.0 + 2.0 * i
+        lantern = b.add_emitter(f"lantern{i}", mul(colours[i % 4], 8.0))
+        g = box((x, 2.0, -1.75), (0.08, 0.08, 0.08))
+        nodes.append(b.add_node(f"lantern{i}", b.add_geom(g, lantern, f"lantern{i}")))
+    lamp = b.add_light("lamp", "point", 0.6, color=(1.0, 0.85, 0.6))
+    nodes.append(b.add_node("lamp", light=lamp, translation=(0.6, 0.3, -1.7)))
+    sun = b.add_light("sun", "directional", 3.0, color=(1.0, 0.95, 0.85))
+    # Travels toward +z and down, 40 degrees above the horizon: the wall shades z < 1.3.
+    nodes.append(b.add_node("sun", light=sun, rotation=look_at((0.0, 0.0, 0.0), (0.3, -0.64, 0.7))))
+    nodes.append(b.add_camera_node((0.3, 1.4, 4.2), (0.0, 1.0, -2.0), 0.9, 1.5))
+    b.add_scene("many-lights", nodes)
+    return b
+
+
 def environment_objects(eye, target, yfov, aspect):
     """No light of its own: lit by an environment (the default light, or --environment). A
     Lambertian floor (0.5), a rough gold sphere (metal, roughness 0.3), a glass sphere and a
@@ -1093,6 +1121,7 @@ def main():
     write(ASSETS / "caustic.gltf", caustic().gltf_bytes())
     write(ASSETS / "fog.gltf", fog().gltf_bytes())
     write(ASSETS / "isometric.gltf", isometric().gltf_bytes())
+    write(ASSETS / "many-lights.gltf", many_lights().gltf_bytes())
     write(ASSETS / "environment.gltf",
           environment_objects((1.2, 1.1, 2.6), (0.0, 0.3, 0.0), 0.75, 1.5).gltf_bytes())
     write(ASSETS / "sky.hdr", sky_hdr())

@@ -117,6 +117,23 @@ TEST(BundledAgreement, CornellBoxOrthographic) {
   EXPECT_THROW({ const RenderSession session(scene, lt); }, std::invalid_argument);
 }
 
+// Many lights (issue 15): a sun, a point lamp and eight lantern cubes, next-event estimation
+// choosing by a light BVH, so the technique (1, t)'s density of x0 depends on x1. PT (its light
+// sample weighted against BSDF sampling with the BVH's probability) and BPT under both heuristics
+// agree.
+TEST(BundledAgreement, ManyLights) {
+  Scene scene(loadGltf(assetPath("many-lights.gltf")));
+  ASSERT_TRUE(scene.lights().neeByContext());
+  // The point lamp is in view: BPT's (1, 1) sees it as the point it is, which the path tracer
+  // cannot (s = 0 never hits a point). Without (1, 1), both estimate the same image.
+  RenderSettings base = sceneSettings(15, 10, 6);
+  base.techniques.disable({1, 1}, base.maxLength);
+  const auto run = runEstimators(scene, base, {6144, 1024, 1024, 0}, 3,
+                                 {{"balance", "pt"}, {"power", "pt"}, {"power", "balance"}});
+  report(run, "many-lights");
+  test::expectAgreement(run, "many-lights");
+}
+
 // Veach's MIS scene (1997, fig. 9.2): glossy plates (the top one, roughness 0.03, has GGX alpha
 // 9e-4 < kDeltaAlpha: an exact mirror) and four spherical lights of equal power, the smallest
 // with radiance 900. Pixels that see a light or the mirror plate are left out (emitterOrDelta):

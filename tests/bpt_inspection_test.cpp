@@ -78,7 +78,9 @@ void checkScene(const std::string& file, MisHeuristic heuristic) {
         }
         double product = 1.0;
         for (size_t v = 0; v < path.size(); ++v)
-          product *= remapZero(static_cast<int>(v) < t.s ? path.pFromLight[v] : path.pFromCamera[v]);
+          product *= remapZero(v == 0 && t.s == 1 ? path.x0Nee
+                               : static_cast<int>(v) < t.s ? path.pFromLight[v]
+                                                           : path.pFromCamera[v]);
         EXPECT_NEAR(t.pdfA, product, 1e-9 * product) << where << " under (" << t.s << "," << t.t << ")";
         for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
           const double expected = recomputedWeight(every, t.s, h, settings.mis.beta);
@@ -108,7 +110,7 @@ TEST_P(Inspection, PathsDensitiesAndWeightsOfAReplayedSample) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BundledScenes, Inspection,
-                         testing::Combine(testing::Values("cornell-box.gltf", "veach-mis.gltf", "caustic.gltf",
+                         testing::Combine(testing::Values("cornell-box.gltf", "veach-mis.gltf", "caustic.gltf", "many-lights.gltf",
                                                           "bidir-lamp.gltf"),
                                           testing::Values(MisHeuristic::Balance, MisHeuristic::Power,
                                                           MisHeuristic::Uniform)));

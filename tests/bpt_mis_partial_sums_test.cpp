@@ -108,6 +108,21 @@ TEST(MisPartialSums, EqualTheExplicitWeightsUnderAnEnvironment) {
   load.defaultLight = true;
   checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment/default", 6);
 }
+// Next-event estimation choosing by a light BVH (issue 15): x0's density under technique (1, t)
+// depends on the receiver x1, so the sums carry its ratio to the light subpath's power choice.
+// many-lights: a sun, a point lamp and eight lanterns; punctual: point, spot and sun; the
+// environment (a map and no other light) with the BVH forced: the tree is empty, the map alone.
+TEST(MisPartialSums, EqualTheExplicitWeightsAmongManyLights) {
+  const Scene many = bundled("many-lights");
+  ASSERT_TRUE(many.lights().neeByContext());
+  checkScene(many, "many-lights", 6);
+  const std::string source = PATHLAB_SOURCE_DIR;
+  LoadOptions load;
+  load.lightSelection = LightSelection::Bvh;
+  checkScene(Scene(loadGltf(source + "/tests/scenes/punctual.gltf", load)), "punctual/bvh", 6);
+  load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
+  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment/bvh", 6);
+}
 // A thin lens: the t = 1 technique's lens point and the camera subpath's differ in density.
 TEST(MisPartialSums, EqualTheExplicitWeightsThroughAThinLens) {
   checkScene(bundled("cornell-box"), "cornell-box/lens", 6, LensOptions{0.05f, 3.f});

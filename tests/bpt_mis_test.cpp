@@ -62,6 +62,9 @@ double oracleDensity(const Scene& scene, const Camera& camera, const PathVertex&
 struct FullPath {
   std::vector<PathVertex> x;  // x0 on the light ... x(n-1) the camera
   std::vector<double> pL, pE;
+  // x0's density under technique s' = 1 (n >= 3): next-event estimation chose its light for x1
+  // (LightSet::pmfNee: a light BVH's choice in scenes of several emitters), not by power.
+  double pLNee = 0.0;
   bool orthographic = false;  // the camera's importance is a delta in direction: t' = 1 cannot connect
 };
 
@@ -72,9 +75,16 @@ FullPath densities(const Scene& scene, const Camera& camera, std::vector<PathVer
   f.pE.assign(static_cast<size_t>(n), 0.0);
   // The origin's density: a point on the light, or the environment's direction (toward -ng).
   const Light& light = scene.lights()[static_cast<size_t>(x[0].light)];
-  f.pL[0] = scene.lights().pmf(x[0].light) * (light.type() == LightType::Environment
-                                                  ? light.environmentLight()->pdfDirection(-x[0].ng)
-                                                  : light.pdfLe(x[0].p, x[0].ng, Vec3(0, 0, 1)).pdfPosA);
+  const double originDensity = light.type() == LightType::Environment
+                                   ? light.environmentLight()->pdfDirection(-x[0].ng)
+                                   : light.pdfLe(x[0].p, x[0].ng, Vec3(0, 0, 1)).pdfPosA;
+  f.pL[0] = scene.lights().pmf(x[0].light) * originDensity;
+  f.pLNee = f.pL[0];
+  if (n >= 3) {
+    const PathVertex& x1 = x[1];
+    const LightSampleContext receiver{x1.p, x1.type == VertexType::Medium ? Vec3(0.f) : x1.ng};
+    f.pLNee = scene.lights().pmfNee(receiver, x[0].light) * originDensity;
+  }
   for (int i = 1; i < n; ++i)
     f.pL[static_cast<size_t>(i)] = oracleDensity(scene, camera, x[static_cast<size_t>(i - 1)],
                                                  i >= 2 ? &x[static_cast<size_t>(i - 2)] : nullptr,
@@ -113,7 +123,8 @@ std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled
   for (int sp = 0; sp < n; ++sp) {
     if (!candidate(sp) || (longRemains && shortEdge(sp))) continue;
     double prod = 1.0;
-    for (int i = 0; i < n - 1; ++i) prod *= i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)];
+    for (int i = 0; i < n - 1; ++i)
+      prod *= i == 0 && sp == 1 ? f.pLNee : i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)];
     const double b = o.heuristic == MisHeuristic::Power ? o.beta : 1.0;
     p[static_cast<size_t>(sp)] = std::pow(prod, b);
     sum += p[static_cast<size_t>(sp)];
@@ -134,6 +145,7 @@ float fastWeight(const Scene& scene, const Camera& camera, const FullPath& f, in
     PathVertex v = f.x[static_cast<size_t>(i)];
     v.pdfFwdA = static_cast<float>(f.pL[static_cast<size_t>(i)]);
     v.pdfRevA = static_cast<float>(f.pE[static_cast<size_t>(i)]);
+    v.pdfNeeA = static_cast<float>(i == 0 ? f.pLNee : f.pL[static_cast<size_t>(i)]);
     light.push_back(v);
   }
   for (int i = n - 1; i >= sp; --i) {
@@ -254,7 +266,10 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
           double sum = 0.0;
           for (int sp = 0; sp < n; ++sp) {
             const float w = fastWeight(scene, camera, f, sp, enabled, o);
-            EXPECT_NEAR(w, oracle[static_cast<size_t>(sp)], 1e-4) << name << " s'=" << sp << " of (" << s << "," << t << ")";
+            EXPECT_NEAR(w, oracle[static_cast<size_t>(sp)], 1e-4) << name << " s'=" << sp << " of (" << s << "," << t << ")"
+                << " light " << static_cast<int>(scene.lights()[static_cast<size_t>(f.x[0].light)].type()) << " pL0 " << f.pL[0]
+                << " pLNee " << f.pLNee << " real x0Nee " << pathDensities(scene, camera, real).x0Nee << " real pL0 "
+                << pathDensities(scene, camera, real).pFromLight[0];
             sum += w;
           }
           EXPECT_NEAR(sum, 1.0, 1e-5) << name << " (" << s << "," << t << ") " << misHeuristicName(h);
@@ -271,6 +286,37 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
 }
 
 TEST(BptMis, PartitionOfUnityFurnace) { checkPartition(Scene(furnace()), 5, "furnace"); }
+// The furnace's six emitting faces are six emitters, so next-event estimation chooses among them
+// by a light BVH (LightSelection::Auto); chosen by power, x0's density is the same for every
+// technique.
+TEST(BptMis, PartitionOfUnityFurnaceByPower) {
+  SceneDesc desc = furnace();
+  desc.lightSelection = LightSelection::Power;
+  checkPartition(Scene(std::move(desc)), 5, "furnace by power");
+}
+// Every kind of light at once, next-event estimation choosing by a light BVH: x0's density under
+// technique (1, t) depends on x1 (the receiver), unlike its density as a light subpath's origin.
+TEST(BptMis, PartitionOfUnityManyLightsByBvh) {
+  SceneDesc desc = environmentAndSquare();
+  desc.path = "many lights";
+  PunctualLightDesc point, spot, sun;
+  point.position = Vec3(0.6f, 0.4f, 0.3f);
+  point.intensity = 0.5f;
+  spot.type = PunctualLightType::Spot;
+  spot.position = Vec3(-0.8f, 1.6f, 0.2f);
+  spot.direction = glm::normalize(Vec3(0.2f, -1.f, 0.f));
+  spot.intensity = 3.f;
+  spot.innerConeAngle = 0.3f;
+  spot.outerConeAngle = 0.6f;
+  sun.type = PunctualLightType::Directional;
+  sun.direction = glm::normalize(Vec3(0.3f, -1.f, 0.4f));
+  sun.intensity = 0.7f;
+  desc.punctualLights = {point, spot, sun};
+  desc.lightSelection = LightSelection::Bvh;
+  const Scene scene(std::move(desc));
+  ASSERT_TRUE(scene.lights().neeByContext());
+  checkPartition(scene, 4, "many lights");
+}
 // Medium vertices (issue 16) anywhere on the path: densities in the volume measure, no cosine.
 TEST(BptMis, PartitionOfUnityFoggyFurnace) {
   checkPartition(Scene(test::foggyFurnace(0.5f, 1.f, 1.5f, 0.4f)), 5, "foggy furnace");

@@ -45,7 +45,9 @@ for t in j["techniques"]:
             continue
         p = 1.0
         for i, v in enumerate(t["vertices"]):
-            q = v["pdfFromLightA"] if i < x["s"] else v["pdfFromCameraA"]
+            # Technique (1, t >= 2) samples x0 by next-event estimation: its own density of x0.
+            q = (v.get("pdfFromLightNeeA", v["pdfFromLightA"]) if i == 0 and x["s"] == 1
+                 else v["pdfFromLightA"] if i < x["s"] else v["pdfFromCameraA"])
             p *= q if q != 0 else 1.0
         assert math.isclose(p, x["pdfA"], rel_tol=1e-9), (p, x["pdfA"])
     checked += 1

@@ -51,10 +51,15 @@ void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>
 }
 
 void printPath(std::ostream& out, const TracedPath& path) {
-  for (size_t i = 0; i < path.size(); ++i)
-    out << fmt::format("{:>12}  x{} {:<8} ({:.4g}, {:.4g}, {:.4g})  p from light {:.4e}  p from camera {:.4e}{}\n", "",
-                       i, kindName(path.kind[i]), path.p[i].x, path.p[i].y, path.p[i].z, path.pFromLight[i],
+  for (size_t i = 0; i < path.size(); ++i) {
+    // x0's next-event density, where the light choice depends on x1 and so differs.
+    const std::string nee = i == 0 && path.x0Nee != path.pFromLight[0]
+                                ? fmt::format("  (by next-event estimation {:.4e})", path.x0Nee)
+                                : std::string();
+    out << fmt::format("{:>12}  x{} {:<8} ({:.4g}, {:.4g}, {:.4g})  p from light {:.4e}{}  p from camera {:.4e}{}\n",
+                       "", i, kindName(path.kind[i]), path.p[i].x, path.p[i].y, path.p[i].z, path.pFromLight[i], nee,
                        path.pFromCamera[i], path.delta[i] ? "  delta" : "");
+  }
 }
 
 nlohmann::json subpathJson(const std::vector<PathVertex>& subpath) {
@@ -134,6 +139,8 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
                             {"deltaPosition", p.deltaPosition[v] != 0},
                             {"pdfFromLightA", p.pFromLight[v]},
                             {"pdfFromCameraA", p.pFromCamera[v]}});
+        // x0 as technique (1, t) samples it: next-event estimation chose its light for x1.
+        if (v == 0) vertices.back()["pdfFromLightNeeA"] = p.x0Nee;
       }
     t["path"] = path;
     t["vertices"] = vertices;

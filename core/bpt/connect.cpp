@@ -109,14 +109,17 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
 
   if (s == 1) {
     // Next-event estimation: a fresh light sample instead of the light subpath's x0. The density
-    // divided by is pmf x sampleLi's pdf; for every light type pathlab has, that is the same
-    // density the light subpath gives x0: pmf x pdfLe().pdfPosA (uniform on the triangle, or a
-    // delta), at infinity pmf x pdfLe().pdfDirW (the environment's direction density, a
-    // directional light's delta), so `sampled.pdfFwdA` below is the view misWeight must use.
+    // divided by is pmf x sampleLi's pdf; for every light type pathlab has, that is the density
+    // pmf x pdfLe().pdfPosA (uniform on the triangle, or a delta), at infinity pmf x
+    // pdfLe().pdfDirW (the environment's direction density, a directional light's delta): the
+    // `sampled.pdfNeeA` misWeight uses for this technique. The light is chosen for pt
+    // (LightSet::sampleNee); `sampled.pdfFwdA` is the same vertex's density as a light subpath's
+    // origin, chosen by power, which the techniques with s' >= 2 would give it.
     float pmf = 0.f;
     const float uLight = rng.next1D();
     const Vec2 uPos = rng.next2D();
-    const int li = scene.lights().sample(uLight, &pmf);
+    const LightSet& lights = scene.lights();
+    const int li = lights.sampleNee(neeContext(pt), uLight, &pmf);
     if (li < 0 || !(pmf > 0.f)) return false;
     const Light& light = scene.lights()[static_cast<size_t>(li)];
     const LightLiSample ls = light.sampleLi(pt.p, uPos);
@@ -146,7 +149,9 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     v.media = scene.lightMedia(li);
     v.ng = light.type() == LightType::Area ? ls.nLight : (v.isInfinite ? -ls.wi : Vec3(0.f));
     const EmissionPdf e = light.pdfLe(v.p, v.ng, -ls.wi);
-    v.pdfFwdA = v.isInfinite ? pmf * e.pdfDirW : pmf * e.pdfPosA;
+    v.pdfNeeA = v.isInfinite ? pmf * e.pdfDirW : pmf * e.pdfPosA;
+    const float pmfPower = lights.neeByContext() ? lights.pmf(li) : pmf;
+    v.pdfFwdA = v.isInfinite ? pmfPower * e.pdfDirW : pmfPower * e.pdfPosA;
     v.beta = ls.Li / (pmf * ls.pdfW);
     c.hasSampled = true;
     return true;

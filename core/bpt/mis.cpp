@@ -24,12 +24,14 @@ float pdfLightToward(const Scene& scene, const PathVertex& v, const PathVertex& 
 // Density of x0 = v as the origin of a light subpath: pmf x pdfPosA; at infinity pmf x the
 // density of its direction (pbrt-v4 PdfLightOrigin, InfiniteLightDensity): the disk's position
 // density belongs to x1. A directional light's delta direction counts as one.
-float pdfLightOrigin(const Scene& scene, const PathVertex& v) {
+float pdfLightOrigin(const Scene& scene, const PathVertex& v, float pmf) {
   if (v.light < 0) return 0.f;
   const Light& light = scene.lights()[static_cast<size_t>(v.light)];
-  const float pmf = scene.lights().pmf(v.light);
   if (light.isInfinite()) return pmf * light.pdfLe(v.p, v.ng, v.ng).pdfDirW;
   return pmf * light.pdfLe(v.p, v.ng, Vec3(0.f, 0.f, 1.f)).pdfPosA;
+}
+float pdfLightOrigin(const Scene& scene, const PathVertex& v) {
+  return v.light < 0 ? 0.f : pdfLightOrigin(scene, v, scene.lights().pmf(v.light));
 }
 
 // Area density at `next` of being sampled at `v`, having arrived at `v` from `prev`.
@@ -62,6 +64,11 @@ float pdfArea(const Scene& scene, const Camera& camera, const PathVertex& v, con
 }
 
 }  // namespace
+
+float pdfNeeOrigin(const Scene& scene, const PathVertex& x0, const PathVertex& x1) {
+  if (x0.light < 0) return 0.f;
+  return pdfLightOrigin(scene, x0, scene.lights().pmfNee(neeContext(x1), x0.light));
+}
 
 const char* misHeuristicName(MisHeuristic h) {
   switch (h) {
@@ -181,6 +188,16 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   for (int i = 0; i + 1 < n; ++i) d.edgeLength2[static_cast<size_t>(i)] = edgeLength2(vertex(i), vertex(i + 1));
   d.x0CanBeHit = canBeHitAsOrigin(vertex(0));
   d.x0Infinite = vertex(0).isInfinite;
+  // The light choice evaluated afresh (not the walks' stored pdfNeeA: the fast weights' test
+  // oracle checks those), the position or direction density x0 has either way kept.
+  d.x0Nee = d.pFromLight[0];
+  if (n >= 3 && scene.lights().neeByContext()) {
+    const PathVertex& x0 = vertex(0);
+    const LightSet& lights = scene.lights();
+    const double pmfOrigin = x0.light >= 0 ? lights.pmf(x0.light) : 0.0;
+    d.x0Nee = pmfOrigin > 0.0 ? d.pFromLight[0] * (lights.pmfNee(neeContext(vertex(1)), x0.light) / pmfOrigin)
+                              : pdfNeeOrigin(scene, x0, vertex(1));
+  }
 }
 
 uint64_t sampleableTechniques(const MisPath& path) {
@@ -211,14 +228,12 @@ void techniqueDensityRatios(const Scene& scene, const Camera& camera, const MisP
   ratios[s] = 1.0;
   double r = 1.0;
   for (int sp = s + 1; sp < n; ++sp) {
-    const size_t i = static_cast<size_t>(sp - 1);
-    r *= remap0(d.pFromLight[i]) / remap0(d.pFromCamera[i]);
+    r *= ratioToLight(d, sp);
     ratios[sp] = r;
   }
   r = 1.0;
   for (int sp = s - 1; sp >= 0; --sp) {
-    const size_t i = static_cast<size_t>(sp);
-    r *= remap0(d.pFromCamera[i]) / remap0(d.pFromLight[i]);
+    r *= ratioToCamera(d, sp);
     ratios[sp] = r;
   }
 }
@@ -285,7 +300,8 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
   // with p_i the density of the path under technique i (s' = i light vertices) and n_i its sample
   // count (lightTracingRatio for t' = 1, else 1). The ratios come from Veach eq. 10.10:
   //   p_{i+1} / p_i = pFromLight(x_i) / pFromCamera(x_i),
-  // walked outward from i = s so that no p_i is formed on its own.
+  // walked outward from i = s so that no p_i is formed on its own (ratioToLight, ratioToCamera:
+  // with x0's next-event density for i + 1 = 1).
   const double beta = options.heuristic == MisHeuristic::Balance ? 1.0 : static_cast<double>(options.beta);
   auto count = [&](int sp) { return (n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0; };
   const double own = count(s);
@@ -293,14 +309,12 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
   double sum = 1.0;  // the technique itself, relative to (n_s p_s)^beta
   double r = 1.0;
   for (int sp = s + 1; sp < n; ++sp) {  // more light vertices: x(sp-1) moves to the light side
-    const size_t i = static_cast<size_t>(sp - 1);
-    r *= remap0(d.pFromLight[i]) / remap0(d.pFromCamera[i]);
+    r *= ratioToLight(d, sp);
     if (usable(sp)) sum += term(r * count(sp) / own);
   }
   r = 1.0;
   for (int sp = s - 1; sp >= 0; --sp) {  // fewer light vertices: x(sp) moves to the camera side
-    const size_t i = static_cast<size_t>(sp);
-    r *= remap0(d.pFromCamera[i]) / remap0(d.pFromLight[i]);
+    r *= ratioToCamera(d, sp);
     if (usable(sp)) sum += term(r * count(sp) / own);
   }
   return 1.0 / sum;

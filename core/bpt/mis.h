@@ -48,6 +48,10 @@ struct ConnectionEnds {
 };
 ConnectionEnds connectionEnds(const MisPath& path);
 
+// x0's density when next-event estimation chooses its light for x1 (LightSet::pmfNee) and samples
+// it as a light subpath's origin would (the position, or at infinity the direction, density).
+float pdfNeeOrigin(const Scene& scene, const PathVertex& x0, const PathVertex& x1);
+
 // The densities a connection changes (pbrt-v4 MISWeight's four ScopedAssignments; Veach 1997 sec.
 // 10.3.4), in area measure: the path's other vertices keep the densities their walks gave them.
 struct ConnectionDensities {
@@ -89,7 +93,32 @@ struct PathDensities {
   std::vector<float> edgeLength2;
   bool x0CanBeHit = false;   // x0 is on an area light or the environment (technique s = 0 possible)
   bool x0Infinite = false;   // x0 is at infinity: no lens point connects to it (s' = 1, t' = 1)
+  // x0's density under technique s' = 1 when n >= 3: next-event estimation chose its light for x1
+  // (LightSet::pmfNee), where the techniques s' >= 2 start a light subpath there, chosen by power
+  // (pFromLight[0]). Equal to pFromLight[0] for n = 2 (the light subpath's x0 meets the lens) and
+  // when the scene chooses by power alone. lightSideDensity and the step ratios below use it.
+  double x0Nee = 0.0;
 };
+// The density of x_i as technique s' samples it from the light side (i < s'): x0 by next-event
+// estimation for s' = 1, by the light subpath otherwise.
+inline double lightSideDensity(const PathDensities& d, int i, int sp) {
+  return i == 0 && sp == 1 ? d.x0Nee : d.pFromLight[static_cast<size_t>(i)];
+}
+// p_{s'} / p_{s'-1} (Veach 1997 eq. 10.10: x(s'-1) moves to the light side), and its mirror
+// p_{s'} / p_{s'+1}. Going between s' = 1 and 2, x0 also changes how it is sampled (x0Nee).
+inline double ratioToLight(const PathDensities& d, int sp) {
+  const size_t i = static_cast<size_t>(sp - 1);
+  double r = remap0(lightSideDensity(d, sp - 1, sp)) / remap0(d.pFromCamera[i]);
+  if (sp == 2) r *= remap0(d.pFromLight[0]) / remap0(d.x0Nee);
+  return r;
+}
+inline double ratioToCamera(const PathDensities& d, int sp) {
+  const size_t i = static_cast<size_t>(sp);
+  double r = remap0(d.pFromCamera[i]) / remap0(lightSideDensity(d, sp, sp + 1));
+  if (sp == 1) r *= remap0(d.x0Nee) / remap0(d.pFromLight[0]);
+  return r;
+}
+
 // Whether vertex x0 of a path can be found by a camera subpath (technique s = 0 possible): on an
 // area light or the environment, not a point, spot or directional one.
 inline bool canBeHitAsOrigin(const PathVertex& x0) {

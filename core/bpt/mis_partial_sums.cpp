@@ -31,7 +31,13 @@ void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisS
     const PathVertex& v = path[i];
     // Technique s' = i connects x(i-1) and x(i); s' = 0 needs x0 on an area light.
     const bool usable = i == 0 ? canBeHitAsOrigin(v) && !v.isDelta : !path[i - 1].isDelta && !v.isDelta;
-    left = power(ratio(v.pdfRevA, v.pdfFwdA)) * ((usable ? 1.0 : 0.0) + left);
+    // r_0 = p_0 / p_1 with x0's next-event density; r_1 = p_1 / p_2 then carries the change of
+    // x0's density from that to the light subpath's (mis.h ratioToCamera). These sums serve
+    // paths of three or more vertices only (sum[1] from s = 3 on), where that applies.
+    const double r = i == 0   ? ratio(v.pdfRevA, v.pdfNeeA)
+                     : i == 1 ? ratio(v.pdfRevA, v.pdfFwdA) * ratio(path[0].pdfNeeA, path[0].pdfFwdA)
+                              : ratio(v.pdfRevA, v.pdfFwdA);
+    left = power(r) * ((usable ? 1.0 : 0.0) + left);
     sums.sum[static_cast<size_t>(i) + 1] = left;
   }
   accumulateShortestEdges(path, sums);
@@ -74,6 +80,21 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
   }
 
   const ConnectionDensities c = connectionDensities(scene, camera, path, e);
+  // x0's density under technique s' = 1 over its density as a light subpath's origin, for paths
+  // of three or more vertices (mis.h PathDensities::x0Nee): what moving between s' = 1 and 2
+  // multiplies the ratio by. One when the scene chooses lights by power alone.
+  const int n = s + t;
+  double neeOverOrigin = 1.0;
+  double x0FromLight = c.ptFromLight;  // s = 0: x0 = pt's density as the light side samples it
+  if (n >= 3 && scene.lights().neeByContext()) {
+    if (s >= 1) {
+      const PathVertex& x0 = lightVertex(path, 0);
+      neeOverOrigin = ratio(x0.pdfNeeA, x0.pdfFwdA);
+    } else {
+      x0FromLight = pdfNeeOrigin(scene, pt, *e.ptMinus);
+      neeOverOrigin = ratio(x0FromLight, c.ptFromLight);
+    }
+  }
   // Light side: left(s) = T(r_{s-1}) (u(s-1) + T(r_{s-2}) (u(s-2) + left(s-2))). qs and pt count
   // as non-delta (connect() formed the path through them).
   double left = 0.0;
@@ -82,11 +103,19 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
     if (e.qsMinus) {
       const bool usable = s == 2 ? canBeHitAsOrigin(*e.qsMinus) && !e.qsMinus->isDelta
                                  : !path.lightPath[s - 3].isDelta && !e.qsMinus->isDelta;
-      beyond = power(ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA)) *
-               ((usable ? 1.0 : 0.0) + lightSums.sum[static_cast<size_t>(s - 2)]);
+      // s = 2: qsMinus is x0 (r_0, with its next-event density); s = 3: x1 (r_1).
+      const double r = s == 2   ? ratio(c.qsMinusFromCamera, e.qsMinus->pdfNeeA)
+                       : s == 3 ? ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA) * neeOverOrigin
+                                : ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA);
+      beyond = power(r) * ((usable ? 1.0 : 0.0) + lightSums.sum[static_cast<size_t>(s - 2)]);
     }
     const bool usable = s == 1 ? canBeHitAsOrigin(*e.qs) : !e.qsMinus->isDelta;
-    left = power(ratio(c.qsFromCamera, e.qs->pdfFwdA)) * ((usable ? 1.0 : 0.0) + beyond);
+    // s = 1: qs is x0, sampled by next-event estimation unless it meets the lens (t = 1);
+    // s = 2: qs is x1 (r_1).
+    const double r = s == 1   ? ratio(c.qsFromCamera, n >= 3 ? e.qs->pdfNeeA : e.qs->pdfFwdA)
+                     : s == 2 ? ratio(c.qsFromCamera, e.qs->pdfFwdA) * neeOverOrigin
+                              : ratio(c.qsFromCamera, e.qs->pdfFwdA);
+    left = power(r) * ((usable ? 1.0 : 0.0) + beyond);
   }
   // Camera side, the mirror image: technique t' weighs the ratios of y(t') .. y(t-1), and the
   // t' = 1 techniques count lightTracingRatio samples (Veach's n_i).
@@ -97,13 +126,20 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
     double beyond = 0.0;
     if (t >= 3) {
       const bool usable = !e.ptMinus->isDelta && !path.cameraPath[t - 3].isDelta;
-      beyond = power(ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA)) *
-               ((usable ? count(t - 2) : 0.0) + cameraSums.sum[static_cast<size_t>(t - 2)]);
+      // s = 0: p_2 / p_1 also changes x0's density from next-event estimation's to the origin's.
+      const double r = s == 0 ? ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA) / neeOverOrigin
+                              : ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA);
+      beyond = power(r) * ((usable ? count(t - 2) : 0.0) + cameraSums.sum[static_cast<size_t>(t - 2)]);
     }
     // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
     // infinity (the path environment -> camera, s = 0, t = 2).
     const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite);
-    right = power(ratio(c.ptFromLight, pt.pdfFwdA)) * ((usable ? count(t - 1) : 0.0) + beyond);
+    // s = 0: technique s' = 1 samples x0 = pt by next-event estimation (x0FromLight); s = 1:
+    // every technique on this side has s' >= 2, where x0 is a light subpath's origin.
+    const double r = s == 0 ? ratio(x0FromLight, pt.pdfFwdA)
+                     : s == 1 ? ratio(c.ptFromLight, pt.pdfFwdA) / neeOverOrigin
+                              : ratio(c.ptFromLight, pt.pdfFwdA);
+    right = power(r) * ((usable ? count(t - 1) : 0.0) + beyond);
   }
   // Veach eq. 10.9 relative to the technique's own (n_s p_s)^beta.
   const double own = t == 1 ? lightTracingCount : 1.0;

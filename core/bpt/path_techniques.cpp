@@ -26,7 +26,7 @@ std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& 
     if (x.possible) {
       double p = 1.0;
       for (int i = 0; i < d.n; ++i)
-        p *= remap0(i < sp ? d.pFromLight[static_cast<size_t>(i)] : d.pFromCamera[static_cast<size_t>(i)]);
+        p *= remap0(i < sp ? lightSideDensity(d, i, sp) : d.pFromCamera[static_cast<size_t>(i)]);
       x.pdfA = p;
       x.balance = weightFromDensities(d, sp, techniques, balance, lightTracingRatio, minDistance);
       x.power = weightFromDensities(d, sp, techniques, power, lightTracingRatio, minDistance);
@@ -53,6 +53,7 @@ void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, Tr
     out.pFromLight.push_back(d.pFromLight[static_cast<size_t>(i)]);
     out.pFromCamera.push_back(d.pFromCamera[static_cast<size_t>(i)]);
   }
+  out.x0Nee = d.x0Nee;
 }
 
 }  // namespace pathlab

@@ -2,6 +2,7 @@
 // trivially copyable data with both of its densities in area measure, set when it is created.
 #pragma once
 
+#include "core/lights/light_bounds.h"
 #include "core/math/types.h"
 #include "core/math/medium_interface.h"
 
@@ -35,6 +36,12 @@ struct PathVertex {
   // as one (pbrt's "remap zero to one"), applied where the ratios are formed.
   float pdfFwdA = 0.f;
   float pdfRevA = 0.f;
+  // x0 of a light subpath with an x1, and the light sample of next-event estimation: its density
+  // when next-event estimation chooses it for x1 (LightSet::pmfNee, which may depend on x1) in
+  // place of the power-proportional choice in pdfFwdA. Technique (1, t >= 2) samples x0 so, the
+  // others as a light subpath's origin (mis.h, PathDensities::x0Nee). Equal to pdfFwdA when the
+  // scene chooses by power alone.
+  float pdfNeeA = 0.f;
   // convertDensity(1, this, predecessor): a solid-angle density at this vertex toward the vertex
   // before it on its own subpath, times this, is an area density there. Set by the walks; the
   // O(1) MIS weight uses it for the predecessor of each connection end (mis.cpp).
@@ -51,6 +58,11 @@ struct PathVertex {
 };
 
 static_assert(std::is_trivially_copyable_v<PathVertex>);
+
+// Where v receives light in next-event estimation: its point, with its normal on a surface.
+inline LightSampleContext neeContext(const PathVertex& v) {
+  return LightSampleContext{v.p, v.type == VertexType::Medium ? Vec3(0.f) : v.ng};
+}
 
 // The medium a segment leaving v in direction w travels through (-1: none).
 inline int mediumToward(const PathVertex& v, const Vec3& w) { return v.media.toward(v.ng, w); }

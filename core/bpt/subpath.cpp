@@ -260,6 +260,14 @@ int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& opti
   const float pdfW = x0.isInfinite ? le.pdfPosA : le.pdfDirW;
   randomWalk(scene, ray, beta, pdfW, TransportMode::Importance, rng, options, path, counters,
              mediumToward(x0, le.ray.d));
+  // x0's density were next-event estimation to choose it for x1 (technique s = 1 of the paths
+  // through x0 and x1): the same position or direction density, the receiver's light choice.
+  PathVertex& origin = path[0];
+  origin.pdfNeeA = origin.pdfFwdA;
+  if (lights.neeByContext() && path.count >= 2) {
+    const float pmfNee = lights.pmfNee(neeContext(path[1]), li);
+    origin.pdfNeeA = origin.isInfinite ? pmfNee * le.pdfDirW : pmfNee * le.pdfPosA;
+  }
   return path.count;
 }
 

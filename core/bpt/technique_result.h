@@ -36,7 +36,7 @@ struct TechniqueOnPath {
 // the replay trace keeps it for the path inspector: where each vertex is, what it is, and the
 // area density of each vertex sampled from either side (PathDensities, mis.h), so every
 // technique's p_{s',t'} = prod_{i<s'} pFromLight[i] * prod_{i>=s'} pFromCamera[i] (a delta
-// vertex's density counts one) can be recomputed from it.
+// vertex's density counts one; x0Nee in place of pFromLight[0] for s' = 1) can be recomputed from it.
 enum class TracedVertexKind : uint8_t { Camera, Light, Surface, Medium };
 struct TracedPath {
   std::vector<Vec3> p;
@@ -44,6 +44,9 @@ struct TracedPath {
   std::vector<uint8_t> delta;           // a delta BSDF lobe scattered here
   std::vector<uint8_t> deltaPosition;   // a point / spot light or a pinhole: cannot be hit
   std::vector<double> pFromLight, pFromCamera;
+  // x0's density under technique (1, n - 1) for n >= 3 (PathDensities::x0Nee): next-event
+  // estimation chose its light for x1. pFromLight[0] otherwise, and in scenes that choose by power.
+  double x0Nee = 0.0;
   size_t size() const { return p.size(); }
 };
 

@@ -334,4 +334,47 @@ Spectrum Light::power() const {
   return Spectrum(0.f);
 }
 
+LightBounds Light::lightBounds() const {
+  LightBounds b;
+  switch (type_) {
+    case LightType::Area:
+      b.lo = glm::min(p_[0], glm::min(p_[1], p_[2]));
+      b.hi = glm::max(p_[0], glm::max(p_[1], p_[2]));
+      b.phi = luminance(meanLe_) * kPi * area_;  // one side: a point sees one side of it
+      b.w = n_;
+      b.cosThetaO = 1.f;
+      b.cosThetaE = 0.f;  // Lambertian: up to pi / 2 from the normal
+      b.twoSided = twoSided_;
+      break;
+    case LightType::Point:
+      b.lo = b.hi = p_[0];
+      b.phi = luminance(emission_) * kPi;
+      b.cosThetaO = -1.f;  // every direction
+      b.cosThetaE = 0.f;
+      break;
+    case LightType::Spot:
+      // Full intensity inside the inner cone, falling to zero at the outer one (pbrt-v4 SpotLight).
+      b.lo = b.hi = p_[0];
+      b.phi = luminance(emission_) * kPi;
+      b.w = n_;
+      b.cosThetaO = cosInner_;
+      b.cosThetaE = std::cos(std::max(0.f, std::acos(std::clamp(cosOuter_, -1.f, 1.f)) -
+                                               std::acos(std::clamp(cosInner_, -1.f, 1.f))));
+      break;
+    case LightType::Directional:
+    case LightType::Environment:
+      break;  // at infinity: phi 0
+  }
+  if (!(b.phi > 0.f) || !std::isfinite(b.phi)) b.phi = 0.f;
+  return b;
+}
+
+float Light::infiniteImportance() const {
+  switch (type_) {
+    case LightType::Directional: return kPi * luminance(emission_);
+    case LightType::Environment: return kPi * 0.25f * luminance(environment_->power()) / (kPi * sqr(environment_->radius()));
+    default: return 0.f;
+  }
+}
+
 }  // namespace pathlab

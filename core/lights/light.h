@@ -9,6 +9,7 @@
 #pragma once
 
 #include "core/lights/environment_light.h"
+#include "core/lights/light_bounds.h"
 #include "core/math/frame.h"
 #include "core/math/types.h"
 #include "core/math/ray.h"
@@ -89,6 +90,13 @@ class Light {
   // Total emitted flux, for selection proportional to power. An area light's is pi x area x its
   // mean radiance over the triangle (texture integrated once, at construction; per side).
   Spectrum power() const;
+  // For a light BVH (light_bvh.h): the bounds of a light with a position (area, point, spot), a
+  // zero phi for one at infinity or without power.
+  LightBounds lightBounds() const;
+  // A light at infinity's weight against a BVH's importance, in its units (pi x irradiance): pi E
+  // for a directional light, pi x a quarter of the environment's integral of L over the sphere
+  // (pi L for a uniform one: what a surface facing up receives). Both are power / bounding disk x pi.
+  float infiniteImportance() const;
   float area() const { return area_; }
 
  private:

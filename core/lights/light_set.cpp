@@ -5,7 +5,23 @@
 
 namespace pathlab {
 
-LightSet::LightSet(std::vector<Light> lights, std::vector<std::vector<int>> triangleLight)
+const char* lightSelectionName(LightSelection selection) {
+  switch (selection) {
+    case LightSelection::Auto: return "auto";
+    case LightSelection::Power: return "power";
+    case LightSelection::Bvh: return "bvh";
+  }
+  return "?";
+}
+
+std::optional<LightSelection> parseLightSelection(std::string_view text) {
+  for (const LightSelection s : {LightSelection::Auto, LightSelection::Power, LightSelection::Bvh})
+    if (text == lightSelectionName(s)) return s;
+  return std::nullopt;
+}
+
+LightSet::LightSet(std::vector<Light> lights, std::vector<std::vector<int>> triangleLight, LightSelection selection,
+                   int emitters)
     : lights_(std::move(lights)), triangleLight_(std::move(triangleLight)) {
   std::vector<double> weights;
   weights.reserve(lights_.size());
@@ -16,6 +32,11 @@ LightSet::LightSet(std::vector<Light> lights, std::vector<std::vector<int>> tria
     weights.push_back(std::isfinite(w) && w > 0.0 ? w : 0.0);
   }
   distribution_ = Distribution1D(weights);
+  // One emitter (the Cornell box's ceiling light): where it is bright enough to matter, every
+  // part of it is; the BVH would cost each connection its descent for little. A scene pays for it
+  // only when it has lights to tell apart.
+  const bool useBvh = selection == LightSelection::Bvh || (selection == LightSelection::Auto && emitters > 1);
+  if (useBvh && !lights_.empty()) bvh_ = std::make_shared<const LightBvh>(lights_);
 }
 
 int LightSet::sample(float u, float* pmf, float* uRemapped) const {

@@ -22,16 +22,17 @@ struct LightChoice {
   LightLiSample ls;
 };
 
-// A light chosen in proportion to power and a point on it, seen from p.
-std::optional<LightChoice> chooseLight(const Scene& scene, const Vec3& p, Pcg32& rng) {
+// A light chosen for the receiver ctx (LightSet::sampleNee: by power, or a light BVH) and a point
+// on it, seen from ctx.p.
+std::optional<LightChoice> chooseLight(const Scene& scene, const LightSampleContext& ctx, Pcg32& rng) {
   const LightSet& lights = scene.lights();
   LightChoice c;
   const float uLight = rng.next1D();
   const Vec2 uPos = rng.next2D();
-  const int li = lights.sample(uLight, &c.pmf);
+  const int li = lights.sampleNee(ctx, uLight, &c.pmf);
   if (li < 0 || c.pmf <= 0.f) return std::nullopt;
   c.light = &lights[static_cast<size_t>(li)];
-  c.ls = c.light->sampleLi(p, uPos);
+  c.ls = c.light->sampleLi(ctx.p, uPos);
   if (c.ls.pdfW <= 0.f || isBlack(c.ls.Li)) return std::nullopt;
   return c;
 }
@@ -55,7 +56,7 @@ Spectrum shadowTransmittance(const Scene& scene, const LightChoice& c, const Vec
 // against BSDF sampling of the same path with the power heuristic.
 Spectrum PathTracer::sampleDirect(const SurfaceHit& hit, const Bsdf& bsdf, const Vec3& wo,
                                   Pcg32& rng, Counters& counters) const {
-  const std::optional<LightChoice> c = chooseLight(scene_, hit.p, rng);
+  const std::optional<LightChoice> c = chooseLight(scene_, LightSampleContext{hit.p, hit.ng}, rng);
   if (!c) return Spectrum(0.f);
   const LightLiSample& ls = c->ls;
   const BsdfEval ev = bsdf.eval(wo, ls.wi, TransportMode::Radiance);
@@ -74,7 +75,7 @@ Spectrum PathTracer::sampleDirect(const SurfaceHit& hit, const Bsdf& bsdf, const
 // partition of unity (pbrt-v3's VolPathIntegrator does the same).
 Spectrum PathTracer::sampleDirectInMedium(const Vec3& p, int medium, const Vec3& wo, Pcg32& rng,
                                           Counters& counters) const {
-  const std::optional<LightChoice> c = chooseLight(scene_, p, rng);
+  const std::optional<LightChoice> c = chooseLight(scene_, LightSampleContext{p, Vec3(0.f)}, rng);
   if (!c) return Spectrum(0.f);
   const LightLiSample& ls = c->ls;
   const float phase = phaseHG(wo, ls.wi, scene_.medium(medium).g);
@@ -87,13 +88,15 @@ Spectrum PathTracer::sampleDirectInMedium(const Vec3& p, int medium, const Vec3&
 }
 
 // The environment seen by a ray that left the scene in direction w, weighted against next-event
-// estimation's sampling of the same direction (power heuristic, as for area lights).
-Spectrum PathTracer::environmentSeen(const Vec3& w, bool prevDelta, float prevPdfW) const {
+// estimation's sampling of the same direction (power heuristic, as for area lights) from `prev`,
+// the vertex the ray left.
+Spectrum PathTracer::environmentSeen(const Vec3& w, bool prevDelta, float prevPdfW,
+                                     const LightSampleContext& prev) const {
   const LightSet& lights = scene_.lights();
   const Light& light = lights[static_cast<size_t>(lights.environment())];
   const Spectrum Le = light.environmentLight()->Le(w);
   if (prevDelta || isBlack(Le)) return Le;
-  const float pdfLight = lights.pmf(lights.environment()) * light.environmentLight()->pdfDirection(w);
+  const float pdfLight = lights.pmfNee(prev, lights.environment()) * light.environmentLight()->pdfDirection(w);
   return Le * powerHeuristic(prevPdfW, pdfLight);
 }
 
@@ -102,7 +105,8 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
   Ray ray = cameraRay;
   bool prevDelta = true;  // the camera vertex: emitters seen directly get weight one
   float prevPdfW = 0.f;
-  Vec3 prevP = ray.o;
+  // The vertex the ray left, as next-event estimation there saw it (the receiver of its light choice).
+  LightSampleContext prev{ray.o, Vec3(0.f)};
   const bool media = scene_.hasMedia();
   // Russian roulette on the throughput (unbiased: survivors are reweighted by 1/q). The survival
   // probability is not capped below one: with a cap of 0.95, paths of the mean length
@@ -136,7 +140,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
         const Vec3 wi = samplePhaseHG(wo, g, rng.next2D());
         prevDelta = false;
         prevPdfW = phaseHG(wo, wi, g);
-        prevP = step.p;
+        prev = LightSampleContext{step.p, Vec3(0.f)};
         ray = Ray{step.p, wi};
         if (!survivesRoulette(edges)) break;
         continue;
@@ -144,7 +148,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
       hit = std::move(step.hit);  // empty when the ray escaped
     }
     if (!hit) {
-      if (scene_.lights().environment() >= 0) L += beta * environmentSeen(ray.d, prevDelta, prevPdfW);
+      if (scene_.lights().environment() >= 0) L += beta * environmentSeen(ray.d, prevDelta, prevPdfW, prev);
       break;
     }
     const Vec3 wo = -ray.d;
@@ -155,7 +159,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
       if (!isBlack(Le)) {
         float weight = 1.f;
         if (!prevDelta) {
-          const float pdfLight = scene_.lights().pmf(hit->light) * light.pdfLi(prevP, hit->p, hit->ng);
+          const float pdfLight = scene_.lights().pmfNee(prev, hit->light) * light.pdfLi(prev.p, hit->p, hit->ng);
           weight = powerHeuristic(prevPdfW, pdfLight);
         }
         L += beta * Le * weight;
@@ -173,7 +177,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
     beta *= bs->f * (absDot(bs->wi, hit->ns) / bs->pdfFwdW);
     prevDelta = bs->isDelta;
     prevPdfW = bs->pdfFwdW;
-    prevP = hit->p;
+    prev = LightSampleContext{hit->p, hit->ng};
     ray = Ray{offsetRayOrigin(hit->p, hit->pError, hit->ng, bs->wi), bs->wi};
     medium = hit->media.toward(hit->ng, bs->wi);
 

@@ -27,7 +27,7 @@ class PathTracer {
                         Counters& counters) const;
   // The same at a scattering point p in medium `medium` (phase function, no cosine).
   Spectrum sampleDirectInMedium(const Vec3& p, int medium, const Vec3& wo, Pcg32& rng, Counters& counters) const;
-  Spectrum environmentSeen(const Vec3& w, bool prevDelta, float prevPdfW) const;
+  Spectrum environmentSeen(const Vec3& w, bool prevDelta, float prevPdfW, const LightSampleContext& prev) const;
   const Scene& scene_;
   int maxLength_;
   bool russianRoulette_;

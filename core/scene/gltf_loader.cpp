@@ -354,6 +354,7 @@ SceneDesc load(const std::string& path, const LoadOptions& options) {
   convertMaterials(model, desc, warnings);
   SceneBuilder(model, desc, warnings).build(visits);
   addEnvironment(options, desc, warnings);
+  desc.lightSelection = options.lightSelection;
   checkScene(desc, options.requireEmitter);
   desc.warnings = warnings.take();
   return desc;

@@ -36,6 +36,8 @@ struct LoadOptions {
   // of radiance 1 (as Blender's default world), with a notice among the warnings, instead of being
   // refused. Off here, on for the command line (--no-default-light turns it off).
   bool defaultLight = false;
+  // Copied to SceneDesc::lightSelection.
+  LightSelection lightSelection = LightSelection::Auto;
 };
 
 // Problems that still leave a correct render (an unsupported optional extension, a skipped

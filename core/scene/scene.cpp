@@ -155,7 +155,12 @@ Scene::Scene(SceneDesc desc)
   bool anyPower = false;
   for (const Light& l : lights) anyPower = anyPower || luminance(l.power()) > 0.f;
   if (!anyPower) throw SceneError(desc_.path + ": the scene has no light source (no emissive material and no KHR_lights_punctual light)");
-  lights_ = LightSet(std::move(lights), std::move(triangleLight));
+  // Separate emitters, for LightSelection::Auto: each emissive mesh copy, punctual light and the
+  // environment.
+  int emitters = static_cast<int>(desc_.punctualLights.size()) + (desc_.environment ? 1 : 0);
+  for (const std::vector<int>& mesh : triangleLight)
+    emitters += std::any_of(mesh.begin(), mesh.end(), [](int l) { return l >= 0; }) ? 1 : 0;
+  lights_ = LightSet(std::move(lights), std::move(triangleLight), desc_.lightSelection, emitters);
 
   camera_ = desc_.camera ? *desc_.camera : frameBounds(boundsMin_, boundsMax_);
 

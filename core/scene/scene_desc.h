@@ -4,6 +4,7 @@
 
 #include "core/camera/camera_desc.h"
 #include "core/lights/environment_desc.h"
+#include "core/lights/light_selection.h"
 #include "core/scene/material.h"
 
 #include <memory>
@@ -53,6 +54,9 @@ struct SceneDesc {
   std::optional<CameraDesc> camera;  // none: Scene frames the bounds
   std::vector<std::string> warnings;
   std::shared_ptr<const EnvironmentDesc> environment;  // none: no environment light
+  // How next-event estimation chooses among the lights (light_set.h); not the file's: the
+  // command line's --light-sampler through LoadOptions.
+  LightSelection lightSelection = LightSelection::Auto;
 };
 
 }  // namespace pathlab
