@@ -46,7 +46,8 @@ void checkScene(const std::string& file, MisHeuristic heuristic) {
   const RenderSession session(scene, settings);
   Pcg32 rng(11, static_cast<uint64_t>(heuristic));
   int paths = 0, weighed = 0;
-  for (int i = 0; i < 60; ++i) {
+  // Samples until enough paths are checked (a scene with sky in view, many-lights, needs more).
+  for (int i = 0; i < 400 && (i < 60 || paths <= 100 || weighed <= 30); ++i) {
     const int x = static_cast<int>(rng.next1D() * 48.f), y = static_cast<int>(rng.next1D() * 36.f);
     const uint64_t sample = rng.nextU32() % 1000;
     Counters counters;

@@ -15,11 +15,14 @@ void apply(const EnvironmentEdit& edit, EnvironmentChoice& choice) {
   if (edit.spec) choice.spec = *edit.spec == "none" ? std::string() : *edit.spec;
   if (edit.strength) choice.strength = std::max(*edit.strength, 0.f);
   if (edit.rotationDegrees) choice.rotationDegrees = *edit.rotationDegrees;
+  if (edit.lightSelection) choice.lightSelection = *edit.lightSelection;
 }
 
-EnvironmentChoice choiceOf(const EnvironmentDesc* desc) {
-  if (!desc) return {};
-  return {desc->source, desc->strength, desc->rotationDegrees};
+EnvironmentChoice choiceOf(const EnvironmentDesc* desc, LightSelection lightSelection) {
+  EnvironmentChoice choice;
+  if (desc) choice = {desc->source, desc->strength, desc->rotationDegrees};
+  choice.lightSelection = lightSelection;
+  return choice;
 }
 
 std::shared_ptr<const EnvironmentDesc> environmentOf(const EnvironmentChoice& choice,
@@ -44,8 +47,12 @@ std::string colourSpec(const Vec3& radiance) {
 }
 
 std::string describe(const EnvironmentChoice& choice) {
-  if (choice.spec.empty()) return "none";
-  return fmt::format("{} (strength {:g}, rotation {:g} deg)", choice.spec, choice.strength, choice.rotationDegrees);
+  const std::string lights = choice.lightSelection == LightSelection::Auto
+                                 ? std::string()
+                                 : fmt::format("; next-event lights by {}", lightSelectionName(choice.lightSelection));
+  if (choice.spec.empty()) return "none" + lights;
+  return fmt::format("{} (strength {:g}, rotation {:g} deg){}", choice.spec, choice.strength, choice.rotationDegrees,
+                     lights);
 }
 
 }  // namespace pathlab::ui

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/lights/environment_desc.h"
+#include "core/lights/light_selection.h"
 
 #include <memory>
 #include <optional>
@@ -17,6 +18,9 @@ struct EnvironmentChoice {
   std::string spec;
   float strength = 1.f;
   float rotationDegrees = 0.f;
+  // How next-event estimation chooses among the lights (--light-sampler): built into the Scene's
+  // LightSet, so a change reloads the scene as a relight does.
+  LightSelection lightSelection = LightSelection::Auto;
   bool operator==(const EnvironmentChoice&) const = default;
 };
 
@@ -26,12 +30,13 @@ struct EnvironmentEdit {
   std::optional<std::string> spec;
   std::optional<float> strength;
   std::optional<float> rotationDegrees;
-  bool empty() const { return !spec && !strength && !rotationDegrees; }
+  std::optional<LightSelection> lightSelection;
+  bool empty() const { return !spec && !strength && !rotationDegrees && !lightSelection; }
 };
 void apply(const EnvironmentEdit& edit, EnvironmentChoice& choice);
 
 // The choice the command line made (`desc`: LoadOptions::environment, null for none).
-EnvironmentChoice choiceOf(const EnvironmentDesc* desc);
+EnvironmentChoice choiceOf(const EnvironmentDesc* desc, LightSelection lightSelection = LightSelection::Auto);
 // The environment a scene is loaded with (null for none). The map is read from choice.spec unless
 // `read` already holds it (then only strength and rotation change: no file is read again).
 // Throws EnvironmentError naming the file and the problem.

@@ -46,7 +46,7 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
     auto bad = [&](const char* why) { return std::invalid_argument("--script: '" + item + "': " + why); };
     InputEvent e;
     const size_t colon = item.find(':');
-    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:click=X,Y, FRAME:drop=PATH, FRAME:resize=W,H, FRAME:environment=SPEC, FRAME:strength=S, FRAME:rotation=DEG or FRAME:wait=SPP");
+    if (colon == std::string::npos) throw bad("expected FRAME:key=NAME, FRAME:drag=X0,Y0>X1,Y1, FRAME:click=X,Y, FRAME:drop=PATH, FRAME:resize=W,H, FRAME:environment=SPEC, FRAME:strength=S, FRAME:rotation=DEG, FRAME:light-sampler=auto|power|bvh or FRAME:wait=SPP");
     try {
       size_t used = 0;
       e.frame = std::stoi(item.substr(0, colon), &used);
@@ -73,6 +73,10 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
       e.kind = InputEvent::Kind::Environment;
       e.environment.spec = action.substr(12);
       if (e.environment.spec->empty()) throw bad("expected environment=FILE.exr|FILE.hdr|R,G,B|none");
+    } else if (action.rfind("light-sampler=", 0) == 0) {
+      e.kind = InputEvent::Kind::Environment;
+      e.environment.lightSelection = parseLightSelection(action.substr(14));
+      if (!e.environment.lightSelection) throw bad("expected light-sampler=auto|power|bvh");
     } else if (action.rfind("strength=", 0) == 0 || action.rfind("rotation=", 0) == 0) {
       const bool strength = action[0] == 's';
       float v = 0.f;
@@ -140,6 +144,7 @@ FrameInput inputAt(const std::vector<InputEvent>& events, int frame) {
         if (x.spec) in.environment.spec = x.spec;
         if (x.strength) in.environment.strength = x.strength;
         if (x.rotationDegrees) in.environment.rotationDegrees = x.rotationDegrees;
+        if (x.lightSelection) in.environment.lightSelection = x.lightSelection;
       }
     } else if (e.kind == InputEvent::Kind::Key) {
       if (step >= 0 && step < e.holdFrames) {

@@ -7,7 +7,7 @@
 // with the path inspector on it picks the pixel), "FRAME:drop=PATH" (a file dropped on the window),
 // "FRAME:resize=W,H" (the window resized), "FRAME:environment=SPEC" (FILE.exr, FILE.hdr, R,G,B or
 // none), "FRAME:strength=S" and "FRAME:rotation=DEG" (what the Environment section's fields and
-// sliders set) or "FRAME:wait=SPP" (that frame waits until the current
+// sliders set), "FRAME:light-sampler=auto|power|bvh" (its next-event lights) or "FRAME:wait=SPP" (that frame waits until the current
 // image has SPP samples per pixel: scripts that compare configurations run the same on a loaded
 // machine). NAME is a
 // key of the shortcut table ("3", "M", "Space", "F1", "Ctrl+S", "PageDown", "]") or a fly key

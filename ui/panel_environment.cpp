@@ -38,6 +38,15 @@ void drawEnvironmentSection(EnvironmentState& env) {
   ImGui::SliderFloat("rotation", &edited.rotationDegrees, -180.f, 180.f, "%.0f deg");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("about the vertical (+y) axis; Ctrl+click to type a value");
   ImGui::EndDisabled();
+  // Next-event estimation's light choice (--light-sampler): a relight like the others.
+  const char* names[] = {"auto", "power", "bvh"};
+  int selection = static_cast<int>(edited.lightSelection);
+  ImGui::SetNextItemWidth(fieldWidth * 0.6f);
+  if (ImGui::Combo("next-event lights", &selection, names, 3)) edited.lightSelection = static_cast<LightSelection>(selection);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("how next-event estimation (s = 1) chooses a light: bvh by what each can send to the receiving "
+                      "point, power in proportion to power, auto: bvh when the scene has more than one emitter. "
+                      "Light subpaths always start by power");
   ImGui::PopID();
 }
 

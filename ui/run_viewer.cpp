@@ -337,11 +337,13 @@ int runViewer(const ViewerOptions& o) {
       if (const std::optional<PixelRect> v = viewer.drawnView3D())
         compare += fmt::format(", 3D view {}x{}+{}+{}", v->size.x, v->size.y, v->origin.x, v->origin.y);
       // The generation: how often the render restarted (a test's proof that something did not).
-      std::cerr << fmt::format("{}: {}x{} {}, image {}x{}+{}+{} at {} spp{}, rendered {}x{} (generation {}); {}{}\n",
-                               o.screenshot.empty() ? "pathlab view" : o.screenshot, fb.x, fb.y,
-                               o.headless ? "offscreen" : "window", drawn.size.x, drawn.size.y, drawn.origin.x,
-                               drawn.origin.y, s.samplesPerPixel, compare, s.settings.width, s.settings.height,
-                               s.generation, stats.summary(), series);
+      // How next-event estimation chooses lights in the scene shown (a relight may have changed it).
+      const char* nee = viewer.shownScene().lights().neeByContext() ? "bvh" : "power";
+      std::cerr << fmt::format(
+          "{}: {}x{} {}, image {}x{}+{}+{} at {} spp{}, rendered {}x{} (generation {}), next-event lights {}; {}{}\n",
+          o.screenshot.empty() ? "pathlab view" : o.screenshot, fb.x, fb.y, o.headless ? "offscreen" : "window",
+          drawn.size.x, drawn.size.y, drawn.origin.x, drawn.origin.y, s.samplesPerPixel, compare, s.settings.width,
+          s.settings.height, s.generation, nee, stats.summary(), series);
       // Offscreen nobody reads the panel: its error line goes to standard error too.
       if (const std::string error = viewer.shownError(); !error.empty())
         std::cerr << "pathlab view: shown: " << error << "\n";

@@ -32,6 +32,7 @@ void SceneLoader::start(const std::string& path, const EnvironmentChoice& enviro
   pendingPath_ = path;
   pending_ = std::async(std::launch::async, [path, environment, read = std::move(read), options = options_]() mutable {
     SceneLoadResult r;
+    options.lightSelection = environment.lightSelection;
     try {
       options.environment = environmentOf(environment, read);
     } catch (const std::exception& e) {

@@ -46,7 +46,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
   scene_.scene = std::move(scene);
   scene_.path = options.scene;
   scene_.loader = SceneLoader(options.load);
-  environment_ = EnvironmentState::from(options.load.environment);
+  environment_ = EnvironmentState::from(options.load.environment, options.load.lightSelection);
   // A preset's camera: orbit from there.
   scene_.orbit = OrbitCamera(estimator_.settings.camera.value_or(scene_.scene->cameraDesc()), scene_.scene->boundsMin(),
                              scene_.scene->boundsMax());

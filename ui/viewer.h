@@ -29,6 +29,8 @@ class Viewer {
  public:
   Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene, std::vector<NamedPreset> presets);
   ~Viewer();
+  // The scene shown (the last one loaded).
+  const Scene& shownScene() const { return *scene_.scene; }
 
   // Builds one UI frame: input, panels, settings to the renderer, newest snapshot to the texture.
   void buildFrame(Vec2i framebufferSize, float framebufferScale, const std::vector<std::string>& droppedPaths);

@@ -60,9 +60,10 @@ struct EnvironmentState {
   Vec3 colour{1.f};  // the uniform colour offered, kept while a map is shown
 
   // The command line's environment (LoadOptions::environment, null for none), read already.
-  static EnvironmentState from(const std::shared_ptr<const EnvironmentDesc>& commandLine) {
+  static EnvironmentState from(const std::shared_ptr<const EnvironmentDesc>& commandLine,
+                               LightSelection lightSelection = LightSelection::Auto) {
     EnvironmentState s;
-    s.edited = s.applied = choiceOf(commandLine.get());
+    s.edited = s.applied = choiceOf(commandLine.get(), lightSelection);
     s.read = commandLine;
     if (commandLine && commandLine->isConstant()) s.colour = commandLine->constant;
     else if (commandLine) s.typedPath = commandLine->source;

@@ -87,6 +87,23 @@ TEST(ViewerEnvironment, ADroppedMapRelightsTheSceneAndStrengthScalesIt) {
   EXPECT_LT(stronger.differenceTo(lit), 0.25 * dropped.differenceTo(lit)) << stronger.err;
 }
 
+// The section's "next-event lights" (script light-sampler=): many-lights.gltf opens with a light
+// BVH (more than one emitter); choosing power relights it, and the closing line says which the
+// shown scene uses. A value it does not know is refused before the viewer opens.
+TEST(ViewerEnvironment, NextEventLightChoiceRelightsTheScene) {
+  const std::string many = std::string(PATHLAB_SOURCE_DIR) + "/assets/many-lights.gltf";
+  const EnvRun byBvh = viewWith("many-bvh", "", many);
+  EXPECT_NE(byBvh.err.find("next-event lights bvh"), std::string::npos) << byBvh.err;
+  const EnvRun byPower = viewWith("many-power", "2:light-sampler=power", many);
+  EXPECT_NE(byPower.err.find("next-event lights power"), std::string::npos) << byPower.err;
+  const EnvRun back = viewWith("many-back", "2:light-sampler=power;4:light-sampler=auto", many);
+  EXPECT_NE(back.err.find("next-event lights bvh"), std::string::npos) << back.err;
+  const pathlab::test::CommandRun bad = pathlab::test::runPathlab(
+      kEnvTmp, "view " + many + " --headless --frames 2 --screenshot " + kEnvTmp + "/bad.png --script '2:light-sampler=random'");
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("light-sampler=auto|power|bvh"), std::string::npos) << bad.err;
+}
+
 // A uniform colour lights a scene that has no light of its own, tinted by it.
 TEST(ViewerEnvironment, AUniformColourLightsASceneWithoutLights) {
   const EnvRun blue = viewWith("uniform-blue", "2:environment=0.5,0.7,1");
