@@ -286,6 +286,30 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
 }
 
 TEST(BptMis, PartitionOfUnityFurnace) { checkPartition(Scene(furnace()), 5, "furnace"); }
+// Next-event estimation that cannot choose x0's light for x1 (a light BVH's bounds, or rounding,
+// refuse it): technique (1, t) has density zero, not a delta, and the others share the path.
+TEST(BptMis, ZeroNextEventDensityLeavesOutTechniqueOne) {
+  PathDensities d;
+  d.n = 4;
+  d.pFromLight = {0.3, 0.7, 1.9, 0.0};
+  d.pFromCamera = {0.5, 1.1, 0.4, 1.0};
+  d.delta = {0, 0, 0, 0};
+  d.edgeLength2 = {1.f, 1.f, 1.f};
+  d.x0CanBeHit = true;
+  d.x0Nee = 0.0;
+  for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+    const MisOptions o{h, 2.f, 0.f};
+    double sum = 0.0;
+    for (int sp = 0; sp < d.n; ++sp) sum += weightFromDensities(d, sp, TechniqueSet::all(), o, 1.f, 0.f);
+    EXPECT_NEAR(sum, 1.0, 1e-9) << misHeuristicName(h);
+    EXPECT_EQ(weightFromDensities(d, 1, TechniqueSet::all(), o, 1.f, 0.f), 0.0) << misHeuristicName(h);
+    if (h == MisHeuristic::Balance) {
+      // The others in proportion to their own densities: p0 = C0 C1 C2, p2 = L0 L1 C2, p3 = L0 L1 L2.
+      const double p0 = 0.5 * 1.1 * 0.4, p2 = 0.3 * 0.7 * 0.4, p3 = 0.3 * 0.7 * 1.9;
+      EXPECT_NEAR(weightFromDensities(d, 2, TechniqueSet::all(), o, 1.f, 0.f), p2 / (p0 + p2 + p3), 1e-9);
+    }
+  }
+}
 // The furnace's six emitting faces are six emitters, so next-event estimation chooses among them
 // by a light BVH (LightSelection::Auto); chosen by power, x0's density is the same for every
 // technique.

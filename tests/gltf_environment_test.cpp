@@ -6,7 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 
 namespace pathlab {
 namespace {
@@ -42,6 +46,30 @@ TEST(GltfEnvironment, WithoutTheDefaultLightAFileWithoutLightsIsRefused) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("no light source"), std::string::npos) << e.what();
   }
+}
+
+// A file whose only emission is an emissive texture (textured.gltf without its point light, as
+// DamagedHelmet) glows but is not lit by it: the default light joins its glowing triangles, with a
+// notice saying so. With the point light, or an untextured emitter, it lights itself.
+TEST(GltfEnvironment, GlowingTexturesAloneGetTheDefaultLightToo) {
+  nlohmann::json file = nlohmann::json::parse(std::ifstream(kSource + "/tests/scenes/textured.gltf"));
+  for (nlohmann::json& node : file["nodes"]) node.erase("extensions");
+  const std::filesystem::path dir = std::filesystem::path(PATHLAB_TEST_TMP) / "gltf_environment";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "glow-only.gltf") << file.dump();
+  LoadOptions options;
+  options.defaultLight = true;
+  const SceneDesc glowing = loadGltf((dir / "glow-only.gltf").string(), options);
+  ASSERT_TRUE(glowing.environment);
+  EXPECT_EQ(glowing.environment->constant, Spectrum(1.f));
+  EXPECT_EQ(notices(glowing), 1);
+  EXPECT_TRUE(std::any_of(glowing.warnings.begin(), glowing.warnings.end(),
+                          [](const std::string& w) { return w.find("emissive textures") != std::string::npos; }));
+  const Scene scene{SceneDesc(glowing)};
+  EXPECT_GT(scene.lights().size(), 1u);  // the glowing triangles stay lights beside it
+  EXPECT_FALSE(loadGltf(kSource + "/tests/scenes/textured.gltf", options).environment);
+  options.defaultLight = false;
+  EXPECT_FALSE(loadGltf((dir / "glow-only.gltf").string(), options).environment);
 }
 
 TEST(GltfEnvironment, TheFilesOwnLightsNeedNoDefault) {

@@ -54,6 +54,10 @@ struct ManyLights {
     for (int i = 0; i < 5; ++i) lights.push_back(Light::point(randomPoint(rng, 4.f), Spectrum(0.5f + 3.f * rng.next1D())));
     for (int i = 0; i < 3; ++i)
       lights.push_back(Light::spot(randomPoint(rng, 4.f), randomDirection(rng), Spectrum(4.f), 0.2f, 0.5f + 0.3f * i));
+    // Hard-edged narrow spots: equal cones, and the loader's 0.999 x outer for a Blender spot
+    // without blend (their bounds once refused every receiver, in the cone too).
+    lights.push_back(Light::spot(randomPoint(rng, 4.f), randomDirection(rng), Spectrum(6.f), 0.2f, 0.2f));
+    lights.push_back(Light::spot(randomPoint(rng, 4.f), randomDirection(rng), Spectrum(6.f), 0.1998f, 0.2f));
     lights.push_back(Light::directional(glm::normalize(Vec3(0.3f, -1.f, 0.2f)), Spectrum(2.f), SceneBounds{Vec3(0.f), 6.f}));
     lights.push_back(Light::environment(&environment));
   }
@@ -69,7 +73,7 @@ LightSampleContext randomContext(Pcg32& rng, bool withNormal) {
 TEST(LightBvh, ProbabilitiesAreTheSampledOnes) {
   const ManyLights scene;
   const LightBvh bvh(scene.lights);
-  EXPECT_GT(bvh.nodeCount(), 90u);  // 48 lights with a position: 95 nodes
+  EXPECT_GT(bvh.nodeCount(), 90u);  // 50 lights with a position: 99 nodes
   Pcg32 rng(5, 1);
   double meanSum = 0.0;
   for (int c = 0; c < 300; ++c) {
@@ -135,7 +139,8 @@ TEST(LightBvh, ChoicesFollowThePmfChiSquare) {
 
 // Unbiasedness needs a probability above zero wherever a light can send light: at random
 // receivers, every area light with a point emitting toward the receiver within its hemisphere
-// (either side, |cos|: transmission), every point light and every spot whose cone holds it.
+// (either side, |cos|: transmission), every point light and every spot whose cone holds it
+// (narrow hard-edged ones too: receivers are also placed inside their cones).
 TEST(LightBvh, NeverRefusesALightThatCanLightTheReceiver) {
   const ManyLights scene;
   const LightBvh bvh(scene.lights);
@@ -159,6 +164,18 @@ TEST(LightBvh, NeverRefusesALightThatCanLightTheReceiver) {
       } else {
         zero += pmf == 0.f ? 1 : 0;
       }
+    }
+  }
+  // Inside each spot's cone, on its axis: lit, so never refused.
+  for (size_t l = 0; l < scene.lights.size(); ++l) {
+    const Light& light = scene.lights[l];
+    if (light.type() != LightType::Spot) continue;
+    const LightLeSample axis = light.sampleLe(Vec2(0.5f), Vec2(0.f));  // any emitted ray: along the cone
+    for (const float d : {0.3f, 2.f, 7.f}) {
+      const LightSampleContext ctx{axis.ray.o + d * axis.ray.d, -axis.ray.d};
+      if (isBlack(light.sampleLi(ctx.p, Vec2(0.5f)).Li)) continue;
+      ++checked;
+      EXPECT_GT(bvh.pmf(ctx, static_cast<int>(l)), 0.f) << "spot " << l << " at " << d;
     }
   }
   EXPECT_GT(checked, 5000);

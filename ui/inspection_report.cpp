@@ -64,12 +64,15 @@ void printPath(std::ostream& out, const TracedPath& path) {
 
 nlohmann::json subpathJson(const std::vector<PathVertex>& subpath) {
   nlohmann::json out = nlohmann::json::array();
-  for (const PathVertex& v : subpath)
+  for (const PathVertex& v : subpath) {
     out.push_back({{"p", vec(v.p)},
                    {"kind", kindName(v.type)},
                    {"delta", v.isDelta || v.isDeltaPosition},
                    {"pdfFwdA", v.pdfFwdA},
                    {"pdfRevA", v.pdfRevA}});
+    // A light subpath's x0: its density were next-event estimation to choose it for x1.
+    if (v.type == VertexType::Light) out.back()["pdfNeeA"] = v.pdfNeeA;
+  }
   return out;
 }
 

@@ -139,6 +139,10 @@ inline bool techniquePossible(const PathDensities& d, int sp) {
   if (sp < 0 || sp >= d.n) return false;  // t' >= 1
   if (sp == 0) return d.x0CanBeHit && !d.delta[0];
   if (sp == 1 && d.n == 2 && d.x0Infinite) return false;  // light tracing from infinity
+  // Next-event estimation cannot choose x0's light for x1 (a light BVH's bounds refuse it there):
+  // a zero density, not a delta. The ratios walked through s' = 1 stay right (the remapped value
+  // cancels between its two steps); only its own term is left out.
+  if (sp == 1 && d.n >= 3 && d.x0Nee == 0.0) return false;
   // The connection joins x(s'-1) and x(s'): neither may scatter by a delta lobe.
   return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
 }

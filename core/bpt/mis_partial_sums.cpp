@@ -29,8 +29,11 @@ void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisS
   sums.sum[0] = left;
   for (int i = 0; i < path.count; ++i) {
     const PathVertex& v = path[i];
-    // Technique s' = i connects x(i-1) and x(i); s' = 0 needs x0 on an area light.
-    const bool usable = i == 0 ? canBeHitAsOrigin(v) && !v.isDelta : !path[i - 1].isDelta && !v.isDelta;
+    // Technique s' = i connects x(i-1) and x(i); s' = 0 needs x0 on an area light; s' = 1 a
+    // next-event density above zero (mis.h techniquePossible).
+    const bool usable = i == 0   ? canBeHitAsOrigin(v) && !v.isDelta
+                        : i == 1 ? !path[0].isDelta && !v.isDelta && path[0].pdfNeeA != 0.f
+                                 : !path[i - 1].isDelta && !v.isDelta;
     // r_0 = p_0 / p_1 with x0's next-event density; r_1 = p_1 / p_2 then carries the change of
     // x0's density from that to the light subpath's (mis.h ratioToCamera). These sums serve
     // paths of three or more vertices only (sum[1] from s = 3 on), where that applies.
@@ -101,15 +104,18 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
   if (e.qs) {
     double beyond = 0.0;
     if (e.qsMinus) {
+      // s = 3: the term is technique s' = 1's, which needs x0's next-event density.
       const bool usable = s == 2 ? canBeHitAsOrigin(*e.qsMinus) && !e.qsMinus->isDelta
-                                 : !path.lightPath[s - 3].isDelta && !e.qsMinus->isDelta;
+                                 : !path.lightPath[s - 3].isDelta && !e.qsMinus->isDelta &&
+                                       (s != 3 || path.lightPath[0].pdfNeeA != 0.f);
       // s = 2: qsMinus is x0 (r_0, with its next-event density); s = 3: x1 (r_1).
       const double r = s == 2   ? ratio(c.qsMinusFromCamera, e.qsMinus->pdfNeeA)
                        : s == 3 ? ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA) * neeOverOrigin
                                 : ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA);
       beyond = power(r) * ((usable ? 1.0 : 0.0) + lightSums.sum[static_cast<size_t>(s - 2)]);
     }
-    const bool usable = s == 1 ? canBeHitAsOrigin(*e.qs) : !e.qsMinus->isDelta;
+    // s = 2: the term is technique s' = 1's.
+    const bool usable = s == 1 ? canBeHitAsOrigin(*e.qs) : !e.qsMinus->isDelta && (s != 2 || e.qsMinus->pdfNeeA != 0.f);
     // s = 1: qs is x0, sampled by next-event estimation unless it meets the lens (t = 1);
     // s = 2: qs is x1 (r_1).
     const double r = s == 1   ? ratio(c.qsFromCamera, n >= 3 ? e.qs->pdfNeeA : e.qs->pdfFwdA)
@@ -133,7 +139,8 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
     }
     // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
     // infinity (the path environment -> camera, s = 0, t = 2).
-    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite);
+    // s = 0, t >= 3: the term is technique s' = 1's, which needs x0's next-event density.
+    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite) && !(s == 0 && t >= 3 && x0FromLight == 0.0);
     // s = 0: technique s' = 1 samples x0 = pt by next-event estimation (x0FromLight); s = 1:
     // every technique on this side has s' >= 2, where x0 is a light subpath's origin.
     const double r = s == 0 ? ratio(x0FromLight, pt.pdfFwdA)

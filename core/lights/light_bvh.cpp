@@ -48,6 +48,7 @@ LightBvh::LightBvh(const std::vector<Light>& lights) {
     const LightBounds b = lights[i].lightBounds();
     if (b.phi > 0.f) items.emplace_back(static_cast<int>(i), b);
   }
+  for (const float w : infiniteWeight_) infiniteTotal_ += w;
   if (items.empty()) return;
   nodes_.reserve(2 * items.size());
   nodes_.push_back(Node{});
@@ -108,7 +109,7 @@ void LightBvh::build(std::vector<std::pair<int, LightBounds>>& items, size_t beg
                                              items.begin() + static_cast<std::ptrdiff_t>(end), below) -
                               items.begin());
   }
-  if (mid == begin || mid == end) {
+  if (bestAxis < 0 || mid == begin || mid == end) {
     // No bucket split: the median along the widest centroid axis.
     const Vec3 extent = cHi - cLo;
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
@@ -136,8 +137,7 @@ float LightBvh::shareOfFirst(const Node& node, const LightSampleContext& ctx) co
 }
 
 float LightBvh::treeShare(const LightSampleContext& ctx, float* infiniteTotal) const {
-  float infinite = 0.f;
-  for (const float w : infiniteWeight_) infinite += w;
+  const float infinite = infiniteTotal_;
   *infiniteTotal = infinite;
   const float tree = nodes_.empty() ? 0.f : nodes_[0].bounds.importance(ctx);
   const float total = infinite + tree;
@@ -158,7 +158,7 @@ int LightBvh::sample(const LightSampleContext& ctx, float u, float* pmf) const {
     for (size_t i = 0; i < infinite_.size(); ++i) {
       cumulative += infiniteWeight_[i];
       if (target < cumulative || i + 1 == infinite_.size()) {
-        *pmf = infiniteWeight_[i] / (infinite + (nodes_.empty() ? 0.f : nodes_[0].bounds.importance(ctx)));
+        *pmf = pInfinite * (infiniteWeight_[i] / infinite);  // as pmf() forms it
         return infinite_[i];
       }
     }
@@ -190,9 +190,10 @@ float LightBvh::pmf(const LightSampleContext& ctx, int light) const {
   float infinite = 0.f;
   const float pTree = treeShare(ctx, &infinite);
   if (pTree < 0.f) return 0.f;
+  // The probability sample() chooses it with: the share of the lights at infinity (which may
+  // round to zero beside a very bright emitter), then its weight among them.
   if (const int slot = infiniteSlot_[static_cast<size_t>(light)]; slot >= 0)
-    return infiniteWeight_[static_cast<size_t>(slot)] /
-           (infinite + (nodes_.empty() ? 0.f : nodes_[0].bounds.importance(ctx)));
+    return (1.f - pTree) * (infiniteWeight_[static_cast<size_t>(slot)] / infinite);
   const int leaf = leafOfLight_[static_cast<size_t>(light)];
   if (leaf < 0) return 0.f;
   // The path from the root, walked down as sample() walks it (the same products in the same order).

@@ -44,6 +44,7 @@ class LightBvh {
   std::vector<int> infinite_;          // lights at infinity with importance
   std::vector<float> infiniteWeight_;  // their infiniteImportance()
   std::vector<int> infiniteSlot_;      // per light: index in infinite_, or -1
+  float infiniteTotal_ = 0.f;          // the sum of infiniteWeight_
   int depth_ = 0;
 };
 

@@ -209,6 +209,10 @@ DroppedTriangles instantiatePrimitive(const LocalPrimitive& local, const glm::dm
 void checkScene(const SceneDesc& desc, bool requireEmitter);
 // Whether the file's own triangles or punctual lights emit anything.
 bool hasEmitter(const SceneDesc& desc);
+// Whether the file has a light meant to light it: a KHR_lights_punctual light, or an emissive
+// material without an emissive texture (a lamp). Emission only through textures (a display, LEDs,
+// a helmet's visor) marks glowing details, which other glTF viewers show under an environment.
+bool hasLamp(const SceneDesc& desc);
 
 // ---- environment light (gltf_environment.cpp) ------------------------------------------------
 // LoadOptions::environment, or the default light for a file without one (a notice in warnings).

@@ -97,6 +97,16 @@ bool hasEmitter(const SceneDesc& desc) {
   return false;
 }
 
+bool hasLamp(const SceneDesc& desc) {
+  for (const PunctualLightDesc& light : desc.punctualLights)
+    if (light.intensity > 0.f && maxComponent(light.color) > 0.f) return true;
+  for (const TriangleMesh& mesh : desc.meshes) {
+    const Material& m = desc.materials[size_t(mesh.material)];
+    if (m.isEmissive() && !m.emissiveTexture.valid()) return true;
+  }
+  return false;
+}
+
 void checkScene(const SceneDesc& desc, bool requireEmitter) {
   if (requireEmitter) checkHasEmitter(desc);
   checkEmittedPower(desc, checkExtent(desc));
