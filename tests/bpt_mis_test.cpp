@@ -297,6 +297,7 @@ TEST(BptMis, ZeroNextEventDensityLeavesOutTechniqueOne) {
   d.edgeLength2 = {1.f, 1.f, 1.f};
   d.x0CanBeHit = true;
   d.x0Nee = 0.0;
+  d.neeRefused = true;
   for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
     const MisOptions o{h, 2.f, 0.f};
     double sum = 0.0;

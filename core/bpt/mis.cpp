@@ -191,12 +191,14 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
   // The light choice evaluated afresh (not the walks' stored pdfNeeA: the fast weights' test
   // oracle checks those), the position or direction density x0 has either way kept.
   d.x0Nee = d.pFromLight[0];
+  d.neeRefused = false;
   if (n >= 3 && scene.lights().neeByContext()) {
     const PathVertex& x0 = vertex(0);
     const LightSet& lights = scene.lights();
     const double pmfOrigin = x0.light >= 0 ? lights.pmf(x0.light) : 0.0;
     d.x0Nee = pmfOrigin > 0.0 ? d.pFromLight[0] * (lights.pmfNee(neeContext(vertex(1)), x0.light) / pmfOrigin)
                               : pdfNeeOrigin(scene, x0, vertex(1));
+    d.neeRefused = d.x0Nee == 0.0;
   }
 }
 

@@ -98,6 +98,9 @@ struct PathDensities {
   // (pFromLight[0]). Equal to pFromLight[0] for n = 2 (the light subpath's x0 meets the lens) and
   // when the scene chooses by power alone. lightSideDensity and the step ratios below use it.
   double x0Nee = 0.0;
+  // A light BVH's next-event estimation cannot choose x0's light for x1 (x0Nee is zero there):
+  // technique (1, t) cannot sample this path. Never set when lights are chosen by power.
+  bool neeRefused = false;
 };
 // The density of x_i as technique s' samples it from the light side (i < s'): x0 by next-event
 // estimation for s' = 1, by the light subpath otherwise.
@@ -142,7 +145,7 @@ inline bool techniquePossible(const PathDensities& d, int sp) {
   // Next-event estimation cannot choose x0's light for x1 (a light BVH's bounds refuse it there):
   // a zero density, not a delta. The ratios walked through s' = 1 stay right (the remapped value
   // cancels between its two steps); only its own term is left out.
-  if (sp == 1 && d.n >= 3 && d.x0Nee == 0.0) return false;
+  if (sp == 1 && d.neeRefused) return false;
   // The connection joins x(s'-1) and x(s'): neither may scatter by a delta lobe.
   return !d.delta[static_cast<size_t>(sp - 1)] && !d.delta[static_cast<size_t>(sp)];
 }

@@ -30,7 +30,8 @@ void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisS
   for (int i = 0; i < path.count; ++i) {
     const PathVertex& v = path[i];
     // Technique s' = i connects x(i-1) and x(i); s' = 0 needs x0 on an area light; s' = 1 a
-    // next-event density above zero (mis.h techniquePossible).
+    // next-event density above zero (mis.h techniquePossible; a light subpath's x0 has pdfFwdA > 0,
+    // so pdfNeeA is zero only where a light BVH refuses its light for x1).
     const bool usable = i == 0   ? canBeHitAsOrigin(v) && !v.isDelta
                         : i == 1 ? !path[0].isDelta && !v.isDelta && path[0].pdfNeeA != 0.f
                                  : !path[i - 1].isDelta && !v.isDelta;
@@ -89,6 +90,7 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
   const int n = s + t;
   double neeOverOrigin = 1.0;
   double x0FromLight = c.ptFromLight;  // s = 0: x0 = pt's density as the light side samples it
+  bool neeRefused = false;             // s = 0: the BVH cannot choose x0's light for x1
   if (n >= 3 && scene.lights().neeByContext()) {
     if (s >= 1) {
       const PathVertex& x0 = lightVertex(path, 0);
@@ -96,6 +98,7 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
     } else {
       x0FromLight = pdfNeeOrigin(scene, pt, *e.ptMinus);
       neeOverOrigin = ratio(x0FromLight, c.ptFromLight);
+      neeRefused = x0FromLight == 0.0;
     }
   }
   // Light side: left(s) = T(r_{s-1}) (u(s-1) + T(r_{s-2}) (u(s-2) + left(s-2))). qs and pt count
@@ -140,7 +143,7 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
     // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
     // infinity (the path environment -> camera, s = 0, t = 2).
     // s = 0, t >= 3: the term is technique s' = 1's, which needs x0's next-event density.
-    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite) && !(s == 0 && t >= 3 && x0FromLight == 0.0);
+    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite) && !(s == 0 && t >= 3 && neeRefused);
     // s = 0: technique s' = 1 samples x0 = pt by next-event estimation (x0FromLight); s = 1:
     // every technique on this side has s' >= 2, where x0 is a light subpath's origin.
     const double r = s == 0 ? ratio(x0FromLight, pt.pdfFwdA)

@@ -357,11 +357,13 @@ LightBounds Light::lightBounds() const {
       b.lo = b.hi = p_[0];
       b.phi = luminance(emission_) * kPi;
       b.w = n_;
-      // theta_e at least 1e-3: with equal cones (a hard edge) cos(0) = 1 would refuse every
-      // receiver, even inside the cone (importance needs cos(theta') > cos(theta_e)).
+      // theta_e widened by 1e-3: with equal cones (a hard edge) cos(0) = 1 would refuse every
+      // receiver, even inside the cone (importance needs cos(theta') > cos(theta_e)), and the
+      // margin keeps the float comparison conservative just inside the outer cone.
       b.cosThetaO = cosInner_;
-      b.cosThetaE = std::cos(std::max(1e-3f, std::acos(std::clamp(cosOuter_, -1.f, 1.f)) -
-                                                 std::acos(std::clamp(cosInner_, -1.f, 1.f))));
+      b.cosThetaE = std::cos(std::max(0.f, std::acos(std::clamp(cosOuter_, -1.f, 1.f)) -
+                                               std::acos(std::clamp(cosInner_, -1.f, 1.f))) +
+                             1e-3f);
       break;
     case LightType::Directional:
     case LightType::Environment:
