@@ -376,7 +376,8 @@ LightBounds Light::lightBounds() const {
 float Light::infiniteImportance() const {
   switch (type_) {
     case LightType::Directional: return kPi * luminance(emission_);
-    case LightType::Environment: return kPi * 0.25f * luminance(environment_->power()) / (kPi * sqr(environment_->radius()));
+    // power / (pi r^2) is the integral of L over the sphere; a quarter of it, times pi.
+    case LightType::Environment: return 0.25f * luminance(environment_->power()) / sqr(environment_->radius());
     default: return 0.f;
   }
 }

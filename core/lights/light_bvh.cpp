@@ -30,6 +30,12 @@ float cost(const LightBounds& b, const LightBounds& parent, int axis) {
   return b.phi * orientationMeasure(b) * kr * std::max(surfaceArea(b), 1e-12f);
 }
 
+// The centroid bucket (of kBuckets over [lo, lo + extent] on `axis`) a light's bounds fall in.
+int bucketOf(const LightBounds& b, int axis, float lo, float extent) {
+  const int k = static_cast<int>(kBuckets * ((b.centroid()[axis] - lo) / extent));
+  return std::clamp(k, 0, kBuckets - 1);
+}
+
 }  // namespace
 
 LightBvh::LightBvh(const std::vector<Light>& lights) {
@@ -57,7 +63,6 @@ LightBvh::LightBvh(const std::vector<Light>& lights) {
 
 void LightBvh::build(std::vector<std::pair<int, LightBounds>>& items, size_t begin, size_t end, int parent, int depth,
                      int index) {
-  depth_ = std::max(depth_, depth);
   nodes_[static_cast<size_t>(index)].parent = parent;
   if (end - begin == 1) {
     nodes_[static_cast<size_t>(index)].bounds = items[begin].second;
@@ -82,12 +87,8 @@ void LightBvh::build(std::vector<std::pair<int, LightBounds>>& items, size_t beg
       const float extent = cHi[axis] - cLo[axis];
       if (!(extent > 0.f)) continue;
       std::array<LightBounds, kBuckets> buckets{};
-      auto bucketOf = [&](const LightBounds& b) {
-        const int k = static_cast<int>(kBuckets * ((b.centroid()[axis] - cLo[axis]) / extent));
-        return std::clamp(k, 0, kBuckets - 1);
-      };
       for (size_t i = begin; i < end; ++i) {
-        LightBounds& bucket = buckets[static_cast<size_t>(bucketOf(items[i].second))];
+        LightBounds& bucket = buckets[static_cast<size_t>(bucketOf(items[i].second, axis, cLo[axis], extent))];
         bucket = unionOf(bucket, items[i].second);
       }
       for (int split = 0; split + 1 < kBuckets; ++split) {
@@ -102,8 +103,7 @@ void LightBvh::build(std::vector<std::pair<int, LightBounds>>& items, size_t beg
   if (bestAxis >= 0) {
     const float extent = cHi[bestAxis] - cLo[bestAxis];
     auto below = [&](const std::pair<int, LightBounds>& item) {
-      const int k = static_cast<int>(kBuckets * ((item.second.centroid()[bestAxis] - cLo[bestAxis]) / extent));
-      return std::clamp(k, 0, kBuckets - 1) <= bestBucket;
+      return bucketOf(item.second, bestAxis, cLo[bestAxis], extent) <= bestBucket;
     };
     mid = static_cast<size_t>(std::partition(items.begin() + static_cast<std::ptrdiff_t>(begin),
                                              items.begin() + static_cast<std::ptrdiff_t>(end), below) -

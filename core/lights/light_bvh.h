@@ -23,7 +23,6 @@ class LightBvh {
   float pmf(const LightSampleContext& ctx, int light) const;
 
   size_t nodeCount() const { return nodes_.size(); }
-  int depth() const { return depth_; }
 
  private:
   struct Node {
@@ -45,7 +44,6 @@ class LightBvh {
   std::vector<float> infiniteWeight_;  // their infiniteImportance()
   std::vector<int> infiniteSlot_;      // per light: index in infinite_, or -1
   float infiniteTotal_ = 0.f;          // the sum of infiniteWeight_
-  int depth_ = 0;
 };
 
 }  // namespace pathlab

@@ -5,21 +5,6 @@
 
 namespace pathlab {
 
-const char* lightSelectionName(LightSelection selection) {
-  switch (selection) {
-    case LightSelection::Auto: return "auto";
-    case LightSelection::Power: return "power";
-    case LightSelection::Bvh: return "bvh";
-  }
-  return "?";
-}
-
-std::optional<LightSelection> parseLightSelection(std::string_view text) {
-  for (const LightSelection s : {LightSelection::Auto, LightSelection::Power, LightSelection::Bvh})
-    if (text == lightSelectionName(s)) return s;
-  return std::nullopt;
-}
-
 LightSet::LightSet(std::vector<Light> lights, std::vector<std::vector<int>> triangleLight, LightSelection selection,
                    int emitters)
     : lights_(std::move(lights)), triangleLight_(std::move(triangleLight)) {

@@ -42,7 +42,6 @@ class LightSet {
   // Whether pmfNee depends on the receiver (a BVH chooses): the MIS weights then tell the
   // next-event density of a path's light vertex from its density as a light subpath's origin.
   bool neeByContext() const { return bvh_ != nullptr; }
-  const LightBvh* bvh() const { return bvh_.get(); }
   // The index of the environment light, -1 without one.
   int environment() const { return environment_; }
   int lightOfTriangle(uint32_t mesh, uint32_t prim) const {
