@@ -57,7 +57,9 @@ void checkScene(const std::string& file, MisHeuristic heuristic) {
     ASSERT_EQ(trace.onPath.size(), trace.records.size());
     ASSERT_FALSE(trace.cameraSubpath.empty());
     EXPECT_EQ(trace.cameraSubpath[0].type, VertexType::Camera);
-    if (!trace.lightSubpath.empty()) EXPECT_EQ(trace.lightSubpath[0].type, VertexType::Light);
+    if (!trace.lightSubpath.empty()) {
+      EXPECT_EQ(trace.lightSubpath[0].type, VertexType::Light);
+    }
     for (size_t r = 0; r < trace.records.size(); ++r) {
       const TechniqueResult& rec = trace.records[r];
       const TracedPath& path = trace.paths[r];
@@ -68,7 +70,9 @@ void checkScene(const std::string& file, MisHeuristic heuristic) {
       // From an emitter (x0: a light vertex, or a surface on an area light for s = 0) to the lens.
       EXPECT_EQ(path.kind.back(), TracedVertexKind::Camera) << where;
       EXPECT_EQ(path.p.back(), trace.cameraSubpath[0].p) << where;  // a pinhole: the one lens point
-      if (rec.s > 0) EXPECT_EQ(path.kind.front(), TracedVertexKind::Light) << where;
+      if (rec.s > 0) {
+        EXPECT_EQ(path.kind.front(), TracedVertexKind::Light) << where;
+      }
       const std::vector<TechniqueOnPath>& every = trace.onPath[r];
       ASSERT_EQ(every.size(), path.size()) << where;
       ++paths;

@@ -108,8 +108,11 @@ TEST(NaiveBpt, RaysAreFiledUnderEachTechnique) {
   ASSERT_FALSE(rows.empty());
   EXPECT_FALSE(rows.front().walk);  // no walk rows: the walks are the techniques'
   const TechniqueCounters& tc = c.technique(2, 3);
-  for (const TechniqueRow& r : rows)
-    if (r.s == 2 && r.t == 3) EXPECT_EQ(r.rays, tc.walkRays + tc.shadowRays);
+  for (const TechniqueRow& r : rows) {
+    if (r.s == 2 && r.t == 3) {
+      EXPECT_EQ(r.rays, tc.walkRays + tc.shadowRays);
+    }
+  }
   EXPECT_GT(c.totalRays(), 3 * reuseSession.counters().totalRays());
 }
 

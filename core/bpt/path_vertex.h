@@ -73,7 +73,7 @@ inline int mediumToward(const PathVertex& v, const Vec3& w) { return v.media.tow
 // infinite) the given value is already an area density on a plane normal to the light, so only
 // the receiver's cosine applies; toward one (`to` infinite) a direction is all there is to sample,
 // and the density stays in solid angle.
-inline float convertDensity(float pdfW, const PathVertex& from, const PathVertex& to) {
+[[gnu::always_inline]] inline float convertDensity(float pdfW, const PathVertex& from, const PathVertex& to) {
   const Vec3 d = to.p - from.p;
   const float dist2 = glm::dot(d, d);
   if (from.isInfinite) return to.onSurface() ? pdfW * absDot(to.ng, glm::normalize(from.ng)) : pdfW;

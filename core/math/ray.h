@@ -41,7 +41,7 @@ struct SurfaceHit {
 // modelled in micrometres or kilometres self-intersects no more than one in metres.
 // Inline, with offsetRayOrigin: every walk vertex and every shadow ray's two ends use them (a call
 // each was 2-3 % of a bidirectional sample).
-inline Vec3 interpolationError(float b0, const Vec3& p0, float b1, const Vec3& p1, float b2, const Vec3& p2) {
+[[gnu::always_inline]] inline Vec3 interpolationError(float b0, const Vec3& p0, float b1, const Vec3& p1, float b2, const Vec3& p2) {
   // gamma(n) = n eps / (1 - n eps), eps = 2^-24 (pbrt-v4 eq. 6.31).
   constexpr float eps = 0x1p-24f;
   constexpr float gamma7 = 7.f * eps / (1.f - 7.f * eps);
@@ -51,7 +51,7 @@ inline Vec3 interpolationError(float b0, const Vec3& p0, float b1, const Vec3& p
 
 // std::nextafter(v, +inf) by stepping the bit pattern (pbrt-v4 NextFloatUp): the same result for
 // every input, NaN and infinities included, without the libm call.
-inline float nextFloatUp(float v) {
+[[gnu::always_inline]] inline float nextFloatUp(float v) {
   if (!(v < std::numeric_limits<float>::infinity())) return v;  // +inf and NaN stay
   if (v == 0.f) return std::numeric_limits<float>::denorm_min();  // from +0 and -0 alike
   auto bits = std::bit_cast<uint32_t>(v);
@@ -59,20 +59,20 @@ inline float nextFloatUp(float v) {
   return std::bit_cast<float>(bits);
 }
 // std::nextafter(v, -inf).
-inline float nextFloatDown(float v) { return -nextFloatUp(-v); }
+[[gnu::always_inline]] inline float nextFloatDown(float v) { return -nextFloatUp(-v); }
 
 // pbrt-v4 OffsetRayOrigin: p moved along n, on the side of `dir`, by dot(|n|, pError), then each
 // coordinate rounded one float further away. A zero pError (camera, punctual light) leaves p.
-inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& pError, const Vec3& n, const Vec3& dir) {
+// Forced inline: GCC kept it a call at -O2, 4 % of a bidirectional sample's instructions.
+[[gnu::always_inline]] inline float offsetAway(float po, float offset) {
+  return offset > 0.f ? nextFloatUp(po) : offset < 0.f ? nextFloatDown(po) : po;
+}
+[[gnu::always_inline]] inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& pError, const Vec3& n, const Vec3& dir) {
   const float d = glm::dot(glm::abs(n), pError);
   Vec3 offset = d * n;
   if (glm::dot(dir, n) < 0.f) offset = -offset;
-  Vec3 po = p + offset;
-  for (int i = 0; i < 3; ++i) {
-    if (offset[i] > 0.f) po[i] = nextFloatUp(po[i]);
-    else if (offset[i] < 0.f) po[i] = nextFloatDown(po[i]);
-  }
-  return po;
+  const Vec3 po = p + offset;
+  return Vec3(offsetAway(po.x, offset.x), offsetAway(po.y, offset.y), offsetAway(po.z, offset.z));
 }
 
 }  // namespace pathlab

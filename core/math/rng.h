@@ -10,6 +10,8 @@ class Pcg32 {
  public:
   Pcg32() { seed(0x853c49e6748fea9bULL, 0xda3e39cb94b95bdbULL); }
   Pcg32(uint64_t initState, uint64_t sequence) { seed(initState, sequence); }
+  // A generator nobody will draw from, without the cost of seeding one (a valid stream all the same).
+  static Pcg32 unseeded() { return Pcg32(Unseeded{}); }
 
   void seed(uint64_t initState, uint64_t sequence) {
     state_ = 0u;
@@ -33,6 +35,8 @@ class Pcg32 {
   }
 
  private:
+  struct Unseeded {};
+  explicit Pcg32(Unseeded) : state_(0), inc_(1) {}
   uint64_t state_ = 0, inc_ = 0;
 };
 
