@@ -76,6 +76,31 @@ TEST(TechniqueCounters, RaysOfEachTechniqueAndWalk) {
   EXPECT_EQ(c.timedSamples, 0u);
 }
 
+// With every technique enabled a connection's shadow ray is traced before its weight, except
+// where the weight may be zero: a connection edge shorter than --min-connection (bidir_tracer.cpp).
+// A large minimum makes such connections common; none of them may cost a shadow ray.
+TEST(TechniqueCounters, ShortConnectionsTraceNoShadowRay) {
+  RenderSettings settings = bpt();
+  settings.checkMis = false;  // the release path: the shadow ray first where it may
+  RenderSession plain(countersCornellBox(), settings);
+  settings.mis.minConnection = 0.5f;  // half the scene's radius
+  RenderSession excluding(countersCornellBox(), settings);
+  for (int i = 0; i < 4; ++i) {
+    plain.renderPass();
+    excluding.renderPass();
+  }
+  uint64_t zeroPlain = 0, zeroExcluding = 0;
+  for (const auto [s, t] : techniquesUpTo(settings.maxLength)) {
+    if (s == 0) continue;
+    const TechniqueCounters& tc = excluding.counters().technique(s, t);
+    EXPECT_EQ(tc.shadowRays, tc.blocked + tc.contributed) << "(" << s << "," << t << ")";
+    zeroPlain += plain.counters().technique(s, t).zero;
+    zeroExcluding += tc.zero;
+  }
+  // The same paths (same seed), of which the short connections now weigh zero.
+  EXPECT_GT(zeroExcluding, zeroPlain + 100);
+}
+
 TEST(TechniqueCounters, TimingWhenAskedChangesNoCount) {
   RenderSession timed(countersCornellBox(), bpt()), untimed(countersCornellBox(), bpt());
   timed.setTiming(true);

@@ -100,13 +100,15 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
 
   // The weight is computed over the enabled set (a disabled technique's share is zero) before the
   // shadow ray, which is traced only when something will use the contribution. With every
-  // technique enabled and the result in the image its weight is positive (save for degenerate
-  // densities, which then cost a shadow ray and may count as blocked rather than zero), so the
-  // shadow ray goes first and a blocked path skips its weight: in the Cornell box 13-17 % of the
-  // connections with a shadow ray are blocked. The outputs see the same results.
+  // technique enabled and the result in the image the weight is positive unless the connection
+  // edge itself is shorter than --min-connection (mis.h UsableTechniques; otherwise only
+  // degenerate densities, an overflow say, give zero), so there the shadow ray goes first and a
+  // blocked path skips its weight: in the Cornell box 13-17 % of the connections with a shadow ray
+  // are blocked. The outputs and counters see the same results.
   const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
+  const bool shortConnection = s >= 1 && c.edgeLength2 < minConnectionDistance_ * minConnectionDistance_;
   const bool visibilityFirst = misEvaluation_ == MisEvaluation::PartialSums && r.inImage && !options_.checkMis &&
-                               !outputs.wantsOnPath() && !outputs.wantsEveryContribution();
+                               !outputs.wantsOnPath() && !outputs.wantsEveryContribution() && !shortConnection;
   // Whether the weighed result is used; false leaves it TechniqueOutcome::Zero.
   auto weigh = [&] {
     if (enabled) r.weight = weight(path, walks, counters);

@@ -4,6 +4,8 @@
 #include "core/bsdf/bsdf.h"
 #include "core/media/phase_function.h"
 
+#include <limits>
+
 namespace pathlab {
 
 Spectrum emittedOverOriginPdf(const Scene& scene, const PathVertex& x0, const Vec3& w) {
@@ -88,6 +90,7 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     }
     if (isBlack(L)) return false;
     c.shadowRay.between(qs.p, qs.onSurface() ? qs.ng : Vec3(0.f), qs.pError, cs->pLens, Vec3(0.f), Vec3(0.f));
+    c.edgeLength2 = glm::dot(cs->pLens - qs.p, cs->pLens - qs.p);  // qs is not at infinity (above)
     c.shadowRay.medium = mediumToward(qs, cs->wi);
     c.L = L * cs->We / cs->pdfW;
     c.pRaster = cs->pRaster;
@@ -131,10 +134,13 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     c.pdfs.ptToPrev = ev.pdfRevW;
     c.L = pt.beta * ev.f * ls.Li * ((ptMedium ? 1.f : absDot(ls.wi, pt.ns)) / (pmf * ls.pdfW));
     if (isBlack(c.L)) return false;
-    if (light.isInfinite())
+    if (light.isInfinite()) {
       c.shadowRay.toward(pt.p, pt.ng, pt.pError, ls.wi);
-    else
+      c.edgeLength2 = std::numeric_limits<float>::infinity();
+    } else {
       c.shadowRay.between(pt.p, pt.ng, pt.pError, ls.pLight, ls.nLight, ls.pError);
+      c.edgeLength2 = glm::dot(pt.p - ls.pLight, pt.p - ls.pLight);
+    }
     c.shadowRay.medium = mediumToward(pt, ls.wi);
     PathVertex& v = c.sampled;
     v = PathVertex{};
@@ -177,6 +183,7 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
   if (isBlack(c.L)) return false;
   c.shadowRay.between(pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError);
   c.shadowRay.medium = mediumToward(pt, d);
+  c.edgeLength2 = dist2;  // (qs - pt)^2, the same bits as edgeLength2(qs, pt)
   return true;
 }
 

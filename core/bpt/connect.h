@@ -62,6 +62,9 @@ struct Connection {
   bool hasSampled = false;
   ConnectionPdfs pdfs;
   ShadowRay shadowRay;  // valid when formConnection returned true
+  // s >= 1: edgeLength2 (path_vertex.h) of the connection edge, x(s-1) to x(s), the same bits;
+  // what --min-connection compares (mis.h UsableTechniques). Unset for s = 0 (no such edge).
+  float edgeLength2 = 0.f;
 };
 
 // Technique (s, t) on one pair of prefixes up to the visibility test: lightPath has at least s
