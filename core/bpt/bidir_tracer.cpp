@@ -255,7 +255,17 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
       if (k < 1 || k > options_.maxLength) continue;
       if (s > ns && lightWalkNeeded(s, t)) continue;
       TechniqueResult r;
-      if (prepare(r, s, t, pRaster, pyramidLength)) run(r, connectionKey, timed, walks, outputs, counters);
+      if (!prepare(r, s, t, pRaster, pyramidLength)) continue;
+      if (s == 0 && walks.camera[t - 1].light < 0 && !timed && !targets.trace) {
+        // The camera subpath's own vertex is no emitter: formConnection would refuse (s = 0), so
+        // the try is counted as run() would count it, without its machinery (one try in seven
+        // in the Cornell box).
+        TechniqueCounters& tc = counters.technique(s, t);
+        ++tc.tried;
+        ++tc.zero;
+        continue;
+      }
+      run(r, connectionKey, timed, walks, outputs, counters);
     }
   return outputs.cameraEstimate();
 }
