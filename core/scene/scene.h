@@ -5,6 +5,7 @@
 #include "core/bsdf/bsdf.h"
 #include "core/lights/light_set.h"
 #include "core/math/ray.h"
+#include "core/scene/ray_log.h"
 #include "core/scene/scene_media.h"
 #include "core/scene/scene_desc.h"
 
@@ -82,6 +83,9 @@ class Scene {
   size_t geometryBytes() const;
   // The RTCScene, for the ray-throughput ceiling benchmark (tests/bench); renderers use intersect/visible.
   void* embreeHandle() const;
+  // Records every ray query into `log` from now on (nullptr: stop). For the ceiling benchmark's
+  // replay of a render's own rays (ray_log.h); call only while no render is running.
+  void setRayLog(RayLog* log) const { rayLog_ = log; }
 
  private:
   SceneDesc desc_;
@@ -98,6 +102,7 @@ class Scene {
   Spectrum transmittanceAlong(Vec3 o, const Vec3& dir, const Vec3* end, int medium) const;
   struct EmbreeState;
   std::unique_ptr<EmbreeState> embree_;  // after desc_: its filters read the meshes
+  mutable RayLog* rayLog_ = nullptr;
 };
 
 }  // namespace pathlab

@@ -1,0 +1,49 @@
+// A record of the ray queries a render makes, exactly as they reach Embree (origins already
+// offset, tfar as passed), in the order each thread made them. It exists for one measurement:
+// the BPT's share of the ray-tracing ceiling "for its own mix of rays" (issue 11), where the
+// ceiling is these very rays traced again by raw Embree with nothing else around them
+// (tests/bench/ceiling_bench.cpp). A scene with no log attached pays one predictable branch a ray.
+#pragma once
+
+#include "core/math/types.h"
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace pathlab {
+
+struct LoggedRay {
+  Vec3 o{0.f};
+  float tfar = 0.f;
+  Vec3 d{0.f};
+  bool occluded = false;  // rtcOccluded1 (a shadow ray); otherwise rtcIntersect1
+};
+
+class RayLog {
+ public:
+  void record(const Vec3& o, const Vec3& d, float tfar, bool occluded) {
+    perThread_.local().push_back(LoggedRay{o, tfar, d, occluded});
+  }
+  // Each thread's rays in the order that thread traced them, one list per thread that traced any.
+  std::vector<std::vector<LoggedRay>> streams() const {
+    std::vector<std::vector<LoggedRay>> out;
+    for (const std::vector<LoggedRay>& rays : perThread_)
+      if (!rays.empty()) out.push_back(rays);
+    return out;
+  }
+  size_t size() const {
+    size_t n = 0;
+    for (const std::vector<LoggedRay>& rays : perThread_) n += rays.size();
+    return n;
+  }
+  void clear() {
+    for (std::vector<LoggedRay>& rays : perThread_) rays.clear();
+  }
+
+ private:
+  tbb::enumerable_thread_specific<std::vector<LoggedRay>> perThread_;
+};
+
+}  // namespace pathlab
