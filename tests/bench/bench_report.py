@@ -26,7 +26,7 @@ def load(path):
         # With --benchmark_repetitions only the median is used; without, the single run.
         if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
             continue
-        name = b.get("run_name", b["name"]).removesuffix("/real_time")
+        name = b.get("run_name", b["name"]).removesuffix("/real_time").removesuffix("/manual_time")
         parts = name.split("/")
         results[tuple(parts)] = b
     return data["context"], results
@@ -152,6 +152,18 @@ def main():
         print(f"\nAt {n} threads: {rate / SMALLVCM_BPT:.2f}× SmallVCM's and {rate / PBRT_V4_BDPT:.1f}× pbrt-v4's camera "
               f"samples/s; with pathlab's error per sample ({ERROR_PER_SAMPLE_RATIO} of SmallVCM's) an equal-time "
               f"efficiency of {rate / SMALLVCM_BPT / ERROR_PER_SAMPLE_RATIO:.2f}× SmallVCM's BPT (target 1.5×).")
+
+    own = [(t, get("OwnRays", "cornell-box", "bpt", "512", f"threads:{t}")) for t in threads]
+    if any(b for _, b in own):
+        print("\n### The BPT's share of the ceiling for its own rays (SmallVCM's scenario)\n")
+        print("One pass's rays recorded as they reach Embree and traced again by raw Embree beside each render "
+              "pass (tests/bench/own_rays_bench.cpp); share = BPT rays/s ÷ the replay's rays/s (target ≥ 50 %).\n")
+        print("| threads | BPT camera samples/s | BPT rays/s | the same rays, raw Embree | share |")
+        print("|---:|---:|---:|---:|---:|")
+        for t, b in own:
+            if b:
+                print(f"| {t} | {human(b['samples_per_s'])} | {human(b['bpt_rays_per_s'])} | "
+                      f"{human(b['ceiling_rays_per_s'])} | {100 * b['share']:.1f} % |")
 
     toggles = sorted(k for k in r if k[0] == "ToggleLatency")
     if toggles:
