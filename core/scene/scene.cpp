@@ -224,9 +224,9 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   rh.ray.mask = 0xFFFFFFFFu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  if (rayLog_) [[unlikely]]
-    rayLog_->record(ray.o, ray.d, ray.tMax, false);
   rtcIntersect1(embree_->scene, &context, &rh);
+  if (RayLog* log = rayLog_.load(std::memory_order_relaxed)) [[unlikely]]
+    log->record(ray.o, ray.d, ray.tMax, rh.ray.tfar, false);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
   const TriangleMesh& mesh = desc_.meshes[rh.hit.geomID];
@@ -278,8 +278,6 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
 
 namespace {
 bool occluded(RTCScene scene, RayLog* log, const Vec3& o, const Vec3& d, float tfar) {
-  if (log) [[unlikely]]
-    log->record(o, d, tfar, true);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r{};
@@ -293,6 +291,8 @@ bool occluded(RTCScene scene, RayLog* log, const Vec3& o, const Vec3& d, float t
   r.tfar = tfar;
   r.mask = 0xFFFFFFFFu;
   rtcOccluded1(scene, &context, &r);
+  if (log) [[unlikely]]
+    log->record(o, d, tfar, r.tfar, true);
   return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
 }
 }  // namespace
@@ -302,11 +302,11 @@ bool Scene::visible(const Vec3& a, const Vec3& na, const Vec3& ea, const Vec3& b
   const Vec3 oa = offsetRayOrigin(a, ea, na, b - a);
   const Vec3 ob = offsetRayOrigin(b, eb, nb, a - b);
   // Shorten at the far end too: rtcOccluded1 makes no promise about hits exactly at tfar.
-  return !occluded(embree_->scene, rayLog_, oa, ob - oa, 1.f - 1e-4f);
+  return !occluded(embree_->scene, rayLog_.load(std::memory_order_relaxed), oa, ob - oa, 1.f - 1e-4f);
 }
 
 bool Scene::visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& e, const Vec3& dir) const {
-  return !occluded(embree_->scene, rayLog_, offsetRayOrigin(p, e, n, dir), dir, std::numeric_limits<float>::infinity());
+  return !occluded(embree_->scene, rayLog_.load(std::memory_order_relaxed), offsetRayOrigin(p, e, n, dir), dir, std::numeric_limits<float>::infinity());
 }
 
 namespace {

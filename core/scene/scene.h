@@ -9,6 +9,7 @@
 #include "core/scene/scene_media.h"
 #include "core/scene/scene_desc.h"
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -84,8 +85,9 @@ class Scene {
   // The RTCScene, for the ray-throughput ceiling benchmark (tests/bench); renderers use intersect/visible.
   void* embreeHandle() const;
   // Records every ray query into `log` from now on (nullptr: stop). For the ceiling benchmark's
-  // replay of a render's own rays (ray_log.h); call only while no render is running.
-  void setRayLog(RayLog* log) const { rayLog_ = log; }
+  // replay of a render's own rays (ray_log.h). Atomic, so attaching during a render is no data
+  // race, but a render then logs only part of its rays: attach between passes.
+  void setRayLog(RayLog* log) const { rayLog_.store(log, std::memory_order_relaxed); }
 
  private:
   SceneDesc desc_;
@@ -102,7 +104,7 @@ class Scene {
   Spectrum transmittanceAlong(Vec3 o, const Vec3& dir, const Vec3* end, int medium) const;
   struct EmbreeState;
   std::unique_ptr<EmbreeState> embree_;  // after desc_: its filters read the meshes
-  mutable RayLog* rayLog_ = nullptr;
+  mutable std::atomic<RayLog*> rayLog_{nullptr};
 };
 
 }  // namespace pathlab

@@ -1,18 +1,19 @@
 // The BPT's share of the ray-tracing ceiling for its own mix of rays (issue 11's definition): the
 // rays one SmallVCM-scenario pass (Cornell box, 512², at most 10 edges, bpt, every technique)
 // actually traces, recorded as they reach Embree (core/scene/ray_log.h) and traced again by raw
-// rtcIntersect1 / rtcOccluded1 with nothing else around them. Each iteration renders one pass
-// (not recorded) and replays the recorded pass, both timed with the same threads, so
-//   share = time the replay takes per ray / time the render takes per ray
-// compares the two in the same minute of a noisy machine. The replay keeps each thread's order
+// rtcIntersect1 / rtcOccluded1 with nothing else around them (core/scene/ray_replay.h; every
+// replayed answer must equal the logged one, or the benchmark stops with an error). Each
+// iteration renders one pass (not recorded) and replays the recorded pass, both timed with the
+// same threads, so share = (replay time per ray) / (render time per ray) compares the two in the
+// same minute of a noisy machine. The replay keeps each thread's order
 // (consecutive rays of one sample stay together, as their cache behaviour in the render has them)
 // and hands the threads chunks of 1,024 consecutive rays.
 #include "core/render/render_session.h"
 #include "core/scene/ray_log.h"
+#include "core/scene/ray_replay.h"
 #include "tests/bench/bench_scenes.h"
 
 #include <benchmark/benchmark.h>
-#include <embree3/rtcore.h>
 #include <fmt/core.h>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -31,42 +32,16 @@ struct Chunk {
   size_t count;
 };
 
-// Traces every logged ray once, as the render's Scene::intersect / Scene::visible hand them to
-// Embree (the same context and ray fields); returns how many hit, so nothing is optimised away.
-size_t replay(RTCScene scene, const std::vector<Chunk>& chunks) {
-  std::atomic<size_t> hits{0};
+// Traces every logged ray once, the chunks spread over the threads; returns how many answers
+// differ from the logged ones (zero, or the replay is not of the render's work).
+size_t replay(const Scene& scene, const std::vector<Chunk>& chunks) {
+  std::atomic<size_t> mismatches{0};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-    size_t h = 0;
-    for (size_t c = range.begin(); c < range.end(); ++c) {
-      for (const LoggedRay* r = chunks[c].begin; r != chunks[c].begin + chunks[c].count; ++r) {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        if (r->occluded) {
-          RTCRay ray{};
-          ray.org_x = r->o.x, ray.org_y = r->o.y, ray.org_z = r->o.z;
-          ray.dir_x = r->d.x, ray.dir_y = r->d.y, ray.dir_z = r->d.z;
-          ray.tnear = 0.f;
-          ray.tfar = r->tfar;
-          ray.mask = 0xFFFFFFFFu;
-          rtcOccluded1(scene, &context, &ray);
-          h += ray.tfar < 0.f;
-        } else {
-          RTCRayHit rh{};
-          rh.ray.org_x = r->o.x, rh.ray.org_y = r->o.y, rh.ray.org_z = r->o.z;
-          rh.ray.dir_x = r->d.x, rh.ray.dir_y = r->d.y, rh.ray.dir_z = r->d.z;
-          rh.ray.tnear = 0.f;
-          rh.ray.tfar = r->tfar;
-          rh.ray.mask = 0xFFFFFFFFu;
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(scene, &context, &rh);
-          h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        }
-      }
-    }
-    hits += h;
+    size_t m = 0;
+    for (size_t c = range.begin(); c < range.end(); ++c) m += replayRays(scene, chunks[c].begin, chunks[c].count);
+    mismatches += m;
   });
-  return hits.load();
+  return mismatches.load();
 }
 
 void ownRays(benchmark::State& state, int threads) {
@@ -84,13 +59,12 @@ void ownRays(benchmark::State& state, int threads) {
   const uint64_t before = session.counters().totalRays();
   session.renderPass();
   scene.setRayLog(nullptr);
-  const std::vector<std::vector<LoggedRay>> streams = log.streams();
   std::vector<Chunk> chunks;
   size_t logged = 0, shadow = 0;
-  for (const std::vector<LoggedRay>& rays : streams) {
-    for (size_t i = 0; i < rays.size(); i += kChunk) chunks.push_back({rays.data() + i, std::min(kChunk, rays.size() - i)});
-    logged += rays.size();
-    for (const LoggedRay& r : rays) shadow += r.occluded;
+  for (const std::vector<LoggedRay>* rays : log.streams()) {
+    for (size_t i = 0; i < rays->size(); i += kChunk) chunks.push_back({rays->data() + i, std::min(kChunk, rays->size() - i)});
+    logged += rays->size();
+    for (const LoggedRay& r : *rays) shadow += r.occluded;
   }
   // The log must hold exactly the rays the counters say the pass traced, or the share is wrong.
   if (logged != session.counters().totalRays() - before) {
@@ -98,29 +72,30 @@ void ownRays(benchmark::State& state, int threads) {
                                     session.counters().totalRays() - before).c_str());
     return;
   }
-  auto rtcScene = static_cast<RTCScene>(scene.embreeHandle());
-
   using Clock = std::chrono::steady_clock;
   double renderSeconds = 0.0, replaySeconds = 0.0;
-  uint64_t renderRays = 0, replayRays = 0, samples = 0;
-  size_t hits = 0;
+  uint64_t renderRays = 0, replayedRays = 0, samples = 0;
+  size_t mismatches = 0;
   for (auto _ : state) {
     const Counters c0 = session.counters();
     const auto t0 = Clock::now();
     session.renderPass();
     const auto t1 = Clock::now();
-    hits += replay(rtcScene, chunks);
+    mismatches += replay(scene, chunks);
     const auto t2 = Clock::now();
     renderSeconds += std::chrono::duration<double>(t1 - t0).count();
     replaySeconds += std::chrono::duration<double>(t2 - t1).count();
     renderRays += session.counters().totalRays() - c0.totalRays();
     samples += session.counters().cameraSamples - c0.cameraSamples;
-    replayRays += logged;
+    replayedRays += logged;
     state.SetIterationTime(std::chrono::duration<double>(t2 - t0).count());
   }
-  benchmark::DoNotOptimize(hits);
+  if (mismatches > 0) {
+    state.SkipWithError(fmt::format("{} replayed rays got another answer than in the render", mismatches).c_str());
+    return;
+  }
   const double renderRate = renderSeconds > 0 ? static_cast<double>(renderRays) / renderSeconds : 0.0;
-  const double replayRate = replaySeconds > 0 ? static_cast<double>(replayRays) / replaySeconds : 0.0;
+  const double replayRate = replaySeconds > 0 ? static_cast<double>(replayedRays) / replaySeconds : 0.0;
   state.counters["samples_per_s"] = renderSeconds > 0 ? static_cast<double>(samples) / renderSeconds : 0.0;
   state.counters["bpt_rays_per_s"] = renderRate;
   state.counters["ceiling_rays_per_s"] = replayRate;
