@@ -3,10 +3,10 @@
 
 #include "core/camera/camera.h"
 #include "core/scene/alpha_test.h"
+#include "core/scene/embree_ray.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/normal_map.h"
 
-#include <embree3/rtcore.h>
 
 #include <algorithm>
 #include <atomic>
@@ -212,18 +212,7 @@ Bsdf Scene::bsdf(int material, const ShadingInputs& at, const Vec3& ns, const Ve
 std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh{};
-  rh.ray.org_x = ray.o.x;
-  rh.ray.org_y = ray.o.y;
-  rh.ray.org_z = ray.o.z;
-  rh.ray.dir_x = ray.d.x;
-  rh.ray.dir_y = ray.d.y;
-  rh.ray.dir_z = ray.d.z;
-  rh.ray.tnear = 0.f;
-  rh.ray.tfar = ray.tMax;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = embreeRayHit(ray.o, ray.d, ray.tMax);
   rtcIntersect1(embree_->scene, &context, &rh);
   if (RayLog* log = rayLog_.load(std::memory_order_relaxed)) [[unlikely]]
     log->record(ray.o, ray.d, ray.tMax, rh.ray.tfar, false);
@@ -280,16 +269,7 @@ namespace {
 bool occluded(RTCScene scene, RayLog* log, const Vec3& o, const Vec3& d, float tfar) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay r{};
-  r.org_x = o.x;
-  r.org_y = o.y;
-  r.org_z = o.z;
-  r.dir_x = d.x;
-  r.dir_y = d.y;
-  r.dir_z = d.z;
-  r.tnear = 0.f;
-  r.tfar = tfar;
-  r.mask = 0xFFFFFFFFu;
+  RTCRay r = embreeRay(o, d, tfar);
   rtcOccluded1(scene, &context, &r);
   if (log) [[unlikely]]
     log->record(o, d, tfar, r.tfar, true);

@@ -9,6 +9,7 @@
 // caustic) some start outside the geometry and miss, which is cheaper; the hit fraction is
 // reported beside each figure. The same rays serve both queries so their rates compare directly.
 #include "core/math/rng.h"
+#include "core/scene/embree_ray.h"
 #include "core/sampling/warp.h"
 #include "tests/bench/bench_scenes.h"
 
@@ -52,20 +53,6 @@ const RaySet& raysFor(const std::string& sceneName) {
   return set;
 }
 
-RTCRay makeRay(const RaySet& set, size_t i) {
-  RTCRay r{};
-  r.org_x = set.origins[i].x;
-  r.org_y = set.origins[i].y;
-  r.org_z = set.origins[i].z;
-  r.dir_x = set.directions[i].x;
-  r.dir_y = set.directions[i].y;
-  r.dir_z = set.directions[i].z;
-  r.tnear = 0.f;
-  r.tfar = std::numeric_limits<float>::infinity();
-  r.mask = 0xFFFFFFFFu;
-  return r;
-}
-
 // Traces every ray once; returns the number that hit something.
 size_t traceAll(RTCScene scene, const RaySet& set, bool occluded) {
   return tbb::parallel_reduce(
@@ -75,14 +62,11 @@ size_t traceAll(RTCScene scene, const RaySet& set, bool occluded) {
         rtcInitIntersectContext(&context);  // incoherent by default
         for (size_t i = range.begin(); i < range.end(); ++i) {
           if (occluded) {
-            RTCRay r = makeRay(set, i);
+            RTCRay r = embreeRay(set.origins[i], set.directions[i], std::numeric_limits<float>::infinity());
             rtcOccluded1(scene, &context, &r);
             hits += r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
           } else {
-            RTCRayHit rh{};
-            rh.ray = makeRay(set, i);
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            RTCRayHit rh = embreeRayHit(set.origins[i], set.directions[i], std::numeric_limits<float>::infinity());
             rtcIntersect1(scene, &context, &rh);
             hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
           }
