@@ -9,8 +9,9 @@
 
 namespace pathlab {
 
-inline RTCRay embreeRay(const Vec3& o, const Vec3& d, float tfar) {
-  RTCRay r{};
+// Fills ray fields in place, as the callers' own RTCRay / RTCRayHit (value-initialised) hold them:
+// no temporary to copy (which cost the renderer instructions on every query).
+inline void setEmbreeRay(RTCRay& r, const Vec3& o, const Vec3& d, float tfar) {
   r.org_x = o.x;
   r.org_y = o.y;
   r.org_z = o.z;
@@ -20,12 +21,17 @@ inline RTCRay embreeRay(const Vec3& o, const Vec3& d, float tfar) {
   r.tnear = 0.f;
   r.tfar = tfar;
   r.mask = 0xFFFFFFFFu;
+}
+
+inline RTCRay embreeRay(const Vec3& o, const Vec3& d, float tfar) {
+  RTCRay r{};
+  setEmbreeRay(r, o, d, tfar);
   return r;
 }
 
 inline RTCRayHit embreeRayHit(const Vec3& o, const Vec3& d, float tfar) {
   RTCRayHit rh{};
-  rh.ray = embreeRay(o, d, tfar);
+  setEmbreeRay(rh.ray, o, d, tfar);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   return rh;

@@ -209,13 +209,22 @@ Bsdf Scene::bsdf(int material, const ShadingInputs& at, const Vec3& ns, const Ve
   return Bsdf(ns, ng, evalMaterial(desc_.materials[m], at, desc_.textures));
 }
 
+namespace {
+// Out of line and cold, reading the query back from Embree's ray (which keeps origin and
+// direction; tfar is its answer): with no log attached a query pays only the pointer's test.
+[[gnu::noinline, gnu::cold]] void logQuery(RayLog* log, const RTCRay& answered, float tfar, bool occluded) {
+  log->record(Vec3(answered.org_x, answered.org_y, answered.org_z),
+              Vec3(answered.dir_x, answered.dir_y, answered.dir_z), tfar, answered.tfar, occluded);
+}
+}  // namespace
+
 std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh = embreeRayHit(ray.o, ray.d, ray.tMax);
   rtcIntersect1(embree_->scene, &context, &rh);
   if (RayLog* log = rayLog_.load(std::memory_order_relaxed)) [[unlikely]]
-    log->record(ray.o, ray.d, ray.tMax, rh.ray.tfar, false);
+    logQuery(log, rh.ray, ray.tMax, false);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
   const TriangleMesh& mesh = desc_.meshes[rh.hit.geomID];
@@ -266,13 +275,13 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray) const {
 }
 
 namespace {
-bool occluded(RTCScene scene, RayLog* log, const Vec3& o, const Vec3& d, float tfar) {
+bool occluded(RTCScene scene, const std::atomic<RayLog*>& rayLog, const Vec3& o, const Vec3& d, float tfar) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = embreeRay(o, d, tfar);
   rtcOccluded1(scene, &context, &r);
-  if (log) [[unlikely]]
-    log->record(o, d, tfar, r.tfar, true);
+  if (RayLog* log = rayLog.load(std::memory_order_relaxed)) [[unlikely]]
+    logQuery(log, r, tfar, true);
   return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit
 }
 }  // namespace
@@ -282,11 +291,11 @@ bool Scene::visible(const Vec3& a, const Vec3& na, const Vec3& ea, const Vec3& b
   const Vec3 oa = offsetRayOrigin(a, ea, na, b - a);
   const Vec3 ob = offsetRayOrigin(b, eb, nb, a - b);
   // Shorten at the far end too: rtcOccluded1 makes no promise about hits exactly at tfar.
-  return !occluded(embree_->scene, rayLog_.load(std::memory_order_relaxed), oa, ob - oa, 1.f - 1e-4f);
+  return !occluded(embree_->scene, rayLog_, oa, ob - oa, 1.f - 1e-4f);
 }
 
 bool Scene::visibleToInfinity(const Vec3& p, const Vec3& n, const Vec3& e, const Vec3& dir) const {
-  return !occluded(embree_->scene, rayLog_.load(std::memory_order_relaxed), offsetRayOrigin(p, e, n, dir), dir, std::numeric_limits<float>::infinity());
+  return !occluded(embree_->scene, rayLog_, offsetRayOrigin(p, e, n, dir), dir, std::numeric_limits<float>::infinity());
 }
 
 namespace {
