@@ -1,5 +1,7 @@
 // pathlab_bench's entry point: Google Benchmark's main, with the machine's load average printed
 // before and after, because these machines are shared and every figure must be read beside it.
+#include "tests/bench/bench_scenes.h"
+
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -24,6 +26,11 @@ int main(int argc, char** argv) {
   const size_t ran = benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   std::fprintf(stderr, "pathlab_bench: load average (1, 5, 15 min) after: %s\n", loadAverage().c_str());
-  // A filter that matches nothing is an error, so the CTest smoke run notices renamed benchmarks.
+  // A filter that matches nothing is an error, so the CTest smoke run notices renamed benchmarks;
+  // so is a benchmark whose own check failed (failBenchmark).
+  if (pathlab::bench::anyBenchmarkFailed()) {
+    std::fprintf(stderr, "pathlab_bench: a benchmark failed its own check (see its error above)\n");
+    return 1;
+  }
   return ran > 0 ? 0 : 1;
 }

@@ -4,6 +4,7 @@
 #include "core/scene/gltf_loader.h"
 
 #include <algorithm>
+#include <atomic>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -30,5 +31,16 @@ const Scene& benchScene(const std::string& name) {
 }
 
 int allThreads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+
+namespace {
+std::atomic<bool> failed{false};
+}  // namespace
+
+void failBenchmark(benchmark::State& state, const std::string& message) {
+  failed = true;
+  state.SkipWithError(message.c_str());
+}
+
+bool anyBenchmarkFailed() { return failed; }
 
 }  // namespace pathlab::bench

@@ -68,8 +68,7 @@ void ownRays(benchmark::State& state, int threads) {
   }
   // The log must hold exactly the rays the counters say the pass traced, or the share is wrong.
   if (logged != session.counters().totalRays() - before) {
-    state.SkipWithError(fmt::format("logged {} rays, the counters say {}", logged,
-                                    session.counters().totalRays() - before).c_str());
+    failBenchmark(state, fmt::format("logged {} rays, the counters say {}", logged, session.counters().totalRays() - before));
     return;
   }
   using Clock = std::chrono::steady_clock;
@@ -91,7 +90,7 @@ void ownRays(benchmark::State& state, int threads) {
     state.SetIterationTime(std::chrono::duration<double>(t2 - t0).count());
   }
   if (mismatches > 0) {
-    state.SkipWithError(fmt::format("{} replayed rays got another answer than in the render", mismatches).c_str());
+    failBenchmark(state, fmt::format("{} replayed rays got another answer than in the render", mismatches));
     return;
   }
   const double renderRate = renderSeconds > 0 ? static_cast<double>(renderRays) / renderSeconds : 0.0;
