@@ -3,8 +3,8 @@
 // for one measurement: the BPT's share of the ray-tracing ceiling "for its own mix of rays"
 // (issue 11), where the ceiling is these very rays traced again by raw Embree with nothing else
 // around them (tests/bench/own_rays_bench.cpp). In a scene with media a connection's transmittance
-// is a chain of closest-hit queries through the boundaries, each logged as one. A scene with no log
-// attached pays one predictable branch a ray.
+// is a chain of closest-hit queries through the boundaries, each logged as one. With no log
+// attached a query pays only the test of the log pointer (Scene::intersect / visible).
 #pragma once
 
 #include "core/math/types.h"

@@ -6,7 +6,7 @@
 #include "core/scene/embree_ray.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/normal_map.h"
-
+#include "core/scene/ray_log.h"
 
 #include <algorithm>
 #include <atomic>

@@ -5,7 +5,6 @@
 #include "core/bsdf/bsdf.h"
 #include "core/lights/light_set.h"
 #include "core/math/ray.h"
-#include "core/scene/ray_log.h"
 #include "core/scene/scene_media.h"
 #include "core/scene/scene_desc.h"
 
@@ -16,6 +15,8 @@
 #include <vector>
 
 namespace pathlab {
+
+class RayLog;  // core/scene/ray_log.h: kept out of this header, which nearly every file includes
 
 class Scene {
  public:
