@@ -2,7 +2,8 @@
 // O(n) misWeight, their oracle: on random subpaths of every bundled scene and of scenes with
 // delta lights, delta BSDFs, a pinhole and a thin lens, for every connectable (s, t), under every
 // heuristic, with one light subpath per camera sample and with another light-tracing ratio, they
-// agree to 1e-5 relative. Where the sums must not answer (a connection shorter than
+// agree to 1e-5 relative, and the interior techniques' own entry point (misWeightInterior, the
+// tracer's fast path) gives the same bits. Where the sums must not answer (a connection shorter than
 // MisOptions::minConnection) they decline and misWeight is used.
 #include "core/bpt/bidir_tracer.h"
 #include "core/bpt/connect.h"
@@ -13,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 
 namespace pathlab {
@@ -20,6 +22,7 @@ namespace {
 
 struct Tally {
   int compared = 0, declined = 0;
+  int interior = 0;  // of them, interior techniques (s, t >= 2) also weighed by misWeightInterior
 };
 
 // Every connectable technique of `samples` random subpath pairs, under each heuristic.
@@ -56,6 +59,18 @@ Tally compare(const Scene& scene, const Camera& camera, int maxLength, float lig
           const float explicitWeight = misWeight(scene, camera, path, all, o, lightTracingRatio);
           const std::optional<float> fast =
               misWeightFromSums(scene, camera, path, lightSums, cameraSums, power, lightTracingRatio, minDistance);
+          if (s >= 2 && t >= 2) {
+            // The tracer's interior fast path weighs with misWeightInterior: the same answer, bit
+            // for bit, declining where this one declines.
+            const std::optional<float> interior = misWeightInterior(scene, lp, s, cp, t, c.pdfs, c.edgeLength2, lightSums,
+                                                                    cameraSums, power, lightTracingRatio, minDistance);
+            ++tally.interior;
+            EXPECT_EQ(interior.has_value(), fast.has_value()) << name << " (" << s << "," << t << ")";
+            if (interior && fast)
+              EXPECT_EQ(std::bit_cast<uint32_t>(*interior), std::bit_cast<uint32_t>(*fast))
+                  << name << " (" << s << "," << t << ") " << misHeuristicName(o.heuristic) << ": " << *interior
+                  << " vs " << *fast;
+          }
           if (!fast) {
             ++tally.declined;
             continue;
@@ -75,13 +90,17 @@ Scene bundled(const std::string& name) {
   return Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name + ".gltf"));
 }
 
-void checkScene(const Scene& scene, const std::string& name, int maxLength, const LensOptions& lens = {}) {
+// minInterior: interior techniques (s, t >= 2) compared at each ratio (few where most camera paths
+// escape to an environment or end on a point light).
+void checkScene(const Scene& scene, const std::string& name, int maxLength, const LensOptions& lens = {},
+                int minInterior = 100) {
   const Camera camera(scene.cameraDesc(), 16, 12, lens);
   for (const float ratio : {1.f, 2.5f}) {
     const Tally tally = compare(scene, camera, maxLength, ratio, kDefaultMinConnection, name);
     // Enough weights compared to mean something, and the sums answered nearly always.
     EXPECT_GT(tally.compared, 1000) << name << " ratio " << ratio;
     EXPECT_LT(tally.declined, tally.compared / 100 + 1) << name;
+    EXPECT_GE(tally.interior, minInterior) << name << " ratio " << ratio;
   }
 }
 
@@ -102,11 +121,11 @@ TEST(MisPartialSums, EqualTheExplicitWeightsUnderAnEnvironment) {
   const std::string source = PATHLAB_SOURCE_DIR;
   LoadOptions load;
   load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
-  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment", 6);
+  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment", 6, {}, 10);
   // The default light (a constant environment) where the file has none.
   load.environment = nullptr;
   load.defaultLight = true;
-  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment/default", 6);
+  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment/default", 6, {}, 10);
 }
 // Next-event estimation choosing by a light BVH (issue 15): x0's density under technique (1, t)
 // depends on the receiver x1, so the sums carry its ratio to the light subpath's power choice.
@@ -119,9 +138,9 @@ TEST(MisPartialSums, EqualTheExplicitWeightsAmongManyLights) {
   const std::string source = PATHLAB_SOURCE_DIR;
   LoadOptions load;
   load.lightSelection = LightSelection::Bvh;
-  checkScene(Scene(loadGltf(source + "/tests/scenes/punctual.gltf", load)), "punctual/bvh", 6);
+  checkScene(Scene(loadGltf(source + "/tests/scenes/punctual.gltf", load)), "punctual/bvh", 6, {}, 0);
   load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
-  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment/bvh", 6);
+  checkScene(Scene(loadGltf(source + "/assets/environment.gltf", load)), "environment/bvh", 6, {}, 10);
 }
 // A thin lens: the t = 1 technique's lens point and the camera subpath's differ in density.
 TEST(MisPartialSums, EqualTheExplicitWeightsThroughAThinLens) {

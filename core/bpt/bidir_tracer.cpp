@@ -49,6 +49,10 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
                                                                             : MisEvaluation::Explicit;
   }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
+  // runInterior's preconditions that settings decide: the partial sums, no media, and nothing that
+  // changes a result's weight or contribution (isolation, the MIS check, an injected bias).
+  interiorFastPath_ = misEvaluation_ == MisEvaluation::PartialSums && !scene.hasMedia() && !options_.checkMis &&
+                      !options_.isolate && !options_.injectBias;
   cameraMedium_ = scene.mediumAt(camera.position());
   // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
   // with t >= 2 samples its light vertex afresh (next-event estimation).
@@ -159,6 +163,45 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   if (t == 1) r.pRaster = c.pRaster;
 }
 
+void BidirTracer::runInterior(int s, int t, Walks& walks, SampleOutputs& outputs, Counters& counters) const {
+  TechniqueCounters& tc = counters.technique(s, t);
+  ++tc.tried;
+  Connection& c = walks.connection;
+  if (!formInteriorConnection(scene_, walks.light, s, walks.camera, t, c)) {
+    ++tc.zero;
+    return;
+  }
+  // As evaluate(): the shadow ray first, unless the connection edge is shorter than
+  // --min-connection; a weight of zero (the explicit weight's near-coincident rule, an overflow)
+  // leaves the result zero.
+  const bool shortConnection = c.edgeLength2 < minConnectionDistance_ * minConnectionDistance_;
+  float w = 0.f;
+  auto weigh = [&] {
+    const std::optional<float> fast =
+        misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2, walks.lightSums,
+                          walks.cameraSums, misPower_, lightTracingRatio(), minConnectionDistance_);
+    w = fast ? *fast
+             : misWeight(scene_, camera_, MisPath{walks.light.data(), s, walks.camera.data(), t, nullptr, &c.pdfs},
+                         options_.techniques, options_.mis, lightTracingRatio());
+    return w > 0.f;
+  };
+  if (shortConnection && !weigh()) {
+    ++tc.zero;
+    return;
+  }
+  ++counters.shadowRays;
+  ++tc.shadowRays;
+  if (!unoccluded(scene_, c.shadowRay)) {
+    ++tc.blocked;
+    return;
+  }
+  if (!shortConnection && !weigh()) {
+    ++tc.zero;
+    return;
+  }
+  outputs.addToPixel(s, t, c.L, w, tc);
+}
+
 // prepare and run are inlined into both sample loops: as calls they cost 3 % more instructions
 // per path-reuse sample (callgrind).
 [[gnu::always_inline]] inline bool BidirTracer::prepare(TechniqueResult& r, int s, int t, Vec2 pRaster,
@@ -249,11 +292,18 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
     targets.trace->cameraSubpath.assign(walks.camera.data(), walks.camera.data() + nt);
     targets.trace->lightSubpath.assign(walks.light.data(), walks.light.data() + ns);
   }
+  // Per sample, the rest of runInterior's preconditions: untimed, no trace and no consistency check
+  // (per technique: not in the pyramid).
+  const bool interiorFast = interiorFastPath_ && !interiorFastPathOff_ && !timed && !targets.trace && !targets.check;
   for (int t = 1; t <= nt; ++t)
     for (int s = 0; s <= std::max(ns, 1); ++s) {
       const int k = s + t - 1;
       if (k < 1 || k > options_.maxLength) continue;
       if (s > ns && lightWalkNeeded(s, t)) continue;
+      if (interiorFast && s >= 2 && t >= 2 && k > pyramidLength) {
+        runInterior(s, t, walks, outputs, counters);
+        continue;
+      }
       TechniqueResult r;
       if (!prepare(r, s, t, pRaster, pyramidLength)) continue;
       if (s == 0 && walks.camera[t - 1].light < 0 && !timed && !targets.trace) {

@@ -56,6 +56,11 @@ class BidirTracer {
   void setTiming(bool on) { timing_ = on; }
   bool timing() const { return timing_; }
 
+  // The interior connections' fast path (runInterior): on by default wherever its preconditions
+  // hold. Off sends every technique through the general evaluate(): its test oracle and its
+  // benchmark's baseline. Like timing, set it between passes.
+  void setInteriorFastPath(bool on) { interiorFastPathOff_ = !on; }
+
  private:
   struct Walks;  // the per-thread subpaths and their MIS sums
   // Sets r's s, t, pRaster, inImage and inPyramid; false when nothing uses the technique.
@@ -74,6 +79,13 @@ class BidirTracer {
   void evaluate(TechniqueResult& r, bool enabled, bool unweightedInImage, uint64_t connectionKey, Walks& walks,
                 const SampleOutputs& outputs, Counters& counters) const;
   float weight(const MisPath& path, const Walks& walks, Counters& counters) const;
+  // evaluate() and run() of an interior technique (s, t >= 2) in a sample that feeds only the
+  // image and the counters (interiorFastPath_; per sample untimed, without trace or consistency
+  // check; the technique not in the pyramid): the same connection, shadow ray and partial-sums
+  // weight in the same order, hence the same image, counters and discards
+  // (tests/interior_connection_test.cpp), without the general kernel's dispatch, result record and
+  // outputs: 6 % of a Cornell-box sample's instructions (docs/benchmarks.md, session 13).
+  void runInterior(int s, int t, Walks& walks, SampleOutputs& outputs, Counters& counters) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 
   const Scene& scene_;
@@ -87,6 +99,8 @@ class BidirTracer {
   int cameraVerticesNeeded_ = 1;  // the camera vertex itself is always there
   int lightVerticesNeeded_ = 0;
   bool timing_ = false;
+  bool interiorFastPath_ = false;     // runInterior's preconditions that the settings decide
+  bool interiorFastPathOff_ = false;  // setInteriorFastPath(false)
 };
 
 }  // namespace pathlab

@@ -38,17 +38,6 @@ Spectrum transmittance(const Scene& scene, const ShadowRay& r) {
                       : scene.transmittance(r.a, r.na, r.ea, r.b, r.nb, r.eb, r.medium);
 }
 
-namespace {
-
-// The scattering at a medium vertex toward wi, as connect() uses a BSDF evaluation: the phase
-// function is value and density in both directions (it is symmetric), and there is no cosine.
-BsdfEval phaseEval(const Scene& scene, const PathVertex& v, const Vec3& wi) {
-  const float p = phaseHG(v.wo, wi, scene.medium(v.media.inside).g);
-  return BsdfEval{Spectrum(p), p, p};
-}
-
-}  // namespace
-
 bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s, const Subpath& cameraPath,
                     int t, Pcg32& rng, Connection& c) {
   c.hasSampled = false;
@@ -163,28 +152,7 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     return true;
   }
 
-  // s >= 2, t >= 2: both ends are surface or medium vertices found by the walks.
-  const PathVertex& qs = lightPath[s - 1];
-  const bool qsMedium = qs.type == VertexType::Medium;
-  if (qs.isDelta || (qs.type != VertexType::Surface && !qsMedium)) return false;
-  Vec3 d = qs.p - pt.p;
-  const float dist2 = glm::dot(d, d);
-  if (!(dist2 > 0.f)) return false;
-  d /= std::sqrt(dist2);
-  const BsdfEval fq = qsMedium ? phaseEval(scene, qs, -d) : lightPath.bsdf(s - 1).eval(qs.wo, -d, TransportMode::Importance);
-  if (isBlack(fq.f)) return false;
-  const BsdfEval fp = ptMedium ? phaseEval(scene, pt, d) : cameraPath.bsdf(t - 1).eval(pt.wo, d, TransportMode::Radiance);
-  if (isBlack(fp.f)) return false;
-  c.pdfs = ConnectionPdfs{true, fq.pdfFwdW, fq.pdfRevW, true, fp.pdfFwdW, fp.pdfRevW};
-  // Geometry term with shading normals (pbrt-v4 G), matching the walks' |cos| with ns; a medium
-  // vertex has no cosine (volume measure).
-  const float G = (qsMedium ? 1.f : absDot(qs.ns, d)) * (ptMedium ? 1.f : absDot(pt.ns, d)) / dist2;
-  c.L = qs.beta * fq.f * fp.f * pt.beta * G;
-  if (isBlack(c.L)) return false;
-  c.shadowRay.between(pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError);
-  c.shadowRay.medium = mediumToward(pt, d);
-  c.edgeLength2 = dist2;  // (qs - pt)^2, the same bits as edgeLength2(qs, pt)
-  return true;
+  return formInteriorConnection(scene, lightPath, s, cameraPath, t, c);
 }
 
 Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,

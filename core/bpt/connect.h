@@ -4,7 +4,9 @@
 
 #include "core/bpt/path_vertex.h"
 #include "core/bpt/subpath.h"
+#include "core/bsdf/bsdf.h"
 #include "core/camera/camera.h"
+#include "core/media/phase_function.h"
 #include "core/math/rng.h"
 #include "core/metrics/counters.h"
 #include "core/scene/scene.h"
@@ -76,6 +78,46 @@ struct Connection {
 bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s, const Subpath& cameraPath,
                     int t, Pcg32& rng, Connection& c);
 inline bool needsShadowRay(int s) { return s >= 1; }
+
+// The scattering at a medium vertex toward wi, as a connection uses a BSDF evaluation: the phase
+// function is value and density in both directions (it is symmetric), and there is no cosine.
+inline BsdfEval phaseEval(const Scene& scene, const PathVertex& v, const Vec3& wi) {
+  const float p = phaseHG(v.wo, wi, scene.medium(v.media.inside).g);
+  return BsdfEval{Spectrum(p), p, p};
+}
+
+// formConnection's techniques s >= 2, t >= 2 (path reuse's interior connections, about half of a
+// Cornell-box sample's): both ends are surface or medium vertices the walks found, joined by a
+// deterministic edge. Inline so that formConnection and the tracer's interior fast path
+// (BidirTracer::runInterior) run this one piece of arithmetic. Writes c.L, c.pdfs, c.shadowRay
+// and c.edgeLength2 (not c.hasSampled: no endpoint is drawn afresh).
+[[gnu::always_inline]] inline bool formInteriorConnection(const Scene& scene, const Subpath& lightPath, int s,
+                                                          const Subpath& cameraPath, int t, Connection& c) {
+  const PathVertex& pt = cameraPath[t - 1];
+  const bool ptMedium = pt.type == VertexType::Medium;
+  if (pt.isDelta || (pt.type != VertexType::Surface && !ptMedium)) return false;
+  const PathVertex& qs = lightPath[s - 1];
+  const bool qsMedium = qs.type == VertexType::Medium;
+  if (qs.isDelta || (qs.type != VertexType::Surface && !qsMedium)) return false;
+  Vec3 d = qs.p - pt.p;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > 0.f)) return false;
+  d /= std::sqrt(dist2);
+  const BsdfEval fq = qsMedium ? phaseEval(scene, qs, -d) : lightPath.bsdf(s - 1).eval(qs.wo, -d, TransportMode::Importance);
+  if (isBlack(fq.f)) return false;
+  const BsdfEval fp = ptMedium ? phaseEval(scene, pt, d) : cameraPath.bsdf(t - 1).eval(pt.wo, d, TransportMode::Radiance);
+  if (isBlack(fp.f)) return false;
+  c.pdfs = ConnectionPdfs{true, fq.pdfFwdW, fq.pdfRevW, true, fp.pdfFwdW, fp.pdfRevW};
+  // Geometry term with shading normals (pbrt-v4 G), matching the walks' |cos| with ns; a medium
+  // vertex has no cosine (volume measure).
+  const float G = (qsMedium ? 1.f : absDot(qs.ns, d)) * (ptMedium ? 1.f : absDot(pt.ns, d)) / dist2;
+  c.L = qs.beta * fq.f * fp.f * pt.beta * G;
+  if (isBlack(c.L)) return false;
+  c.shadowRay.between(pt.p, pt.ng, pt.pError, qs.p, qs.ng, qs.pError);
+  c.shadowRay.medium = mediumToward(pt, d);
+  c.edgeLength2 = dist2;  // (qs - pt)^2, the same bits as edgeLength2(qs, pt)
+  return true;
+}
 
 // formConnection and the shadow ray: the unweighted contribution of (s, t), zero when it cannot
 // form the path or the shadow ray is occluded. For tests; the tracer traces the shadow ray only

@@ -112,24 +112,9 @@ ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera
   // Only the densities some technique's ratio uses: pt's from the light side when a technique with
   // fewer camera vertices exists (t >= 2), its predecessor's when one with t - 2 >= 1 does.
   const int t = path.t;
+  // Both ends are surface or medium vertices the connection evaluated (s, t >= 2).
+  if (atLight && atCamera) return evaluatedConnectionDensities(*e.qs, pt, *given, e.qsMinus != nullptr, t);
   ConnectionDensities c;
-  if (atLight && atCamera) {
-    // Both ends are surface vertices the connection evaluated (s, t >= 2): the two conversions
-    // across the connection edge share its geometry, and each end's conversion toward its own
-    // predecessor was stored by its walk (PathVertex::areaToPrev). convertDensity's arithmetic,
-    // regrouped.
-    const Vec3 d = e.qs->p - pt.p;
-    const float dist2 = glm::dot(d, d);
-    const float dist = std::sqrt(dist2);
-    const float invDist3 = 1.f / (dist2 * dist);
-    // A medium vertex receives with the volume measure: no cosine (|d| in its place).
-    auto cosine = [&](const PathVertex& v) { return v.type == VertexType::Medium ? dist : absDot(v.ng, d); };
-    c.qsFromCamera = given->ptToQs * (cosine(*e.qs) * invDist3);
-    c.ptFromLight = given->qsToPt * (cosine(pt) * invDist3);
-    if (e.qsMinus) c.qsMinusFromCamera = given->qsToPrev * e.qs->areaToPrev;
-    if (t >= 3) c.ptMinusFromLight = given->ptToPrev * pt.areaToPrev;
-    return c;
-  }
   if (t >= 2)
     c.ptFromLight = e.qs ? scatter(*e.qs, e.qsMinus, pt, TransportMode::Importance, atLight, atLight ? given->qsToPt : 0.f)
                          : pdfLightOrigin(scene, pt);

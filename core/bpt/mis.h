@@ -60,6 +60,27 @@ struct ConnectionDensities {
   float qsFromCamera = 0.f;       // qs sampled from pt (s >= 1)
   float qsMinusFromCamera = 0.f;  // qs's predecessor sampled from qs having arrived from pt (s >= 2)
 };
+// connectionDensities where the connection evaluated the scattering at both of its ends (s, t >= 2,
+// surface or medium vertices; formInteriorConnection): the two conversions across the connection
+// edge share its geometry, and each end's conversion toward its own predecessor was stored by its
+// walk (PathVertex::areaToPrev). convertDensity's arithmetic, regrouped. Inline for the partial
+// sums' interior weight (misWeightInterior), which must give connectionDensities' bits.
+[[gnu::always_inline]] inline ConnectionDensities evaluatedConnectionDensities(const PathVertex& qs, const PathVertex& pt,
+                                                                              const ConnectionPdfs& given, bool hasQsMinus,
+                                                                              int t) {
+  ConnectionDensities c;
+  const Vec3 d = qs.p - pt.p;
+  const float dist2 = glm::dot(d, d);
+  const float dist = std::sqrt(dist2);
+  const float invDist3 = 1.f / (dist2 * dist);
+  // A medium vertex receives with the volume measure: no cosine (|d| in its place).
+  auto cosine = [&](const PathVertex& v) { return v.type == VertexType::Medium ? dist : absDot(v.ng, d); };
+  c.qsFromCamera = given.ptToQs * (cosine(qs) * invDist3);
+  c.ptFromLight = given.qsToPt * (cosine(pt) * invDist3);
+  if (hasQsMinus) c.qsMinusFromCamera = given.qsToPrev * qs.areaToPrev;
+  if (t >= 3) c.ptMinusFromLight = given.ptToPrev * pt.areaToPrev;
+  return c;
+}
 // The connection's own BSDF densities (MisPath::pdfs) where it evaluated them, else fresh ones.
 ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera, const MisPath& path,
                                         const ConnectionEnds& ends);

@@ -65,25 +65,31 @@ void accumulateCameraSums(const Subpath& path, const MisPower& power, float ligh
   accumulateShortestEdges(path, sums);
 }
 
-std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
-                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
-                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
-  const int s = path.s, t = path.t;
-  const ConnectionEnds e = connectionEnds(path);
-  const PathVertex& pt = *e.pt;
+namespace {
 
-  // The shortest edge of the whole path: the two prefixes' (the fresh endpoint of s = 1 or t = 1
-  // stands alone on its side) and the connection's.
+// An edge of the path shorter than minConnectionDistance: the prefixes' shortest edges (the fresh
+// endpoint of s = 1 or t = 1 stands alone on its side) and the connection's own, connection2
+// (infinite when there is none: s = 0).
+[[gnu::always_inline]] inline bool hasShortEdge(int s, int t, float connection2, const SubpathMisSums& lightSums,
+                                                const SubpathMisSums& cameraSums, float minConnectionDistance) {
   const float minDistance2 = minConnectionDistance * minConnectionDistance;
-  if (minDistance2 > 0.f) {
-    float shortest = kNoEdge;
-    if (s >= 2) shortest = std::min(shortest, lightSums.shortestEdge2[static_cast<size_t>(s - 1)]);
-    if (t >= 2) shortest = std::min(shortest, cameraSums.shortestEdge2[static_cast<size_t>(t - 1)]);
-    if (e.qs) shortest = std::min(shortest, edgeLength2(*e.qs, pt));
-    if (shortest < minDistance2) return std::nullopt;
-  }
+  if (!(minDistance2 > 0.f)) return false;
+  float shortest = kNoEdge;
+  if (s >= 2) shortest = std::min(shortest, lightSums.shortestEdge2[static_cast<size_t>(s - 1)]);
+  if (t >= 2) shortest = std::min(shortest, cameraSums.shortestEdge2[static_cast<size_t>(t - 1)]);
+  shortest = std::min(shortest, connection2);
+  return shortest < minDistance2;
+}
 
-  const ConnectionDensities c = connectionDensities(scene, camera, path, e);
+// The weight from the sums once the connection's densities are known: both entry points below.
+// Inline into each, so that the interior one (s, t >= 2 known) loses the branches of s <= 1.
+[[gnu::always_inline]] inline std::optional<float> weightFromSums(const Scene& scene, const MisPath& path,
+                                                                  const ConnectionEnds& e, const ConnectionDensities& c,
+                                                                  const SubpathMisSums& lightSums,
+                                                                  const SubpathMisSums& cameraSums, const MisPower& power,
+                                                                  float lightTracingRatio) {
+  const int s = path.s, t = path.t;
+  const PathVertex& pt = *e.pt;
   // x0's density under technique s' = 1 over its density as a light subpath's origin, for paths
   // of three or more vertices (mis.h PathDensities::x0Nee): what moving between s' = 1 and 2
   // multiplies the ratio by. One when the scene chooses lights by power alone.
@@ -156,6 +162,35 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
   const double w = own / (own + left + right);
   if (!std::isfinite(left + right) || !std::isfinite(w)) return std::nullopt;
   return static_cast<float>(w);
+}
+
+}  // namespace
+
+std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
+                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
+  const ConnectionEnds e = connectionEnds(path);
+  if (hasShortEdge(path.s, path.t, e.qs ? edgeLength2(*e.qs, *e.pt) : kNoEdge, lightSums, cameraSums,
+                   minConnectionDistance))
+    return std::nullopt;
+  return weightFromSums(scene, path, e, connectionDensities(scene, camera, path, e), lightSums, cameraSums, power,
+                        lightTracingRatio);
+}
+
+std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
+                                       int t, const ConnectionPdfs& pdfs, float connectionLength2,
+                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
+  if (s < 2 || t < 2) __builtin_unreachable();  // lets the compiler drop weightFromSums' cases s, t <= 1
+  if (hasShortEdge(s, t, connectionLength2, lightSums, cameraSums, minConnectionDistance)) return std::nullopt;
+  const MisPath path{lightPath.data(), s, cameraPath.data(), t, nullptr, &pdfs};
+  ConnectionEnds e;
+  e.qsMinus = &lightPath[s - 2];
+  e.qs = &lightPath[s - 1];
+  e.pt = &cameraPath[t - 1];
+  e.ptMinus = &cameraPath[t - 2];
+  return weightFromSums(scene, path, e, evaluatedConnectionDensities(*e.qs, *e.pt, pdfs, true, t), lightSums,
+                        cameraSums, power, lightTracingRatio);
 }
 
 }  // namespace pathlab

@@ -56,4 +56,12 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
                                        const MisPower& power, float lightTracingRatio, float minConnectionDistance);
 
+// misWeightFromSums of an interior technique (s, t >= 2) whose connection formInteriorConnection
+// formed (its densities `pdfs`, its squared length connectionLength2), the same bits, without the
+// general case's dispatch: the tracer's interior fast path (BidirTracer::runInterior).
+std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
+                                       int t, const ConnectionPdfs& pdfs, float connectionLength2,
+                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance);
+
 }  // namespace pathlab

@@ -3,9 +3,9 @@
 
 namespace pathlab {
 
-void SampleOutputs::discard(const Spectrum& value, const TechniqueResult& r, TechniqueCounters& counters) {
+void SampleOutputs::discard(const Spectrum& value, int s, int t, TechniqueCounters& counters) {
   countDiscarded(value, counters.discarded);
-  counters_.noteDiscard(DiscardExample{targets_.id.x, targets_.id.y, targets_.id.sample, r.s, r.t, value});
+  counters_.noteDiscard(DiscardExample{targets_.id.x, targets_.id.y, targets_.id.sample, s, t, value});
 }
 
 void SampleOutputs::trace(const TechniqueResult& r) {
@@ -33,7 +33,7 @@ void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
   ++counters.contributed;
   // NaN, Inf and negative contributions are dropped one technique at a time, at the door.
   if (!isValidContribution(r.unweighted)) {
-    discard(r.unweighted, r, counters);
+    discard(r.unweighted, r.s, r.t, counters);
     return;
   }
   if (targets_.trace) trace(r);
@@ -53,7 +53,7 @@ void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
   if (r.t == 1) {
     const bool accepted = targets_.splats ? targets_.splats->splat(r.pRaster, contribution)
                                           : !targets_.film || targets_.film->splat(r.pRaster, contribution);
-    if (!accepted) discard(contribution, r, counters);
+    if (!accepted) discard(contribution, r.s, r.t, counters);
   } else {
     cameraEstimate_ += contribution;
   }

@@ -40,11 +40,23 @@ class SampleOutputs {
   }
 
   void add(const TechniqueResult& result, TechniqueCounters& counters);
+  // add() of a contributed result of technique (s, t >= 2) with image weight `weight`, for a
+  // sample with no trace or check and a technique outside the pyramid (BidirTracer::runInterior):
+  // the same counting, discarding and pixel sum.
+  void addToPixel(int s, int t, const Spectrum& unweighted, float weight, TechniqueCounters& counters) {
+    ++counters.contributed;
+    if (!isValidContribution(unweighted)) {
+      discard(unweighted, s, t, counters);
+      return;
+    }
+    const Spectrum contribution = unweighted * weight;
+    if (!isBlack(contribution)) cameraEstimate_ += contribution;
+  }
   // The sum of the t >= 2 contributions: the sample's estimate for its own pixel.
   const Spectrum& cameraEstimate() const { return cameraEstimate_; }
 
  private:
-  void discard(const Spectrum& value, const TechniqueResult& result, TechniqueCounters& counters);
+  void discard(const Spectrum& value, int s, int t, TechniqueCounters& counters);
   void trace(const TechniqueResult& result);
   const SampleTargets& targets_;
   Counters& counters_;
