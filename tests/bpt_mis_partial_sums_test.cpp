@@ -3,7 +3,7 @@
 // delta lights, delta BSDFs, a pinhole and a thin lens, for every connectable (s, t), under every
 // heuristic, with one light subpath per camera sample and with another light-tracing ratio, they
 // agree to 1e-5 relative, and the interior techniques' own entry point (misWeightInterior, the
-// tracer's fast path) gives the same bits. Where the sums must not answer (a connection shorter than
+// tracer's image-only path) gives the same bits. Where the sums must not answer (a connection shorter than
 // MisOptions::minConnection) they decline and misWeight is used.
 #include "core/bpt/bidir_tracer.h"
 #include "core/bpt/connect.h"
@@ -60,16 +60,17 @@ Tally compare(const Scene& scene, const Camera& camera, int maxLength, float lig
           const std::optional<float> fast =
               misWeightFromSums(scene, camera, path, lightSums, cameraSums, power, lightTracingRatio, minDistance);
           if (s >= 2 && t >= 2) {
-            // The tracer's interior fast path weighs with misWeightInterior: the same answer, bit
+            // The tracer's image-only path weighs interior techniques with misWeightInterior: the same answer, bit
             // for bit, declining where this one declines.
             const std::optional<float> interior = misWeightInterior(scene, lp, s, cp, t, c.pdfs, c.edgeLength2, lightSums,
                                                                     cameraSums, power, lightTracingRatio, minDistance);
             ++tally.interior;
             EXPECT_EQ(interior.has_value(), fast.has_value()) << name << " (" << s << "," << t << ")";
-            if (interior && fast)
+            if (interior && fast) {
               EXPECT_EQ(std::bit_cast<uint32_t>(*interior), std::bit_cast<uint32_t>(*fast))
                   << name << " (" << s << "," << t << ") " << misHeuristicName(o.heuristic) << ": " << *interior
                   << " vs " << *fast;
+            }
           }
           if (!fast) {
             ++tally.declined;

@@ -34,6 +34,17 @@ Pcg32 walkStream(uint64_t connectionKey, int s, int t, uint64_t salt) {
   return Pcg32(mixBits(connectionKey ^ st ^ salt), mixBits(connectionKey + salt));
 }
 
+// Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
+// sample and (s, t): a technique's estimate does not depend on which other techniques are
+// evaluated, so an isolated render, the pyramid and the full image see the same connections. Only
+// next-event estimation (s = 1) and light tracing (t = 1) draw from it: the others skip seeding it
+// (about 1 % of a sample's instructions).
+Pcg32 connectionStream(uint64_t connectionKey, int s, int t) {
+  return s == 1 || t == 1
+             ? Pcg32(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))), connectionKey)
+             : Pcg32::unseeded();
+}
+
 }  // namespace
 
 BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOptions& options)
@@ -49,9 +60,9 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
                                                                             : MisEvaluation::Explicit;
   }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
-  // runInterior's preconditions that settings decide: the partial sums, no media, and nothing that
+  // runImageOnly's preconditions that settings decide: the partial sums, no media, and nothing that
   // changes a result's weight or contribution (isolation, the MIS check, an injected bias).
-  interiorFastPath_ = misEvaluation_ == MisEvaluation::PartialSums && !scene.hasMedia() && !options_.checkMis &&
+  imageOnlyPath_ = misEvaluation_ == MisEvaluation::PartialSums && !scene.hasMedia() && !options_.checkMis &&
                       !options_.isolate && !options_.injectBias;
   cameraMedium_ = scene.mediumAt(camera.position());
   // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
@@ -92,13 +103,7 @@ float BidirTracer::weight(const MisPath& path, const Walks& walks, Counters& cou
 void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInImage, uint64_t connectionKey, Walks& walks,
                            const SampleOutputs& outputs, Counters& counters) const {
   const int s = r.s, t = r.t;
-  // Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
-  // sample and (s, t): a technique's estimate does not depend on which other techniques are
-  // evaluated, so an isolated render, the pyramid and the full image see the same connections.
-  // Only next-event estimation (s = 1) and light tracing (t = 1) draw from it: the others skip
-  // seeding it (about 1 % of a sample's instructions).
-  Pcg32 rng = s == 1 || t == 1 ? Pcg32(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))), connectionKey)
-                               : Pcg32::unseeded();
+  Pcg32 rng = connectionStream(connectionKey, s, t);
   Connection& c = walks.connection;
   if (!formConnection(scene_, camera_, walks.light, s, walks.camera, t, rng, c)) return;
 
@@ -163,43 +168,58 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   if (t == 1) r.pRaster = c.pRaster;
 }
 
-void BidirTracer::runInterior(int s, int t, Walks& walks, SampleOutputs& outputs, Counters& counters) const {
+void BidirTracer::runImageOnly(int s, int t, uint64_t connectionKey, Walks& walks, SampleOutputs& outputs,
+                               Counters& counters) const {
   TechniqueCounters& tc = counters.technique(s, t);
   ++tc.tried;
   Connection& c = walks.connection;
-  if (!formInteriorConnection(scene_, walks.light, s, walks.camera, t, c)) {
+  // Interior connections (about half of a Cornell-box sample's) skip formConnection's and the
+  // partial sums' dispatch on s, t and the fresh endpoint.
+  const bool interior = s >= 2 && t >= 2;
+  bool formed;
+  if (interior) {
+    formed = formInteriorConnection(scene_, walks.light, s, walks.camera, t, c);
+  } else {
+    Pcg32 rng = connectionStream(connectionKey, s, t);
+    formed = formConnection(scene_, camera_, walks.light, s, walks.camera, t, rng, c);
+  }
+  if (!formed) {
     ++tc.zero;
     return;
   }
   // As evaluate(): the shadow ray first, unless the connection edge is shorter than
   // --min-connection; a weight of zero (the explicit weight's near-coincident rule, an overflow)
   // leaves the result zero.
-  const bool shortConnection = c.edgeLength2 < minConnectionDistance_ * minConnectionDistance_;
+  const bool shortConnection = s >= 1 && c.edgeLength2 < minConnectionDistance_ * minConnectionDistance_;
   float w = 0.f;
   auto weigh = [&] {
+    const MisPath path{walks.light.data(), s, walks.camera.data(), t, !interior && c.hasSampled ? &c.sampled : nullptr,
+                       &c.pdfs};
     const std::optional<float> fast =
-        misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2, walks.lightSums,
-                          walks.cameraSums, misPower_, lightTracingRatio(), minConnectionDistance_);
-    w = fast ? *fast
-             : misWeight(scene_, camera_, MisPath{walks.light.data(), s, walks.camera.data(), t, nullptr, &c.pdfs},
-                         options_.techniques, options_.mis, lightTracingRatio());
+        interior ? misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2, walks.lightSums,
+                                     walks.cameraSums, misPower_, lightTracingRatio(), minConnectionDistance_)
+                 : misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_,
+                                     lightTracingRatio(), minConnectionDistance_);
+    w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
     return w > 0.f;
   };
   if (shortConnection && !weigh()) {
     ++tc.zero;
     return;
   }
-  ++counters.shadowRays;
-  ++tc.shadowRays;
-  if (!unoccluded(scene_, c.shadowRay)) {
-    ++tc.blocked;
-    return;
+  if (needsShadowRay(s)) {
+    ++counters.shadowRays;
+    ++tc.shadowRays;
+    if (!unoccluded(scene_, c.shadowRay)) {
+      ++tc.blocked;
+      return;
+    }
   }
   if (!shortConnection && !weigh()) {
     ++tc.zero;
     return;
   }
-  outputs.addToPixel(s, t, c.L, w, tc);
+  outputs.addToImage(s, t, c.pRaster, c.L, w, tc);
 }
 
 // prepare and run are inlined into both sample loops: as calls they cost 3 % more instructions
@@ -292,16 +312,16 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
     targets.trace->cameraSubpath.assign(walks.camera.data(), walks.camera.data() + nt);
     targets.trace->lightSubpath.assign(walks.light.data(), walks.light.data() + ns);
   }
-  // Per sample, the rest of runInterior's preconditions: untimed, no trace and no consistency check
-  // (per technique: not in the pyramid).
-  const bool interiorFast = interiorFastPath_ && !interiorFastPathOff_ && !timed && !targets.trace && !targets.check;
+  // Per sample, the rest of runImageOnly's preconditions: untimed, no trace and no consistency
+  // check (per technique: not in the pyramid).
+  const bool imageOnly = imageOnlyPath_ && !imageOnlyPathOff_ && !timed && !targets.trace && !targets.check;
   for (int t = 1; t <= nt; ++t)
     for (int s = 0; s <= std::max(ns, 1); ++s) {
       const int k = s + t - 1;
       if (k < 1 || k > options_.maxLength) continue;
       if (s > ns && lightWalkNeeded(s, t)) continue;
-      if (interiorFast && s >= 2 && t >= 2 && k > pyramidLength) {
-        runInterior(s, t, walks, outputs, counters);
+      if (imageOnly && k > pyramidLength) {
+        runImageOnly(s, t, connectionKey, walks, outputs, counters);
         continue;
       }
       TechniqueResult r;

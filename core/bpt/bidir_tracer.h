@@ -56,10 +56,10 @@ class BidirTracer {
   void setTiming(bool on) { timing_ = on; }
   bool timing() const { return timing_; }
 
-  // The interior connections' fast path (runInterior): on by default wherever its preconditions
-  // hold. Off sends every technique through the general evaluate(): its test oracle and its
-  // benchmark's baseline. Like timing, set it between passes.
-  void setInteriorFastPath(bool on) { interiorFastPathOff_ = !on; }
+  // The image-only path (runImageOnly): on by default wherever its preconditions hold. Off sends
+  // every technique through the general evaluate(): its test oracle and its benchmark's baseline.
+  // Like timing, set it between passes.
+  void setImageOnlyPath(bool on) { imageOnlyPathOff_ = !on; }
 
  private:
   struct Walks;  // the per-thread subpaths and their MIS sums
@@ -79,13 +79,14 @@ class BidirTracer {
   void evaluate(TechniqueResult& r, bool enabled, bool unweightedInImage, uint64_t connectionKey, Walks& walks,
                 const SampleOutputs& outputs, Counters& counters) const;
   float weight(const MisPath& path, const Walks& walks, Counters& counters) const;
-  // evaluate() and run() of an interior technique (s, t >= 2) in a sample that feeds only the
-  // image and the counters (interiorFastPath_; per sample untimed, without trace or consistency
-  // check; the technique not in the pyramid): the same connection, shadow ray and partial-sums
-  // weight in the same order, hence the same image, counters and discards
-  // (tests/interior_connection_test.cpp), without the general kernel's dispatch, result record and
-  // outputs: 6 % of a Cornell-box sample's instructions (docs/benchmarks.md, session 13).
-  void runInterior(int s, int t, Walks& walks, SampleOutputs& outputs, Counters& counters) const;
+  // evaluate(), run() and SampleOutputs::add() of a technique whose result goes only to the image
+  // and the counters (imageOnlyPath_; per sample untimed, without trace or consistency check; the
+  // technique not in the pyramid): the same connection, shadow ray and partial-sums weight in the
+  // same order, hence the same image, counters and discards (tests/bpt_image_only_path_test.cpp),
+  // without the result record, the outputs' fan-out and, for the interior techniques (s, t >= 2),
+  // the dispatch on s and t (formInteriorConnection, misWeightInterior). docs/benchmarks.md,
+  // session 13.
+  void runImageOnly(int s, int t, uint64_t connectionKey, Walks& walks, SampleOutputs& outputs, Counters& counters) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 
   const Scene& scene_;
@@ -99,8 +100,8 @@ class BidirTracer {
   int cameraVerticesNeeded_ = 1;  // the camera vertex itself is always there
   int lightVerticesNeeded_ = 0;
   bool timing_ = false;
-  bool interiorFastPath_ = false;     // runInterior's preconditions that the settings decide
-  bool interiorFastPathOff_ = false;  // setInteriorFastPath(false)
+  bool imageOnlyPath_ = false;     // runImageOnly's preconditions that the settings decide
+  bool imageOnlyPathOff_ = false;  // setImageOnlyPath(false)
 };
 
 }  // namespace pathlab

@@ -8,6 +8,12 @@ void SampleOutputs::discard(const Spectrum& value, int s, int t, TechniqueCounte
   counters_.noteDiscard(DiscardExample{targets_.id.x, targets_.id.y, targets_.id.sample, s, t, value});
 }
 
+void SampleOutputs::splat(int s, int t, Vec2 pRaster, const Spectrum& contribution, TechniqueCounters& counters) {
+  const bool accepted = targets_.splats ? targets_.splats->splat(pRaster, contribution)
+                                        : !targets_.film || targets_.film->splat(pRaster, contribution);
+  if (!accepted) discard(contribution, s, t, counters);
+}
+
 void SampleOutputs::trace(const TechniqueResult& r) {
   // The record outlives the kernel's scratch: its pointers are dropped, the path's techniques kept.
   TechniqueResult record = r;
@@ -48,15 +54,7 @@ void SampleOutputs::add(const TechniqueResult& r, TechniqueCounters& counters) {
       targets_.pyramid->addSampleable(r.s + r.t - 1, r.sampleableBy, r.pRaster, r.t == 1, luminance(weighted));
   }
   if (!r.inImage) return;
-  const Spectrum contribution = r.unweighted * r.imageWeight;
-  if (isBlack(contribution)) return;
-  if (r.t == 1) {
-    const bool accepted = targets_.splats ? targets_.splats->splat(r.pRaster, contribution)
-                                          : !targets_.film || targets_.film->splat(r.pRaster, contribution);
-    if (!accepted) discard(contribution, r.s, r.t, counters);
-  } else {
-    cameraEstimate_ += contribution;
-  }
+  toImage(r.s, r.t, r.pRaster, r.unweighted * r.imageWeight, counters);
 }
 
 }  // namespace pathlab

@@ -40,23 +40,32 @@ class SampleOutputs {
   }
 
   void add(const TechniqueResult& result, TechniqueCounters& counters);
-  // add() of a contributed result of technique (s, t >= 2) with image weight `weight`, for a
-  // sample with no trace or check and a technique outside the pyramid (BidirTracer::runInterior):
-  // the same counting, discarding and pixel sum.
-  void addToPixel(int s, int t, const Spectrum& unweighted, float weight, TechniqueCounters& counters) {
+  // add() of a contributed result of technique (s, t) with image weight `weight`, landing at
+  // pRaster if t = 1, for a sample with no trace or check and a technique outside the pyramid
+  // (BidirTracer::runImageOnly): the same counting, discarding, splat and pixel sum.
+  void addToImage(int s, int t, Vec2 pRaster, const Spectrum& unweighted, float weight, TechniqueCounters& counters) {
     ++counters.contributed;
     if (!isValidContribution(unweighted)) {
       discard(unweighted, s, t, counters);
       return;
     }
-    const Spectrum contribution = unweighted * weight;
-    if (!isBlack(contribution)) cameraEstimate_ += contribution;
+    toImage(s, t, pRaster, unweighted * weight, counters);
   }
   // The sum of the t >= 2 contributions: the sample's estimate for its own pixel.
   const Spectrum& cameraEstimate() const { return cameraEstimate_; }
 
  private:
   void discard(const Spectrum& value, int s, int t, TechniqueCounters& counters);
+  // A weighted contribution into the image: the sample's pixel, or a splat at pRaster (t = 1).
+  void toImage(int s, int t, Vec2 pRaster, const Spectrum& contribution, TechniqueCounters& counters) {
+    if (isBlack(contribution)) return;
+    if (t == 1) {
+      splat(s, t, pRaster, contribution, counters);
+    } else {
+      cameraEstimate_ += contribution;
+    }
+  }
+  void splat(int s, int t, Vec2 pRaster, const Spectrum& contribution, TechniqueCounters& counters);
   void trace(const TechniqueResult& result);
   const SampleTargets& targets_;
   Counters& counters_;
