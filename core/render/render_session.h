@@ -55,6 +55,10 @@ class RenderSession {
   void setTiming(bool on) {
     if (bidirTracer_) bidirTracer_->setTiming(on);
   }
+  // BidirTracer::setImageOnlyPath: off for the benchmark that measures what it saves; between passes only.
+  void setImageOnlyPath(bool on) {
+    if (bidirTracer_) bidirTracer_->setImageOnlyPath(on);
+  }
 
   const Film& film() const { return film_; }
   Image image() const { return film_.readout(); }

@@ -144,6 +144,11 @@ def main():
         b = get("SmallVCM", "cornell-box", "bpt", "512", f"threads:{t}")
         if b:
             print(f"| pathlab bpt, {t} thread{'s' if t > 1 else ''}, wall clock (measured) | {human(b['samples_per_s'])} |")
+    for t in threads:
+        b = get("SmallVCMGeneralPath", "cornell-box", "bpt", "512", f"threads:{t}")
+        if b:
+            print(f"| pathlab bpt without its image-only path, {t} thread{'s' if t > 1 else ''}, wall clock (measured) "
+                  f"| {human(b['samples_per_s'])} |")
     print(f"| SmallVCM bpt (quoted) | {human(SMALLVCM_BPT)} |")
     print(f"| pbrt-v4 bdpt (quoted) | {human(PBRT_V4_BDPT)} |")
     b = get("SmallVCM", "cornell-box", "bpt", "512", f"threads:{n}")

@@ -15,8 +15,10 @@ namespace {
 constexpr int kSide = 128;  // small: a pass takes a fraction of a second on every scene
 constexpr int kMaxLength = 10;
 
+// imageOnlyPath false: the BPT evaluates every technique through its general path
+// (BidirTracer::setImageOnlyPath), to measure what the image-only path saves.
 void renderPasses(benchmark::State& state, const std::string& sceneName, IntegratorKind integrator, int side,
-                  int threads) {
+                  int threads, bool imageOnlyPath = true) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
   const Scene& scene = benchScene(sceneName);
   RenderSettings settings;
@@ -24,6 +26,7 @@ void renderPasses(benchmark::State& state, const std::string& sceneName, Integra
   settings.maxLength = kMaxLength;
   settings.integrator = integrator;
   RenderSession session(scene, settings);
+  session.setImageOnlyPath(imageOnlyPath);
   // One untimed pass first: the first pass of a session also pays for per-thread scratch and
   // cold caches, which a progressive render amortises over hundreds of passes.
   session.renderPass();
@@ -59,6 +62,14 @@ const bool registered = [] {
     benchmark::RegisterBenchmark(fmt::format("SmallVCM/cornell-box/bpt/512/threads:{}", threads).c_str(),
                                  [=](benchmark::State& s) {
                                    renderPasses(s, "cornell-box", IntegratorKind::Bpt, 512, threads);
+                                 })
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  // The same through the general path alone: the image-only path's saving, measured in one run.
+  for (int threads : threadCounts)
+    benchmark::RegisterBenchmark(fmt::format("SmallVCMGeneralPath/cornell-box/bpt/512/threads:{}", threads).c_str(),
+                                 [=](benchmark::State& s) {
+                                   renderPasses(s, "cornell-box", IntegratorKind::Bpt, 512, threads, false);
                                  })
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
