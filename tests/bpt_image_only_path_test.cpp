@@ -3,10 +3,12 @@
 // sample's pixel estimate bit for bit, the same splats (light tracing, t = 1), and the same
 // per-technique counters (tried, zero, blocked, contributed, shadow rays, discards), on every
 // bundled scene, under every heuristic, with and without --min-connection (whose short
-// connections it weighs before their shadow ray, as evaluate does) and beside a pyramid, whose
-// techniques stay on the general path. BidirTracer::setImageOnlyPath(false) is the oracle.
+// connections it weighs before their shadow ray, as evaluate does), beside a pyramid (whose
+// techniques stay on the general path), through a splat buffer and with timing on.
+// BidirTracer::setImageOnlyPath(false) is the oracle.
 #include "core/bpt/bidir_tracer.h"
 #include "core/film/film.h"
+#include "core/lights/environment_file.h"
 #include "core/scene/gltf_loader.h"
 
 #include <gtest/gtest.h>
@@ -14,11 +16,20 @@
 #include <array>
 #include <algorithm>
 #include <bit>
+#include <limits>
+#include <memory>
 
 namespace pathlab {
 namespace {
 
 constexpr int kWidth = 24, kHeight = 18;
+
+// How the samples are fed: which targets, timing on or off.
+struct Feed {
+  bool pyramid = false;      // a pyramid of options.pyramidLength: its techniques stay on the general path
+  bool splatBuffer = false;  // the t = 1 splats through a per-thread SplatBuffer, as RenderSession does
+  bool timing = false;       // one sample in kTimedSampleStride timed, as --stats and the viewer do
+};
 
 struct Run {
   std::vector<uint32_t> estimates;  // 3 floats' bits per sample
@@ -26,16 +37,22 @@ struct Run {
   Counters counters;
 };
 
-Run render(const Scene& scene, const BidirOptions& options, bool fastPath, bool withPyramid, int samples) {
+Run render(const Scene& scene, const BidirOptions& options, bool imageOnlyPath, const Feed& feed, int samples) {
   const Camera camera(scene.cameraDesc(), kWidth, kHeight);
   BidirTracer tracer(scene, camera, options);
-  tracer.setImageOnlyPath(fastPath);
+  tracer.setImageOnlyPath(imageOnlyPath);
+  tracer.setTiming(feed.timing);
+  // The comparison below means something only if one side takes the path (never with media).
+  EXPECT_EQ(tracer.imageOnlyPathActive(), imageOnlyPath && !scene.hasMedia());
   Film film(kWidth, kHeight);
+  SplatBuffer buffer(kWidth, kHeight);
   TechniqueFilms pyramid(kWidth, kHeight, options.pyramidLength);
   SampleTargets targets;
   targets.film = &film;
-  if (withPyramid) targets.pyramid = &pyramid;
+  if (feed.splatBuffer) targets.splats = &buffer;
+  if (feed.pyramid) targets.pyramid = &pyramid;
   Run run;
+  EXPECT_TRUE(SampleOutputs(targets, run.counters).imageOnly());
   Pcg32 pixels(77, 5);
   for (int i = 0; i < samples; ++i) {
     const Vec2 pRaster(pixels.next1D() * kWidth, pixels.next1D() * kHeight);
@@ -44,9 +61,16 @@ Run render(const Scene& scene, const BidirOptions& options, bool fastPath, bool 
     const Spectrum e = tracer.sample(pRaster, pixels.next2D(), cameraRng, lightRng, targets, run.counters);
     for (int c = 0; c < 3; ++c) run.estimates.push_back(std::bit_cast<uint32_t>(e[c]));
   }
+  buffer.mergeInto(film);
   const auto sums = film.sums();
   run.splats.assign(sums[1].begin(), sums[1].end());
   return run;
+}
+
+void expectSameDiscards(const DiscardCounts& a, const DiscardCounts& b, const std::string& what) {
+  EXPECT_EQ(a.nan, b.nan) << what;
+  EXPECT_EQ(a.inf, b.inf) << what;
+  EXPECT_EQ(a.negative, b.negative) << what;
 }
 
 // Contributions of the techniques of one kind: interior (s, t >= 2), next-event estimation (s = 1,
@@ -63,16 +87,18 @@ uint64_t contributions(const Counters& c, int maxLength, Kind kind) {
 
 // Compares the two paths; returns the contributions of each kind (Kind) the comparison covered.
 std::array<uint64_t, 3> expectSame(const Scene& scene, const BidirOptions& options, const std::string& what,
-                                   bool withPyramid = false, int samples = 3000) {
-  const Run fast = render(scene, options, true, withPyramid, samples);
-  const Run general = render(scene, options, false, withPyramid, samples);
+                                   const Feed& feed = {}, int samples = 3000) {
+  const Run fast = render(scene, options, true, feed, samples);
+  const Run general = render(scene, options, false, feed, samples);
   EXPECT_EQ(fast.estimates.size(), general.estimates.size());
   size_t differing = 0;
-  for (size_t i = 0; i < std::min(fast.estimates.size(), general.estimates.size()); ++i) differing += fast.estimates[i] != general.estimates[i];
+  for (size_t i = 0; i < std::min(fast.estimates.size(), general.estimates.size()); ++i)
+    differing += fast.estimates[i] != general.estimates[i];
   EXPECT_EQ(differing, 0u) << what << ": pixel estimates (3 a sample) that differ in a bit";
   EXPECT_TRUE(fast.splats == general.splats) << what << ": splats";
   EXPECT_EQ(fast.counters.rays, general.counters.rays) << what;
   EXPECT_EQ(fast.counters.shadowRays, general.counters.shadowRays) << what;
+  EXPECT_EQ(fast.counters.timedSamples, general.counters.timedSamples) << what;
   for (const Technique x : techniquesUpTo(options.maxLength)) {
     const TechniqueCounters &a = fast.counters.technique(x), &b = general.counters.technique(x);
     const std::string name = what + " (" + std::to_string(x.s) + "," + std::to_string(x.t) + ")";
@@ -81,7 +107,14 @@ std::array<uint64_t, 3> expectSame(const Scene& scene, const BidirOptions& optio
     EXPECT_EQ(a.blocked, b.blocked) << name;
     EXPECT_EQ(a.contributed, b.contributed) << name;
     EXPECT_EQ(a.shadowRays, b.shadowRays) << name;
-    EXPECT_EQ(a.discarded.total(), b.discarded.total()) << name;
+    expectSameDiscards(a.discarded, b.discarded, name);
+    // Timed samples time the same work on both paths: either both timed this technique or neither.
+    EXPECT_EQ(a.nanoseconds > 0, b.nanoseconds > 0) << name;
+  }
+  EXPECT_EQ(fast.counters.discardExampleCount, general.counters.discardExampleCount) << what;
+  for (size_t i = 0; i < std::min(fast.counters.discardExampleCount, general.counters.discardExampleCount); ++i) {
+    const DiscardExample &a = fast.counters.discardExamples[i], &b = general.counters.discardExamples[i];
+    EXPECT_TRUE(a.s == b.s && a.t == b.t && a.sample == b.sample && a.x == b.x && a.y == b.y) << what;
   }
   std::array<uint64_t, 3> covered{};
   for (const Kind kind : {Kind::Interior, Kind::NextEvent, Kind::LightTracing})
@@ -109,12 +142,21 @@ BidirOptions optionsFor(MisHeuristic h, float minConnection = 0.f, int maxLength
   return o;
 }
 
-TEST(ImageOnlyPath, GivesTheGeneralKernelsResultsOnEveryBundledScene) {
+TEST(ImageOnlyPath, GivesTheGeneralKernelsResultsOnTheBundledScenes) {
   std::array<uint64_t, 3> covered{};
-  for (const char* name : {"cornell-box", "veach-mis", "bidir-lamp", "caustic", "many-lights", "isometric"}) {
+  // fog: media keep every technique on the general path, and the comparison must still hold.
+  for (const char* name : {"cornell-box", "veach-mis", "bidir-lamp", "caustic", "many-lights", "isometric", "fog"}) {
     const std::array<uint64_t, 3> c = expectSame(bundled(name), optionsFor(MisHeuristic::Balance), name);
     for (size_t k = 0; k < c.size(); ++k) covered[k] += c[k];
   }
+  // The sky map: paths escaping to the environment (s = 0), next-event estimation and shadow rays
+  // toward infinity.
+  const std::string source = PATHLAB_SOURCE_DIR;
+  LoadOptions load;
+  load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
+  const std::array<uint64_t, 3> c =
+      expectSame(Scene(loadGltf(source + "/assets/environment.gltf", load)), optionsFor(MisHeuristic::Balance), "environment");
+  for (size_t k = 0; k < c.size(); ++k) covered[k] += c[k];
   expectCovered(covered, "bundled scenes");
 }
 
@@ -136,11 +178,59 @@ TEST(ImageOnlyPath, GivesTheGeneralKernelsResultsWithShortConnections) {
 }
 
 // With a pyramid, the techniques of its lengths go through the general path and the longer ones
-// through runImageOnly, in one sample.
-TEST(ImageOnlyPath, GivesTheGeneralKernelsResultsBesideAPyramid) {
+// through runImageOnly, in one sample; the render sessions' splat buffer; timing on (the timed
+// samples take the image-only path too, and time the same work).
+TEST(ImageOnlyPath, GivesTheGeneralKernelsResultsWithEveryFeed) {
   BidirOptions o = optionsFor(MisHeuristic::Balance);
   o.pyramidLength = 3;
-  expectCovered(expectSame(bundled("cornell-box"), o, "pyramid 3", true), "pyramid 3");
+  expectCovered(expectSame(bundled("cornell-box"), o, "pyramid 3", Feed{.pyramid = true}), "pyramid 3");
+  const BidirOptions plain = optionsFor(MisHeuristic::Balance);
+  expectCovered(expectSame(bundled("cornell-box"), plain, "splat buffer", Feed{.splatBuffer = true}), "splat buffer");
+  expectCovered(expectSame(bundled("cornell-box"), plain, "timing", Feed{.timing = true}), "timing");
+}
+
+// Invalid contributions (NaN, Inf, negative) are dropped at the door, counted by kind under their
+// technique and kept as examples, by addToImage exactly as by add: the scenes above produce none.
+TEST(ImageOnlyPath, DiscardsAsTheGeneralOutputsDo) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const Spectrum values[] = {Spectrum(nan, 0.f, 0.f), Spectrum(0.f, inf, 0.f), Spectrum(-1.f, 0.f, 0.f), Spectrum(0.5f)};
+  for (const int t : {1, 3}) {
+    Film filmA(4, 4), filmB(4, 4);
+    SampleTargets targetsA, targetsB;
+    targetsA.film = &filmA;
+    targetsB.film = &filmB;
+    targetsA.id = targetsB.id = SampleId{1, 2, 99};
+    Counters a, b;
+    SampleOutputs general(targetsA, a), imageOnly(targetsB, b);
+    for (const Spectrum& v : values) {
+      TechniqueResult r;
+      r.s = 2;
+      r.t = t;
+      r.outcome = TechniqueOutcome::Contributed;
+      r.unweighted = v;
+      r.weight = r.imageWeight = 0.75f;
+      r.inImage = true;
+      r.pRaster = Vec2(1.5f, 2.5f);
+      general.add(r, a.technique(2, t));
+      imageOnly.addToImage(2, t, r.pRaster, v, 0.75f, b.technique(2, t));
+    }
+    const TechniqueCounters &ta = a.technique(2, t), &tb = b.technique(2, t);
+    EXPECT_EQ(ta.contributed, 4u);
+    EXPECT_EQ(tb.contributed, 4u);
+    EXPECT_EQ(ta.discarded.total(), 3u);
+    expectSameDiscards(ta.discarded, tb.discarded, "t = " + std::to_string(t));
+    ASSERT_EQ(b.discardExampleCount, 3u);
+    for (size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(b.discardExamples[i].t, t);
+      EXPECT_EQ(b.discardExamples[i].sample, 99u);
+      EXPECT_EQ(std::bit_cast<uint32_t>(b.discardExamples[i].value.r), std::bit_cast<uint32_t>(a.discardExamples[i].value.r));
+    }
+    EXPECT_TRUE(filmA.sums()[1][0] == filmB.sums()[1][0]);
+    EXPECT_EQ(std::bit_cast<uint32_t>(general.cameraEstimate().r), std::bit_cast<uint32_t>(imageOnly.cameraEstimate().r));
+    EXPECT_EQ(std::bit_cast<uint32_t>(general.cameraEstimate().r), std::bit_cast<uint32_t>(t == 1 ? 0.f : 0.5f * 0.75f));
+    const auto splatsA = filmA.sums()[1], splatsB = filmB.sums()[1];
+    EXPECT_TRUE(std::equal(splatsA.begin(), splatsA.end(), splatsB.begin(), splatsB.end()));
+  }
 }
 
 }  // namespace

@@ -56,10 +56,13 @@ class BidirTracer {
   void setTiming(bool on) { timing_ = on; }
   bool timing() const { return timing_; }
 
-  // The image-only path (runImageOnly): on by default wherever its preconditions hold. Off sends
-  // every technique through the general evaluate(): its test oracle and its benchmark's baseline.
-  // Like timing, set it between passes.
+  // The image-only path (runImageOnly): on by default wherever the settings allow it (the partial
+  // sums, no media, no isolation, MIS check or injected bias; ConnectStrategy::Endpoints never
+  // uses it). Off sends every technique through the general evaluate(): its test oracle and its
+  // benchmark's baseline. Like timing, set it between passes.
   void setImageOnlyPath(bool on) { imageOnlyPathOff_ = !on; }
+  // Whether samples whose outputs allow it (SampleOutputs::imageOnly) take the image-only path.
+  bool imageOnlyPathActive() const { return imageOnlyPath_ && !imageOnlyPathOff_; }
 
  private:
   struct Walks;  // the per-thread subpaths and their MIS sums
@@ -80,12 +83,13 @@ class BidirTracer {
                 const SampleOutputs& outputs, Counters& counters) const;
   float weight(const MisPath& path, const Walks& walks, Counters& counters) const;
   // evaluate(), run() and SampleOutputs::add() of a technique whose result goes only to the image
-  // and the counters (imageOnlyPath_; per sample untimed, without trace or consistency check; the
-  // technique not in the pyramid): the same connection, shadow ray and partial-sums weight in the
-  // same order, hence the same image, counters and discards (tests/bpt_image_only_path_test.cpp),
-  // without the result record, the outputs' fan-out and, for the interior techniques (s, t >= 2),
-  // the dispatch on s and t (formInteriorConnection, misWeightInterior). docs/benchmarks.md,
-  // session 13.
+  // and the counters (imageOnlyPathActive(), SampleOutputs::imageOnly(), the technique not in the
+  // pyramid): the same connection, shadow ray and partial-sums weight in the same order, hence the
+  // same image, counters, discards and timing (tests/bpt_image_only_path_test.cpp), without the
+  // result record, the outputs' fan-out and, for the interior techniques (s, t >= 2), the dispatch
+  // on s and t (formInteriorConnection, misWeightInterior). docs/benchmarks.md, session 13.
+  // kTimed: a timed sample's (setTiming), whose technique time it adds up as run() does.
+  template <bool kTimed>
   void runImageOnly(int s, int t, uint64_t connectionKey, Walks& walks, SampleOutputs& outputs, Counters& counters) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 

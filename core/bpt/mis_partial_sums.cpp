@@ -2,6 +2,7 @@
 #include "core/bpt/mis_partial_sums.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -181,6 +182,7 @@ std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightP
                                        int t, const ConnectionPdfs& pdfs, float connectionLength2,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
                                        const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
+  assert(s >= 2 && t >= 2);
   if (s < 2 || t < 2) __builtin_unreachable();  // lets the compiler drop weightFromSums' cases s, t <= 1
   if (hasShortEdge(s, t, connectionLength2, lightSums, cameraSums, minConnectionDistance)) return std::nullopt;
   const MisPath path{lightPath.data(), s, cameraPath.data(), t, nullptr, &pdfs};

@@ -1,6 +1,7 @@
 // Where one bidirectional sample's technique results go: the camera estimate of its pixel, the
 // t = 1 splats on the film, the technique pyramid, a replay trace, and the counters. The kernel
-// (bidir_tracer.h) evaluates techniques; new outputs are added here without touching it.
+// (bidir_tracer.h) evaluates techniques; new outputs are added here without touching it (and say
+// so in imageOnly(), which lets the kernel skip the result record when only the image needs it).
 #pragma once
 
 #include "core/bpt/technique_result.h"
@@ -29,6 +30,10 @@ class SampleOutputs {
   // Whether an output wants a technique's contribution even where its image weight is zero (the
   // pyramid's unweighted films, the replay trace): the kernel then still traces its shadow ray.
   bool wantsEveryContribution() const { return targets_.trace != nullptr || targets_.check != nullptr; }
+  // Whether every result goes only to the image and the counters, for the techniques outside the
+  // pyramid (which add() alone feeds): BidirTracer::runImageOnly may then evaluate them. A new
+  // output that reads results must make this false.
+  bool imageOnly() const { return targets_.trace == nullptr && targets_.check == nullptr; }
   // Whether an output needs TechniqueResult::onPath (the replay trace).
   bool wantsOnPath() const { return targets_.trace != nullptr; }
   // Whether an output needs TechniqueResult::densityRatios (the consistency check): O(n) a result.
