@@ -20,7 +20,9 @@
 #include <memory>
 
 namespace pathlab {
-namespace {
+// A named namespace: the sanitizer builds compile the tests as unity batches, where another file's
+// anonymous helpers (bundled, render, ...) would collide with these.
+namespace image_only_path_test {
 
 constexpr int kWidth = 24, kHeight = 18;
 
@@ -233,5 +235,5 @@ TEST(ImageOnlyPath, DiscardsAsTheGeneralOutputsDo) {
   }
 }
 
-}  // namespace
+}  // namespace image_only_path_test
 }  // namespace pathlab
