@@ -4,7 +4,7 @@
 #pragma once
 
 #include "core/converge/checkpoint_exchange.h"
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 #include "core/render/render_session.h"
 
 #include <atomic>

@@ -2,7 +2,7 @@
 // counters merge field by field; every shadow ray of a technique with s >= 1 ends blocked or
 // contributing; the walks' rays are all the closest-hit rays; timing is off unless asked for and
 // never starts a new generation of the progressive renderer.
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 #include "core/render/progressive_renderer.h"
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"

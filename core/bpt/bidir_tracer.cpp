@@ -4,7 +4,7 @@
 #include "core/bpt/connect.h"
 #include "core/bpt/mis_off.h"
 #include "core/bpt/path_techniques.h"
-#include "core/metrics/technique_timer.h"
+#include "core/counters/technique_timer.h"
 
 #include <algorithm>
 #include <type_traits>

@@ -8,7 +8,7 @@
 #include "core/camera/camera.h"
 #include "core/media/phase_function.h"
 #include "core/math/rng.h"
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 #include "core/scene/scene.h"
 
 namespace pathlab {

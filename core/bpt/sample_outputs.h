@@ -9,7 +9,7 @@
 #include "core/film/film.h"
 #include "core/film/splat_buffer.h"
 #include "core/film/technique_films.h"
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 
 namespace pathlab {
 

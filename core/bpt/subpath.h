@@ -6,7 +6,7 @@
 #include "core/bsdf/bsdf.h"
 #include "core/camera/camera.h"
 #include "core/math/rng.h"
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 #include "core/scene/scene.h"
 
 #include <vector>

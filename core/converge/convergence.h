@@ -4,7 +4,7 @@
 
 #include "core/converge/checkpoint_exchange.h"
 #include "core/converge/convergence_config.h"
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 #include "core/metrics/error_metrics.h"
 #include "core/scene/scene.h"
 

@@ -4,7 +4,7 @@
 // in index order (techniques longer than kCountedLength share one row).
 #pragma once
 
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 
 #include <span>
 #include <string>

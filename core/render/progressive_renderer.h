@@ -12,7 +12,7 @@
 #include "core/film/downsample.h"
 #include "core/film/film.h"
 #include "core/maps/technique_maps.h"
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 

@@ -7,7 +7,7 @@
 #include "core/check/technique_check.h"
 #include "core/film/film.h"
 #include "core/film/technique_films.h"
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 #include "core/pt/path_tracer.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"

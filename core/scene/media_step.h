@@ -5,7 +5,7 @@
 #pragma once
 
 #include "core/math/rng.h"
-#include "core/metrics/counters.h"
+#include "core/counters/counters.h"
 #include "core/scene/scene.h"
 
 #include <optional>

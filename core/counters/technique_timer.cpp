@@ -1,5 +1,5 @@
 // The time-stamp counter and its conversion to nanoseconds, measured once against steady_clock.
-#include "core/metrics/technique_timer.h"
+#include "core/counters/technique_timer.h"
 
 #include <algorithm>
 #include <chrono>
