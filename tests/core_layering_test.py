@@ -1,12 +1,22 @@
 #!/usr/bin/env python3
 """The folders of core/ include each other without cycles (issue 11: tracers take options, not
 RenderSettings; metrics/ only measures): prints any cycle of the folder include graph and fails.
-Also fails when core/ includes ui/, app/, OpenGL, ImGui or MPI (which only app/ uses)."""
+Also fails when core/ includes ui/, app/, OpenGL, ImGui or MPI (which only app/ uses), and when a
+kernel folder (the tracers and everything below them) includes a consumer of their results (issue
+30: the kernel owns the interfaces its outputs implement, e.g. core/bpt/sample_sink.h)."""
 import pathlib, re, sys
 
 core = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).parent.parent / "core")
 include = re.compile(r'#include\s+[<"]([^">]+)[">]')
+# The kernels and what they are built from; the consumers of what they compute (films, the check,
+# maps, metrics, convergence runs, render sessions). A folder not named here fails the test, so a
+# new folder is placed on purpose.
+KERNEL = {"math", "sampling", "texture", "bsdf", "camera", "lights", "media", "scene", "counters", "bpt", "pt"}
+CONSUMERS = {"film", "check", "maps", "metrics", "converge", "render"}
 edges, bad = {}, []
+for d in sorted(p.name for p in core.iterdir() if p.is_dir()):
+    if d not in KERNEL | CONSUMERS:
+        bad.append(f"{core / d}: a folder neither in KERNEL nor in CONSUMERS (tests/core_layering_test.py)")
 for f in sorted(core.rglob("*")):
     if f.suffix not in (".h", ".cpp"):
         continue
@@ -15,6 +25,8 @@ for f in sorted(core.rglob("*")):
         parts = target.split("/")
         if parts[0] == "core" and len(parts) > 2 and parts[1] != folder:
             edges.setdefault(folder, set()).add(parts[1])
+            if folder in KERNEL and parts[1] in CONSUMERS:
+                bad.append(f"{f}: a kernel folder includes a consumer, {target}")
         if parts[0] in ("ui", "app") or target.startswith(("GL", "GLFW", "imgui", "EGL", "mpi")):
             bad.append(f"{f}: includes {target}")
 

@@ -1,10 +1,10 @@
-// BidirTracer: generate both subpaths, evaluate every technique in use, hand the results on.
+// BidirTracer: generate both subpaths, evaluate every technique in use once, into the sample's sink.
 #include "core/bpt/bidir_tracer.h"
 
 #include "core/bpt/connect.h"
 #include "core/bpt/mis_off.h"
 #include "core/bpt/path_techniques.h"
-#include "core/counters/technique_timer.h"
+#include "core/counters/technique_tally.h"
 
 #include <algorithm>
 #include <type_traits>
@@ -46,12 +46,6 @@ Pcg32 connectionStream(uint64_t connectionKey, int s, int t) {
              : Pcg32::unseeded();
 }
 
-// ScopedTimer's stand-in where nothing is timed: nothing to construct or stop.
-struct NoTimer {
-  NoTimer(bool, uint64_t&) {}
-  void stop() {}
-};
-
 }  // namespace
 
 BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOptions& options)
@@ -67,7 +61,7 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
                                                                             : MisEvaluation::Explicit;
   }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
-  // runImageOnly's preconditions that settings decide: the partial sums, no media, and nothing that
+  // The image-only route's preconditions that settings decide: the partial sums, no media, and nothing that
   // changes a result's weight or contribution (isolation, the MIS check, an injected bias).
   imageOnlyPath_ = misEvaluation_ == MisEvaluation::PartialSums && !scene.hasMedia() && !options_.checkMis &&
                       !options_.isolate && !options_.injectBias;
@@ -83,19 +77,24 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
   if (options_.isolate) need(options_.isolate->s, options_.isolate->t);
 }
 
-float BidirTracer::weight(const MisPath& path, const Walks& walks, Counters& counters) const {
+float BidirTracer::weight(const MisPath& path, const Connection& c, const Walks& walks, Counters& counters) const {
   const float ratio = lightTracingRatio();
+  const int s = path.s, t = path.t;
   float w = 0.f;
   if (misEvaluation_ == MisEvaluation::Constant) {
-    w = offWeights_[static_cast<size_t>(path.s + path.t - 1)];
+    w = offWeights_[static_cast<size_t>(s + t - 1)];
   } else {
     // The partial sums decline (nullopt) a path with a near-coincident connection: misWeight then
-    // applies MisOptions::minConnection.
-    const std::optional<float> fast =
-        misEvaluation_ == MisEvaluation::PartialSums
-            ? misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
-                                minConnectionDistance_)
-            : std::nullopt;
+    // applies MisOptions::minConnection. An interior connection (s, t >= 2, about half of a
+    // Cornell-box sample's) takes the sums' form without their dispatch on s and t, the same bits
+    // (MisPartialSums.* in the tests).
+    std::optional<float> fast;
+    if (misEvaluation_ == MisEvaluation::PartialSums)
+      fast = s >= 2 && t >= 2
+                 ? misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2, walks.lightSums,
+                                     walks.cameraSums, misPower_, ratio, minConnectionDistance_)
+                 : misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
+                                     minConnectionDistance_);
     w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
   }
   if (options_.checkMis) {
@@ -107,12 +106,58 @@ float BidirTracer::weight(const MisPath& path, const Walks& walks, Counters& cou
   return w;
 }
 
-void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInImage, uint64_t connectionKey, Walks& walks,
-                           const SampleOutputs& outputs, Counters& counters) const {
-  const int s = r.s, t = r.t;
-  Pcg32 rng = connectionStream(connectionKey, s, t);
+// Inlined into both sample loops: as calls, prepare and run cost 3 % more instructions per
+// path-reuse sample (callgrind, session 11).
+[[gnu::always_inline]] inline BidirTracer::TechniqueUse BidirTracer::techniqueUse(int s, int t,
+                                                                                 int pyramidLength) const {
+  const bool enabled = options_.techniques.contains(s, t);
+  const std::optional<Isolation>& isolate = options_.isolate;
+  const bool isolated = isolate && isolate->s == s && isolate->t == t;
+  return TechniqueUse{enabled, isolate ? isolated && (enabled || isolate->unweighted) : enabled,
+                      isolated && isolate->unweighted, s + t - 1 <= pyramidLength};
+}
+
+template <bool kRecords, bool kTimed>
+[[gnu::always_inline]] inline void BidirTracer::evaluate(int s, int t, const TechniqueUse& use, Vec2 pRaster,
+                                                         uint64_t connectionKey, Walks& walks, SampleSink& sink,
+                                                         Counters& counters) const {
+  TechniqueTally<kTimed> tally(counters, Technique{s, t});
+  const SinkDemand& demand = sink.demand();
+  // The record the sink receives (kRecords); the image-only instance never reads it, and the
+  // compiler drops it there.
+  TechniqueResult r;
+  r.s = s;
+  r.t = t;
+  r.pRaster = pRaster;
+  r.inImage = use.inImage;
+  r.inPyramid = use.inPyramid;
+  float w = 0.f, imageWeight = 0.f;
+  auto finishWithout = [&](TechniqueOutcome outcome) {
+    if (outcome == TechniqueOutcome::Blocked) tally.blocked();
+    else tally.zero();
+    if constexpr (kRecords) {
+      if (demand.everyTechnique) {
+        r.outcome = outcome;
+        r.weight = 0.f;
+        r.imageWeight = imageWeight;
+        r.inImage = false;
+        sink.record(r);
+      }
+    }
+  };
+
+  // Interior connections skip formConnection's dispatch on s, t and the fresh endpoint. Each
+  // connection draws its fresh light or lens sample from a stream of its own (connectionStream).
   Connection& c = walks.connection;
-  if (!formConnection(scene_, camera_, walks.light, s, walks.camera, t, rng, c)) return;
+  bool formed;
+  if (s >= 2 && t >= 2) {
+    c.hasSampled = false;  // as formConnection leaves it: no endpoint drawn afresh
+    formed = formInteriorConnection(scene_, walks.light, s, walks.camera, t, c);
+  } else {
+    Pcg32 rng = connectionStream(connectionKey, s, t);
+    formed = formConnection(scene_, camera_, walks.light, s, walks.camera, t, rng, c);
+  }
+  if (!formed) return finishWithout(TechniqueOutcome::Zero);
 
   // The weight is computed over the enabled set (a disabled technique's share is zero) before the
   // shadow ray, which is traced only when something will use the contribution. With every
@@ -120,148 +165,84 @@ void BidirTracer::evaluate(TechniqueResult& r, bool enabled, bool unweightedInIm
   // edge itself is shorter than --min-connection (mis.h UsableTechniques; otherwise only
   // degenerate densities, an overflow say, give zero), so there the shadow ray goes first and a
   // blocked path skips its weight: in the Cornell box 13-17 % of the connections with a shadow ray
-  // are blocked. The outputs and counters see the same results.
+  // are blocked. Either order gives the sink the same results.
   const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
   const bool shortConnection = s >= 1 && c.edgeLength2 < minConnectionDistance_ * minConnectionDistance_;
-  const bool visibilityFirst = misEvaluation_ == MisEvaluation::PartialSums && r.inImage && !options_.checkMis &&
-                               !outputs.wantsOnPath() && !outputs.wantsEveryContribution() && !shortConnection;
-  // Whether the weighed result is used; false leaves it TechniqueOutcome::Zero.
+  const bool visibilityFirst = !shortConnection && (!kRecords || (misEvaluation_ == MisEvaluation::PartialSums &&
+                                                                  use.inImage && !options_.checkMis &&
+                                                                  !demand.onPath && !demand.everyContribution));
+  // Whether the weighed result is used; false leaves it zero (and traces no shadow ray).
   auto weigh = [&] {
-    if (enabled) r.weight = weight(path, walks, counters);
-    r.imageWeight = !r.inImage ? 0.f : unweightedInImage ? 1.f : r.weight;
-    if (!(r.imageWeight > 0.f) && !r.inPyramid && !outputs.wantsEveryContribution()) {
-      r.weight = 0.f;
-      return false;  // nothing would use it, so no shadow ray
+    if (use.enabled) w = weight(path, c, walks, counters);
+    imageWeight = !use.inImage ? 0.f : use.unweightedInImage ? 1.f : w;
+    if (!(imageWeight > 0.f) && !use.inPyramid && !demand.everyContribution) {
+      w = 0.f;
+      return false;
     }
     return true;
   };
   if (!visibilityFirst) {
     const bool used = weigh();
-    if (outputs.wantsOnPath()) {
-      // The inspector shows blocked paths too: what each technique would have made of them.
-      tracePath(scene_, camera_, path, walks.traced);
-      r.traced = &walks.traced;
-      walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
-      r.onPath = &walks.onPath;
+    if constexpr (kRecords) {
+      if (demand.onPath) {
+        // The inspector shows blocked paths too: what each technique would have made of them.
+        tracePath(scene_, camera_, path, walks.traced);
+        r.traced = &walks.traced;
+        walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
+        r.onPath = &walks.onPath;
+      }
     }
-    if (!used) return;
+    if (!used) return finishWithout(TechniqueOutcome::Zero);
   }
   if (needsShadowRay(s)) {
-    ++counters.shadowRays;
+    tally.shadowRay();
     if (scene_.hasMedia()) {
       // The connection edge's transmittance through the media it crosses (the seed's T_r).
       const Spectrum T = transmittance(scene_, c.shadowRay);
-      if (isBlack(T)) {
-        r.outcome = TechniqueOutcome::Blocked;
-        return;
-      }
+      if (isBlack(T)) return finishWithout(TechniqueOutcome::Blocked);
       c.L *= T;
     } else if (!unoccluded(scene_, c.shadowRay)) {
-      r.outcome = TechniqueOutcome::Blocked;
-      return;
+      return finishWithout(TechniqueOutcome::Blocked);
     }
   }
-  if (visibilityFirst && !weigh()) return;
-  r.outcome = TechniqueOutcome::Contributed;
-  r.unweighted = c.L;
+  if (visibilityFirst && !weigh()) return finishWithout(TechniqueOutcome::Zero);
+  tally.contributed();
+
+  Spectrum L = c.L;
   if (options_.injectBias && options_.injectBias->s == s && options_.injectBias->t == t)
-    r.unweighted *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
-  if (outputs.wantsSampleable()) r.sampleableBy = sampleableTechniques(path);
-  if (outputs.wantsDensityRatios()) {
-    walks.densityRatios.resize(static_cast<size_t>(s + t));
-    techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
-    r.densityRatios = walks.densityRatios.data();
-  }
-  if (t == 1) r.pRaster = c.pRaster;
-}
-
-template <bool kTimed>
-void BidirTracer::runImageOnly(int s, int t, uint64_t connectionKey, Walks& walks, SampleOutputs& outputs,
-                               Counters& counters) const {
-  TechniqueCounters& tc = counters.technique(s, t);
-  ++tc.tried;
-  // As run(): the technique's time is its connection, shadow ray and weight, not the output. A
-  // template on it, so that untimed samples carry no timer at all (even a ScopedTimer that is off
-  // cost 0.4 % of a sample's instructions here).
-  std::conditional_t<kTimed, ScopedTimer, NoTimer> timer(kTimed, tc.nanoseconds);
-  Connection& c = walks.connection;
-  // Interior connections (about half of a Cornell-box sample's) skip formConnection's and the
-  // partial sums' dispatch on s, t and the fresh endpoint.
-  const bool interior = s >= 2 && t >= 2;
-  bool formed;
-  if (interior) {
-    c.hasSampled = false;  // as formConnection leaves it: no endpoint drawn afresh
-    formed = formInteriorConnection(scene_, walks.light, s, walks.camera, t, c);
-  } else {
-    Pcg32 rng = connectionStream(connectionKey, s, t);
-    formed = formConnection(scene_, camera_, walks.light, s, walks.camera, t, rng, c);
-  }
-  if (!formed) {
-    ++tc.zero;
-    return;
-  }
-  // As evaluate(): the shadow ray first, unless the connection edge is shorter than
-  // --min-connection; a weight of zero (the explicit weight's near-coincident rule, an overflow)
-  // leaves the result zero.
-  const bool shortConnection = s >= 1 && c.edgeLength2 < minConnectionDistance_ * minConnectionDistance_;
-  float w = 0.f;
-  auto weigh = [&] {
-    const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-    const std::optional<float> fast =
-        interior ? misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2, walks.lightSums,
-                                     walks.cameraSums, misPower_, lightTracingRatio(), minConnectionDistance_)
-                 : misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_,
-                                     lightTracingRatio(), minConnectionDistance_);
-    w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
-    return w > 0.f;
-  };
-  if (shortConnection && !weigh()) {
-    ++tc.zero;
-    return;
-  }
-  if (needsShadowRay(s)) {
-    ++counters.shadowRays;
-    ++tc.shadowRays;
-    if (!unoccluded(scene_, c.shadowRay)) {
-      ++tc.blocked;
-      return;
+    L *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
+  // The one check of a contribution: NaN, Inf and negative values are dropped one technique at a
+  // time, at the door, before any output sees them.
+  if (!isValidContribution(L)) return tally.discard(L, sink.id());
+  if (t == 1) pRaster = c.pRaster;
+  if constexpr (kRecords) {
+    r.outcome = TechniqueOutcome::Contributed;
+    r.unweighted = L;
+    r.weight = w;
+    r.imageWeight = imageWeight;
+    r.pRaster = pRaster;
+    if (demand.sampleable) r.sampleableBy = sampleableTechniques(path);
+    if (demand.densityRatios) {
+      walks.densityRatios.resize(static_cast<size_t>(s + t));
+      techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
+      r.densityRatios = walks.densityRatios.data();
     }
+    sink.record(r);
   }
-  if (!shortConnection && !weigh()) {
-    ++tc.zero;
-    return;
-  }
-  timer.stop();
-  outputs.addToImage(s, t, c.pRaster, c.L, w, tc);
+  if (!use.inImage) return;
+  const Spectrum contribution = L * imageWeight;
+  if (!isBlack(contribution) && !sink.toImage(t, pRaster, contribution)) tally.discard(contribution, sink.id());
 }
 
-// prepare and run are inlined into both sample loops: as calls they cost 3 % more instructions
-// per path-reuse sample (callgrind).
-[[gnu::always_inline]] inline bool BidirTracer::prepare(TechniqueResult& r, int s, int t, Vec2 pRaster,
-                                                        int pyramidLength) const {
-  const bool enabled = options_.techniques.contains(s, t);
-  const std::optional<Isolation>& isolate = options_.isolate;
-  const bool isolated = isolate && isolate->s == s && isolate->t == t;
-  r.s = s;
-  r.t = t;
-  r.pRaster = pRaster;
-  r.inImage = isolate ? isolated && (enabled || isolate->unweighted) : enabled;
-  r.inPyramid = s + t - 1 <= pyramidLength;
-  return r.inImage || r.inPyramid;
-}
-
-[[gnu::always_inline]] inline void BidirTracer::run(TechniqueResult& r, uint64_t connectionKey, bool timed,
-                                                     Walks& walks, SampleOutputs& outputs, Counters& counters) const {
-  const std::optional<Isolation>& isolate = options_.isolate;
-  const bool unweighted = isolate && isolate->unweighted && isolate->s == r.s && isolate->t == r.t;
-  TechniqueCounters& tc = counters.technique(r.s, r.t);
-  ++tc.tried;
-  const uint64_t shadowBefore = counters.shadowRays;
-  ScopedTimer timer(timed, tc.nanoseconds);
-  evaluate(r, options_.techniques.contains(r.s, r.t), unweighted, connectionKey, walks, outputs, counters);
-  timer.stop();  // what follows is the outputs', not the technique's
-  tc.shadowRays += counters.shadowRays - shadowBefore;
-  outputs.add(r, tc);
+template <bool kRecords>
+[[gnu::always_inline]] inline void BidirTracer::evaluate(bool timed, int s, int t, const TechniqueUse& use,
+                                                         Vec2 pRaster, uint64_t connectionKey, Walks& walks,
+                                                         SampleSink& sink, Counters& counters) const {
+  if (timed) {
+    evaluate<kRecords, true>(s, t, use, pRaster, connectionKey, walks, sink, counters);
+  } else {
+    evaluate<kRecords, false>(s, t, use, pRaster, connectionKey, walks, sink, counters);
+  }
 }
 
 int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, Walks& walks, Counters& counters) const {
@@ -285,8 +266,8 @@ int BidirTracer::traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out
   return ns;
 }
 
-Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
-                             Counters& counters) const {
+void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, SampleSink& sink,
+                         Counters& counters) const {
   // The connections' key is drawn first, so that how long the walks below are allowed to grow
   // changes no connection's random numbers.
   const uint64_t keyHigh = cameraRng.nextU32();  // two statements: operand order is unspecified
@@ -295,11 +276,11 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
   thread_local Walks walks;
   const bool timed = timing_ && connectionKey % kTimedSampleStride == 0;
   if (timed) ++counters.timedSamples;
-  const int pyramidLength = targets.pyramid ? options_.pyramidLength : 0;
-  SampleOutputs outputs(targets, counters);
+  const SinkDemand& demand = sink.demand();
+  const int pyramidLength = demand.pyramid ? options_.pyramidLength : 0;
   if (options_.connect == ConnectStrategy::Endpoints) {
-    sampleEndpoints(pRaster, uLens, connectionKey, timed, pyramidLength, walks, outputs, targets, counters);
-    return outputs.cameraEstimate();
+    sampleEndpoints(pRaster, uLens, connectionKey, timed, pyramidLength, walks, sink, counters);
+    return;
   }
 
   // Each walk stops at the longest prefix any technique in use needs (light tracing needs no
@@ -315,67 +296,48 @@ Spectrum BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& 
     counters.cameraWalk.nanoseconds += elapsedNanoseconds(walkStart, cameraEnd);
     counters.lightWalk.nanoseconds += elapsedNanoseconds(cameraEnd, ticks());
   }
+  sink.beginSample({walks.camera.data(), static_cast<size_t>(nt)}, {walks.light.data(), static_cast<size_t>(ns)});
 
-  if (targets.trace) {
-    targets.trace->cameraVertices = nt;
-    targets.trace->lightVertices = ns;
-    targets.trace->records.clear();
-    targets.trace->onPath.clear();
-    targets.trace->paths.clear();
-    targets.trace->cameraSubpath.assign(walks.camera.data(), walks.camera.data() + nt);
-    targets.trace->lightSubpath.assign(walks.light.data(), walks.light.data() + ns);
-  }
-  // Per sample, the rest of runImageOnly's preconditions: only the image reads the results (per
-  // technique: not in the pyramid).
-  const bool imageOnly = imageOnlyPathActive() && outputs.imageOnly();
+  // The image-only route: every technique enabled and used by the image alone (no isolation),
+  // hence TechniqueUse's defaults.
+  const bool imageOnly = imageOnlyPathActive() && !demand.records();
   for (int t = 1; t <= nt; ++t)
     for (int s = 0; s <= std::max(ns, 1); ++s) {
       const int k = s + t - 1;
       if (k < 1 || k > options_.maxLength) continue;
       if (s > ns && lightWalkNeeded(s, t)) continue;
-      if (imageOnly && k > pyramidLength) {
-        if (timed) {
-          runImageOnly<true>(s, t, connectionKey, walks, outputs, counters);
-        } else {
-          runImageOnly<false>(s, t, connectionKey, walks, outputs, counters);
-        }
-        continue;
+      const bool recorded = !imageOnly || k <= pyramidLength;
+      TechniqueUse use;
+      if (recorded) {
+        use = techniqueUse(s, t, pyramidLength);
+        if (!use.used()) continue;
       }
-      TechniqueResult r;
-      if (!prepare(r, s, t, pRaster, pyramidLength)) continue;
-      if (s == 0 && walks.camera[t - 1].light < 0 && !timed && !targets.trace) {
+      if (s == 0 && walks.camera[t - 1].light < 0 && !timed && !demand.everyTechnique) {
         // The camera subpath's own vertex is no emitter: formConnection would refuse (s = 0), so
-        // the try is counted as run() would count it, without its machinery (one try in seven
-        // in the Cornell box).
-        TechniqueCounters& tc = counters.technique(s, t);
-        ++tc.tried;
-        ++tc.zero;
+        // the try is tallied as zero without evaluate's machinery (one try in seven in the
+        // Cornell box).
+        TechniqueTally<false>(counters, Technique{s, t}).zero();
         continue;
       }
-      run(r, connectionKey, timed, walks, outputs, counters);
+      if (recorded) {
+        evaluate<true>(timed, s, t, use, pRaster, connectionKey, walks, sink, counters);
+      } else {
+        evaluate<false>(timed, s, t, use, pRaster, connectionKey, walks, sink, counters);
+      }
     }
-  return outputs.cameraEstimate();
 }
 
 void BidirTracer::sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionKey, bool timed, int pyramidLength,
-                                  Walks& walks, SampleOutputs& outputs, const SampleTargets& targets,
-                                  Counters& counters) const {
+                                  Walks& walks, SampleSink& sink, Counters& counters) const {
   // The seed's naive BPT: for each technique a light subpath of exactly s and a camera subpath of
   // exactly t vertices, sampled independently (every camera subpath through the sample's pRaster
   // and uLens), joined at their endpoints only. The weights are functions of the path alone, so
   // they are those of path reuse and still a partition of unity; the partial sums are those of the
   // technique's own subpaths. The walks' rays and time go to the technique's own row.
-  if (targets.trace) {
-    targets.trace->cameraVertices = targets.trace->lightVertices = 0;
-    targets.trace->records.clear();
-    targets.trace->onPath.clear();
-    targets.trace->paths.clear();
-    targets.trace->cameraSubpath.clear();
-    targets.trace->lightSubpath.clear();
-  }
+  sink.beginSample({}, {});
   for (const Technique x : techniquesUpTo(options_.maxLength)) {
-    TechniqueResult r;
-    if (!prepare(r, x.s, x.t, pRaster, pyramidLength)) continue;
+    const TechniqueUse use = techniqueUse(x.s, x.t, pyramidLength);
+    if (!use.used()) continue;
     TechniqueCounters& tc = counters.technique(x);
     const uint64_t raysBefore = counters.rays;
     ScopedTimer walkTimer(timed, tc.nanoseconds);
@@ -388,12 +350,9 @@ void BidirTracer::sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionK
     }
     walkTimer.stop();
     tc.walkRays += counters.rays - raysBefore;
-    if (targets.trace) {
-      targets.trace->cameraVertices = std::max(targets.trace->cameraVertices, nt);
-      targets.trace->lightVertices = std::max(targets.trace->lightVertices, ns);
-    }
+    sink.walked(nt, ns);
     if (nt < x.t || (lightWalkNeeded(x.s, x.t) && ns < x.s)) continue;  // a walk ended early
-    run(r, connectionKey, timed, walks, outputs, counters);
+    evaluate<true>(timed, x.s, x.t, use, pRaster, connectionKey, walks, sink, counters);
   }
 }
 

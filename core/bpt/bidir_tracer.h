@@ -1,12 +1,13 @@
 // The bidirectional path tracer's per-sample kernel: both subpaths, then every (s, t) in use
-// evaluated into a TechniqueResult (unweighted contribution, MIS weight, where it lands) that the
-// sample's outputs consume (sample_outputs.h).
+// evaluated once, by one function (evaluate), into the sample's sink (sample_sink.h): the image's
+// contributions, and the result records (unweighted contribution, MIS weight, where it lands) of
+// the techniques the sink consumes.
 #pragma once
 
 #include "core/bpt/bidir_options.h"
 #include "core/bpt/mis.h"
 #include "core/bpt/mis_partial_sums.h"
-#include "core/bpt/sample_outputs.h"
+#include "core/bpt/sample_sink.h"
 #include "core/bpt/subpath.h"
 #include "core/bpt/technique_set.h"
 
@@ -28,17 +29,18 @@ enum class MisEvaluation {
   Constant,     // MisHeuristic::Off: 1 / n_k from a table by length (mis_off.h)
 };
 
+struct Connection;  // connect.h
+
 class BidirTracer {
  public:
   BidirTracer(const Scene& scene, const Camera& camera, const BidirOptions& options);
 
   // One camera sample through pRaster and one light subpath (ConnectStrategy::Endpoints: a
-  // camera and a light subpath per technique): returns the camera-side pixel estimate (t >= 2);
-  // the t = 1 contributions, the pyramid and the trace go to `targets`.
-  // Contributions that are NaN, Inf or negative are dropped one technique at a time and counted
-  // under that technique.
-  Spectrum sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, const SampleTargets& targets,
-                  Counters& counters) const;
+  // camera and a light subpath per technique), every technique in use into `sink`: its estimate of
+  // the pixel (SampleSink::cameraEstimate) and its splats through SampleSink::toImage, its records
+  // as the sink's demand asks. Contributions that are NaN, Inf or negative are dropped one technique
+  // at a time, at the kernel's door, and counted under that technique.
+  void sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, SampleSink& sink, Counters& counters) const;
 
   // The light subpath this tracer walks for a sample whose light stream is `lightRng` (path reuse:
   // the one every technique of the sample shares; ConnectStrategy::Endpoints draws one per technique
@@ -56,41 +58,44 @@ class BidirTracer {
   void setTiming(bool on) { timing_ = on; }
   bool timing() const { return timing_; }
 
-  // The image-only path (runImageOnly): on by default wherever the settings allow it (the partial
-  // sums, no media, no isolation, MIS check or injected bias; ConnectStrategy::Endpoints never
-  // uses it). Off sends every technique through the general evaluate(): its test oracle and its
+  // The image-only route: a sample whose sink consumes only the image (SinkDemand::records() false)
+  // evaluates its techniques outside the pyramid without a result record, by the same evaluate()
+  // compiled without it. On by default wherever the settings allow (the partial sums, no media, no
+  // isolation, MIS check or injected bias; ConnectStrategy::Endpoints never takes it). Off sends
+  // every technique through the recording instance: the test oracle of the route and its
   // benchmark's baseline. Like timing, set it between passes.
   void setImageOnlyPath(bool on) { imageOnlyPathOff_ = !on; }
-  // Whether samples whose outputs allow it (SampleOutputs::imageOnly) take the image-only path.
   bool imageOnlyPathActive() const { return imageOnlyPath_ && !imageOnlyPathOff_; }
 
  private:
   struct Walks;  // the per-thread subpaths and their MIS sums
-  // Sets r's s, t, pRaster, inImage and inPyramid; false when nothing uses the technique.
-  bool prepare(TechniqueResult& r, int s, int t, Vec2 pRaster, int pyramidLength) const;
-  // Counts, times and evaluates a prepared technique and hands the result to the outputs.
-  void run(TechniqueResult& r, uint64_t connectionKey, bool timed, Walks& walks, SampleOutputs& outputs,
-           Counters& counters) const;
+  // How a technique is used by this sample: whether it is enabled (weighed), reaches the image
+  // (enabled, or the isolated one), is shown unweighted (--isolate --unweighted) and goes to the
+  // pyramid.
+  struct TechniqueUse {
+    bool enabled = true, inImage = true, unweightedInImage = false, inPyramid = false;
+    bool used() const { return inImage || inPyramid; }
+  };
+  TechniqueUse techniqueUse(int s, int t, int pyramidLength) const;
+  // The one evaluation of technique (s, t): forms the connection, weighs it, traces its shadow ray,
+  // reports each outcome to the tally (counts, time), refuses an invalid contribution, and hands
+  // the result to the sink: its record when kRecords, its weighted contribution to the image.
+  // kRecords false is the image-only route (a sink with no records, a technique outside the
+  // pyramid, imageOnlyPathActive()): the compiler drops the record and the extras it would fill.
+  template <bool kRecords, bool kTimed>
+  void evaluate(int s, int t, const TechniqueUse& use, Vec2 pRaster, uint64_t connectionKey, Walks& walks,
+                SampleSink& sink, Counters& counters) const;
+  template <bool kRecords>
+  void evaluate(bool timed, int s, int t, const TechniqueUse& use, Vec2 pRaster, uint64_t connectionKey, Walks& walks,
+                SampleSink& sink, Counters& counters) const;
   // The walks of both strategies (rays into the counters' walk or technique rows by the caller).
   int walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, Walks& walks, Counters& counters) const;
   int walkLight(int vertices, Pcg32& rng, Walks& walks, Counters& counters) const;
   // ConnectStrategy::Endpoints: each technique in use on subpaths of its own.
   void sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionKey, bool timed, int pyramidLength, Walks& walks,
-                       SampleOutputs& outputs, const SampleTargets& targets, Counters& counters) const;
-  // Fills r (its s, t, pRaster, inImage and inPyramid already set) with the technique's outcome,
-  // contribution and weights.
-  void evaluate(TechniqueResult& r, bool enabled, bool unweightedInImage, uint64_t connectionKey, Walks& walks,
-                const SampleOutputs& outputs, Counters& counters) const;
-  float weight(const MisPath& path, const Walks& walks, Counters& counters) const;
-  // evaluate(), run() and SampleOutputs::add() of a technique whose result goes only to the image
-  // and the counters (imageOnlyPathActive(), SampleOutputs::imageOnly(), the technique not in the
-  // pyramid): the same connection, shadow ray and partial-sums weight in the same order, hence the
-  // same image, counters, discards and timing (tests/bpt_image_only_path_test.cpp), without the
-  // result record, the outputs' fan-out and, for the interior techniques (s, t >= 2), the dispatch
-  // on s and t (formInteriorConnection, misWeightInterior). docs/benchmarks.md, session 13.
-  // kTimed: a timed sample's (setTiming), whose technique time it adds up as run() does.
-  template <bool kTimed>
-  void runImageOnly(int s, int t, uint64_t connectionKey, Walks& walks, SampleOutputs& outputs, Counters& counters) const;
+                       SampleSink& sink, Counters& counters) const;
+  // The MIS weight of technique (s, t) on the connection just formed (misEvaluation_).
+  float weight(const MisPath& path, const Connection& c, const Walks& walks, Counters& counters) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 
   const Scene& scene_;
@@ -104,7 +109,7 @@ class BidirTracer {
   int cameraVerticesNeeded_ = 1;  // the camera vertex itself is always there
   int lightVerticesNeeded_ = 0;
   bool timing_ = false;
-  bool imageOnlyPath_ = false;     // runImageOnly's preconditions that the settings decide
+  bool imageOnlyPath_ = false;     // the image-only route's preconditions that the settings decide
   bool imageOnlyPathOff_ = false;  // setImageOnlyPath(false)
 };
 

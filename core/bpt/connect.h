@@ -88,8 +88,8 @@ inline BsdfEval phaseEval(const Scene& scene, const PathVertex& v, const Vec3& w
 
 // formConnection's techniques s >= 2, t >= 2 (path reuse's interior connections, about half of a
 // Cornell-box sample's): both ends are surface or medium vertices the walks found, joined by a
-// deterministic edge. Inline so that formConnection and the tracer's image-only path
-// (BidirTracer::runImageOnly) run this one piece of arithmetic. Writes c.L, c.pdfs, c.shadowRay
+// deterministic edge. Inline so that formConnection and the tracer's kernel
+// (BidirTracer::evaluate) run this one piece of arithmetic. Writes c.L, c.pdfs, c.shadowRay
 // and c.edgeLength2 (not c.hasSampled: no endpoint is drawn afresh).
 [[gnu::always_inline]] inline bool formInteriorConnection(const Scene& scene, const Subpath& lightPath, int s,
                                                           const Subpath& cameraPath, int t, Connection& c) {

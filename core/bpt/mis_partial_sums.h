@@ -58,7 +58,7 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
 
 // misWeightFromSums of an interior technique (s, t >= 2) whose connection formInteriorConnection
 // formed (its densities `pdfs`, its squared length connectionLength2), the same bits, without the
-// general case's dispatch: the tracer's image-only path (BidirTracer::runImageOnly). s and t below
+// general case's dispatch: the tracer's interior connections (BidirTracer::weight). s and t below
 // 2 are undefined behaviour (the compiler is told they cannot happen).
 std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
                                        int t, const ConnectionPdfs& pdfs, float connectionLength2,

@@ -96,10 +96,4 @@ struct SampleTrace {
   std::vector<PathVertex> cameraSubpath, lightSubpath;
 };
 
-// Which sample this is, for the discarded-sample report (Counters::discardExamples).
-struct SampleId {
-  int x = -1, y = -1;
-  uint64_t sample = 0;
-};
-
 }  // namespace pathlab

@@ -67,6 +67,12 @@ struct WalkCounters {
   }
 };
 
+// Which sample this is, for the discarded-sample report (Counters::discardExamples).
+struct SampleId {
+  int x = -1, y = -1;
+  uint64_t sample = 0;
+};
+
 // Where a discarded contribution came from, so `pathlab render --replay X,Y,SAMPLE` can
 // reproduce it. s = t = -1 for a whole path-tracer sample.
 struct DiscardExample {

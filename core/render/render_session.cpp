@@ -104,7 +104,9 @@ Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTarget
   ++counters.cameraSamples;
   if (bidirTracer_) {
     Pcg32 lightRng = sampleStream(settings_, x, y, pass, RngStream::Light);
-    return bidirTracer_->sample(pRaster, uLens, rng, lightRng, targets, counters);
+    SampleOutputs outputs(targets);
+    bidirTracer_->sample(pRaster, uLens, rng, lightRng, outputs, counters);
+    return outputs.cameraEstimate();
   }
   const Ray ray = camera_.generateRay(pRaster, uLens);
   return pathTracer_.Li(ray, rng, counters, cameraMedium_);

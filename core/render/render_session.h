@@ -10,6 +10,7 @@
 #include "core/counters/counters.h"
 #include "core/pt/path_tracer.h"
 #include "core/render/render_settings.h"
+#include "core/render/sample_outputs.h"
 #include "core/scene/scene.h"
 
 #include <atomic>

@@ -1,0 +1,72 @@
+// SampleOutputs: a technique's result into the replay trace, the consistency check, the pyramid
+// and, through the kernel's image route, the film.
+#include "core/render/sample_outputs.h"
+
+#include <algorithm>
+
+namespace pathlab {
+
+SinkDemand SampleOutputs::demandOf(const SampleTargets& targets) {
+  SinkDemand d;
+  d.pyramid = targets.pyramid != nullptr;
+  d.everyTechnique = targets.trace != nullptr;
+  // The trace and the check compare every technique's unweighted estimate, whatever its weight.
+  d.everyContribution = targets.trace != nullptr || targets.check != nullptr;
+  d.onPath = targets.trace != nullptr;
+  d.densityRatios = targets.check != nullptr;
+  d.sampleable = targets.check != nullptr || (targets.pyramid != nullptr && targets.pyramid->keepsSampleable());
+  return d;
+}
+
+SampleOutputs::SampleOutputs(const SampleTargets& targets) : SampleSink(demandOf(targets), targets.id), targets_(targets) {}
+
+void SampleOutputs::beginSample(std::span<const PathVertex> cameraSubpath, std::span<const PathVertex> lightSubpath) {
+  SampleTrace* trace = targets_.trace;
+  if (!trace) return;
+  trace->cameraVertices = static_cast<int>(cameraSubpath.size());
+  trace->lightVertices = static_cast<int>(lightSubpath.size());
+  trace->records.clear();
+  trace->onPath.clear();
+  trace->paths.clear();
+  trace->cameraSubpath.assign(cameraSubpath.begin(), cameraSubpath.end());
+  trace->lightSubpath.assign(lightSubpath.begin(), lightSubpath.end());
+}
+
+void SampleOutputs::walked(int nt, int ns) {
+  if (!targets_.trace) return;
+  targets_.trace->cameraVertices = std::max(targets_.trace->cameraVertices, nt);
+  targets_.trace->lightVertices = std::max(targets_.trace->lightVertices, ns);
+}
+
+bool SampleOutputs::splat(Vec2 pRaster, const Spectrum& contribution) {
+  return targets_.splats ? targets_.splats->splat(pRaster, contribution)
+                         : !targets_.film || targets_.film->splat(pRaster, contribution);
+}
+
+void SampleOutputs::trace(const TechniqueResult& r) {
+  // The record outlives the kernel's scratch: its pointers are dropped, the path's techniques kept.
+  TechniqueResult record = r;
+  record.densityRatios = nullptr;
+  record.onPath = nullptr;
+  record.traced = nullptr;
+  targets_.trace->records.push_back(record);
+  targets_.trace->onPath.push_back(r.onPath ? *r.onPath : std::vector<TechniqueOnPath>{});
+  targets_.trace->paths.push_back(r.traced ? *r.traced : TracedPath{});
+}
+
+void SampleOutputs::record(const TechniqueResult& r) {
+  if (targets_.trace) trace(r);
+  if (r.outcome != TechniqueOutcome::Contributed) return;
+  // The check compares every enabled technique's unweighted estimate, whatever its weight.
+  if (targets_.check) targets_.check->add(Technique{r.s, r.t}, r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
+  if (r.inPyramid && targets_.pyramid) {
+    const Spectrum weighted = r.unweighted * r.weight;
+    targets_.pyramid->add(r.s, r.t, r.pRaster, weighted, r.unweighted);
+    // The technique maps' "cannot sample": this path's weighted part, credited to every technique
+    // of its length able to sample it.
+    if (targets_.pyramid->keepsSampleable())
+      targets_.pyramid->addSampleable(r.s + r.t - 1, r.sampleableBy, r.pRaster, r.t == 1, luminance(weighted));
+  }
+}
+
+}  // namespace pathlab

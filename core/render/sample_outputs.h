@@ -1,0 +1,40 @@
+// Where one bidirectional sample's techniques go in a render: the t = 1 splats onto the film (or
+// the thread's splat buffer), the technique pyramid and its maps, a replay trace and the
+// consistency check. The kernel (core/bpt/bidir_tracer.h) knows them only as a SampleSink; a new
+// output is added here, with what it consumes in its SinkDemand, without touching the kernel.
+#pragma once
+
+#include "core/bpt/sample_sink.h"
+#include "core/check/technique_check.h"
+#include "core/film/film.h"
+#include "core/film/splat_buffer.h"
+#include "core/film/technique_films.h"
+
+namespace pathlab {
+
+// The outputs a sample feeds; each may be null.
+struct SampleTargets {
+  Film* film = nullptr;               // t = 1 splats of the image, atomically
+  TechniqueFilms* pyramid = nullptr;  // every technique of the pyramid's lengths, weighted and unweighted
+  SampleTrace* trace = nullptr;       // a record of every technique tried
+  SampleId id;
+  SplatBuffer* splats = nullptr;  // the thread's own buffer of the t = 1 splats, instead of `film`
+  TechniqueCheck::PassSums* check = nullptr;  // the thread's sums of the consistency check
+};
+
+class SampleOutputs final : public SampleSink {
+ public:
+  explicit SampleOutputs(const SampleTargets& targets);
+
+  void beginSample(std::span<const PathVertex> cameraSubpath, std::span<const PathVertex> lightSubpath) override;
+  void walked(int nt, int ns) override;
+  void record(const TechniqueResult& result) override;
+
+ private:
+  bool splat(Vec2 pRaster, const Spectrum& contribution) override;
+  void trace(const TechniqueResult& result);
+  static SinkDemand demandOf(const SampleTargets& targets);
+  const SampleTargets& targets_;
+};
+
+}  // namespace pathlab
