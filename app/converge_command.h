@@ -3,6 +3,7 @@
 #pragma once
 
 #include "app/environment_options.h"
+#include "app/shared_options.h"
 #include "core/scene/gltf_loader.h"
 
 #include <CLI/CLI.hpp>
@@ -17,13 +18,12 @@ struct ConvergeOptions {
   std::string outputDir;
   std::string reference;  // empty: render one (bpt, balance) and cache it in outputDir by hash
   std::string configs = "bpt;pt;lt;bpt:mis=power;bpt:mis=uniform";
-  double seconds = 0.0;   // per configuration; default 10 when --spp is not given
-  int spp = 0;
+  SampleBudget budget;    // per configuration; neither given: 10 seconds
   double referenceSeconds = 0.0;  // default 10 x seconds
   int referenceSpp = 0;           // default 10 x spp
   double checkpointFactor = 1.5;
   std::string clock = "wall";  // or "cpu": process CPU time (fair on a loaded machine, with --threads 1)
-  int width = 0, height = 0;  // 0: the reference's size, or 256 without --reference
+  ImageSizeOptions size;  // not given: the reference's size, or 256 without --reference
   int maxLength = 10;
   bool russianRoulette = true;
   uint64_t seed = 0;

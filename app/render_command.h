@@ -3,6 +3,7 @@
 
 #include "app/estimator_options.h"
 #include "app/environment_options.h"
+#include "app/shared_options.h"
 #include "core/scene/gltf_loader.h"
 
 #include <CLI/CLI.hpp>
@@ -17,11 +18,9 @@ struct RenderOptions {
   std::string scene;
   std::string output;
   EstimatorOptions estimator;
-  // 0: not given. Neither given: the camera's aspect with the longest side 512; one given: the
-  // other follows the aspect; both: exactly those.
-  int width = 0, height = 0;
-  int spp = 0;          // 0: use the time limit (or the default of 64 if neither is given)
-  double seconds = 0.0;
+  // Neither side given: the camera's aspect with the longest side 512.
+  ImageSizeOptions size;
+  SampleBudget budget;  // neither given: 64 spp
   int threads = 0;      // 0: every hardware thread
   float exposure = 0.f;
   bool force = false;
