@@ -24,7 +24,7 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "check", "Check that every enabled (s,t) technique agrees with the others on the paths both can sample; exit 1 "
                "when one disagrees");
-  addSceneArgument(cmd, o.scene);
+  addSceneArgument(cmd, o.scene.path);
   addSampleBudgetOptions(cmd, o.budget,
                          {2, "Passes (samples per pixel) to compare over", "Render for this many seconds (default 10)"});
   addImageSizeOptions(cmd, o.size, {kMaxCheckSide, kDefaultCheckSide});
@@ -38,7 +38,7 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
                   "Compare a pair in a region only when both found paths there in at least this many passes (default 20)")
       ->check(CLI::Range(uint64_t{2}, uint64_t{1} << 40));
   addThreadsOption(cmd, o.threads);
-  addLoadOptions(cmd, o.load, o.environment);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
 }
 
 int runCheck(CheckCommandOptions o) {
@@ -48,8 +48,7 @@ int runCheck(CheckCommandOptions o) {
     throw std::invalid_argument("check compares the bidirectional techniques: use --integrator bpt or lt");
   const ThreadLimit threadLimit(o.threads);
 
-  finishEnvironmentOptions(o.environment, o.load);
-  Scene scene(loadGltf(o.scene, o.load));
+  Scene scene(readScene(o.scene));
   // The camera's shape, as `render` (core/camera/image_size.h).
   const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultCheckSide);
   settings.width = size.x;
@@ -76,7 +75,7 @@ int runCheck(CheckCommandOptions o) {
       session.renderPass();
   }
   const CheckReport report = checkReport(*session.techniqueCheck(), o.check);
-  std::cout << fmt::format("{}: {}, {} x {}, seed {}\n", o.scene, integratorName(settings.integrator), settings.width,
+  std::cout << fmt::format("{}: {}, {} x {}, seed {}\n", o.scene.path, integratorName(settings.integrator), settings.width,
                            settings.height, settings.seed);
   std::cout << checkReportText(report);
   return report.agrees() ? 0 : 1;

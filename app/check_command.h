@@ -2,10 +2,8 @@
 #pragma once
 
 #include "app/estimator_options.h"
-#include "app/environment_options.h"
 #include "app/shared_options.h"
 #include "core/check/check_report.h"
-#include "core/scene/gltf_loader.h"
 
 #include <CLI/CLI.hpp>
 
@@ -14,7 +12,7 @@
 namespace pathlab::app {
 
 struct CheckCommandOptions {
-  std::string scene;
+  SceneOptions scene;
   EstimatorOptions estimator = [] {
     EstimatorOptions e;
     e.settings.checkTechniques = true;
@@ -25,8 +23,6 @@ struct CheckCommandOptions {
   SampleBudget budget;   // neither given: the default time
   int threads = 0;
   CheckOptions check;
-  LoadOptions load;
-  EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
 void addCheckCommand(CLI::App& app, CheckCommandOptions& options);

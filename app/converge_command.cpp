@@ -92,7 +92,7 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "converge", "Render several configurations for the same time, record their error against a reference, "
                   "and write convergence.csv, convergence.svg (log-log relMSE against time) and efficiency.md");
-  addSceneArgument(cmd, o.scene);
+  addSceneArgument(cmd, o.scene.path);
   cmd->add_option("-o,--output", o.outputDir, "Output directory (created if missing)")->required();
   auto* reference = cmd->add_option("--reference", o.reference,
                   "Reference image (.exr or .pfm); without it one is rendered with bpt (balance heuristic) and "
@@ -127,7 +127,7 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
   cmd->add_flag("--rr,!--no-rr", o.russianRoulette, "Russian roulette from the third edge on (default on)");
   cmd->add_option("--seed", o.seed, "Seed of every configuration's random streams");
   addThreadsOption(cmd, o.threads);
-  addLoadOptions(cmd, o.load, o.environment);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
   addForceFlag(cmd, o.force, "convergence.csv, convergence.svg and efficiency.md");
 }
 
@@ -160,8 +160,9 @@ ReferenceRun referenceRun(const ConvergeOptions& o, const RenderSettings& base, 
 // The cached reference of these settings; the environment lights the reference too, so one
 // rendered under another is not reused.
 fs::path cachedReferencePath(const ConvergeOptions& o, const ReferenceRun& r) {
-  return fs::path(o.outputDir) /
-         fmt::format("reference-{}.exr", referenceKey(o.scene, r.config.settings, r.budgetText + environmentKeyText(o.load)));
+  const std::string key =
+      referenceKey(o.scene.path, r.config.settings, r.budgetText + environmentKeyText(o.scene.load));
+  return fs::path(o.outputDir) / fmt::format("reference-{}.exr", key);
 }
 
 // Everything before the first pass. The outputs and the reference are the leader's alone: it
@@ -216,8 +217,7 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
   if (o.budget.spp > 0) p.budget.spp = static_cast<uint64_t>(o.budget.spp);
   else p.budget.seconds = o.budget.seconds > 0 ? o.budget.seconds : kDefaultConvergeSeconds;
 
-  finishEnvironmentOptions(o.environment, o.load);
-  p.scene = std::make_unique<Scene>(loadGltf(o.scene, o.load));
+  p.scene = std::make_unique<Scene>(readScene(o.scene));
   if (o.reference.empty() && (o.size.width == 0 || o.size.height == 0)) {
     // As `render`: the image has the camera's shape (longest side 256 unless given), never cropped.
     const Vec2i size = o.size.sizeFor(cameraAspect(std::nullopt, p.scene->cameraDesc()), kDefaultSide);
@@ -244,11 +244,6 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
 }
 
 }  // namespace
-
-int runConverge(ConvergeOptions o) {
-  Job process;
-  return runConverge(std::move(o), process);
-}
 
 int runConverge(ConvergeOptions o, Job& job) {
   std::ostream& log = job.log();
@@ -305,7 +300,7 @@ int runConverge(ConvergeOptions o, Job& job) {
 
   LogLogPlot plot;
   const bool cpu = budget.clock == ClockKind::Cpu;
-  plot.title = fmt::format("{}: relative MSE against {}", fs::path(o.scene).filename().string(),
+  plot.title = fmt::format("{}: relative MSE against {}", fs::path(o.scene.path).filename().string(),
                            cpu ? "CPU time" : "render time");
   plot.xLabel = cpu ? "CPU time (s)" : "render time (s)";
   plot.yLabel = "relMSE";

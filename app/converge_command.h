@@ -2,9 +2,7 @@
 // error against a reference recorded over time, an efficiency table and a log-log plot.
 #pragma once
 
-#include "app/environment_options.h"
 #include "app/shared_options.h"
-#include "core/scene/gltf_loader.h"
 
 #include <CLI/CLI.hpp>
 
@@ -14,7 +12,7 @@
 namespace pathlab::app {
 
 struct ConvergeOptions {
-  std::string scene;
+  SceneOptions scene;
   std::string outputDir;
   std::string reference;  // empty: render one (bpt, balance) and cache it in outputDir by hash
   std::string configs = "bpt;pt;lt;bpt:mis=power;bpt:mis=uniform";
@@ -29,17 +27,14 @@ struct ConvergeOptions {
   uint64_t seed = 0;
   int threads = 0;
   bool force = false;
-  LoadOptions load;
-  EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
 class Job;
 
 void addConvergeCommand(CLI::App& app, ConvergeOptions& options);
-// Returns the process exit code. Errors are exceptions, reported by main. With a Job, as one rank
-// of it: every configuration (and the reference) rendered by all ranks together, the results
-// written by the leader.
-int runConverge(ConvergeOptions options);
+// Returns the process exit code. Errors are exceptions, reported by main. As one rank of `job`
+// (app/job.h; one process: a plain Job): every configuration (and the reference) rendered by all
+// ranks together, the results written by the leader.
 int runConverge(ConvergeOptions options, Job& job);
 
 }  // namespace pathlab::app

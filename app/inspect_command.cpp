@@ -26,13 +26,13 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "inspect", "Replay one sample of one pixel: every (s,t) technique, its path and the path's density and MIS "
                  "weight under every technique of its length (text, and JSON with --json)");
-  addSceneArgument(cmd, o.scene);
+  addSceneArgument(cmd, o.scene.path);
   cmd->add_option("--pixel", o.pixel, "The pixel X,Y (from the top left)")->required();
   cmd->add_option("--sample", o.sample, "The sample (pass) index, 0 .. 16777215 (default 0)");
   cmd->add_option("--json", o.json, "Also write the inspection as JSON to this file");
   addImageSizeOptions(cmd, o.size, {kMaxImageSide, kDefaultLongestSide});
   addEstimatorOptions(cmd, o.estimator);
-  addLoadOptions(cmd, o.load, o.environment);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
   addForceFlag(cmd, o.force, "the JSON file if it exists");
 }
 
@@ -51,8 +51,7 @@ int runInspect(InspectOptions o) {
     checkOutputWritable(o.json);
     refuseExisting(o.json, o.force);
   }
-  finishEnvironmentOptions(o.environment, o.load);
-  Scene scene(loadGltf(o.scene, o.load));
+  Scene scene(readScene(o.scene));
   for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
   const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultLongestSide);
   settings.width = size.x;

@@ -85,7 +85,7 @@ int runReplay(const RenderSession& session, const ReplayRequest& r) {
 
 void addRenderCommand(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene headless to an image file");
-  addSceneArgument(cmd, o.scene);
+  addSceneArgument(cmd, o.scene.path);
   auto* output =
       cmd->add_option("-o,--output", o.output, "Output image: .exr and .pfm store float radiance, .png is tone mapped (sRGB)");
   cmd->add_option("--replay", o.replay,
@@ -105,7 +105,7 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "each technique's share of the image and where each cannot sample (EXR and PNG)")
       ->check(CLI::Range(1, kMaxPyramidLength));
   addThreadsOption(cmd, o.threads);
-  addLoadOptions(cmd, o.load, o.environment);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
@@ -177,8 +177,7 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   }
 
   const auto loadStart = std::chrono::steady_clock::now();
-  finishEnvironmentOptions(o.environment, o.load);
-  p.scene = std::make_unique<Scene>(loadGltf(o.scene, o.load));
+  p.scene = std::make_unique<Scene>(readScene(o.scene));
   const Scene& scene = *p.scene;
   // The image has the camera's shape, so nothing the camera frames is cropped (image_size.h).
   const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultLongestSide);
@@ -192,17 +191,12 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   // summary line: settings the scene's camera refuses (light tracing through an orthographic
   // camera) are then the only line.
   p.session = std::make_unique<RenderSession>(scene, settings, job.passSchedule());
-  log << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene,
+  log << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene.path,
                      scene.triangleCount(), scene.lights().size(), double(scene.geometryBytes()) / 1e6, loadSeconds);
   return p;
 }
 
 }  // namespace
-
-int runRender(RenderOptions o) {
-  Job process;
-  return runRender(std::move(o), process);
-}
 
 int runRender(RenderOptions o, Job& job) {
   const ThreadLimit threadLimit(o.threads);

@@ -16,6 +16,11 @@ void addSceneArgument(CLI::App* cmd, std::string& scene, const char* defaultNote
   else cmd->add_option("scene", scene, help)->required();
 }
 
+SceneDesc readScene(SceneOptions& scene) {
+  finishEnvironmentOptions(scene.environment, scene.load);
+  return loadGltf(scene.path, scene.load);
+}
+
 void addSampleBudgetOptions(CLI::App* cmd, SampleBudget& b, const SampleBudgetHelp& help) {
   auto* spp = cmd->add_option("--spp", b.spp, help.spp)->check(CLI::Range(help.minSpp, kMaxSpp));
   cmd->add_option("--time", b.seconds, help.time)->check(CLI::Range(0.001, 7.0 * 24 * 3600))->excludes(spp);

@@ -22,8 +22,16 @@ constexpr int kMaxSpp = 1 << 24;
 // The longest --width or --height of an image (check allows less: it needs passes, not pixels).
 constexpr int kMaxImageSide = 16384;
 
+// The scene a command renders and how it loads (view keeps these in ui::ViewerOptions).
+struct SceneOptions {
+  std::string path;
+  LoadOptions load;
+  EnvironmentOptions environment;  // into `load` by readScene
+};
 // The positional SCENE. With `defaultNote` (view: the bundled scene) it may be left out.
 void addSceneArgument(CLI::App* cmd, std::string& scene, const char* defaultNote = nullptr);
+// Reads the environment into scene.load (finishEnvironmentOptions), then the glTF file.
+SceneDesc readScene(SceneOptions& scene);
 
 // --spp N or --time SECONDS (one excludes the other); 0: not given.
 struct SampleBudget {
