@@ -42,7 +42,7 @@ case "${1:-}" in
     if [ -n "${DISPLAY:-}" ]; then
       exec "$BUILD_DIR/app/pathlab" view assets/cornell-box.gltf --presets assets/presets.json
     fi
-    # No display: render the default scene instead (the viewer also runs offscreen, see README).
+    # No display: render the default scene instead (the viewer also runs offscreen, see docs/viewer.md).
     mkdir -p out
     "$BUILD_DIR/app/pathlab" render assets/cornell-box.gltf -o out/cornell-box.png --spp 64 --force
     echo "dev.sh: no \$DISPLAY, so no viewer; wrote out/cornell-box.png" >&2

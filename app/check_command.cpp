@@ -3,15 +3,14 @@
 #include "app/check_command.h"
 
 #include "app/progress.h"
+#include "app/shared_options.h"
 #include "core/camera/image_size.h"
 #include "core/render/render_session.h"
 
 #include <fmt/core.h>
-#include <tbb/global_control.h>
 
 #include <chrono>
 #include <iostream>
-#include <thread>
 
 namespace pathlab::app {
 
@@ -25,15 +24,10 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "check", "Check that every enabled (s,t) technique agrees with the others on the paths both can sample; exit 1 "
                "when one disagrees");
-  cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
-  auto* spp = cmd->add_option("--spp", o.spp, "Passes (samples per pixel) to compare over")->check(CLI::Range(2, 1 << 24));
-  cmd->add_option("--time", o.seconds, "Render for this many seconds (default 10)")
-      ->check(CLI::Range(0.001, 7.0 * 24 * 3600))
-      ->excludes(spp);
-  cmd->add_option("--width", o.width, "Image width (default: the camera's shape, longest side 128)")
-      ->check(CLI::Range(1, kMaxCheckSide));
-  cmd->add_option("--height", o.height, "Image height (default: the camera's shape, longest side 128)")
-      ->check(CLI::Range(1, kMaxCheckSide));
+  addSceneArgument(cmd, o.scene.path);
+  addSampleBudgetOptions(cmd, o.budget,
+                         {2, "Passes (samples per pixel) to compare over", "Render for this many seconds (default 10)"});
+  addImageSizeOptions(cmd, o.size, {kMaxCheckSide, kDefaultCheckSide});
   addEstimatorOptions(cmd, o.estimator);
   cmd->add_option("--blocks", o.estimator.settings.checkBlocks,
                   "Compare over a BLOCKS x BLOCKS grid of image blocks as well as the whole image (default 4)")
@@ -43,10 +37,8 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   cmd->add_option("--min-hits", o.check.minNonzeroPasses,
                   "Compare a pair in a region only when both found paths there in at least this many passes (default 20)")
       ->check(CLI::Range(uint64_t{2}, uint64_t{1} << 40));
-  cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
-  cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
-  addEnvironmentOptions(cmd, o.environment);
+  addThreadsOption(cmd, o.threads);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
 }
 
 int runCheck(CheckCommandOptions o) {
@@ -54,25 +46,19 @@ int runCheck(CheckCommandOptions o) {
   RenderSettings& settings = o.estimator.settings;
   if (settings.integrator == IntegratorKind::Pt)
     throw std::invalid_argument("check compares the bidirectional techniques: use --integrator bpt or lt");
-  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  const ThreadLimit threadLimit(o.threads);
 
-  finishEnvironmentOptions(o.environment, o.load);
-  Scene scene(loadGltf(o.scene, o.load));
+  Scene scene(readScene(o.scene));
   // The camera's shape, as `render` (core/camera/image_size.h).
-  const Vec2i size = imageSizeForAspect(cameraAspect(settings.camera, scene.cameraDesc()),
-                                        o.width > 0 ? std::optional(o.width) : std::nullopt,
-                                        o.height > 0 ? std::optional(o.height) : std::nullopt, kDefaultCheckSide);
+  const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultCheckSide);
   settings.width = size.x;
   settings.height = size.y;
-  for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
-  if (const std::string w = misOffWarning(scene, settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";
-  if (const std::string w = biasInjectionWarning(settings); !w.empty()) std::cerr << "pathlab: warning: " << w << "\n";
+  printWarnings(std::cerr, scene, settings);
 
   RenderSession session(scene, settings);
-  const bool timed = o.spp == 0;
-  const double seconds = o.seconds > 0.0 ? o.seconds : kDefaultCheckSeconds;
-  const uint64_t targetPasses = static_cast<uint64_t>(o.spp);
+  const bool timed = o.budget.spp == 0;
+  const double seconds = o.budget.seconds > 0.0 ? o.budget.seconds : kDefaultCheckSeconds;
+  const uint64_t targetPasses = static_cast<uint64_t>(o.budget.spp);
   const uint64_t minPasses = std::max<uint64_t>(o.check.minPasses, 2);
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
@@ -89,7 +75,7 @@ int runCheck(CheckCommandOptions o) {
       session.renderPass();
   }
   const CheckReport report = checkReport(*session.techniqueCheck(), o.check);
-  std::cout << fmt::format("{}: {}, {} x {}, seed {}\n", o.scene, integratorName(settings.integrator), settings.width,
+  std::cout << fmt::format("{}: {}, {} x {}, seed {}\n", o.scene.path, integratorName(settings.integrator), settings.width,
                            settings.height, settings.seed);
   std::cout << checkReportText(report);
   return report.agrees() ? 0 : 1;

@@ -2,9 +2,8 @@
 #pragma once
 
 #include "app/estimator_options.h"
-#include "app/environment_options.h"
+#include "app/shared_options.h"
 #include "core/check/check_report.h"
-#include "core/scene/gltf_loader.h"
 
 #include <CLI/CLI.hpp>
 
@@ -13,20 +12,17 @@
 namespace pathlab::app {
 
 struct CheckCommandOptions {
-  std::string scene;
+  SceneOptions scene;
   EstimatorOptions estimator = [] {
     EstimatorOptions e;
     e.settings.checkTechniques = true;
     return e;
   }();
-  // 0: the camera's shape with the longest side 128 (the check needs passes, not pixels).
-  int width = 0, height = 0;
-  int spp = 0;           // 0: use the time limit
-  double seconds = 0.0;  // 0 with spp 0: the default time
+  // Not given: the camera's shape with the longest side 128 (the check needs passes, not pixels).
+  ImageSizeOptions size;
+  SampleBudget budget;   // neither given: the default time
   int threads = 0;
   CheckOptions check;
-  LoadOptions load;
-  EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
 void addCheckCommand(CLI::App& app, CheckCommandOptions& options);

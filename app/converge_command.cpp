@@ -11,11 +11,11 @@
 #include "core/converge/convergence_report.h"
 #include "core/converge/reference_key.h"
 #include "core/film/image_io.h"
+#include "core/io/text_file.h"
 #include "core/metrics/loglog_plot.h"
 #include "core/scene/gltf_loader.h"
 
 #include <fmt/core.h>
-#include <tbb/global_control.h>
 
 #include <chrono>
 #include <filesystem>
@@ -24,7 +24,6 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 
 namespace pathlab::app {
 
@@ -93,7 +92,7 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "converge", "Render several configurations for the same time, record their error against a reference, "
                   "and write convergence.csv, convergence.svg (log-log relMSE against time) and efficiency.md");
-  cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  addSceneArgument(cmd, o.scene.path);
   cmd->add_option("-o,--output", o.outputDir, "Output directory (created if missing)")->required();
   auto* reference = cmd->add_option("--reference", o.reference,
                   "Reference image (.exr or .pfm); without it one is rendered with bpt (balance heuristic) and "
@@ -102,13 +101,11 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
                   "';'-separated configurations INTEGRATOR[:key=value,...], keys mis, beta, min-connection, techniques, max-length "
                   "(e.g. \"bpt;pt;lt;bpt:mis=power;bpt:techniques=s=1;k=1\")")
       ->capture_default_str();
-  auto* spp = cmd->add_option("--spp", o.spp, "Render each configuration for this many samples per pixel")
-                  ->check(CLI::Range(2, 1 << 24));
-  cmd->add_option("--time", o.seconds, "Render each configuration for this many seconds (default 10)")
-      ->check(CLI::Range(0.001, 7.0 * 24 * 3600))
-      ->excludes(spp);
+  addSampleBudgetOptions(cmd, o.budget,
+                         {2, "Render each configuration for this many samples per pixel",
+                          "Render each configuration for this many seconds (default 10)"});
   auto* refSpp = cmd->add_option("--reference-spp", o.referenceSpp, "Samples per pixel of a rendered reference")
-                     ->check(CLI::Range(2, 1 << 24));
+                     ->check(CLI::Range(2, kMaxSpp));
   auto* refTime = cmd->add_option("--reference-time", o.referenceSeconds,
                                    "Seconds of a rendered reference (default 10 times the per-configuration budget)")
                       ->check(CLI::Range(0.001, 30.0 * 24 * 3600))
@@ -123,18 +120,15 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
                   "on a loaded machine; use it with --threads 1)")
       ->check(CLI::IsMember({"wall", "cpu"}))
       ->capture_default_str();
-  cmd->add_option("--width", o.width, "Image width (default: the reference's, or the camera's shape, longest side 256)")->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", o.height, "Image height (default: the reference's, or the camera's shape, longest side 256)")->check(CLI::Range(1, 16384));
+  addImageSizeOptions(cmd, o.size, {kMaxImageSide, kDefaultSide, "the reference's, or "});
   cmd->add_option("--max-length", o.maxLength, "Maximum path length in edges (a configuration may override it)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_flag("--rr,!--no-rr", o.russianRoulette, "Russian roulette from the third edge on (default on)");
   cmd->add_option("--seed", o.seed, "Seed of every configuration's random streams");
-  cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
-  cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
-  addEnvironmentOptions(cmd, o.environment);
-  cmd->add_flag("-f,--force", o.force, "Overwrite convergence.csv, convergence.svg and efficiency.md");
+  addThreadsOption(cmd, o.threads);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
+  addForceFlag(cmd, o.force, "convergence.csv, convergence.svg and efficiency.md");
 }
 
 namespace {
@@ -166,8 +160,9 @@ ReferenceRun referenceRun(const ConvergeOptions& o, const RenderSettings& base, 
 // The cached reference of these settings; the environment lights the reference too, so one
 // rendered under another is not reused.
 fs::path cachedReferencePath(const ConvergeOptions& o, const ReferenceRun& r) {
-  return fs::path(o.outputDir) /
-         fmt::format("reference-{}.exr", referenceKey(o.scene, r.config.settings, r.budgetText + environmentKeyText(o.load)));
+  const std::string key =
+      referenceKey(o.scene.path, r.config.settings, r.budgetText + environmentKeyText(o.scene.load));
+  return fs::path(o.outputDir) / fmt::format("reference-{}.exr", key);
 }
 
 // Everything before the first pass. The outputs and the reference are the leader's alone: it
@@ -196,8 +191,8 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
   p.base.maxLength = o.maxLength;
   p.base.russianRoulette = o.russianRoulette;
   p.base.seed = o.seed;
-  p.base.width = o.width > 0 ? o.width : kDefaultSide;
-  p.base.height = o.height > 0 ? o.height : kDefaultSide;
+  p.base.width = o.size.width > 0 ? o.size.width : kDefaultSide;
+  p.base.height = o.size.height > 0 ? o.size.height : kDefaultSide;
   if (static_cast<long long>(p.base.width) * p.base.height > 16LL * 1024 * 1024)
     throw std::runtime_error(
         fmt::format("--width x --height = {} x {} is more than 16M pixels", p.base.width, p.base.height));
@@ -211,23 +206,21 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
 
   if (!o.reference.empty() && job.leader()) {
     p.reference = readImage(o.reference);
-    if ((o.width > 0 && o.width != p.reference.width) || (o.height > 0 && o.height != p.reference.height))
+    if ((o.size.width > 0 && o.size.width != p.reference.width) ||
+        (o.size.height > 0 && o.size.height != p.reference.height))
       throw std::runtime_error(fmt::format("{}: the reference is {} x {}, not the {} x {} asked for", o.reference,
                                            p.reference.width, p.reference.height, p.base.width, p.base.height));
     setImageSize(p, p.reference.width, p.reference.height);
   }
   p.budget.factor = o.checkpointFactor;
   p.budget.clock = o.clock == "cpu" ? ClockKind::Cpu : ClockKind::Wall;
-  if (o.spp > 0) p.budget.spp = static_cast<uint64_t>(o.spp);
-  else p.budget.seconds = o.seconds > 0 ? o.seconds : kDefaultConvergeSeconds;
+  if (o.budget.spp > 0) p.budget.spp = static_cast<uint64_t>(o.budget.spp);
+  else p.budget.seconds = o.budget.seconds > 0 ? o.budget.seconds : kDefaultConvergeSeconds;
 
-  finishEnvironmentOptions(o.environment, o.load);
-  p.scene = std::make_unique<Scene>(loadGltf(o.scene, o.load));
-  if (o.reference.empty() && (o.width == 0 || o.height == 0)) {
+  p.scene = std::make_unique<Scene>(readScene(o.scene));
+  if (o.reference.empty() && (o.size.width == 0 || o.size.height == 0)) {
     // As `render`: the image has the camera's shape (longest side 256 unless given), never cropped.
-    const Vec2i size = imageSizeForAspect(cameraAspect(std::nullopt, p.scene->cameraDesc()),
-                                          o.width > 0 ? std::optional(o.width) : std::nullopt,
-                                          o.height > 0 ? std::optional(o.height) : std::nullopt, kDefaultSide);
+    const Vec2i size = o.size.sizeFor(cameraAspect(std::nullopt, p.scene->cameraDesc()), kDefaultSide);
     setImageSize(p, size.x, size.y);
   }
   for (const std::string& w : p.scene->warnings()) log << "pathlab: warning: " << w << "\n";
@@ -252,25 +245,11 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
 
 }  // namespace
 
-int runConverge(ConvergeOptions o) {
-  Job process;
-  return runConverge(std::move(o), process);
-}
-
 int runConverge(ConvergeOptions o, Job& job) {
   std::ostream& log = job.log();
-  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
-  // Every rank prepares, then all agree before the first collective (as `render`): a rank that
-  // cannot load the scene stops the job at once, naming itself.
-  PreparedConverge p;
-  std::string error;
-  try {
-    p = prepareConverge(o, job);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  job.agree(error, 0);
+  const ThreadLimit threadLimit(o.threads);
+  PreparedConverge p = prepareOnEveryRank<PreparedConverge>(
+      job, [&] { return prepareConverge(o, job); }, [](const PreparedConverge&) { return uint64_t{0}; });
   // The leader alone read the reference: its size, and whether one has to be rendered, are its.
   uint64_t shared[3] = {static_cast<uint64_t>(p.base.width), static_cast<uint64_t>(p.base.height),
                         p.reference.rgb.empty() ? 1u : 0u};
@@ -321,7 +300,7 @@ int runConverge(ConvergeOptions o, Job& job) {
 
   LogLogPlot plot;
   const bool cpu = budget.clock == ClockKind::Cpu;
-  plot.title = fmt::format("{}: relative MSE against {}", fs::path(o.scene).filename().string(),
+  plot.title = fmt::format("{}: relative MSE against {}", fs::path(o.scene.path).filename().string(),
                            cpu ? "CPU time" : "render time");
   plot.xLabel = cpu ? "CPU time (s)" : "render time (s)";
   plot.yLabel = "relMSE";

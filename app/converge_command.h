@@ -2,8 +2,7 @@
 // error against a reference recorded over time, an efficiency table and a log-log plot.
 #pragma once
 
-#include "app/environment_options.h"
-#include "core/scene/gltf_loader.h"
+#include "app/shared_options.h"
 
 #include <CLI/CLI.hpp>
 
@@ -13,33 +12,29 @@
 namespace pathlab::app {
 
 struct ConvergeOptions {
-  std::string scene;
+  SceneOptions scene;
   std::string outputDir;
   std::string reference;  // empty: render one (bpt, balance) and cache it in outputDir by hash
   std::string configs = "bpt;pt;lt;bpt:mis=power;bpt:mis=uniform";
-  double seconds = 0.0;   // per configuration; default 10 when --spp is not given
-  int spp = 0;
+  SampleBudget budget;    // per configuration; neither given: 10 seconds
   double referenceSeconds = 0.0;  // default 10 x seconds
   int referenceSpp = 0;           // default 10 x spp
   double checkpointFactor = 1.5;
   std::string clock = "wall";  // or "cpu": process CPU time (fair on a loaded machine, with --threads 1)
-  int width = 0, height = 0;  // 0: the reference's size, or 256 without --reference
+  ImageSizeOptions size;  // not given: the reference's size, or 256 without --reference
   int maxLength = 10;
   bool russianRoulette = true;
   uint64_t seed = 0;
   int threads = 0;
   bool force = false;
-  LoadOptions load;
-  EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
 class Job;
 
 void addConvergeCommand(CLI::App& app, ConvergeOptions& options);
-// Returns the process exit code. Errors are exceptions, reported by main. With a Job, as one rank
-// of it: every configuration (and the reference) rendered by all ranks together, the results
-// written by the leader.
-int runConverge(ConvergeOptions options);
+// Returns the process exit code. Errors are exceptions, reported by main. As one rank of `job`
+// (app/job.h; one process: a plain Job): every configuration (and the reference) rendered by all
+// ranks together, the results written by the leader.
 int runConverge(ConvergeOptions options, Job& job);
 
 }  // namespace pathlab::app

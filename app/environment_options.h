@@ -1,4 +1,4 @@
-// The options that light a scene, shared by render, view, converge and check: --environment
+// The options that light a scene, shared by render, view, converge, check and inspect: --environment
 // FILE.exr|FILE.hdr|R,G,B, --environment-strength, --environment-rotation, --no-default-light, and
 // --light-sampler (how next-event estimation chooses among the lights).
 #pragma once

@@ -103,4 +103,10 @@ std::string biasInjectionWarning(const RenderSettings& s) {
                      s.injectBias->s, s.injectBias->t, s.injectBias->factor);
 }
 
+void printWarnings(std::ostream& log, const Scene& scene, const RenderSettings& settings) {
+  for (const std::string& w : scene.warnings()) log << "pathlab: warning: " << w << "\n";
+  if (const std::string w = misOffWarning(scene, settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
+  if (const std::string w = biasInjectionWarning(settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
+}
+
 }  // namespace pathlab::app

@@ -3,9 +3,11 @@
 #pragma once
 
 #include "core/render/render_settings.h"
+#include "core/scene/scene.h"
 
 #include <CLI/CLI.hpp>
 
+#include <ostream>
 #include <string>
 
 namespace pathlab::app {
@@ -31,5 +33,7 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& options);
 void finishEstimatorOptions(EstimatorOptions& options);
 // The one-line warning of --inject-bias for these settings, "" without one.
 std::string biasInjectionWarning(const RenderSettings& settings);
+// The scene's warnings, then those of the settings on it (--mis off, --inject-bias), a line each.
+void printWarnings(std::ostream& log, const Scene& scene, const RenderSettings& settings);
 
 }  // namespace pathlab::app

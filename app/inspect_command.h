@@ -1,11 +1,10 @@
 // `pathlab inspect`: one camera sample of one pixel, every (s,t) technique it tried, each full
 // path with its vertex densities and the path under every technique of its length, as text and
-// JSON (issue 12, "On the command line"; ui/inspection_report.h).
+// JSON (issue 12, "On the command line"; core/render/inspection_report.h).
 #pragma once
 
-#include "app/environment_options.h"
 #include "app/estimator_options.h"
-#include "core/scene/gltf_loader.h"
+#include "app/shared_options.h"
 
 #include <CLI/CLI.hpp>
 
@@ -15,15 +14,13 @@
 namespace pathlab::app {
 
 struct InspectOptions {
-  std::string scene;
+  SceneOptions scene;
   EstimatorOptions estimator;
-  int width = 0, height = 0;  // as render: the camera's shape, longest side 512, unless given
+  ImageSizeOptions size;      // as render: the camera's shape, longest side 512, unless given
   std::string pixel;          // "X,Y"
   uint64_t sample = 0;        // the pass index: samples are keyed by (seed, pixel, pass)
   std::string json;           // write the inspection here as JSON
   bool force = false;
-  EnvironmentOptions environment;  // into `load` before the scene loads
-  LoadOptions load;
 };
 
 void addInspectCommand(CLI::App& app, InspectOptions& options);

@@ -84,4 +84,20 @@ class Job {
 // A value that differs (almost surely) when two sessions' sums differ in number or size.
 uint64_t shapeOf(RenderSession& session);
 
+// Every rank runs `prepare` (options, outputs, scene, session), then all agree before the first
+// collective: a rank that could not load the scene stops the job at once, naming itself, instead
+// of leaving the others waiting for it in a reduction. `shape(prepared)` is Job::agree's shape.
+template <class Prepared, class Prepare, class Shape>
+Prepared prepareOnEveryRank(Job& job, Prepare prepare, Shape shape) {
+  Prepared prepared;
+  std::string error;
+  try {
+    prepared = prepare();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  job.agree(error, shape(prepared));
+  return prepared;
+}
+
 }  // namespace pathlab::app

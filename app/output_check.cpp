@@ -65,6 +65,11 @@ void checkOutputWritable(const std::string& path) {
   if (!S_ISREG(st.st_mode)) throw std::runtime_error(fmt::format("{}: is not a regular file", path));
 }
 
+void refuseExisting(const std::string& path, bool force) {
+  if (!force && std::filesystem::exists(path))
+    throw std::runtime_error(path + ": file exists (pass --force to overwrite it)");
+}
+
 void checkOutputDirectory(const std::string& dir) {
   if (dir.empty()) throw std::runtime_error("an output directory is empty");
   struct stat st {};

@@ -5,8 +5,6 @@
 // target itself is absent or a regular file.
 #pragma once
 
-#include "ui/output_names.h"
-
 #include <string>
 
 namespace pathlab::app {
@@ -17,7 +15,7 @@ void checkOutputWritable(const std::string& path);
 // The same for a directory pathlab creates when it is missing (converge -o): an existing
 // directory that may be written, or else a parent in which it may be created.
 void checkOutputDirectory(const std::string& dir);
-// Text files are written like images (ui/output_names.h).
-using ui::writeTextAtomically;
+// "PATH: file exists (pass --force to overwrite it)" unless `force` or `path` is absent.
+void refuseExisting(const std::string& path, bool force);
 
 }  // namespace pathlab::app

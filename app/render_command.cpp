@@ -6,16 +6,15 @@
 #include "app/output_check.h"
 #include "app/progress.h"
 #include "app/pyramid_output.h"
-#include "ui/inspection_report.h"
 #include "app/technique_maps_output.h"
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
 #include "core/metrics/technique_table.h"
+#include "core/render/inspection_report.h"
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
 
 #include <fmt/core.h>
-#include <tbb/global_control.h>
 
 #include <chrono>
 #include <cstdio>
@@ -24,16 +23,13 @@
 #include <iostream>
 #include <memory>
 #include <stdexcept>
-#include <thread>
 #include <unistd.h>
 
 namespace pathlab::app {
 
 namespace {
 
-constexpr int kMaxImageSide = 16384;
 constexpr long long kMaxPixels = 64LL * 1024 * 1024;
-constexpr int kMaxSpp = 1 << 24;
 constexpr int kDefaultSpp = 64;
 
 // Nothing the user made is overwritten without asking: ask on a terminal, refuse otherwise.
@@ -47,7 +43,7 @@ void checkOutput(const std::string& output, bool force) {
     std::getline(std::cin, answer);
     if (answer == "y" || answer == "Y" || answer == "yes") return;
   }
-  throw std::runtime_error(output + ": file exists (pass --force to overwrite it)");
+  refuseExisting(output, false);
 }
 
 // Per-technique counters (core/metrics/technique_table.h, the viewer's table): every walk and
@@ -81,7 +77,7 @@ ReplayRequest parseReplay(const std::string& text, const RenderSettings& setting
 
 // One sample, exactly as the render computed it, technique by technique (stdout).
 int runReplay(const RenderSession& session, const ReplayRequest& r) {
-  ui::printInspection(std::cout, session.settings(), inspectSample(session, r.x, r.y, r.sample), false);
+  printInspection(std::cout, session.settings(), inspectSample(session, r.x, r.y, r.sample), false);
   return 0;
 }
 
@@ -89,21 +85,16 @@ int runReplay(const RenderSession& session, const ReplayRequest& r) {
 
 void addRenderCommand(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene headless to an image file");
-  cmd->add_option("scene", o.scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  addSceneArgument(cmd, o.scene.path);
   auto* output =
       cmd->add_option("-o,--output", o.output, "Output image: .exr and .pfm store float radiance, .png is tone mapped (sRGB)");
   cmd->add_option("--replay", o.replay,
                   "Replay sample SAMPLE of pixel X,Y with the same options and print every technique's part")
       ->excludes(output);
-  auto* spp = cmd->add_option("--spp", o.spp, "Samples per pixel (default 64 when --time is not given)")
-                  ->check(CLI::Range(1, kMaxSpp));
-  cmd->add_option("--time", o.seconds, "Render for this many seconds of wall time instead of a sample count")
-      ->check(CLI::Range(0.001, 7.0 * 24 * 3600))
-      ->excludes(spp);
-  cmd->add_option("--width", o.width, "Image width in pixels (default: the camera's aspect, longest side 512)")
-      ->check(CLI::Range(1, kMaxImageSide));
-  cmd->add_option("--height", o.height, "Image height in pixels (default: the camera's aspect, longest side 512)")
-      ->check(CLI::Range(1, kMaxImageSide));
+  addSampleBudgetOptions(cmd, o.budget,
+                         {1, "Samples per pixel (default 64 when --time is not given)",
+                          "Render for this many seconds of wall time instead of a sample count"});
+  addImageSizeOptions(cmd, o.size, {kMaxImageSide, kDefaultLongestSide});
   addEstimatorOptions(cmd, o.estimator);
   cmd->add_option("--pyramid", o.estimator.settings.pyramidLength,
                   "Also write every technique (s,t) up to this length, weighted and unweighted, and two mosaics "
@@ -113,16 +104,14 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "Also write the technique maps up to this length next to the output: the dominant technique, "
                   "each technique's share of the image and where each cannot sample (EXR and PNG)")
       ->check(CLI::Range(1, kMaxPyramidLength));
-  cmd->add_option("--threads", o.threads, "Worker threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
-  cmd->add_option("--max-triangles", o.load.maxTriangles, "Refuse scenes that instance more triangles than this")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
-  addEnvironmentOptions(cmd, o.environment);
+  addThreadsOption(cmd, o.threads);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
   cmd->add_flag("--stats", o.stats, "Print per-technique counters: connections tried, zero, blocked, contributing, discarded, shadow rays "
                 "and share of all rays, share of the timed work (connect + MIS weight; the walks too)");
-  cmd->add_flag("-f,--force", o.force, "Overwrite the output file if it exists");
+  addForceFlag(cmd, o.force, "the output file if it exists");
 }
 
 namespace {
@@ -161,14 +150,14 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
     throw std::runtime_error("--replay recomputes one sample: run it as one process, without mpirun");
   // Until the camera's aspect is known, a side not given may be as large as allowed: the syntax of
   // --replay and a too large --width x --height are still refused before any work.
-  settings.width = o.width > 0 ? o.width : kMaxImageSide;
-  settings.height = o.height > 0 ? o.height : kMaxImageSide;
+  settings.width = o.size.width > 0 ? o.size.width : kMaxImageSide;
+  settings.height = o.size.height > 0 ? o.size.height : kMaxImageSide;
   auto checkPixels = [&] {
     if (static_cast<long long>(settings.width) * settings.height > kMaxPixels)
       throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", settings.width,
                                            settings.height, kMaxPixels));
   };
-  if (o.width > 0 && o.height > 0) checkPixels();
+  if (o.size.width > 0 && o.size.height > 0) checkPixels();
   if (settings.integrator != IntegratorKind::Pt) {
     const TechniqueSet techniques = enabledTechniques(settings);
     for (int k : techniques.uncoveredLengths(settings.maxLength))
@@ -188,58 +177,41 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   }
 
   const auto loadStart = std::chrono::steady_clock::now();
-  finishEnvironmentOptions(o.environment, o.load);
-  p.scene = std::make_unique<Scene>(loadGltf(o.scene, o.load));
+  p.scene = std::make_unique<Scene>(readScene(o.scene));
   const Scene& scene = *p.scene;
   // The image has the camera's shape, so nothing the camera frames is cropped (image_size.h).
-  const Vec2i size = imageSizeForAspect(cameraAspect(settings.camera, scene.cameraDesc()),
-                                        o.width > 0 ? std::optional(o.width) : std::nullopt,
-                                        o.height > 0 ? std::optional(o.height) : std::nullopt);
+  const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultLongestSide);
   settings.width = size.x;
   settings.height = size.y;
   checkPixels();
   if (p.replay) p.replay = parseReplay(o.replay, settings);
-  for (const std::string& w : scene.warnings()) log << "pathlab: warning: " << w << "\n";
-  if (const std::string w = misOffWarning(scene, settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
-  if (const std::string w = biasInjectionWarning(settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
+  printWarnings(log, scene, settings);
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
   // This rank's share of the passes (Job::passSchedule): all of them for one process. Before the
   // summary line: settings the scene's camera refuses (light tracing through an orthographic
   // camera) are then the only line.
   p.session = std::make_unique<RenderSession>(scene, settings, job.passSchedule());
-  log << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene,
+  log << fmt::format("{}: {} triangles, {} lights, {:.1f} MB of geometry, loaded in {:.2f} s\n", o.scene.path,
                      scene.triangleCount(), scene.lights().size(), double(scene.geometryBytes()) / 1e6, loadSeconds);
   return p;
 }
 
 }  // namespace
 
-int runRender(RenderOptions o) {
-  Job process;
-  return runRender(std::move(o), process);
-}
-
 int runRender(RenderOptions o, Job& job) {
-  const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
-  // Every rank prepares, then all agree before the first collective of the render: a rank that
-  // could not load the scene (or build its film) stops the job at once instead of leaving the
-  // others waiting for it in a reduction.
-  PreparedRender prepared;
-  std::string error;
-  try {
-    prepared = prepareRender(o, job);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  job.agree(error, prepared.session ? shapeOf(*prepared.session) : 0);
+  const ThreadLimit threadLimit(o.threads);
+  // Every rank prepares, then all agree before the first collective of the render (a rank that
+  // could not build its film stops the job too).
+  PreparedRender prepared = prepareOnEveryRank<PreparedRender>(
+      job, [&] { return prepareRender(o, job); },
+      [](PreparedRender& p) { return p.session ? shapeOf(*p.session) : uint64_t{0}; });
   RenderSession& session = *prepared.session;
   const RenderSettings& settings = session.settings();
   if (prepared.replay) return runReplay(session, *prepared.replay);
 
   session.setTiming(o.stats);  // two clock reads a connection: only when the shares are printed
-  const bool timed = o.seconds > 0.0;
-  const uint64_t targetSpp = timed ? 0 : static_cast<uint64_t>(o.spp > 0 ? o.spp : kDefaultSpp);
+  const bool timed = o.budget.seconds > 0.0;
+  const uint64_t targetSpp = timed ? 0 : static_cast<uint64_t>(o.budget.spp > 0 ? o.budget.spp : kDefaultSpp);
   // --spp is the job's: this rank renders its share of the pass indices below it; --time holds
   // for every rank (each starts its clock as the agreement returns).
   const uint64_t ownPasses = job.passesOf(targetSpp);
@@ -254,11 +226,11 @@ int runRender(RenderOptions o, Job& job) {
       bar.emplace([&] {
         const double passFraction = static_cast<double>(session.pixelsDoneInPass()) / pixels;
         const uint64_t passes = job.jobPasses();
-        const double done = timed ? elapsed() / o.seconds
+        const double done = timed ? elapsed() / o.budget.seconds
                                   : (static_cast<double>(passes) + passFraction) / static_cast<double>(targetSpp);
         return std::pair{done, fmt::format("{} spp  {:.1f} s", passes, elapsed())};
       });
-    while (timed ? (session.passes() == 0 || elapsed() < o.seconds) : session.passes() < ownPasses) {
+    while (timed ? (session.passes() == 0 || elapsed() < o.budget.seconds) : session.passes() < ownPasses) {
       session.renderPass();
       job.notePasses(session.passes());
     }

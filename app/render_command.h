@@ -2,8 +2,7 @@
 #pragma once
 
 #include "app/estimator_options.h"
-#include "app/environment_options.h"
-#include "core/scene/gltf_loader.h"
+#include "app/shared_options.h"
 
 #include <CLI/CLI.hpp>
 
@@ -14,28 +13,23 @@ namespace pathlab::app {
 class Job;
 
 struct RenderOptions {
-  std::string scene;
+  SceneOptions scene;
   std::string output;
   EstimatorOptions estimator;
-  // 0: not given. Neither given: the camera's aspect with the longest side 512; one given: the
-  // other follows the aspect; both: exactly those.
-  int width = 0, height = 0;
-  int spp = 0;          // 0: use the time limit (or the default of 64 if neither is given)
-  double seconds = 0.0;
+  // Neither side given: the camera's aspect with the longest side 512.
+  ImageSizeOptions size;
+  SampleBudget budget;  // neither given: 64 spp
   int threads = 0;      // 0: every hardware thread
   float exposure = 0.f;
   bool force = false;
   bool stats = false;   // print the per-technique counters
   std::string replay;   // "X,Y,SAMPLE": print that one sample's techniques instead of rendering
   int techniqueMaps = 0;  // > 0: also write the technique maps up to this length
-  LoadOptions load;
-  EnvironmentOptions environment;  // into `load` before the scene loads
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& options);
-// Returns the process exit code. Errors are exceptions, reported by main.
-int runRender(RenderOptions options);
-// As one rank of `job` (app/job.h): its share of the passes; the leader writes the outputs.
+// Returns the process exit code. Errors are exceptions, reported by main. As one rank of `job`
+// (app/job.h; one process: a plain Job): its share of the passes; the leader writes the outputs.
 int runRender(RenderOptions options, Job& job);
 
 }  // namespace pathlab::app

@@ -1,21 +1,14 @@
 // `pathlab view [SCENE]`: registers the viewer's options and hands them to ui::runViewer.
 #include "app/view_command.h"
 
-#include "ui/compare.h"
-
 #include "app/output_check.h"
-#include "ui/compare.h"
-#include "ui/run_viewer.h"
-#include "ui/technique_map_view.h"
+#include "app/shared_options.h"
 
 #include <fmt/core.h>
-#include <tbb/global_control.h>
 
 #include <cstdio>
-#include <stdexcept>
-
 #include <filesystem>
-#include <thread>
+#include <stdexcept>
 
 namespace {
 
@@ -31,22 +24,22 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   CLI::App* cmd = app.add_subcommand("view", "Open the interactive viewer (or, with --headless, screenshot it)");
   ui::ViewerOptions& v = o.viewer;
   v.scene = kDefaultScene;
-  cmd->add_option("scene", v.scene, "glTF 2.0 scene (.gltf or .glb); default: the bundled Cornell box");
+  addSceneArgument(cmd, v.scene, "the bundled Cornell box");
   addEstimatorOptions(cmd, o.estimator);
-  cmd->add_option("--threads", v.threads, "Render threads (0: all hardware threads)")->check(CLI::Range(0, 1024));
-  cmd->add_option("--max-triangles", v.load.maxTriangles, "Refuse scenes that instance more triangles than this")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
-  addEnvironmentOptions(cmd, o.environment);
+  addThreadsOption(cmd, v.threads, "Render");
+  addLoadOptions(cmd, v.load, o.environment);
+  // The window's size, not the image's (addImageSizeOptions): the image follows the room the panels leave.
   cmd->add_option("--width", v.windowWidth, "Window width in pixels (the image keeps the camera's aspect in the room the panels leave)")
-      ->check(CLI::Range(64, 16384));
-  cmd->add_option("--height", v.windowHeight, "Window height in pixels")->check(CLI::Range(64, 16384));
+      ->check(CLI::Range(64, kMaxImageSide));
+  cmd->add_option("--height", v.windowHeight, "Window height in pixels")->check(CLI::Range(64, kMaxImageSide));
   auto* presets = cmd->add_option("--presets", v.presetsFile, "JSON file of named presets (e.g. assets/presets.json)");
   cmd->add_option("--preset", v.preset, "Start with this named preset (replaces the estimator options)")
       ->needs(presets);
   cmd->add_flag("--lecture", v.lecture, "Lecture mode: UI scaled for a projector");
   cmd->add_option("--exposure", v.exposure, "Display exposure in stops")->check(CLI::Range(-40.f, 40.f));
+  // Not a budget (addSampleBudgetOptions): the viewer accumulates until closed, 0 never stops.
   cmd->add_option("--spp", v.spp, "Stop accumulating at this many samples per pixel (headless: the screenshot waits for them)")
-      ->check(CLI::Range(0, 1 << 24));
+      ->check(CLI::Range(0, kMaxSpp));
   cmd->add_option("--pyramid", v.pyramidLength, "Open the technique pyramid up to this path length")
       ->check(CLI::Range(1, kMaxPyramidLength));
   cmd->add_option("--compare", v.compare,
@@ -80,8 +73,7 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_flag("--check", o.estimator.settings.checkTechniques,
                 "Run the consistency check of the techniques (cells of those that disagree turn red)");
   cmd->add_option("--z-map", o.zMap, "S,T: with --check, draw technique (S,T)'s |z| per block over the image");
-  cmd->add_flag("-f,--force", v.force,
-                "Overwrite the screenshot (and the error CSV) if it exists; record into a non-empty directory");
+  addForceFlag(cmd, v.force, "the screenshot (and the error CSV) if it exists; record into a non-empty directory");
 }
 
 int runView(ViewOptions o) {
@@ -99,12 +91,7 @@ int runView(ViewOptions o) {
     if (!o.estimator.settings.checkTechniques) throw std::invalid_argument("--z-map needs --check");
     o.viewer.zMap = Technique{s, t};
   }
-  if (!o.viewer.techniqueMap.empty()) {
-    ui::parseMapView(o.viewer.techniqueMap);  // one line and exit 1 before any window opens
-    if (o.viewer.settings.integrator == IntegratorKind::Pt)
-      throw std::runtime_error("--technique-map needs the bidirectional tracer (--integrator bpt or lt)");
-  }
-  if (!o.viewer.compare.empty()) ui::compareEstimator(o.viewer.compare, o.viewer.settings);  // one line, exit 1
+  ui::checkViewerOptions(o.viewer);  // one line and exit 1 before any window opens
   // Before the viewer loads the scene; it checks the extension and --force itself.
   if (!o.viewer.screenshot.empty()) checkOutputWritable(o.viewer.screenshot);
   if (!o.viewer.errorCsv.empty()) checkOutputWritable(o.viewer.errorCsv);
@@ -112,10 +99,8 @@ int runView(ViewOptions o) {
   if (o.viewer.scene == kDefaultScene && !std::filesystem::exists(o.viewer.scene))
     o.viewer.scene = PATHLAB_ASSETS_DIR "/cornell-box.gltf";
   // The render threads get every core; the UI thread still runs at its own bounded frame rate.
-  const int threads =
-      o.viewer.threads > 0 ? o.viewer.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
-  o.viewer.threads = threads;
+  const ThreadLimit threadLimit(o.viewer.threads);
+  o.viewer.threads = threadLimit.threads();
   return ui::runViewer(o.viewer);
 }
 

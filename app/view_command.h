@@ -3,7 +3,7 @@
 
 #include "app/environment_options.h"
 #include "app/estimator_options.h"
-#include "ui/viewer_options.h"
+#include "ui/run_viewer.h"  // app/'s one entry into ui/
 
 #include <CLI/CLI.hpp>
 

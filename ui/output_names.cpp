@@ -3,7 +3,6 @@
 
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 
 namespace pathlab::ui {
 
@@ -21,16 +20,6 @@ std::string freshStem(const std::string& dir, const std::string& prefix, const s
     for (const std::string& ext : extensions) taken = taken || std::filesystem::exists(stem + ext);
     if (!taken) return stem;
   }
-}
-
-void writeTextAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(tmp + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace pathlab::ui

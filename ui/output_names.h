@@ -2,6 +2,8 @@
 // overwritten without asking, as for `pathlab render`).
 #pragma once
 
+#include "core/io/text_file.h"  // writeTextAtomically, for the files the viewer writes
+
 #include <string>
 #include <vector>
 
@@ -10,9 +12,5 @@ namespace pathlab::ui {
 // "DIR/PREFIX-YYYYMMDD-HHMMSS" (local time), with "-2", "-3", ... appended until no file
 // DIR/STEM.EXT exists for any of `extensions` (e.g. {".exr", ".png"}). Creates DIR if missing.
 std::string freshStem(const std::string& dir, const std::string& prefix, const std::vector<std::string>& extensions);
-
-// Text files are written like images: a temporary beside the target, then a rename. Throws
-// std::runtime_error naming the file when it cannot be written.
-void writeTextAtomically(const std::string& path, const std::string& text);
 
 }  // namespace pathlab::ui

@@ -1,5 +1,7 @@
 // Entry point of `pathlab view`: opens the window (or the headless EGL context), runs the viewer
-// until it is closed (or for the requested frames) and writes the headless screenshot.
+// until it is closed (or for the requested frames) and writes the headless screenshot. The one
+// header of ui/ that app/ includes (tests/app_layering_test.py): ViewerOptions and
+// checkViewerOptions come with it.
 #pragma once
 
 #include "ui/viewer_options.h"

@@ -4,7 +4,7 @@
 
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
-#include "ui/inspection_report.h"
+#include "core/render/inspection_report.h"
 #include "ui/output_names.h"
 #include "ui/technique_grid.h"
 #include "ui/thread_priority.h"

@@ -51,4 +51,8 @@ struct ViewerOptions {
   std::optional<Technique> zMap;  // the consistency check's |z| map of this technique (settings.checkTechniques)
 };
 
+// What can be refused before the scene loads or a window opens, one line each: a technique map
+// that does not parse or has no bidirectional tracer, a --compare CONFIG that does not parse.
+void checkViewerOptions(const ViewerOptions& options);
+
 }  // namespace pathlab::ui

@@ -1,7 +1,7 @@
 // Every numeric option of every subcommand refuses nan, inf, -inf and values that overflow to inf
 // with one message naming the option and the value (issue 18, class 3). The options are walked on
 // the App the executable builds (app/cli.h), so an option added later without the check fails here.
-#include "app/cli.h"
+#include "tests/cli/test_cli.h"
 
 #include <gtest/gtest.h>
 
@@ -11,17 +11,6 @@
 
 namespace pathlab::app {
 namespace {
-
-// A fresh App per parse: CLI11 keeps results between parses.
-struct Cli {
-  CLI::App app;
-  CliOptions options;
-  Cli() { addCommands(app, options); }
-};
-
-std::vector<CLI::App*> subcommands(CLI::App& app) {
-  return app.get_subcommands([](CLI::App*) { return true; });
-}
 
 // Everything but flags (no value) and text options (paths, technique specs: any word) is a number
 // or a choice, and must refuse a non-finite value.
@@ -40,7 +29,7 @@ std::string commandLine(CLI::App& sub, const CLI::Option& option, const std::str
 
 // Parses and returns the error message, or "" when the line was accepted.
 std::string parseError(const std::string& subcommand, const std::string& optionName, const std::string& value) {
-  Cli cli;
+  TestCli cli;
   CLI::App* sub = cli.app.get_subcommand(subcommand);
   const std::string line = commandLine(*sub, *sub->get_option(optionName), value);
   try {
@@ -52,10 +41,10 @@ std::string parseError(const std::string& subcommand, const std::string& optionN
 }
 
 TEST(NumericOptions, EveryOneRefusesNonFiniteValues) {
-  Cli cli;
+  TestCli cli;
   int checked = 0;
   std::vector<std::string> names;
-  for (CLI::App* sub : subcommands(cli.app)) {
+  for (CLI::App* sub : cli.subcommands()) {
     for (const CLI::Option* option : sub->get_options()) {
       if (!takesNumber(*option)) continue;
       const std::string name = option->get_name();

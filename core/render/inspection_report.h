@@ -13,15 +13,15 @@
 #include <cstdint>
 #include <ostream>
 
-namespace pathlab::ui {
+namespace pathlab {
 
 // The text `render --replay` prints; with `paths`, every technique's full path too.
 void printInspection(std::ostream& out, const RenderSettings& settings, const SampleInspection& inspection, bool paths);
 
-// The JSON of `pathlab inspect --json` (README, "Inspecting one sample"): pixel, sample, seed,
+// The JSON of `pathlab inspect --json` (docs/cli.md, `pathlab inspect`): pixel, sample, seed,
 // heuristic, the subpaths with their vertex densities, and per technique its contribution, weight,
 // raster position, path (light end first, with both densities of each vertex) and the path's
 // density and weights under every technique of its length.
 nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspection& inspection);
 
-}  // namespace pathlab::ui
+}  // namespace pathlab

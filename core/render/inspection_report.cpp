@@ -1,10 +1,11 @@
-#include "ui/inspection_report.h"
+// The inspection of one sample as text and as JSON (core/render/inspection_report.h).
+#include "core/render/inspection_report.h"
 
 #include "core/bpt/bidir_tracer.h"
 
 #include <fmt/core.h>
 
-namespace pathlab::ui {
+namespace pathlab {
 
 namespace {
 
@@ -170,4 +171,4 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
   return j;
 }
 
-}  // namespace pathlab::ui
+}  // namespace pathlab

@@ -1,0 +1,20 @@
+// The checks of `pathlab view`'s options that need neither the scene nor a window.
+#include "ui/viewer_options.h"
+
+#include "ui/compare.h"
+#include "ui/technique_map_view.h"
+
+#include <stdexcept>
+
+namespace pathlab::ui {
+
+void checkViewerOptions(const ViewerOptions& o) {
+  if (!o.techniqueMap.empty()) {
+    parseMapView(o.techniqueMap);
+    if (o.settings.integrator == IntegratorKind::Pt)
+      throw std::runtime_error("--technique-map needs the bidirectional tracer (--integrator bpt or lt)");
+  }
+  if (!o.compare.empty()) compareEstimator(o.compare, o.settings);
+}
+
+}  // namespace pathlab::ui
