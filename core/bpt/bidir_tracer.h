@@ -94,7 +94,9 @@ class BidirTracer {
   // ConnectStrategy::Endpoints: each technique in use on subpaths of its own.
   void sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionKey, bool timed, int pyramidLength, Walks& walks,
                        SampleSink& sink, Counters& counters) const;
-  // The MIS weight of technique (s, t) on the connection just formed (misEvaluation_).
+  // The MIS weight of technique (s, t) on the connection just formed (misEvaluation_); kRecords as
+  // evaluate's (false: the image-only route, whose preconditions fix the partial sums).
+  template <bool kRecords>
   float weight(const MisPath& path, const Connection& c, const Walks& walks, Counters& counters) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 
