@@ -20,7 +20,7 @@ struct TechniqueLuminance {
   size_t pixelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   // The image of length k (0: of every length up to `length`): the sum of the weighted films, so
   // that the shares of the techniques in it add up to one. With length = the maximum path length
-  // and every technique in the pyramid it is the rendered image (tests/technique_maps_test.cpp).
+  // and every technique in the pyramid it is the rendered image (tests/maps/technique_maps_test.cpp).
   std::vector<float> image(int k = 0) const;
 };
 

@@ -1,6 +1,6 @@
 // The convergence panel's logic without ImGui: the error view's colour map and scale (the CPU
 // mirror of the shader). The technique table's rows are tested with the core
-// (tests/technique_table_test.cpp).
+// (tests/metrics/technique_table_test.cpp).
 #include "ui/display_settings.h"
 #include "ui/input_script.h"
 

@@ -2,7 +2,7 @@
 // (factors times texture channels, emission).
 #include "core/scene/material.h"
 #include "core/texture/texture.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

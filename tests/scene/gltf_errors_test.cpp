@@ -1,7 +1,7 @@
 // Tests of the glTF loader on malformed input (one-line SceneError "PATH: problem", never a
 // crash) and on required and optional extensions it does not support.
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The glTF loader's running time on a million triangles: a guard against quadratic steps.
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

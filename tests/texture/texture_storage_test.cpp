@@ -3,7 +3,7 @@
 #include "core/math/rng.h"
 #include "core/scene/material.h"
 #include "core/texture/texture.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

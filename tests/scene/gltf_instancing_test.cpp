@@ -2,8 +2,8 @@
 // counted over the node tree before anything is built, and the default scene index.
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene.h"
-#include "tests/gltf_load_guard.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_load_guard.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // default material, unsupported parts that warn, sRGB against linear decoding, 16-bit and
 // external images.
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

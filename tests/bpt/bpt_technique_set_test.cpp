@@ -74,7 +74,7 @@ TEST(BptTechniqueSet, EqualSetsCompareEqualHoweverSpelled) {
   EXPECT_NE(TechniqueSet::pathTracing().upTo(3), TechniqueSet::pathTracing());
   EXPECT_EQ(TechniqueSet::pathTracing().upTo(3).count(3), 6);
   // So RenderSettings with such sets are equal, and a renderer starts no new generation for them
-  // (tests/progressive_renderer_test.cpp).
+  // (tests/render/progressive_renderer_test.cpp).
   RenderSettings a, b;
   a.techniques = TechniqueSet::parse("k=1");
   b.techniques = TechniqueSet::parse("0,2;1,1");

@@ -3,7 +3,7 @@
 #include "core/lights/light.h"
 #include "core/lights/light_set.h"
 #include "core/math/rng.h"
-#include "tests/light_test_support.h"
+#include "tests/lights/light_test_support.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 

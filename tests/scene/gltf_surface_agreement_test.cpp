@@ -5,7 +5,7 @@
 // traced rays, shadow rays and t = 1 connections alike). Region z-tests with standard errors
 // measured from independent passes (tests/support/agreement.h); fixed seeds.
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_surface_scenes.h"
+#include "tests/scene/gltf_surface_scenes.h"
 #include "tests/support/agreement.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // assets/README.md documents (bounds, texels, lights, camera, the documented problems of the
 // malformed ones).
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene.h"
 #include "core/scene/tangents.h"
-#include "tests/gltf_surface_scenes.h"
+#include "tests/scene/gltf_surface_scenes.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // a double but infinite as a float (or a product, area or extent that overflows) is refused with
 // one line naming it and saying "overflows", never rendered black nor reported as something else.
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

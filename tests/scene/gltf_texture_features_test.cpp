@@ -3,7 +3,7 @@
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene.h"
 #include "core/texture/texture_integral.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

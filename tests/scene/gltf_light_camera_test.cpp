@@ -1,6 +1,6 @@
 // Tests of the glTF loader's punctual lights (KHR_lights_punctual) and its camera.
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

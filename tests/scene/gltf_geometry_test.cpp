@@ -1,7 +1,7 @@
 // Tests of the glTF loader's geometry: node transforms and the hierarchy, the default scene,
 // indexed, interleaved, instanced, degenerate and quantized primitives, and GLB against .gltf.
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

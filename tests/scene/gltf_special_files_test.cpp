@@ -2,8 +2,8 @@
 // image it references: a FIFO, a directory or a device fails at once with one line naming the
 // file and what it is, and never hangs (each load runs in a child process with a deadline).
 #include "core/scene/gltf_loader.h"
-#include "tests/gltf_load_guard.h"
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_load_guard.h"
+#include "tests/scene/gltf_test_builder.h"
 
 #include <gtest/gtest.h>
 

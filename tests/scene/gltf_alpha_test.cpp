@@ -3,7 +3,7 @@
 #include "core/scene/alpha_test.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene.h"
-#include "tests/gltf_surface_scenes.h"
+#include "tests/scene/gltf_surface_scenes.h"
 #include "core/math/rng.h"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 #include "core/lights/light.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene.h"
-#include "tests/light_test_support.h"
+#include "tests/lights/light_test_support.h"
 #include "tests/support/statistics.h"
 #include "tests/support/test_scenes.h"
 

@@ -2,7 +2,7 @@
 // closed-form irradiance (sampleLe, power and the LightSet: light_emission_test.cpp).
 #include "core/lights/light.h"
 #include "core/math/rng.h"
-#include "tests/light_test_support.h"
+#include "tests/lights/light_test_support.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 

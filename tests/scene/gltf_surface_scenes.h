@@ -3,7 +3,7 @@
 // down, textures written as embedded PNGs.
 #pragma once
 
-#include "tests/gltf_test_builder.h"
+#include "tests/scene/gltf_test_builder.h"
 
 namespace pathlab::gltf_test {
 
