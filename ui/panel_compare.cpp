@@ -9,7 +9,8 @@
 
 namespace pathlab::ui {
 
-void drawCompareSection(CompareState& compare, const RenderSnapshot& b, PanelRequests& requests) {
+void drawCompareSection(CompareState& compare, const RenderSnapshot& b, const std::string& refused,
+                        PanelRequests& requests) {
   ImGui::PushID("compare");
   bool on = compare.on;
   if (ImGui::Checkbox("Side by side (C)", &on)) requests.actions.push_back(Action::ToggleCompare);
@@ -24,9 +25,10 @@ void drawCompareSection(CompareState& compare, const RenderSnapshot& b, PanelReq
   compare.typed = buffer.data();
   ImGui::SameLine();
   if (ImGui::Button("Apply") || entered) requests.compareConfig = compare.typed;
-  if (!compare.error.empty()) {
+  for (const std::string* error : {static_cast<const std::string*>(&compare.error), &refused}) {
+    if (error->empty()) continue;
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.f, 0.35f, 0.35f, 1.f));
-    ImGui::TextWrapped("%s", compare.error.c_str());
+    ImGui::TextWrapped("%s", error->c_str());
     ImGui::PopStyleColor();
   }
   if (compare.on && b.settings.width > 0)

@@ -68,8 +68,10 @@ void drawInspectorWindow(PathInspectorState& state, PanelRect rect, PanelRequest
 // size, the overlay over it (its raster coordinates span `raster`) and a caption.
 void drawView3DWindow(void* texture, const InspectorOverlay& overlay, ImVec2 origin, ImVec2 size, Vec2i raster,
                       const std::string& caption, float uiScale);
-// The A/B comparison (panel_compare.cpp): on / off, side B's CONFIG, swap; `b`: B's shown image.
-void drawCompareSection(CompareState& compare, const RenderSnapshot& b, PanelRequests& requests);
+// The A/B comparison (panel_compare.cpp): on / off, side B's CONFIG, swap; `b`: B's shown image,
+// `refused`: why B's renderer refused its last settings ("" when it took them).
+void drawCompareSection(CompareState& compare, const RenderSnapshot& b, const std::string& refused,
+                        PanelRequests& requests);
 // `estimator` (its camera and lens) to offer a way back to the reference's view.
 void drawReferenceSection(ReferenceState& reference, ConvergenceState& convergence, DisplaySettings& display,
                           const RenderSettings& edited, const Image& shown, PanelRequests& requests);

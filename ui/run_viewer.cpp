@@ -7,7 +7,7 @@
 #include "ui/glfw_surface.h"
 #include "ui/input_script.h"
 #include "ui/output_names.h"
-#include "ui/presets.h"
+#include "ui/presets/preset_controller.h"
 #include "ui/recorder.h"
 #include "ui/scene_loader.h"
 #include "ui/screenshot.h"
@@ -187,6 +187,16 @@ std::vector<std::string> applyScript(const std::vector<InputEvent>& script, int 
   return in.dropped;
 }
 
+// Headless (FRAME:wait=SPP, the last frame): waits for the scene being loaded, then until every
+// side shows `spp` samples per pixel.
+void waitForSpp(Viewer& viewer, uint64_t spp) {
+  viewer.finishLoading(kHeadlessSppTimeout);
+  for (RenderLane* lane : {&viewer.a(), &viewer.b()})
+    if (lane->running() && !lane->renderer().waitForSpp(spp, kHeadlessSppTimeout))
+      std::cerr << fmt::format("pathlab: warning: {}{} spp not reached within {:.0f} s\n",
+                               lane == &viewer.b() ? "side B: " : "", spp, kHeadlessSppTimeout);
+}
+
 }  // namespace
 
 int runViewer(const ViewerOptions& o) {
@@ -196,16 +206,8 @@ int runViewer(const ViewerOptions& o) {
   if (!o.errorCsv.empty()) checkErrorCsvPath(o);
   if ((!o.errorCsv.empty() || o.errorView) && o.reference.empty())
     throw std::runtime_error(std::string(o.errorView ? "--error-view" : "--error-csv") + " needs --reference REF.exr");
-  std::vector<NamedPreset> presets;
   ViewerOptions options = o;
-  if (!o.presetsFile.empty()) presets = loadPresets(o.presetsFile);
-  if (!o.preset.empty()) {
-    if (o.presetsFile.empty()) throw std::runtime_error("--preset needs --presets FILE");
-    const NamedPreset& preset = findPreset(presets, o.preset, o.presetsFile);
-    options.settings = preset.applyTo(options.settings);
-    // A preset with a side B starts the comparison (an explicit --compare wins).
-    if (preset.compare && options.compare.empty()) options.compare = *preset.compare;
-  }
+  std::vector<NamedPreset> presets = loadPresetsOf(options);
   const std::vector<InputEvent> script = parseInputScript(o.script);
   if (!o.recordDir.empty()) prepareRecordDirectory(o.recordDir, o.force);  // refused before the scene loads
   std::vector<int> scriptKeys;
@@ -238,21 +240,11 @@ int runViewer(const ViewerOptions& o) {
       const bool last = counted && frame == o.frames - 1;
       if (last && o.spp > 0) {
         // The screenshot shows the requested sample count (settings were applied in earlier frames).
-        viewer.finishLoading(kHeadlessSppTimeout);
-        if (!viewer.renderer().waitForSpp(o.spp, kHeadlessSppTimeout))
-          std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", o.spp, kHeadlessSppTimeout);
-        if (ProgressiveRenderer* b = viewer.compareRenderer(); b && !b->waitForSpp(o.spp, kHeadlessSppTimeout))
-          std::cerr << fmt::format("pathlab: warning: side B: {} spp not reached within {:.0f} s\n", o.spp,
-                                   kHeadlessSppTimeout);
+        waitForSpp(viewer, o.spp);
         viewer.waitForPyramid(5.0);
       }
       if (const std::optional<uint64_t> spp = inputAt(script, frame).waitSpp) {
-        viewer.finishLoading(kHeadlessSppTimeout);
-        if (!viewer.renderer().waitForSpp(*spp, kHeadlessSppTimeout))
-          std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", *spp, kHeadlessSppTimeout);
-        if (ProgressiveRenderer* b = viewer.compareRenderer(); b && !b->waitForSpp(*spp, kHeadlessSppTimeout))
-          std::cerr << fmt::format("pathlab: warning: side B: {} spp not reached within {:.0f} s\n", *spp,
-                                   kHeadlessSppTimeout);
+        waitForSpp(viewer, *spp);
         viewer.forceRefresh();
       }
       if (last) viewer.forceRefresh();
@@ -320,19 +312,19 @@ int runViewer(const ViewerOptions& o) {
       if (rest > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(rest));
     }
     if (counted) {
-      const RenderSnapshot& s = viewer.shownSnapshot();
+      const RenderSnapshot& s = viewer.a().snapshot();
       const Vec2i fb = surface->framebufferSize();
       const std::string series =
           o.reference.empty() ? std::string() : fmt::format("; {} error series", viewer.errors().series().size());
       // The region the last frame drew (what the screenshot shows), then the resolution rendered:
       // they differ under --render-scale or a reference's size, and on a busy machine the shown
       // snapshot may still be a placeholder generation's.
-      const PixelRect drawn = viewer.drawnImage();
+      const PixelRect drawn = viewer.a().drawn();
       std::string compare;
-      if (viewer.compareRenderer()) {
-        const PixelRect b = viewer.drawnCompareImage();
+      if (viewer.b().running()) {
+        const PixelRect b = viewer.b().drawn();
         compare = fmt::format(", B image {}x{}+{}+{} at {} spp", b.size.x, b.size.y, b.origin.x, b.origin.y,
-                              viewer.compareSnapshot().samplesPerPixel);
+                              viewer.b().snapshot().samplesPerPixel);
       }
       if (const std::optional<PixelRect> v = viewer.drawnView3D())
         compare += fmt::format(", 3D view {}x{}+{}+{}", v->size.x, v->size.y, v->origin.x, v->origin.y);
