@@ -28,20 +28,25 @@ std::string shaderSource(const std::string& name) {
 
 namespace {
 
+// Throws with the info log when `status` of a shader or program is false; `object` goes first.
+template <typename GetIv, typename GetLog, typename Delete>
+void checkStatus(GLuint object, GLenum status, GetIv getIv, GetLog getLog, Delete destroy, const std::string& what) {
+  GLint ok = 0;
+  getIv(object, status, &ok);
+  if (ok) return;
+  char log[2048] = {};
+  getLog(object, sizeof log, nullptr, log);
+  destroy(object);
+  throw std::runtime_error(what + log);
+}
+
 unsigned compile(GLenum type, const std::string& name) {
   const std::string source = shaderSource(name);
   const char* text = source.c_str();
   const GLuint shader = glCreateShader(type);
   glShaderSource(shader, 1, &text, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    throw std::runtime_error("shaders/" + name + ": " + log);
-  }
+  checkStatus(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader, "shaders/" + name + ": ");
   return shader;
 }
 
@@ -62,14 +67,8 @@ ShaderProgram::ShaderProgram(const std::string& vertexName, const std::string& f
   glLinkProgram(program_);
   glDeleteShader(vs);
   glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-    glDeleteProgram(program_);
-    throw std::runtime_error("shaders/" + vertexName + " + " + fragmentName + ": link failed: " + log);
-  }
+  checkStatus(program_, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram,
+              "shaders/" + vertexName + " + " + fragmentName + ": link failed: ");
 }
 
 ShaderProgram::~ShaderProgram() { glDeleteProgram(program_); }

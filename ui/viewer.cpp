@@ -20,8 +20,6 @@ namespace pathlab::ui {
 
 namespace {
 
-// The pyramid's thumbnails and the maps are taken at most this often (the images: RenderLane).
-constexpr double kPyramidRefreshSeconds = 0.5;
 // Render threads yield to the UI thread and llvmpipe's rasteriser threads (thread_priority.h).
 constexpr int kRenderThreadNice = 10;
 // An ordinary message fades after this long; an error stays until dismissed.
@@ -72,7 +70,7 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
 
 void Viewer::startLane(RenderLane& lane, const RenderSettings& settings) {
   lane.start(scenes_.scene(), settings,
-             {compare_.on ? threadsPerSide(threads_) : threads_, run_.targetSpp, pyramidImages_.side, reference_.errors});
+             {compare_.on ? threadsPerSide(threads_) : threads_, run_.targetSpp, techniqueImages_.pyramid.side, reference_.errors});
 }
 
 RenderSettings Viewer::wantedSettings(const RenderLane& lane) const {
@@ -88,8 +86,7 @@ void Viewer::syncCompare() {
   b().stop();
   startLane(a(), a().applied());
   // The new renderers count versions from the start again.
-  pyramidImages_.version = 0;
-  mapImages_.version = 0;
+  techniqueImages_.restart();
   if (compare_.on) {
     startLane(b(), compareRenderSettings(compare_.b, a().applied()));
     b().view().setReference(reference_.errors->reference().get());
@@ -105,9 +102,8 @@ void Viewer::swapCompareSides() {
   // side A shows the pyramid, maps or check, which only A renders.
   swapSides(compare_, estimator_);
   swapRenderers(a(), b(), reference_.errors);
-  a().renderer().setThumbnailSide(pyramidImages_.side);
-  pyramidImages_.version = 0;
-  mapImages_.version = 0;
+  a().renderer().setThumbnailSide(techniqueImages_.pyramid.side);
+  techniqueImages_.restart();
   forceRefresh_ = true;
   showMessage("sides swapped: A is now " + describe(renderSettings(estimator_)));
 }
@@ -119,55 +115,75 @@ void Viewer::showMessage(const std::string& text, bool error) {
 }
 
 void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std::vector<std::string>& droppedPaths) {
-  ImGuiIO& io = ImGui::GetIO();
   for (const std::string& path : droppedPaths) scenes_.openDropped(path);
   pollSceneLoad();
-
   handleShortcuts();
+  const FrameLayout layout = layOut(framebufferSize, framebufferScale);
+  handleCamera(framebufferScale);
+  updateReferenceState();
+  PanelRequests requests;
+  if (ui_.showUi) drawPanels(layout, requests);
+  if (ui_.showHelp) drawHelpWindow(ui_.showHelp);
+  drawOverImages();
+  carryOut(requests);
+  scenes_.syncEnvironment();
+  fitEstimatorToCamera();  // a key or a panel may just have asked for lt through an orthographic camera
+  fitEstimatorToFrame(layout.aspect, framebufferScale);
+  syncCompare();
+  if (imageSize().x > 0 && imageSize().y > 0) applySettings();  // a minimised window keeps rendering the old size
+  syncRenderers();
+  inspect_.update(scenes_.scene(), shownSettings(), a().snapshot(),
+                  estimator_.settings.camera.value_or(scene().cameraDesc()));
+}
+
+Viewer::FrameLayout Viewer::layOut(Vec2i framebufferSize, float framebufferScale) {
+  const ImGuiIO& io = ImGui::GetIO();
   // Panels beside the image, never over it: the controls on the left, the pyramid on the right,
   // the convergence plot and technique table along the bottom.
+  FrameLayout l;
   const float scale = ui_.scale;
-  const std::optional<float> aspect = imageAspect();
-  const float bottom = ui_.showUi && convergence_.show ? convergencePanelHeight(io.DisplaySize.y, scale) : 0.f;
-  const float upper = io.DisplaySize.y - bottom;
+  l.aspect = imageAspect();
+  l.bottom = ui_.showUi && convergence_.show ? convergencePanelHeight(io.DisplaySize.y, scale) : 0.f;
+  l.upper = io.DisplaySize.y - l.bottom;
   // At most 45 % of the width: the image is what the audience looks at.
-  const float panelWidth = ui_.showUi ? std::min(380.f * scale, io.DisplaySize.x * 0.45f) : 0.f;
-  const float pyramidWidth =
-      ui_.showUi && pyramid_.show
-          ? pyramidPanelWidth(pyramid_, estimator_.settings.maxLength, io.DisplaySize.x - panelWidth, upper, scale, aspect)
-          : 0.f;
+  l.panelWidth = ui_.showUi ? std::min(380.f * scale, io.DisplaySize.x * 0.45f) : 0.f;
+  l.pyramidWidth = ui_.showUi && pyramid_.show ? pyramidPanelWidth(pyramid_, estimator_.settings.maxLength,
+                                                                   io.DisplaySize.x - l.panelWidth, l.upper, scale, l.aspect)
+                                               : 0.f;
   // The room the panels leave; the image is the largest rectangle of its aspect in it, centred
   // (never cropped: the camera's vertical and horizontal field of view both stay whole).
   PixelRect room;
-  room.origin = {static_cast<int>(panelWidth * framebufferScale), 0};
-  room.size = {std::max(framebufferSize.x - room.origin.x - static_cast<int>(pyramidWidth * framebufferScale), 0),
-               std::max(framebufferSize.y - static_cast<int>(bottom * framebufferScale), 0)};
+  room.origin = {static_cast<int>(l.panelWidth * framebufferScale), 0};
+  room.size = {std::max(framebufferSize.x - room.origin.x - static_cast<int>(l.pyramidWidth * framebufferScale), 0),
+               std::max(framebufferSize.y - static_cast<int>(l.bottom * framebufferScale), 0)};
   room = inspect_.placeWindow(room, ui_.showUi, scale, framebufferScale);
-  PixelRect fitted = fitAspect(room, aspect);
+  PixelRect fitted = fitAspect(room, l.aspect);
   if (compare_.on) inspect_.view3d.on = false;  // one image beside the main one
   inspect_.view3dRect = {};
   if (compare_.on || inspect_.view3d.on) {
     // Two images of the same shape, A left (or above), B (or the 3D view) right (or below).
-    const auto [a, b] = splitRoom(room, aspect, static_cast<int>(8.f * scale * framebufferScale));
+    const auto [a, b] = splitRoom(room, l.aspect, static_cast<int>(8.f * scale * framebufferScale));
     fitted = a;
     (compare_.on ? this->b().rect : inspect_.view3dRect) = b;
   }
   a().rect = fitted;
-  handleCamera(framebufferScale);
-  updateReferenceState();
+  return l;
+}
 
-  PanelRequests requests;
-  if (ui_.showUi) {
-    drawSidePanel(panelWidth, upper, requests);
-    if (pyramid_.show)
-      drawPyramidWindow(pyramid_, pyramidImages_, estimator_, {io.DisplaySize.x - pyramidWidth, 0.f, pyramidWidth, upper},
-                        scale);
-    if (convergence_.show)
-      drawConvergenceWindow(convergence_, reference_, a().snapshot(), {0.f, upper, io.DisplaySize.x, bottom}, scale,
-                            requests);
-    inspect_.drawWindow(requests);
-  }
-  if (ui_.showHelp) drawHelpWindow(ui_.showHelp);
+void Viewer::drawPanels(const FrameLayout& l, PanelRequests& requests) {
+  const ImGuiIO& io = ImGui::GetIO();
+  drawSidePanel(l.panelWidth, l.upper, requests);
+  if (pyramid_.show)
+    drawPyramidWindow(pyramid_, techniqueImages_.pyramid, estimator_,
+                      {io.DisplaySize.x - l.pyramidWidth, 0.f, l.pyramidWidth, l.upper}, ui_.scale);
+  if (convergence_.show)
+    drawConvergenceWindow(convergence_, reference_, a().snapshot(), {0.f, l.upper, io.DisplaySize.x, l.bottom},
+                          ui_.scale, requests);
+  inspect_.drawWindow(requests);
+}
+
+void Viewer::drawOverImages() {
+  const ImGuiIO& io = ImGui::GetIO();
   const float fbScale = io.DisplayFramebufferScale.x > 0.f ? io.DisplayFramebufferScale.x : 1.f;
   // The captions of each side; the pyramid's and the maps' belong to A only.
   for (const RenderLane* lane : {&a(), &b()}) {
@@ -175,17 +191,16 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
     const bool isA = lane == &a();
     drawImageOverlay(ImageOverlay{toImGui(lane->rect.origin, fbScale), toImGui(lane->rect.size, fbScale),
                                   &lane->snapshot(), wantedSettings(*lane), shownDisplay(), errorViewProblem(),
-                                  lane->idle(), run_.userPaused, scale, isA ? grid_.zMap : std::nullopt,
+                                  lane->idle(), run_.userPaused, ui_.scale, isA ? grid_.zMap : std::nullopt,
                                   isA && maps_.show ? mapViewName(maps_) : std::string(),
                                   compare_.on ? (isA ? "A" : "B") : ""});
   }
-  drawMapOverImage(fbScale);
+  techniqueImages_.drawMap(maps_, a().rect, fbScale);
   inspect_.drawOverlays(scene(), shownSettings(), toImGui(a().rect.origin, fbScale), toImGui(a().rect.size, fbScale),
-                        fbScale, scale);
-  carryOut(requests);
-  scenes_.syncEnvironment();
+                        fbScale, ui_.scale);
+}
 
-  fitEstimatorToCamera();  // a key or a panel may just have asked for lt through an orthographic camera
+void Viewer::fitEstimatorToFrame(std::optional<float> aspect, float framebufferScale) {
   RenderSettings& edited = estimator_.settings;
   // The image follows its area of the window (a resize is a new generation, like any other change).
   // ... unless a reference sets it: an error needs the same pixels.
@@ -214,13 +229,8 @@ void Viewer::buildFrame(Vec2i framebufferSize, float framebufferScale, const std
     // Thumbnails as large as they are shown (no blocky upscaling on a projector), from the next pass.
     const int side =
         std::clamp(static_cast<int>(std::max(pyramid_.thumbnail.x, pyramid_.thumbnail.y) * framebufferScale), 32, 256);
-    if (side != pyramidImages_.side) a().renderer().setThumbnailSide(pyramidImages_.side = side);
+    if (side != techniqueImages_.pyramid.side) a().renderer().setThumbnailSide(techniqueImages_.pyramid.side = side);
   }
-  syncCompare();
-  if (imageSize().x > 0 && imageSize().y > 0) applySettings();  // a minimised window keeps rendering the old size
-  syncRenderers();
-  inspect_.update(scenes_.scene(), shownSettings(), a().snapshot(),
-                  estimator_.settings.camera.value_or(scene().cameraDesc()));
 }
 
 void Viewer::fitEstimatorToCamera() {
@@ -276,7 +286,7 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
     drawDisplaySection(display_, run_, pyramid_, a().snapshot().image);
   if (ImGui::CollapsingHeader("Technique maps", maps_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
-    drawTechniqueMapSection(maps_, estimator_.settings.maxLength, mapImages_.texture.empty());
+    drawTechniqueMapSection(maps_, estimator_.settings.maxLength, techniqueImages_.maps.texture.empty());
   if (ImGui::CollapsingHeader("Reference and error", convergence_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawReferenceSection(reference_, convergence_, display_, estimator_.settings, a().snapshot().image, requests);
   if (ImGui::CollapsingHeader("Environment",
@@ -307,8 +317,7 @@ bool Viewer::pollImage() {
     lowerRenderThreadPriority(kRenderThreadNice);
     lastPriorityCheck_ = std::chrono::steady_clock::now();
   }
-  const bool pyramid = pyramid_.show && updatePyramid();
-  const bool maps = maps_.show && updateMaps();
+  const bool techniques = techniqueImages_.update(a().renderer(), pyramid_, maps_, display_, forceRefresh_);
   bool image = false;
   for (RenderLane* lane : {&b(), &a()}) image = lane->poll(forceRefresh_) || image;
   forceRefresh_ = false;
@@ -322,7 +331,7 @@ bool Viewer::pollImage() {
   }
   // New points arrive on the render thread; the plot redraws when they do.
   const bool points = convergence_.show && reference_.errors->version() != convergence_.seriesVersion;
-  return image || pyramid || maps || reference || points;
+  return image || techniques || reference || points;
 }
 
 void Viewer::applySettings() {
@@ -337,74 +346,9 @@ void Viewer::syncRenderers() {
     if (lane->running()) lane->sync(run_.userPaused, run_.targetSpp, lane == &a() && ui_.showUi && convergence_.show);
 }
 
-bool Viewer::updatePyramid() {
-  PyramidImages& p = pyramidImages_;
-  const bool due = forceRefresh_ || secondsSince(p.lastPoll) >= kPyramidRefreshSeconds;
-  if (due) p.lastPoll = std::chrono::steady_clock::now();
-  const bool fresh = due && a().renderer().pyramid(p.thumbnails, p.version);
-  // Re-tone the thumbnails we have when their display changes (exposure mode, tone map, ...).
-  const bool retone = !(p.toned == display_) || p.tonedOwnExposure != pyramid_.ownExposure;
-  if (!fresh && !retone) return false;
-  p.toned = display_;
-  p.tonedOwnExposure = pyramid_.ownExposure;
-  p.textures.resize(2 * p.thumbnails.size());
-  for (size_t i = 0; i < p.thumbnails.size(); ++i) {
-    const Image* images[2] = {&p.thumbnails[i].weighted, &p.thumbnails[i].unweighted};
-    for (int u = 0; u < 2; ++u) {
-      if (images[u]->width <= 0) continue;
-      // Own exposure: every technique visible although their magnitudes differ by orders of
-      // magnitude. Common exposure (the image's): the weighted shares compare directly.
-      DisplaySettings d = display_;
-      if (pyramid_.ownExposure) d.exposure = autoExposure(*images[u]);
-      const std::vector<uint8_t> rgba = toRgba8(*images[u], d);
-      p.textures[2 * i + static_cast<size_t>(u)].uploadRgba8(images[u]->width, images[u]->height, rgba.data());
-    }
-  }
-  return true;
-}
-
-bool Viewer::updateMaps() {
-  MapImages& m = mapImages_;
-  const bool due = forceRefresh_ || secondsSince(m.lastPoll) >= kPyramidRefreshSeconds;
-  if (due) m.lastPoll = std::chrono::steady_clock::now();
-  const bool fresh = due && a().renderer().techniqueMaps(m.lum, m.version);
-  if (!fresh && m.coloured == maps_) return false;
-  m.coloured = maps_;
-  const Image map = mapImage(m.lum, maps_);
-  if (map.width <= 0) {
-    m.texture = Texture();
-    return fresh;
-  }
-  std::vector<uint8_t> rgba(4 * static_cast<size_t>(map.width) * static_cast<size_t>(map.height), 255);
-  for (size_t i = 0; i < rgba.size() / 4; ++i)
-    for (size_t c = 0; c < 3; ++c)
-      rgba[4 * i + c] = static_cast<uint8_t>(std::clamp(map.rgb[3 * i + c], 0.f, 1.f) * 255.f + 0.5f);
-  m.texture.uploadRgba8(map.width, map.height, rgba.data());
-  return true;
-}
-
-void Viewer::drawMapOverImage(float fbScale) {
-  const Texture& t = mapImages_.texture;
-  if (!maps_.show || t.empty() || imageSize().x <= 0 || imageSize().y <= 0) return;
-  // Fitted into the image's rectangle like the image (ImageView::draw), centred: the map has the
-  // image's aspect, so it covers the image exactly.
-  const PixelRect r =
-      fitAspect(a().rect, static_cast<float>(t.width()) / static_cast<float>(t.height()));
-  const ImVec2 p0(static_cast<float>(r.origin.x) / fbScale, static_cast<float>(r.origin.y) / fbScale);
-  const ImVec2 p1(static_cast<float>(r.origin.x + r.size.x) / fbScale, static_cast<float>(r.origin.y + r.size.y) / fbScale);
-  ImGui::GetBackgroundDrawList()->AddImage(t.imguiId(), p0, p1);
-}
-
 void Viewer::waitForPyramid(double seconds) {
   if (!pyramid_.show || renderSettings(estimator_).pyramidLength == 0) return;
-  const auto start = std::chrono::steady_clock::now();
-  std::vector<TechniqueThumbnail> probe;
-  uint64_t version = pyramidImages_.version;
-  // The renderer publishes the thumbnails of a pass just after its image.
-  while (secondsSince(start) < seconds) {
-    if (a().renderer().pyramid(probe, version) && !probe.empty()) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  techniqueImages_.waitForPyramid(a().renderer(), seconds);
   forceRefresh_ = true;
 }
 
@@ -455,32 +399,6 @@ void Viewer::resetCamera() {
 
 PresetTarget Viewer::presetTarget() {
   return {estimator_, scenes_.orbit(), compare_, scene(), ui_.message};
-}
-
-void Viewer::saveImage() {
-  const RenderSnapshot& a = this->a().snapshot();
-  if (a.image.width <= 0 || a.preview) {
-    showMessage("nothing to save yet: wait for the first full-resolution pass", true);
-    return;
-  }
-  try {
-    const RenderSnapshot& b = this->b().snapshot();
-    const bool both = this->b().running() && b.image.width > 0 && !b.preview;
-    const std::string stem = freshStem("out", "pathlab", {".exr", ".png", "-B.exr", "-B.png"});
-    writeImage(stem + ".exr", a.image);
-    writeImage(stem + ".png", a.image, display_.exposure);
-    if (both) {
-      // Side B beside it, so each side can be compared with a render of its configuration.
-      writeImage(stem + "-B.exr", b.image);
-      writeImage(stem + "-B.png", b.image, display_.exposure);
-      showMessage(fmt::format("saved {}.exr/.png (A, {} spp) and {}-B.exr/.png (B, {} spp)", stem,
-                              a.samplesPerPixel, stem, b.samplesPerPixel));
-    } else {
-      showMessage(fmt::format("saved {}.exr and .png ({} spp)", stem, a.samplesPerPixel));
-    }
-  } catch (const std::exception& e) {
-    showMessage(e.what(), true);
-  }
 }
 
 }  // namespace pathlab::ui

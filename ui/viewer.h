@@ -8,6 +8,7 @@
 
 #include "core/render/progressive_renderer.h"
 #include "ui/compare.h"
+#include "ui/estimator/technique_images.h"
 #include "ui/estimator_state.h"
 #include "ui/image_rect.h"
 #include "ui/lane/render_lane.h"
@@ -113,14 +114,26 @@ class Viewer {
   // The two sides, each a renderer with what it was given and the image it published; A's
   // pyramid and maps.
   RenderLane lanes_[2] = {RenderLane(0), RenderLane(1)};
-  PyramidImages pyramidImages_;
-  MapImages mapImages_;
+  TechniqueImages techniqueImages_;
   std::chrono::steady_clock::time_point lastPriorityCheck_{};
   bool forceRefresh_ = false;
   int threads_ = 0;  // the render threads asked for (0: all); each side of a comparison gets half
 
-  // viewer.cpp: the frame, settings to the renderer, images to the textures, scenes, presets, saving
+  // viewer.cpp: the frame (its layout, panels and overlays) and the sides' settings.
+  // Where the panels go (ImGui coordinates) and the image's aspect; the sides' and the 3D view's
+  // rectangles are set from it.
+  struct FrameLayout {
+    std::optional<float> aspect;
+    float panelWidth = 0.f, pyramidWidth = 0.f, upper = 0.f, bottom = 0.f;
+  };
+  FrameLayout layOut(Vec2i framebufferSize, float framebufferScale);
+  void drawPanels(const FrameLayout& layout, PanelRequests& requests);
   void drawSidePanel(float width, float height, PanelRequests& requests);
+  // The captions over each side, the technique map and the inspector's overlays, the 3D view.
+  void drawOverImages();
+  // The image's size follows its area of the window (or the reference); the pyramid and maps
+  // follow what is shown.
+  void fitEstimatorToFrame(std::optional<float> aspect, float framebufferScale);
   // Starts a side's renderer with the viewer's threads, target, thumbnails and error tracker.
   void startLane(RenderLane& lane, const RenderSettings& settings);
   // The settings the panels ask of a side: A's estimator; B's in A's view (compareRenderSettings).
@@ -136,10 +149,6 @@ class Viewer {
   // Every running side: the settings asked for, then pause, target and timing.
   void applySettings();
   void syncRenderers();
-  bool updatePyramid();
-  bool updateMaps();
-  // The chosen technique map over the image area, when shown and arrived (ImGui's background).
-  void drawMapOverImage(float fbScale);
   // Width / height of the image: the reference's when it sets the size, else the camera's (none:
   // the glTF camera has no aspectRatio, the image fills the room as glTF asks).
   std::optional<float> imageAspect() const;
@@ -148,7 +157,6 @@ class Viewer {
   void pollSceneLoad();
   void resetCamera();
   PresetTarget presetTarget();
-  void saveImage();
   // viewer_reference.cpp
   void loadReference(const std::string& path);  // a message in the UI on failure
   void useImageAsReference();

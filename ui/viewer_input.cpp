@@ -2,6 +2,7 @@
 // while a widget wants the mouse or the keyboard.
 #include "ui/viewer.h"
 
+#include "ui/record/save_images.h"
 #include "ui/technique_grid.h"
 
 #define GLFW_INCLUDE_NONE
@@ -81,7 +82,7 @@ void Viewer::perform(Action action) {
     case Action::UseImageAsReference: useImageAsReference(); break;
     case Action::ResetCamera: resetCamera(); break;
     case Action::ReloadScene: scenes_.open(scenes_.path()); break;
-    case Action::SaveImage: saveImage(); break;
+    case Action::SaveImage: saveImages(a(), b(), display_.exposure, ui_.message); break;
     case Action::Screenshot: ui_.screenshotRequested = true; break;
     case Action::ToggleRecording: ui_.recordingToggleRequested = true; break;
     case Action::Quit: ui_.quit = true; break;
