@@ -5,7 +5,7 @@
 // target itself is absent or a regular file.
 #pragma once
 
-#include "ui/output_names.h"
+#include "ui/record/output_names.h"
 
 #include <string>
 
@@ -17,7 +17,7 @@ void checkOutputWritable(const std::string& path);
 // The same for a directory pathlab creates when it is missing (converge -o): an existing
 // directory that may be written, or else a parent in which it may be created.
 void checkOutputDirectory(const std::string& dir);
-// Text files are written like images (ui/output_names.h).
+// Text files are written like images (ui/record/output_names.h).
 using ui::writeTextAtomically;
 
 }  // namespace pathlab::app

@@ -1,12 +1,12 @@
 // `pathlab view [SCENE]`: registers the viewer's options and hands them to ui::runViewer.
 #include "app/view_command.h"
 
-#include "ui/compare.h"
+#include "ui/lane/compare.h"
 
 #include "app/output_check.h"
-#include "ui/compare.h"
+#include "ui/lane/compare.h"
 #include "ui/run_viewer.h"
-#include "ui/technique_map_view.h"
+#include "ui/estimator/technique_map_view.h"
 
 #include <fmt/core.h>
 #include <tbb/global_control.h>

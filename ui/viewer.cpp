@@ -4,9 +4,9 @@
 
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
-#include "ui/output_names.h"
-#include "ui/technique_grid.h"
-#include "ui/thread_priority.h"
+#include "ui/record/output_names.h"
+#include "ui/estimator/technique_grid.h"
+#include "ui/lane/thread_priority.h"
 
 #include <fmt/core.h>
 #include <imgui.h>

@@ -3,7 +3,7 @@
 #include "ui/viewer.h"
 
 #include "ui/record/save_images.h"
-#include "ui/technique_grid.h"
+#include "ui/estimator/technique_grid.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

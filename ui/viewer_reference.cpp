@@ -3,7 +3,7 @@
 #include "ui/viewer.h"
 
 #include "core/film/image_io.h"
-#include "ui/output_names.h"
+#include "ui/record/output_names.h"
 
 #include <fmt/core.h>
 

@@ -2,7 +2,7 @@
 // asks) and the technique map shown over the image, taken from A's renderer at a bounded rate.
 #pragma once
 
-#include "ui/image_rect.h"
+#include "ui/display/image_rect.h"
 #include "ui/viewer_state.h"
 
 namespace pathlab::ui {

@@ -2,7 +2,7 @@
 #include "ui/inspect/inspector_controller.h"
 
 #include "ui/inspection_report.h"
-#include "ui/output_names.h"
+#include "ui/record/output_names.h"
 
 #include <fmt/core.h>
 

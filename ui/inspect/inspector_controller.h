@@ -3,12 +3,12 @@
 // inspection's export (Ctrl+J). The panels and the input edit `inspector` and `view3d` directly.
 #pragma once
 
-#include "ui/image_rect.h"
+#include "ui/display/image_rect.h"
 #include "ui/message_line.h"
-#include "ui/panels.h"
-#include "ui/path_inspector.h"
-#include "ui/scene_raster.h"
-#include "ui/view3d.h"
+#include "ui/panels/panels.h"
+#include "ui/inspect/path_inspector.h"
+#include "ui/gl/scene_raster.h"
+#include "ui/inspect/view3d.h"
 
 #include <memory>
 #include <optional>

@@ -1,7 +1,7 @@
 // A side of the shown image: its renderer started, fed settings, synced, polled and drawn.
 #include "ui/lane/render_lane.h"
 
-#include "ui/technique_grid.h"
+#include "ui/estimator/technique_grid.h"
 
 namespace pathlab::ui {
 

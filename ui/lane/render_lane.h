@@ -6,9 +6,9 @@
 
 #include "core/converge/error_tracker.h"
 #include "core/render/progressive_renderer.h"
-#include "ui/display_settings.h"
-#include "ui/image_rect.h"
-#include "ui/image_view.h"
+#include "ui/display/display_settings.h"
+#include "ui/display/image_rect.h"
+#include "ui/gl/image_view.h"
 
 #include <chrono>
 #include <cstdint>

@@ -5,7 +5,7 @@
 // clip plays at the speed the lecture happened.
 #pragma once
 
-#include "ui/recorder.h"
+#include "ui/record/recorder.h"
 #include "ui/viewer.h"
 
 #include <chrono>

@@ -2,7 +2,7 @@
 #include "ui/record/save_images.h"
 
 #include "core/film/image_io.h"
-#include "ui/output_names.h"
+#include "ui/record/output_names.h"
 
 #include <fmt/core.h>
 
