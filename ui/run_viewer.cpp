@@ -3,16 +3,16 @@
 // pacing, frame-time statistics, screenshots, recording), its report and what it writes at the end.
 #include "ui/run_viewer.h"
 
-#include "ui/surface/egl_surface.h"
 #include "ui/gl/gl.h"
-#include "ui/surface/glfw_surface.h"
-#include "ui/input/input_script.h"
-#include "ui/record/output_names.h"
-#include "ui/presets/preset_controller.h"
-#include "ui/record/recording_controller.h"
-#include "ui/record/recording.h"
-#include "ui/scene/scene_loader.h"
 #include "ui/gl/screenshot.h"
+#include "ui/input/input_script.h"
+#include "ui/presets/preset_controller.h"
+#include "ui/record/output_names.h"
+#include "ui/record/recording.h"
+#include "ui/record/recording_controller.h"
+#include "ui/scene/scene_loader.h"
+#include "ui/surface/egl_surface.h"
+#include "ui/surface/glfw_surface.h"
 #include "ui/viewer.h"
 
 #include <fmt/core.h>

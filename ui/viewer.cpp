@@ -1,12 +1,12 @@
-// The viewer's frame and plumbing: panels and their requests, settings to the renderer, snapshots
-// to the textures, scenes, presets, saving.
+// The viewer's frame: its layout, panels and overlays, the requests the panels make, and the two
+// sides' settings, pause and snapshots.
 #include "ui/viewer.h"
 
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
-#include "ui/record/output_names.h"
 #include "ui/estimator/technique_grid.h"
 #include "ui/lane/thread_priority.h"
+#include "ui/record/output_names.h"
 
 #include <fmt/core.h>
 #include <imgui.h>

@@ -1,23 +1,22 @@
-// The viewer: owns the progressive renderer, the image and one small state struct per concern
-// (ui/viewer_state.h); draws the panels, which are functions over the state they edit
-// (ui/panels/panels.h), carries out what they ask, turns every estimator change into one setSettings call
-// (a new generation, within the frame) and shows the newest snapshot at a bounded rate. One
-// instance per window; all calls on the UI thread, between ImGui::NewFrame and ImGui::Render
-// except drawImage.
+// The viewer: two RenderLanes (side A, and side B of the A | B comparison, ui/lane/), the
+// controllers of the scene, the inspector and 3D view, and the presets, and one small state struct
+// per concern (ui/viewer_state.h). Each frame it lays out the window, draws the panels, which are
+// functions over the state they edit (ui/panels/panels.h), carries out what they ask, turns every
+// estimator change into one setSettings call per side (a new generation, within the frame) and
+// shows the newest snapshots at a bounded rate. One instance per window; all calls on the UI
+// thread, between ImGui::NewFrame and ImGui::Render except drawImage.
 #pragma once
 
 #include "core/render/progressive_renderer.h"
-#include "ui/lane/compare.h"
-#include "ui/estimator/technique_images.h"
-#include "ui/estimator/estimator_state.h"
 #include "ui/display/image_rect.h"
-#include "ui/lane/render_lane.h"
+#include "ui/estimator/estimator_state.h"
+#include "ui/estimator/technique_images.h"
 #include "ui/inspect/inspector_controller.h"
+#include "ui/lane/compare.h"
+#include "ui/lane/render_lane.h"
 #include "ui/panels/panels.h"
 #include "ui/presets/preset_controller.h"
 #include "ui/scene/scene_controller.h"
-#include "ui/gl/scene_raster.h"
-#include "ui/inspect/view3d.h"
 #include "ui/viewer_options.h"
 #include "ui/viewer_state.h"
 

@@ -2,8 +2,8 @@
 // while a widget wants the mouse or the keyboard.
 #include "ui/viewer.h"
 
-#include "ui/record/save_images.h"
 #include "ui/estimator/technique_grid.h"
+#include "ui/record/save_images.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

@@ -1,17 +1,17 @@
-// The viewer's state, one small struct per concern. The Viewer (ui/viewer.h) owns one of each, the
-// renderer and the image; the panels (ui/panels/panels.h) are functions over the structs they edit.
+// The viewer's state, one small struct per concern. The Viewer (ui/viewer.h) and its controllers own
+// one of each; the panels (ui/panels/panels.h) are functions over the structs they edit.
 #pragma once
 
 #include "core/converge/error_tracker.h"
 #include "core/render/progressive_renderer.h"
 #include "ui/display/display_settings.h"
-#include "ui/scene/environment_choice.h"
-#include "ui/message_line.h"
-#include "ui/scene/orbit_camera.h"
-#include "ui/presets/presets.h"
-#include "ui/scene/scene_loader.h"
 #include "ui/estimator/technique_map_view.h"
 #include "ui/gl/texture.h"
+#include "ui/message_line.h"
+#include "ui/presets/presets.h"
+#include "ui/scene/environment_choice.h"
+#include "ui/scene/orbit_camera.h"
+#include "ui/scene/scene_loader.h"
 
 #include <chrono>
 #include <cstdint>

@@ -1,7 +1,7 @@
 // The camera controller: it starts exactly at the scene's camera, orbits about its pivot at a
 // constant distance, pans eye and pivot together, zooms without passing the pivot, never flips.
-#include "ui/scene/orbit_camera.h"
 #include "ui/presets/presets.h"
+#include "ui/scene/orbit_camera.h"
 
 #include <gtest/gtest.h>
 

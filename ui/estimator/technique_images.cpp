@@ -11,12 +11,12 @@ namespace pathlab::ui {
 namespace {
 
 // Thumbnails and maps are taken at most this often: they follow the image, which the eye watches.
-constexpr double kRefreshSeconds = 0.5;
+constexpr double kThumbnailRefreshSeconds = 0.5;
 
-// True, and `last` set to now, when `force` or `kRefreshSeconds` have passed since `last`.
+// True, and `last` set to now, when `force` or `kThumbnailRefreshSeconds` have passed since `last`.
 bool due(std::chrono::steady_clock::time_point& last, bool force) {
   const auto now = std::chrono::steady_clock::now();
-  if (!force && std::chrono::duration<double>(now - last).count() < kRefreshSeconds) return false;
+  if (!force && std::chrono::duration<double>(now - last).count() < kThumbnailRefreshSeconds) return false;
   last = now;
   return true;
 }

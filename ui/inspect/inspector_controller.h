@@ -4,11 +4,11 @@
 #pragma once
 
 #include "ui/display/image_rect.h"
+#include "ui/gl/scene_raster.h"
+#include "ui/inspect/path_inspector.h"
+#include "ui/inspect/view3d.h"
 #include "ui/message_line.h"
 #include "ui/panels/panels.h"
-#include "ui/inspect/path_inspector.h"
-#include "ui/gl/scene_raster.h"
-#include "ui/inspect/view3d.h"
 
 #include <memory>
 #include <optional>

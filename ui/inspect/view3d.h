@@ -9,8 +9,8 @@
 #pragma once
 
 #include "core/render/light_subpath_replay.h"
-#include "ui/scene/orbit_camera.h"
 #include "ui/inspect/path_inspector.h"
+#include "ui/scene/orbit_camera.h"
 
 #include <memory>
 #include <optional>

@@ -7,8 +7,8 @@
 #pragma once
 
 #include "core/render/render_settings.h"
-#include "ui/estimator/estimator_state.h"
 #include "ui/display/image_rect.h"
+#include "ui/estimator/estimator_state.h"
 
 #include <optional>
 #include <string>

@@ -10,7 +10,7 @@ namespace {
 // Full-resolution images are shown at most this often: uploading and drawing a float frame costs
 // llvmpipe several milliseconds of CPU that the render threads would otherwise get. Previews and
 // the first image of a generation are shown at once.
-constexpr double kRefreshSeconds = 0.25;
+constexpr double kImageRefreshSeconds = 0.25;
 
 // The renderer cannot run an empty technique set: it gets all of them and idles (the lane shows
 // black) until one is enabled.
@@ -79,7 +79,7 @@ bool RenderLane::poll(bool force) {
   if (!renderer_) return false;
   const bool newGeneration = renderer_->generation() != snapshot_.generation;
   const double sincePoll = std::chrono::duration<double>(std::chrono::steady_clock::now() - lastPoll_).count();
-  if (!force && !newGeneration && !snapshot_.preview && sincePoll < kRefreshSeconds) return false;
+  if (!force && !newGeneration && !snapshot_.preview && sincePoll < kImageRefreshSeconds) return false;
   lastPoll_ = std::chrono::steady_clock::now();
   if (!renderer_->snapshot(snapshot_)) return false;
   view_->upload(snapshot_.image, snapshot_.settings.width, snapshot_.settings.height);

@@ -4,12 +4,12 @@
 // ImGui::NewFrame and ImGui::Render.
 #pragma once
 
-#include "ui/lane/compare.h"
 #include "ui/estimator/estimator_state.h"
-#include "ui/inspect/path_inspector.h"
-#include "ui/input/shortcuts.h"
 #include "ui/estimator/technique_map_view.h"
+#include "ui/input/shortcuts.h"
+#include "ui/inspect/path_inspector.h"
 #include "ui/inspect/view3d.h"
+#include "ui/lane/compare.h"
 #include "ui/viewer_state.h"
 
 #include <imgui.h>

@@ -3,11 +3,11 @@
 #pragma once
 
 #include "core/scene/scene.h"
-#include "ui/lane/compare.h"
 #include "ui/estimator/estimator_state.h"
+#include "ui/lane/compare.h"
 #include "ui/message_line.h"
-#include "ui/scene/orbit_camera.h"
 #include "ui/presets/presets.h"
+#include "ui/scene/orbit_camera.h"
 #include "ui/viewer_options.h"
 #include "ui/viewer_state.h"
 

@@ -1,9 +1,9 @@
 // Takes started and stopped, frames captured on the take's clock, the recorder's reports shown.
 #include "ui/record/recording_controller.h"
 
+#include "ui/gl/screenshot.h"
 #include "ui/record/output_names.h"
 #include "ui/record/recording.h"
-#include "ui/gl/screenshot.h"
 
 #include <fmt/core.h>
 
