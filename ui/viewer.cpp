@@ -38,7 +38,8 @@ ImVec2 toImGui(Vec2i framebufferPixels, float fbScale) {
 Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene, std::vector<NamedPreset> presets)
     : estimator_(EstimatorState::from(options.settings)),
       scenes_(options, std::move(scene), ui_.message),
-      presets_(std::move(presets), options) {
+      presets_(std::move(presets), options),
+      sides_(options.threads, reference_.errors) {
   run_.targetSpp = options.spp;
   run_.resolutionScale = options.renderScale;
   display_.exposure = options.exposure;
@@ -61,17 +62,13 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
     convergence_.show = true;
   }
   convergence_.show = convergence_.show || options.convergencePanel;
-  threads_ = options.threads;
   // Side B starts with A on the first frame (syncCompare), both at the window's size.
   if (!options.compare.empty() && !applyCompareConfig(compare_, options.compare, renderSettings(estimator_)))
     throw std::invalid_argument(compare_.error);
-  startLane(a(), initial);
+  sides_.startA(scenes_.scene(), initial, compare_.on, laneStart());
 }
 
-void Viewer::startLane(RenderLane& lane, const RenderSettings& settings) {
-  lane.start(scenes_.scene(), settings,
-             {compare_.on ? threadsPerSide(threads_) : threads_, run_.targetSpp, techniqueImages_.pyramid.side, reference_.errors});
-}
+Sides::Start Viewer::laneStart() const { return {run_.targetSpp, techniqueImages_.pyramid.side}; }
 
 RenderSettings Viewer::wantedSettings(const RenderLane& lane) const {
   const RenderSettings a = renderSettings(estimator_);
@@ -79,20 +76,9 @@ RenderSettings Viewer::wantedSettings(const RenderLane& lane) const {
 }
 
 void Viewer::syncCompare() {
-  if (compare_.on == b().running()) return;
-  // Both sides start together (an equal-time comparison), each on its share of the threads: the
-  // old renderers go first (joining their workers), then the new ones start.
-  a().stop();
-  b().stop();
-  startLane(a(), a().applied());
+  if (!sides_.setComparing(compare_.on, scenes_.scene(), compare_.b, laneStart())) return;
   // The new renderers count versions from the start again.
   techniqueImages_.restart();
-  if (compare_.on) {
-    startLane(b(), compareRenderSettings(compare_.b, a().applied()));
-    b().view().setReference(reference_.errors->reference().get());
-  } else {
-    b() = RenderLane(1);
-  }
   forceRefresh_ = true;
 }
 
@@ -101,7 +87,7 @@ void Viewer::swapCompareSides() {
   // The estimators change sides and so do their renderers and images: nothing restarts unless
   // side A shows the pyramid, maps or check, which only A renders.
   swapSides(compare_, estimator_);
-  swapRenderers(a(), b(), reference_.errors);
+  sides_.swap();
   a().renderer().setThumbnailSide(techniqueImages_.pyramid.side);
   techniqueImages_.restart();
   forceRefresh_ = true;
@@ -318,15 +304,12 @@ bool Viewer::pollImage() {
     lastPriorityCheck_ = std::chrono::steady_clock::now();
   }
   const bool techniques = techniqueImages_.update(a().renderer(), pyramid_, maps_, display_, forceRefresh_);
-  bool image = false;
-  for (RenderLane* lane : {&b(), &a()}) image = lane->poll(forceRefresh_) || image;
+  const bool image = sides_.poll(forceRefresh_);
   forceRefresh_ = false;
   bool reference = false;
   if (reference_.errors->referenceVersion() != reference_.uploadedVersion) {
     reference_.uploadedVersion = reference_.errors->referenceVersion();
-    const std::shared_ptr<const Image> r = reference_.errors->reference();
-    for (RenderLane* lane : {&a(), &b()})
-      if (lane->running()) lane->view().setReference(r.get());
+    sides_.setReference(reference_.errors->reference().get());
     reference = true;
   }
   // New points arrive on the render thread; the plot redraws when they do.
@@ -335,15 +318,12 @@ bool Viewer::pollImage() {
 }
 
 void Viewer::applySettings() {
-  for (RenderLane* lane : {&a(), &b()})
-    if (lane->running() && lane->apply(wantedSettings(*lane))) forceRefresh_ = true;
+  if (sides_.apply(wantedSettings(a()), wantedSettings(b()))) forceRefresh_ = true;
 }
 
 void Viewer::syncRenderers() {
-  for (RenderLane* lane : {&a(), &b()})
-    // B pauses with the user, or when it enables no technique; not when only A has none. The
-    // technique table that timing feeds is A's.
-    if (lane->running()) lane->sync(run_.userPaused, run_.targetSpp, lane == &a() && ui_.showUi && convergence_.show);
+  // The technique table that per-technique timing feeds is shown with the convergence panel.
+  sides_.sync(run_.userPaused, run_.targetSpp, ui_.showUi && convergence_.show);
 }
 
 void Viewer::waitForPyramid(double seconds) {
@@ -376,8 +356,7 @@ void Viewer::pollSceneLoad() {
   reference_.errors->dropReference();
   if (!change->reload) resetCamera();
   fitEstimatorToCamera();
-  for (RenderLane* lane : {&a(), &b()})
-    if (lane->running()) lane->setScene(scenes_.scene(), wantedSettings(*lane));
+  sides_.setScene(scenes_.scene(), wantedSettings(a()), wantedSettings(b()));
   forceRefresh_ = true;
   scenes_.announce(*change, hadReference);
 }

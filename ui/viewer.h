@@ -14,6 +14,7 @@
 #include "ui/inspect/inspector_controller.h"
 #include "ui/lane/compare.h"
 #include "ui/lane/render_lane.h"
+#include "ui/lane/sides.h"
 #include "ui/panels/panels.h"
 #include "ui/presets/preset_controller.h"
 #include "ui/scene/scene_controller.h"
@@ -52,10 +53,10 @@ class Viewer {
   void drawImage(Vec2i framebufferSize);
   // The sides of the image: A, and B of the comparison (running only while it is on). drawn()
   // says where the last drawImage put each (empty when nothing was drawn): what a screenshot shows.
-  RenderLane& a() { return lanes_[0]; }
-  RenderLane& b() { return lanes_[1]; }
-  const RenderLane& a() const { return lanes_[0]; }
-  const RenderLane& b() const { return lanes_[1]; }
+  RenderLane& a() { return sides_.a(); }
+  RenderLane& b() { return sides_.b(); }
+  const RenderLane& a() const { return sides_.a(); }
+  const RenderLane& b() const { return sides_.b(); }
 
   // Headless screenshots: waits (up to `seconds`) until the thumbnails of the current generation's
   // newest pass are published, when the pyramid is shown.
@@ -112,11 +113,10 @@ class Viewer {
 
   // The two sides, each a renderer with what it was given and the image it published; A's
   // pyramid and maps.
-  RenderLane lanes_[2] = {RenderLane(0), RenderLane(1)};
+  Sides sides_;
   TechniqueImages techniqueImages_;
   std::chrono::steady_clock::time_point lastPriorityCheck_{};
   bool forceRefresh_ = false;
-  int threads_ = 0;  // the render threads asked for (0: all); each side of a comparison gets half
 
   // viewer.cpp: the frame (its layout, panels and overlays) and the sides' settings.
   // Where the panels go (ImGui coordinates) and the image's aspect; the sides' and the 3D view's
@@ -133,12 +133,11 @@ class Viewer {
   // The image's size follows its area of the window (or the reference); the pyramid and maps
   // follow what is shown.
   void fitEstimatorToFrame(std::optional<float> aspect, float framebufferScale);
-  // Starts a side's renderer with the viewer's threads, target, thumbnails and error tracker.
-  void startLane(RenderLane& lane, const RenderSettings& settings);
+  // What a side's new renderer starts with: the sample target and the thumbnails' size.
+  Sides::Start laneStart() const;
   // The settings the panels ask of a side: A's estimator; B's in A's view (compareRenderSettings).
   RenderSettings wantedSettings(const RenderLane& lane) const;
-  // Starts or ends the comparison when compare_.on changed: both sides restart together, each on
-  // half of the threads (the main renderer back on all of them when it ends).
+  // Starts or ends side B when compare_.on changed (Sides::setComparing).
   void syncCompare();
   void swapCompareSides();
   // An orthographic scene camera refuses light tracing and a lens: the estimator falls back to
