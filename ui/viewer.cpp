@@ -4,16 +4,12 @@
 
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
-#include "ui/estimator/technique_grid.h"
 #include "ui/lane/thread_priority.h"
-#include "ui/record/output_names.h"
 
-#include <fmt/core.h>
 #include <imgui.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <thread>
 
 namespace pathlab::ui {
