@@ -1,6 +1,6 @@
 // Display transform of the linear radiance image: exposure, tone map (clamp or the ACES filmic
 // fit), sRGB encoding; or false colour of log10 luminance; or the per-pixel error against a
-// reference in viridis. Mirrors ui/display_settings.cpp, which the tests check.
+// reference in viridis. Mirrors ui/display/display_settings.cpp, which the tests check.
 #version 330 core
 
 in vec2 uv;

@@ -1,4 +1,4 @@
-// The 3D view's triangles (ui/scene_raster.cpp): world-space positions and normals.
+// The 3D view's triangles (ui/gl/scene_raster.cpp): world-space positions and normals.
 #version 330 core
 
 layout(location = 0) in vec3 position;

@@ -1,16 +1,18 @@
-// The viewer's frame loop over a Surface: ImGui frame, viewer, image pass, ImGui draw data,
-// present; frame pacing, frame-time statistics, screenshots.
+// `pathlab view` step by step: options checked, presets and the scene loaded, the surface opened,
+// then the frame loop over it (ImGui frame, viewer, image pass, ImGui draw data, present; frame
+// pacing, frame-time statistics, screenshots, recording), its report and what it writes at the end.
 #include "ui/run_viewer.h"
 
-#include "ui/egl_surface.h"
-#include "ui/gl.h"
-#include "ui/glfw_surface.h"
-#include "ui/input_script.h"
-#include "ui/output_names.h"
-#include "ui/presets.h"
-#include "ui/recorder.h"
-#include "ui/scene_loader.h"
-#include "ui/screenshot.h"
+#include "ui/gl/gl.h"
+#include "ui/gl/screenshot.h"
+#include "ui/input/input_script.h"
+#include "ui/presets/preset_controller.h"
+#include "ui/record/output_names.h"
+#include "ui/record/recording.h"
+#include "ui/record/recording_controller.h"
+#include "ui/scene/scene_loader.h"
+#include "ui/surface/egl_surface.h"
+#include "ui/surface/glfw_surface.h"
 #include "ui/viewer.h"
 
 #include <fmt/core.h>
@@ -112,63 +114,6 @@ struct FrameStats {
 
 void saveScreenshot(const std::string& path, Vec2i size) { writePngRgba(path, size, readFramebufferRgba(size)); }
 
-// The recorder and its take's clock. Headless, every drawn frame advances the clock by the UI
-// frame period (a simulated clock: the same script writes the same frames on any machine); in a
-// window it is the wall clock, so the clip plays at the speed the lecture happened.
-struct Recording {
-  std::unique_ptr<Recorder> recorder;
-  bool headless = false, imageOnly = false;
-  int fps = 30;
-  long long takeFrames = 0;  // frames drawn in this take
-  Clock::time_point takeStart{};
-
-  bool active() const { return recorder && recorder->recording(); }
-  void start(Viewer& viewer, const std::string& dir) {
-    if (!recorder) recorder = std::make_unique<Recorder>(dir, fps, headless);
-    recorder->start();
-    takeFrames = 0;
-    takeStart = Clock::now();
-    viewer.setRecording(true);
-    std::cerr << fmt::format("pathlab view: recording into {} at {} fps\n", recorder->dir(), fps);
-  }
-  void toggle(Viewer& viewer) {
-    if (active()) {
-      recorder->stop();
-      viewer.setRecording(false);
-      return;
-    }
-    try {
-      // Without --record, each recording gets a fresh directory beside the screenshots.
-      std::string dir = recorder ? recorder->dir() : freshStem("out", "pathlab-recording", {""});
-      if (!recorder) prepareRecordDirectory(dir, false);
-      start(viewer, dir);
-    } catch (const std::exception& e) {
-      viewer.showMessage(e.what(), true);
-    }
-  }
-  // After the frame is drawn, before it is presented.
-  void capture(const Viewer& viewer, Vec2i fb) {
-    if (!active()) return;
-    const double t = headless ? static_cast<double>(takeFrames) * kFrameSeconds
-                              : std::chrono::duration<double>(Clock::now() - takeStart).count();
-    ++takeFrames;
-    const int copies = recorder->framesDue(t);
-    if (copies == 0) return;
-    // The image area includes the caption drawn over it (ImGui's foreground list is drawn by now).
-    const Vec2i origin = imageOnly ? viewer.imageOrigin() : Vec2i(0);
-    const Vec2i size = imageOnly ? viewer.imageSize() : fb;
-    if (size.x <= 0 || size.y <= 0) return;
-    recorder->submit(readFramebufferRgba(fb, origin, size), size, copies);
-  }
-  void report(Viewer* viewer) {
-    if (!recorder) return;
-    while (const std::optional<std::string> r = recorder->takeReport()) {
-      std::cerr << "pathlab view: " << *r << "\n";
-      if (viewer) viewer->showMessage(*r, r->starts_with("warning"));
-    }
-  }
-};
-
 // Feeds this frame's scripted input to ImGui (after the platform backend's own, so it wins).
 // Returns the files the script drops on the window in this frame.
 std::vector<std::string> applyScript(const std::vector<InputEvent>& script, int frame, std::vector<int>& held) {
@@ -187,174 +132,222 @@ std::vector<std::string> applyScript(const std::vector<InputEvent>& script, int 
   return in.dropped;
 }
 
-}  // namespace
+// Headless (FRAME:wait=SPP, the last frame): waits for the scene being loaded, then until every
+// side shows `spp` samples per pixel.
+void waitForSpp(Viewer& viewer, uint64_t spp) {
+  viewer.finishLoading(kHeadlessSppTimeout);
+  for (RenderLane* lane : {&viewer.a(), &viewer.b()})
+    if (lane->running() && !lane->renderer().waitForSpp(spp, kHeadlessSppTimeout))
+      std::cerr << fmt::format("pathlab: warning: {}{} spp not reached within {:.0f} s\n",
+                               lane == &viewer.b() ? "side B: " : "", spp, kHeadlessSppTimeout);
+}
 
-int runViewer(const ViewerOptions& o) {
+// Step 1: options that cannot work together, and output paths refused before anything loads.
+void checkOptions(const ViewerOptions& o) {
   if (o.headless && o.screenshot.empty() && o.recordDir.empty())
     throw std::runtime_error("--headless needs --screenshot OUT.png or --record DIR");
   if (!o.screenshot.empty()) checkScreenshotPath(o);
   if (!o.errorCsv.empty()) checkErrorCsvPath(o);
   if ((!o.errorCsv.empty() || o.errorView) && o.reference.empty())
     throw std::runtime_error(std::string(o.errorView ? "--error-view" : "--error-csv") + " needs --reference REF.exr");
-  std::vector<NamedPreset> presets;
-  ViewerOptions options = o;
-  if (!o.presetsFile.empty()) presets = loadPresets(o.presetsFile);
-  if (!o.preset.empty()) {
-    if (o.presetsFile.empty()) throw std::runtime_error("--preset needs --presets FILE");
-    const NamedPreset& preset = findPreset(presets, o.preset, o.presetsFile);
-    options.settings = preset.applyTo(options.settings);
-    // A preset with a side B starts the comparison (an explicit --compare wins).
-    if (preset.compare && options.compare.empty()) options.compare = *preset.compare;
-  }
-  const std::vector<InputEvent> script = parseInputScript(o.script);
-  if (!o.recordDir.empty()) prepareRecordDirectory(o.recordDir, o.force);  // refused before the scene loads
-  std::vector<int> scriptKeys;
+}
+
+// Step 2: the scene, before any window opens (a bad one is the command's error).
+std::shared_ptr<const Scene> loadStartScene(const ViewerOptions& o) {
   SceneLoadResult loaded = SceneLoader::load(o.scene, o.load);
   if (!loaded.scene) throw std::runtime_error(loaded.error);
   for (const std::string& w : loaded.scene->warnings()) std::cerr << "pathlab: warning: " << w << "\n";
+  return loaded.scene;
+}
+
+// Step 3: the window, or the headless EGL context.
+std::unique_ptr<Surface> openSurface(const ViewerOptions& o) {
+  if (o.headless) return std::make_unique<EglSurface>(o.windowWidth, o.windowHeight);
+  return std::make_unique<GlfwSurface>(o.windowWidth, o.windowHeight, "pathlab view " + o.scene);
+}
+
+float uiScaleOf(const ViewerOptions& o, const Surface& surface) {
+  const float content = surface.contentScale();
+  return (o.lecture ? lectureScale(surface.framebufferSize().y / std::max(content, 1.f)) : 1.f) * content;
+}
+
+// Step 4: the frames, from the first to the window's closing (or the last counted one).
+class FrameLoop {
+ public:
+  FrameLoop(const ViewerOptions& o, std::vector<InputEvent> script, Surface& surface, Viewer& viewer)
+      : o_(o), surface_(surface), viewer_(viewer), script_(std::move(script)),
+        recording_(o.headless, o.recordImage, o.recordFps, kFrameSeconds) {}
+
+  void run() {
+    if (!o_.recordDir.empty()) recording_.start(viewer_, o_.recordDir);
+    while (counted() ? frame_ < o_.frames && !surface_.shouldClose() : !surface_.shouldClose() && !viewer_.quitRequested())
+      step();
+  }
+  // Step 5: what the run showed, on stderr (counted runs: the tests' and scripts' evidence).
+  void report() const;
+  // Step 6: the error series and the recording written.
+  void finish() {
+    if (!o_.errorCsv.empty()) viewer_.writeErrorCsv(o_.errorCsv, true);  // checked before the first frame
+    recording_.finish();
+  }
+
+ private:
+  const ViewerOptions& o_;
+  Surface& surface_;
+  Viewer& viewer_;
+  const std::vector<InputEvent> script_;
+  std::vector<int> scriptKeys_;
+  RecordingController recording_;
+  FrameStats stats_;
+  Clock::time_point lastInput_ = Clock::now();
+  int frame_ = 0;
+
+  bool counted() const { return o_.frames > 0; }  // draw every frame and stop after o.frames
+
+  void step() {
+    const bool last = counted() && frame_ == o_.frames - 1;
+    waitForScript(last);
+    // A window draws only after input (for a moment, so ImGui can settle hover states) and when
+    // a new image arrives; otherwise it sleeps in the event wait and the CPU renders.
+    const bool recent = std::chrono::duration<double>(Clock::now() - lastInput_).count() < kInputLingerSeconds;
+    // While recording every frame is drawn: the clip needs frames when nothing changes too.
+    const bool recordingNow = recording_.active();
+    if (surface_.waitEvents(recent || counted() || recordingNow ? 0.0 : kIdleWaitSeconds)) lastInput_ = Clock::now();
+    const auto start = Clock::now();
+    const bool newImage = viewer_.pollImage();
+    const bool active = std::chrono::duration<double>(start - lastInput_).count() < kInputLingerSeconds;
+    recording_.report(&viewer_);
+    if (!counted() && !active && !newImage && !viewer_.busy() && !recordingNow) return;
+    ++frame_;
+    const Vec2i fb = drawFrame();
+    saveRequests(fb);
+    if (last && !o_.screenshot.empty()) {
+      glFinish();
+      saveScreenshot(o_.screenshot, fb);
+    }
+    surface_.present();
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    if (!last) stats_.add(ms);
+    // Bounded frame rate (vsync may be missing, e.g. under Xvfb or offscreen).
+    const double rest = kFrameSeconds - ms / 1000.0;
+    if (rest > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(rest));
+  }
+
+  // Headless, before the frame that shows them: the samples the last frame or a script asks for.
+  void waitForScript(bool last) {
+    if (last && o_.spp > 0) {
+      // The screenshot shows the requested sample count (settings were applied in earlier frames).
+      waitForSpp(viewer_, o_.spp);
+      viewer_.waitForPyramid(5.0);
+    }
+    if (const std::optional<uint64_t> spp = inputAt(script_, frame_).waitSpp) {
+      waitForSpp(viewer_, *spp);
+      viewer_.forceRefresh();
+    }
+    if (last) viewer_.forceRefresh();
+  }
+
+  // The UI frame (scripted input included) built and drawn: the image, then ImGui over it.
+  Vec2i drawFrame() {
+    // A scripted resize first: the platform frame then sees the new size.
+    if (const auto size = inputAt(script_, frame_ - 1).resize) surface_.resize(*size);
+    surface_.newFrame();
+    std::vector<std::string> dropped = surface_.takeDroppedPaths();
+    for (std::string& path : applyScript(script_, frame_ - 1, scriptKeys_)) dropped.push_back(std::move(path));
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    const ImGuiIO& io = ImGui::GetIO();
+    const Vec2i fb = surface_.framebufferSize();
+    const float fbScale = io.DisplaySize.x > 0.f ? static_cast<float>(fb.x) / io.DisplaySize.x : 1.f;
+    viewer_.setFrameTime(stats_.ms.empty() ? 0.0 : stats_.ms.back());
+    if (const EnvironmentEdit edit = inputAt(script_, frame_ - 1).environment; !edit.empty()) viewer_.editEnvironment(edit);
+    viewer_.buildFrame(fb, fbScale, dropped);
+    ImGui::Render();
+    glViewport(0, 0, fb.x, fb.y);
+    glClearColor(0.08f, 0.08f, 0.09f, 1.f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    viewer_.drawImage(fb);
+    glViewport(0, 0, fb.x, fb.y);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    return fb;
+  }
+
+  // What the frame's keys asked to keep of the drawn frame: a screenshot, the 3D view, a recording.
+  void saveRequests(Vec2i fb) {
+    if (viewer_.takeScreenshotRequest()) saveFramebuffer("pathlab-screenshot", "screenshot ", fb, {Vec2i(0), fb});
+    if (const std::optional<PixelRect> rect = viewer_.takeView3DExportRequest())
+      saveFramebuffer("pathlab-3d", "3D view ", fb, *rect);
+    if (viewer_.takeRecordingToggleRequest()) recording_.toggle(viewer_);
+    recording_.capture(viewer_, fb);
+  }
+
+  // `rect` of the framebuffer as out/STEM-STAMP.png; the message line says where (or why not).
+  void saveFramebuffer(const std::string& stem, const std::string& what, Vec2i fb, const PixelRect& rect) {
+    try {
+      const std::string path = freshStem("out", stem, {".png"}) + ".png";
+      writePngRgba(path, rect.size, readFramebufferRgba(fb, rect.origin, rect.size));
+      viewer_.showMessage(what + path);
+    } catch (const std::exception& e) {
+      viewer_.showMessage(e.what(), true);
+    }
+  }
+};
+
+void FrameLoop::report() const {
+  if (!counted()) return;
+  const RenderSnapshot& s = viewer_.a().snapshot();
+  const Vec2i fb = surface_.framebufferSize();
+  const std::string series =
+      o_.reference.empty() ? std::string() : fmt::format("; {} error series", viewer_.errors().series().size());
+  // The region the last frame drew (what the screenshot shows), then the resolution rendered:
+  // they differ under --render-scale or a reference's size, and on a busy machine the shown
+  // snapshot may still be a placeholder generation's.
+  const PixelRect drawn = viewer_.a().drawn();
+  std::string compare;
+  if (viewer_.b().running()) {
+    const PixelRect b = viewer_.b().drawn();
+    compare = fmt::format(", B image {}x{}+{}+{} at {} spp", b.size.x, b.size.y, b.origin.x, b.origin.y,
+                          viewer_.b().snapshot().samplesPerPixel);
+  }
+  if (const std::optional<PixelRect> v = viewer_.drawnView3D())
+    compare += fmt::format(", 3D view {}x{}+{}+{}", v->size.x, v->size.y, v->origin.x, v->origin.y);
+  // The generation: how often the render restarted (a test's proof that something did not).
+  // How next-event estimation chooses lights in the scene shown (a relight may have changed it).
+  const char* nee = viewer_.shownScene().lights().neeByContext() ? "bvh" : "power";
+  std::cerr << fmt::format(
+      "{}: {}x{} {}, image {}x{}+{}+{} at {} spp{}, rendered {}x{} (generation {}), next-event lights {}; {}{}\n",
+      o_.screenshot.empty() ? "pathlab view" : o_.screenshot, fb.x, fb.y, o_.headless ? "offscreen" : "window",
+      drawn.size.x, drawn.size.y, drawn.origin.x, drawn.origin.y, s.samplesPerPixel, compare, s.settings.width,
+      s.settings.height, s.generation, nee, stats_.summary(), series);
+  // Offscreen nobody reads the panel: its error line goes to standard error too.
+  if (const std::string error = viewer_.shownError(); !error.empty())
+    std::cerr << "pathlab view: shown: " << error << "\n";
+}
+
+}  // namespace
+
+int runViewer(const ViewerOptions& o) {
+  checkOptions(o);
+  ViewerOptions options = o;
+  std::vector<NamedPreset> presets = loadPresetsOf(options);
+  std::vector<InputEvent> script = parseInputScript(o.script);
+  if (!o.recordDir.empty()) prepareRecordDirectory(o.recordDir, o.force);  // refused before the scene loads
+  const std::shared_ptr<const Scene> scene = loadStartScene(o);
 
   ImGuiContextScope imgui;
-  std::unique_ptr<Surface> surface;
-  if (o.headless) surface = std::make_unique<EglSurface>(o.windowWidth, o.windowHeight);
-  else surface = std::make_unique<GlfwSurface>(o.windowWidth, o.windowHeight, "pathlab view " + o.scene);
-  const float uiScale = (o.lecture ? lectureScale(surface->framebufferSize().y / std::max(surface->contentScale(), 1.f)) : 1.f) *
-                        surface->contentScale();
+  const std::unique_ptr<Surface> surface = openSurface(o);
+  const float uiScale = uiScaleOf(o, *surface);
   setUpFontsAndStyle(uiScale);
   OpenGl3Backend backend;
-  FrameStats stats;
-  int exitCode = 0;
   {
-    Viewer viewer(options, loaded.scene, std::move(presets));
+    Viewer viewer(options, scene, std::move(presets));
     viewer.setUiScale(uiScale);
-    Recording recording;
-    recording.headless = o.headless;
-    recording.imageOnly = o.recordImage;
-    recording.fps = o.recordFps;
-    if (!o.recordDir.empty()) recording.start(viewer, o.recordDir);
-    auto lastInput = Clock::now();
-    int frame = 0;
-    const bool counted = o.frames > 0;  // draw every frame and stop after o.frames
-    while (counted ? frame < o.frames && !surface->shouldClose() : !surface->shouldClose() && !viewer.quitRequested()) {
-      const bool last = counted && frame == o.frames - 1;
-      if (last && o.spp > 0) {
-        // The screenshot shows the requested sample count (settings were applied in earlier frames).
-        viewer.finishLoading(kHeadlessSppTimeout);
-        if (!viewer.renderer().waitForSpp(o.spp, kHeadlessSppTimeout))
-          std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", o.spp, kHeadlessSppTimeout);
-        if (ProgressiveRenderer* b = viewer.compareRenderer(); b && !b->waitForSpp(o.spp, kHeadlessSppTimeout))
-          std::cerr << fmt::format("pathlab: warning: side B: {} spp not reached within {:.0f} s\n", o.spp,
-                                   kHeadlessSppTimeout);
-        viewer.waitForPyramid(5.0);
-      }
-      if (const std::optional<uint64_t> spp = inputAt(script, frame).waitSpp) {
-        viewer.finishLoading(kHeadlessSppTimeout);
-        if (!viewer.renderer().waitForSpp(*spp, kHeadlessSppTimeout))
-          std::cerr << fmt::format("pathlab: warning: {} spp not reached within {:.0f} s\n", *spp, kHeadlessSppTimeout);
-        if (ProgressiveRenderer* b = viewer.compareRenderer(); b && !b->waitForSpp(*spp, kHeadlessSppTimeout))
-          std::cerr << fmt::format("pathlab: warning: side B: {} spp not reached within {:.0f} s\n", *spp,
-                                   kHeadlessSppTimeout);
-        viewer.forceRefresh();
-      }
-      if (last) viewer.forceRefresh();
-      // A window draws only after input (for a moment, so ImGui can settle hover states) and when
-      // a new image arrives; otherwise it sleeps in the event wait and the CPU renders.
-      const bool recent = std::chrono::duration<double>(Clock::now() - lastInput).count() < kInputLingerSeconds;
-      // While recording every frame is drawn: the clip needs frames when nothing changes too.
-      const bool recordingNow = recording.active();
-      if (surface->waitEvents(recent || counted || recordingNow ? 0.0 : kIdleWaitSeconds)) lastInput = Clock::now();
-      const auto start = Clock::now();
-      const bool newImage = viewer.pollImage();
-      const bool active = std::chrono::duration<double>(start - lastInput).count() < kInputLingerSeconds;
-      recording.report(&viewer);
-      if (!counted && !active && !newImage && !viewer.busy() && !recordingNow) continue;
-      ++frame;
-      // A scripted resize first: the platform frame then sees the new size.
-      if (const auto size = inputAt(script, frame - 1).resize) surface->resize(*size);
-      surface->newFrame();
-      std::vector<std::string> dropped = surface->takeDroppedPaths();
-      for (std::string& path : applyScript(script, frame - 1, scriptKeys)) dropped.push_back(std::move(path));
-      ImGui_ImplOpenGL3_NewFrame();
-      ImGui::NewFrame();
-      const ImGuiIO& io = ImGui::GetIO();
-      const Vec2i fb = surface->framebufferSize();
-      const float fbScale = io.DisplaySize.x > 0.f ? static_cast<float>(fb.x) / io.DisplaySize.x : 1.f;
-      viewer.setFrameTime(stats.ms.empty() ? 0.0 : stats.ms.back());
-      if (const EnvironmentEdit edit = inputAt(script, frame - 1).environment; !edit.empty()) viewer.editEnvironment(edit);
-      viewer.buildFrame(fb, fbScale, dropped);
-      ImGui::Render();
-      glViewport(0, 0, fb.x, fb.y);
-      glClearColor(0.08f, 0.08f, 0.09f, 1.f);
-      glClear(GL_COLOR_BUFFER_BIT);
-      viewer.drawImage(fb);
-      glViewport(0, 0, fb.x, fb.y);
-      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-      if (viewer.takeScreenshotRequest()) {
-        try {
-          const std::string path = freshStem("out", "pathlab-screenshot", {".png"}) + ".png";
-          saveScreenshot(path, fb);
-          viewer.showMessage("screenshot " + path);
-        } catch (const std::exception& e) {
-          viewer.showMessage(e.what(), true);
-        }
-      }
-      if (const std::optional<PixelRect> rect = viewer.takeView3DExportRequest()) {
-        try {
-          const std::string path = freshStem("out", "pathlab-3d", {".png"}) + ".png";
-          writePngRgba(path, rect->size, readFramebufferRgba(fb, rect->origin, rect->size));
-          viewer.showMessage("3D view " + path);
-        } catch (const std::exception& e) {
-          viewer.showMessage(e.what(), true);
-        }
-      }
-      if (viewer.takeRecordingToggleRequest()) recording.toggle(viewer);
-      recording.capture(viewer, fb);
-      if (last && !o.screenshot.empty()) {
-        glFinish();
-        saveScreenshot(o.screenshot, fb);
-      }
-      surface->present();
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-      if (!last) stats.add(ms);
-      // Bounded frame rate (vsync may be missing, e.g. under Xvfb or offscreen).
-      const double rest = kFrameSeconds - ms / 1000.0;
-      if (rest > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(rest));
-    }
-    if (counted) {
-      const RenderSnapshot& s = viewer.shownSnapshot();
-      const Vec2i fb = surface->framebufferSize();
-      const std::string series =
-          o.reference.empty() ? std::string() : fmt::format("; {} error series", viewer.errors().series().size());
-      // The region the last frame drew (what the screenshot shows), then the resolution rendered:
-      // they differ under --render-scale or a reference's size, and on a busy machine the shown
-      // snapshot may still be a placeholder generation's.
-      const PixelRect drawn = viewer.drawnImage();
-      std::string compare;
-      if (viewer.compareRenderer()) {
-        const PixelRect b = viewer.drawnCompareImage();
-        compare = fmt::format(", B image {}x{}+{}+{} at {} spp", b.size.x, b.size.y, b.origin.x, b.origin.y,
-                              viewer.compareSnapshot().samplesPerPixel);
-      }
-      if (const std::optional<PixelRect> v = viewer.drawnView3D())
-        compare += fmt::format(", 3D view {}x{}+{}+{}", v->size.x, v->size.y, v->origin.x, v->origin.y);
-      // The generation: how often the render restarted (a test's proof that something did not).
-      // How next-event estimation chooses lights in the scene shown (a relight may have changed it).
-      const char* nee = viewer.shownScene().lights().neeByContext() ? "bvh" : "power";
-      std::cerr << fmt::format(
-          "{}: {}x{} {}, image {}x{}+{}+{} at {} spp{}, rendered {}x{} (generation {}), next-event lights {}; {}{}\n",
-          o.screenshot.empty() ? "pathlab view" : o.screenshot, fb.x, fb.y, o.headless ? "offscreen" : "window",
-          drawn.size.x, drawn.size.y, drawn.origin.x, drawn.origin.y, s.samplesPerPixel, compare, s.settings.width,
-          s.settings.height, s.generation, nee, stats.summary(), series);
-      // Offscreen nobody reads the panel: its error line goes to standard error too.
-      if (const std::string error = viewer.shownError(); !error.empty())
-        std::cerr << "pathlab view: shown: " << error << "\n";
-    }
-    if (!o.errorCsv.empty()) viewer.writeErrorCsv(o.errorCsv, true);  // checked before the first frame
-    if (recording.recorder) {
-      recording.recorder->finish();  // the last frames written, the clip assembled
-      recording.report(nullptr);
-    }
+    FrameLoop loop(o, std::move(script), *surface, viewer);
+    loop.run();
+    loop.report();
+    loop.finish();
   }  // the viewer (and its render threads) goes before the GL context
-  return exitCode;
+  return 0;
 }
 
 }  // namespace pathlab::ui

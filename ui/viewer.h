@@ -1,19 +1,23 @@
-// The viewer: owns the progressive renderer, the image and one small state struct per concern
-// (ui/viewer_state.h); draws the panels, which are functions over the state they edit
-// (ui/panels.h), carries out what they ask, turns every estimator change into one setSettings call
-// (a new generation, within the frame) and shows the newest snapshot at a bounded rate. One
-// instance per window; all calls on the UI thread, between ImGui::NewFrame and ImGui::Render
-// except drawImage.
+// The viewer: two RenderLanes (side A, and side B of the A | B comparison, ui/lane/), the
+// controllers of the scene, the inspector and 3D view, and the presets, and one small state struct
+// per concern (ui/viewer_state.h). Each frame it lays out the window, draws the panels, which are
+// functions over the state they edit (ui/panels/panels.h), carries out what they ask, turns every
+// estimator change into one setSettings call per side (a new generation, within the frame) and
+// shows the newest snapshots at a bounded rate. One instance per window; all calls on the UI
+// thread, between ImGui::NewFrame and ImGui::Render except drawImage.
 #pragma once
 
 #include "core/render/progressive_renderer.h"
-#include "ui/compare.h"
-#include "ui/estimator_state.h"
-#include "ui/image_rect.h"
-#include "ui/image_view.h"
-#include "ui/panels.h"
-#include "ui/scene_raster.h"
-#include "ui/view3d.h"
+#include "ui/display/image_rect.h"
+#include "ui/estimator/estimator_state.h"
+#include "ui/estimator/technique_images.h"
+#include "ui/inspect/inspector_controller.h"
+#include "ui/lane/compare.h"
+#include "ui/lane/render_lane.h"
+#include "ui/lane/sides.h"
+#include "ui/panels/panels.h"
+#include "ui/presets/preset_controller.h"
+#include "ui/scene/scene_controller.h"
 #include "ui/viewer_options.h"
 #include "ui/viewer_state.h"
 
@@ -30,7 +34,7 @@ class Viewer {
   Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene, std::vector<NamedPreset> presets);
   ~Viewer();
   // The scene shown (the last one loaded).
-  const Scene& shownScene() const { return *scene_.scene; }
+  const Scene& shownScene() const { return scene(); }
 
   // Builds one UI frame: input, panels, settings to the renderer, newest snapshot to the texture.
   void buildFrame(Vec2i framebufferSize, float framebufferScale, const std::vector<std::string>& droppedPaths);
@@ -38,54 +42,54 @@ class Viewer {
   // whether anything new was uploaded, i.e. whether a frame should be drawn.
   bool pollImage();
   // True while something changes without input (a scene loading): keep drawing frames.
-  bool busy() const { return scene_.loader.busy() || !(environment_.edited == environment_.applied); }
+  bool busy() const { return scenes_.busy(); }
   // An edit of the environment (as the Environment section makes them; scripts, tests): the scene
-  // is relit in the background, keeping the camera (viewer_environment.cpp).
-  void editEnvironment(const EnvironmentEdit& edit);
+  // is relit in the background, keeping the camera (SceneController).
+  void editEnvironment(const EnvironmentEdit& edit) { scenes_.editEnvironment(edit); }
   // Headless scripts (FRAME:wait=SPP, the last frame): waits up to `seconds` for the scene or
   // environment being loaded and shows it, so the samples waited for are the new scene's.
   void finishLoading(double seconds);
   // Draws the image under the panels (after ImGui::Render, before ImGui's draw data).
   void drawImage(Vec2i framebufferSize);
-  // Where the last drawImage put the image (empty when nothing was drawn): what a screenshot shows.
-  const PixelRect& drawnImage() const { return drawn_; }
-  // The comparison's side B (CompareState): where it was drawn, what it shows; null renderer when off.
-  const PixelRect& drawnCompareImage() const { return compareSide_.drawn; }
-  const RenderSnapshot& compareSnapshot() const { return compareSide_.snapshot; }
-  ProgressiveRenderer* compareRenderer() { return compareSide_.renderer.get(); }
+  // The sides of the image: A, and B of the comparison (running only while it is on). drawn()
+  // says where the last drawImage put each (empty when nothing was drawn): what a screenshot shows.
+  RenderLane& a() { return sides_.a(); }
+  RenderLane& b() { return sides_.b(); }
+  const RenderLane& a() const { return sides_.a(); }
+  const RenderLane& b() const { return sides_.b(); }
 
   // Headless screenshots: waits (up to `seconds`) until the thumbnails of the current generation's
   // newest pass are published, when the pyramid is shown.
   void waitForPyramid(double seconds);
   // The next frame takes the newest snapshot and pyramid whatever the refresh interval.
   void forceRefresh() { forceRefresh_ = true; }
-  ProgressiveRenderer& renderer() { return *renderer_; }
   bool quitRequested() const { return ui_.quit; }
   bool takeScreenshotRequest() { return std::exchange(ui_.screenshotRequested, false); }
   bool takeRecordingToggleRequest() { return std::exchange(ui_.recordingToggleRequested, false); }
-  // Where the 3D view was drawn in the last frame (nothing when it is off).
-  std::optional<PixelRect> drawnView3D() const {
-    if (!view3dTextureInUse_) return std::nullopt;
-    return view3dRect_;
+  // The settings of the image shown: its snapshot's once one arrived, else those last applied.
+  const RenderSettings& shownSettings() const {
+    return a().snapshot().settings.width > 0 ? a().snapshot().settings : a().applied();
   }
+  // Where the 3D view was drawn in the last frame (nothing when it is off).
+  std::optional<PixelRect> drawnView3D() const { return inspect_.drawnView3D(); }
   // Where the 3D view was drawn when its export (Ctrl+E) was asked for, else nothing: the caller
   // reads it back after the frame is drawn and writes it as a PNG.
   std::optional<PixelRect> takeView3DExportRequest() {
-    if (!std::exchange(ui_.view3dExportRequested, false) || !view3d_.on || view3dRect_.size.x <= 0) return std::nullopt;
-    return view3dRect_;
+    if (!std::exchange(ui_.view3dExportRequested, false) || !inspect_.view3d.on || inspect_.view3dRect.size.x <= 0)
+      return std::nullopt;
+    return inspect_.view3dRect;
   }
   // While recording, transient (non-error) messages are not drawn: they would end up in the clip.
   void setRecording(bool recording) { ui_.recording = recording; }
   // The image area of the last built frame, framebuffer pixels from the top left.
-  Vec2i imageOrigin() const { return imageOrigin_; }
-  Vec2i imageSize() const { return imageSize_; }
+  Vec2i imageOrigin() const { return a().rect.origin; }
+  Vec2i imageSize() const { return a().rect.size; }
   // Size of the UI relative to the default: 2 in lecture mode, times the display's HiDPI factor.
   void setUiScale(float scale) { ui_.scale = scale; }
   void setFrameTime(double ms) { ui_.frameMs = ui_.frameMs == 0.0 ? ms : 0.9 * ui_.frameMs + 0.1 * ms; }
   void showMessage(const std::string& text, bool error = false);
   // The error line the panel shows ("" when none): headless runs report it on exit.
-  std::string shownError() const { return ui_.messageIsError ? ui_.message : std::string(); }
-  const RenderSnapshot& shownSnapshot() const { return snapshot_; }
+  std::string shownError() const { return ui_.message.error(); }
   const ErrorTracker& errors() const { return *reference_.errors; }
   // Writes the error series as CSV (ErrorTracker::csv); throws std::runtime_error naming the file.
   void writeErrorCsv(const std::string& path, bool force) const;
@@ -95,102 +99,62 @@ class Viewer {
   EstimatorState estimator_;
   TechniqueGridState grid_;
   RunState run_;
-  SceneState scene_;
-  EnvironmentState environment_;
-  PresetState presets_;
+  SceneController scenes_;  // the scene shown, its environment, loads in the background
+  PresetController presets_;
   DisplaySettings display_;
   ReferenceState reference_;
   ConvergenceState convergence_;
   PyramidView pyramid_;
   MapView maps_;
   CompareState compare_;
-  PathInspectorState inspector_;
-  InspectorOverlay inspectorOverlay_;  // of inspector_'s result, recomputed when it replays
-  View3DState view3d_;
-  std::unique_ptr<SceneRaster> sceneRaster_;  // while the 3D view is shown
-  PixelRect view3dRect_;                      // where it goes, framebuffer pixels
-  bool view3dTextureInUse_ = false;           // this frame's draw lists show the raster's texture
-  PanelRect inspectorRect_;                   // the inspector's window, ImGui coordinates (empty: none)
+  InspectorController inspect_;  // the path inspector and the 3D view
   UiState ui_;
   EstimatorWarning warning_;  // of the shown image's settings
 
-  // The renderer and what it was last given; the image and the pyramid it published.
-  std::unique_ptr<ProgressiveRenderer> renderer_;
-  RenderSettings applied_;  // last handed to the renderer (or refused by it)
-  bool pausedApplied_ = false, timingApplied_ = false;
-  uint64_t targetApplied_ = 0;
-  std::unique_ptr<ImageView> imageView_;
-  RenderSnapshot snapshot_;
-  PyramidImages pyramidImages_;
-  MapImages mapImages_;
-  std::chrono::steady_clock::time_point lastPoll_{}, lastPriorityCheck_{};
+  // The two sides, each a renderer with what it was given and the image it published; A's
+  // pyramid and maps.
+  Sides sides_;
+  TechniqueImages techniqueImages_;
+  std::chrono::steady_clock::time_point lastPriorityCheck_{};
   bool forceRefresh_ = false;
-  // The image's rectangle in framebuffer pixels: the room the panels leave, fitted to the image's
-  // aspect (ui/image_rect.h). Input, captions and overlays use it; the bars stay background.
-  Vec2i imageOrigin_{0}, imageSize_{0};
-  PixelRect drawn_;
-  int threads_ = 0;  // the render threads asked for (0: all); each side of a comparison gets half
 
-  // Side B of the comparison: a renderer of its own while compare_.on, with what it was given, its
-  // image and where it goes. Side A is the fields above.
-  struct CompareSide {
-    std::unique_ptr<ProgressiveRenderer> renderer;
-    RenderSettings applied;
-    bool idle = false;  // B enables no technique: black, like A's idleForNoTechnique
-    bool pausedApplied = false;
-    uint64_t targetApplied = 0;
-    std::unique_ptr<ImageView> view;
-    RenderSnapshot snapshot;
-    std::chrono::steady_clock::time_point lastPoll{};
-    PixelRect rect, drawn;
+  // viewer.cpp: the frame (its layout, panels and overlays) and the sides' settings.
+  // Where the panels go (ImGui coordinates) and the image's aspect; the sides' and the 3D view's
+  // rectangles are set from it.
+  struct FrameLayout {
+    std::optional<float> aspect;
+    float panelWidth = 0.f, pyramidWidth = 0.f, upper = 0.f, bottom = 0.f;
   };
-  CompareSide compareSide_;
-
-  // viewer.cpp: the frame, settings to the renderer, images to the textures, scenes, presets, saving
+  FrameLayout layOut(Vec2i framebufferSize, float framebufferScale);
+  void drawPanels(const FrameLayout& layout, PanelRequests& requests);
   void drawSidePanel(float width, float height, PanelRequests& requests);
-  // A renderer for one side (lane 0: A, 1: B) with the viewer's target, observer and thumbnails.
-  std::unique_ptr<ProgressiveRenderer> makeRenderer(const RenderSettings& settings, int lane);
-  // The error tracker's observer of the renderer on side `lane` (ErrorTracker::observe).
-  PassObserver passObserver(int lane) const;
-  // Starts or ends the comparison when compare_.on changed: both sides restart together, each on
-  // half of the threads (the main renderer back on all of them when it ends).
+  // The captions over each side, the technique map and the inspector's overlays, the 3D view.
+  void drawOverImages();
+  // The image's size follows its area of the window (or the reference); the pyramid and maps
+  // follow what is shown.
+  void fitEstimatorToFrame(std::optional<float> aspect, float framebufferScale);
+  // What a side's new renderer starts with: the sample target and the thumbnails' size.
+  Sides::Start laneStart() const;
+  // The settings the panels ask of a side: A's estimator; B's in A's view (compareRenderSettings).
+  RenderSettings wantedSettings(const RenderLane& lane) const;
+  // Starts or ends side B when compare_.on changed (Sides::setComparing).
   void syncCompare();
-  void applyCompareSettings();
-  bool updateCompareImage();
   void swapCompareSides();
-  // The path inspector: replays the picked sample when it or the shown image's settings changed.
-  void updateInspector();
-  // The 3D view's particles; its drawing over the triangles (ImGui's lists).
-  void updateView3D();
   // An orthographic scene camera refuses light tracing and a lens: the estimator falls back to
   // bpt and a pinhole, with a message.
   void fitEstimatorToCamera();
-  void drawView3D(float fbScale);
-  // Writes the inspected sample as JSON (Ctrl+J) in out/.
-  void exportInspection();
   void carryOut(const PanelRequests& requests);
+  // Every running side: the settings asked for, then pause, target and timing.
   void applySettings();
-  void syncRenderer();
-  bool updateImage();
-  bool updatePyramid();
-  bool updateMaps();
-  // The chosen technique map over the image area, when shown and arrived (ImGui's background).
-  void drawMapOverImage(float fbScale);
+  void syncRenderers();
   // Width / height of the image: the reference's when it sets the size, else the camera's (none:
   // the glTF camera has no aspectRatio, the image fills the room as glTF asks).
   std::optional<float> imageAspect() const;
-  void openScene(const std::string& path);
+  const Scene& scene() const { return *scenes_.scene(); }
+  // A finished load shown on every side; the reference of the previous scene dropped.
   void pollSceneLoad();
-  // viewer_environment.cpp: a dropped .exr / .hdr lights the scene, any other file opens as one.
-  void openDropped(const std::string& path);
-  // Starts relighting when the edited environment differs from the shown
-  // scene's and no load is running; takes a finished load's environment (false: it failed).
-  void syncEnvironment();
-  bool takeLoadedEnvironment(const SceneLoadResult& result);
-  void refreshSceneFiles();
   void resetCamera();
-  void applyPreset(int index);
-  void saveImage();
+  PresetTarget presetTarget();
   // viewer_reference.cpp
   void loadReference(const std::string& path);  // a message in the UI on failure
   void useImageAsReference();

@@ -2,7 +2,8 @@
 // while a widget wants the mouse or the keyboard.
 #include "ui/viewer.h"
 
-#include "ui/technique_grid.h"
+#include "ui/estimator/technique_grid.h"
+#include "ui/record/save_images.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -64,8 +65,8 @@ void Viewer::perform(Action action) {
                                 std::min(grid_.oneLength, e.settings.maxLength)));
       break;
     }
-    case Action::NextPreset: applyPreset(presets_.current + 1); break;
-    case Action::PreviousPreset: applyPreset(presets_.current < 0 ? -1 : presets_.current - 1); break;
+    case Action::NextPreset: presets_.next(presetTarget()); break;
+    case Action::PreviousPreset: presets_.previous(presetTarget()); break;
     case Action::ExposureUp: display_.exposure = std::min(display_.exposure + 0.5f, 20.f); break;
     case Action::ExposureDown: display_.exposure = std::max(display_.exposure - 0.5f, -20.f); break;
     case Action::ToggleToneMap:
@@ -80,8 +81,8 @@ void Viewer::perform(Action action) {
       break;
     case Action::UseImageAsReference: useImageAsReference(); break;
     case Action::ResetCamera: resetCamera(); break;
-    case Action::ReloadScene: openScene(scene_.path); break;
-    case Action::SaveImage: saveImage(); break;
+    case Action::ReloadScene: scenes_.open(scenes_.path()); break;
+    case Action::SaveImage: saveImages(a(), b(), display_.exposure, ui_.message); break;
     case Action::Screenshot: ui_.screenshotRequested = true; break;
     case Action::ToggleRecording: ui_.recordingToggleRequested = true; break;
     case Action::Quit: ui_.quit = true; break;
@@ -92,41 +93,41 @@ void Viewer::perform(Action action) {
       else applyCompareConfig(compare_, e.settings.integrator == IntegratorKind::Pt ? "bpt" : "pt", renderSettings(e));
       break;
     case Action::ToggleInspector:
-      inspector_.on = !inspector_.on;
-      if (inspector_.on && !inspector_.pick) showMessage("path inspector: click a pixel of the image");
+      inspect_.inspector.on = !inspect_.inspector.on;
+      if (inspect_.inspector.on && !inspect_.inspector.pick) showMessage("path inspector: click a pixel of the image");
       break;
     case Action::NextSample:
     case Action::PreviousSample:
-      if (!inspector_.on || !inspector_.pick) {
+      if (!inspect_.inspector.on || !inspect_.inspector.pick) {
         showMessage("pick a pixel first: K, then click the image");
         break;
       }
-      if (action == Action::NextSample) ++inspector_.sample;
-      else if (inspector_.sample > 0) --inspector_.sample;
+      if (action == Action::NextSample) ++inspect_.inspector.sample;
+      else if (inspect_.inspector.sample > 0) --inspect_.inspector.sample;
       break;
     case Action::BrightestSample:
-      if (!inspector_.on || !inspector_.pixel || !inspector_.result) {
+      if (!inspect_.inspector.on || !inspect_.inspector.pixel || !inspect_.inspector.result) {
         showMessage("pick a pixel first: K, then click the image");
         break;
       }
-      inspector_.sample = brightestSample(*scene_.scene, inspector_.inspectedSettings, *inspector_.pixel, 256);
-      showMessage(fmt::format("the brightest of the first 256 samples is sample {}", inspector_.sample));
+      inspect_.inspector.sample = brightestSample(scene(), inspect_.inspector.inspectedSettings, *inspect_.inspector.pixel, 256);
+      showMessage(fmt::format("the brightest of the first 256 samples is sample {}", inspect_.inspector.sample));
       break;
     case Action::ToggleView3D:
-      view3d_.on = !view3d_.on;
+      inspect_.view3d.on = !inspect_.view3d.on;
       // One image beside the main one: the 3D view takes the comparison's place.
-      if (view3d_.on && compare_.on) {
+      if (inspect_.view3d.on && compare_.on) {
         compare_.on = false;
         showMessage("the comparison is off while the 3D view is shown");
       }
       break;
     case Action::ToggleParticles:
-      view3d_.particles.on = !view3d_.particles.on;
-      if (view3d_.particles.on && !view3d_.on) perform(Action::ToggleView3D);
+      inspect_.view3d.particles.on = !inspect_.view3d.particles.on;
+      if (inspect_.view3d.particles.on && !inspect_.view3d.on) perform(Action::ToggleView3D);
       break;
-    case Action::ExportInspection: exportInspection(); break;
+    case Action::ExportInspection: inspect_.exportInspection(ui_.message); break;
     case Action::ExportView3D:
-      if (view3d_.on) ui_.view3dExportRequested = true;
+      if (inspect_.view3d.on) ui_.view3dExportRequested = true;
       else showMessage("the 3D view is off (O shows it)");
       break;
     case Action::SwapCompareSides:
@@ -140,45 +141,44 @@ void Viewer::handleCamera(float framebufferScale) {
   const ImGuiIO& io = ImGui::GetIO();
   const Vec2 mouse = Vec2(io.MousePos.x, io.MousePos.y) * framebufferScale;
   // The fitted rectangle: a drag or a wheel over the bars beside a letterboxed image is not the image's.
-  const bool overImage = PixelRect{imageOrigin_, imageSize_}.contains(mouse) ||
-                         (compareSide_.renderer && compareSide_.rect.contains(mouse));
+  const bool overImage = a().rect.contains(mouse) || (b().running() && b().rect.contains(mouse));
   bool moved = false;
   // A drag belongs to the image only if it started there, outside every ImGui window.
   const bool anyDown = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];
   // A click (press and release within a few pixels) on the image picks the inspector's pixel.
   if (ImGui::IsMouseClicked(0)) {
     ui_.pressAt = mouse;
-    ui_.pressOverImage = PixelRect{imageOrigin_, imageSize_}.contains(mouse) && !io.WantCaptureMouse;
+    ui_.pressOverImage = a().rect.contains(mouse) && !io.WantCaptureMouse;
   }
-  if (inspector_.on && ImGui::IsMouseReleased(0) && ui_.pressOverImage && glm::length(mouse - ui_.pressAt) < 4.f &&
-      imageSize_.x > 0 && imageSize_.y > 0) {
-    inspector_.pick = (mouse - Vec2(imageOrigin_)) / Vec2(imageSize_);
-    inspector_.sample = 0;
+  if (inspect_.inspector.on && ImGui::IsMouseReleased(0) && ui_.pressOverImage && glm::length(mouse - ui_.pressAt) < 4.f &&
+      imageSize().x > 0 && imageSize().y > 0) {
+    inspect_.inspector.pick = (mouse - Vec2(imageOrigin())) / Vec2(imageSize());
+    inspect_.inspector.sample = 0;
   }
   // The 3D view has a camera of its own: drags and the wheel over it move only that camera.
-  const bool over3D = view3d_.on && view3d_.orbit && view3dRect_.contains(mouse) && !io.WantCaptureMouse;
+  const bool over3D = inspect_.view3d.on && inspect_.view3d.orbit && inspect_.view3dRect.contains(mouse) && !io.WantCaptureMouse;
   const bool pressed = ImGui::IsMouseClicked(0) || ImGui::IsMouseClicked(1) || ImGui::IsMouseClicked(2);
   if (!anyDown) ui_.dragging3D = false;
   else if (!ui_.dragging && !ui_.dragging3D && over3D && pressed) ui_.dragging3D = true;
   if (ui_.dragging3D && (io.MouseDelta.x != 0.f || io.MouseDelta.y != 0.f)) {
-    const float height = static_cast<float>(std::max(view3dRect_.size.y, 1)) / framebufferScale;
+    const float height = static_cast<float>(std::max(inspect_.view3dRect.size.y, 1)) / framebufferScale;
     const Vec2 d(io.MouseDelta.x / height, io.MouseDelta.y / height);
-    if (io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift)) view3d_.orbit->pan(-d.x, d.y);
-    else view3d_.orbit->orbit(kPi * d.x, -kPi * d.y);
+    if (io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift)) inspect_.view3d.orbit->pan(-d.x, d.y);
+    else inspect_.view3d.orbit->orbit(kPi * d.x, -kPi * d.y);
   }
-  if (over3D && io.MouseWheel != 0.f) view3d_.orbit->zoom(io.MouseWheel);
+  if (over3D && io.MouseWheel != 0.f) inspect_.view3d.orbit->zoom(io.MouseWheel);
   if (!anyDown) ui_.dragging = false;
   else if (!ui_.dragging && !ui_.dragging3D && overImage && !io.WantCaptureMouse && pressed)
     ui_.dragging = true;
   if (ui_.dragging && (io.MouseDelta.x != 0.f || io.MouseDelta.y != 0.f)) {
-    const float height = static_cast<float>(std::max(imageSize_.y, 1)) / framebufferScale;
+    const float height = static_cast<float>(std::max(imageSize().y, 1)) / framebufferScale;
     const Vec2 d(io.MouseDelta.x / height, io.MouseDelta.y / height);
-    if (io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift)) scene_.orbit.pan(-d.x, d.y);
-    else scene_.orbit.orbit(kPi * d.x, -kPi * d.y);  // a drag over the image height turns by half a turn
+    if (io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift)) scenes_.orbit().pan(-d.x, d.y);
+    else scenes_.orbit().orbit(kPi * d.x, -kPi * d.y);  // a drag over the image height turns by half a turn
     moved = true;
   }
   if (overImage && !io.WantCaptureMouse && io.MouseWheel != 0.f) {
-    scene_.orbit.zoom(io.MouseWheel);
+    scenes_.orbit().zoom(io.MouseWheel);
     moved = true;
   }
   if (!io.WantCaptureKeyboard && !io.WantTextInput && !io.KeyCtrl) {
@@ -190,11 +190,11 @@ void Viewer::handleCamera(float framebufferScale) {
     fly.z += io.KeysDown[GLFW_KEY_E] ? 1.f : 0.f;
     fly.z -= io.KeysDown[GLFW_KEY_Q] ? 1.f : 0.f;
     if (fly != Vec3(0.f)) {
-      scene_.orbit.fly(fly * (io.KeyShift ? 3.f : 1.f), std::min(io.DeltaTime, 0.1f));
+      scenes_.orbit().fly(fly * (io.KeyShift ? 3.f : 1.f), std::min(io.DeltaTime, 0.1f));
       moved = true;
     }
   }
-  if (moved) estimator_.settings.camera = scene_.orbit.desc();
+  if (moved) estimator_.settings.camera = scenes_.orbit().desc();
 }
 
 }  // namespace pathlab::ui

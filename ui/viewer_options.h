@@ -25,9 +25,9 @@ struct ViewerOptions {
   float exposure = 0.f;  // stops
   uint64_t spp = 0;      // stop accumulating at this many samples per pixel (0: never)
   int pyramidLength = 0; // > 0: open the technique pyramid up to this length
-  // The A/B comparison's side B (a converge CONFIG, ui/compare.h): starts side by side.
+  // The A/B comparison's side B (a converge CONFIG, ui/lane/compare.h): starts side by side.
   std::string compare;
-  std::string techniqueMap;  // start showing this technique map (ui/technique_map_view.h: parseMapView)
+  std::string techniqueMap;  // start showing this technique map (ui/estimator/technique_map_view.h: parseMapView)
   float renderScale = 1.f;  // render resolution relative to the image area: 1, 0.5 or 0.25
   // Headless: draw offscreen through EGL. frames > 0: close after that many drawn frames (then
   // write the whole viewer to `screenshot` if given); with a window too, for tests.
@@ -35,13 +35,13 @@ struct ViewerOptions {
   int frames = 0;
   std::string screenshot;
   bool force = false;    // overwrite the screenshot; record into a non-empty directory
-  // Recording (ui/recorder.h): numbered PNG frames of the window (or of the image area alone) in
+  // Recording (ui/record/recorder.h): numbered PNG frames of the window (or of the image area alone) in
   // recordDir from the first frame; the F9 key stops and restarts it. recordFps: the clip's rate.
   std::string recordDir;
   bool recordImage = false;
   int recordFps = 30;
   bool hideUi = false;   // start with the panels hidden
-  std::string script;    // scripted input (ui/input_script.h), counted in drawn frames
+  std::string script;    // scripted input (ui/input/input_script.h), counted in drawn frames
   // A reference image (.exr or .pfm) for the live error plot and the error view; rendered at its
   // resolution. errorCsv: write the error series there on exit.
   std::string reference;

@@ -3,7 +3,7 @@
 #include "ui/viewer.h"
 
 #include "core/film/image_io.h"
-#include "ui/output_names.h"
+#include "ui/record/output_names.h"
 
 #include <fmt/core.h>
 
@@ -22,7 +22,7 @@ void Viewer::loadReference(const std::string& path) {
           "{} is {} x {} but the image is {} x {}: not loaded (tick \"render at the reference's size\")", path,
           reference.width, reference.height, current.width, current.height));
     const std::string size = fmt::format("{} x {}", reference.width, reference.height);
-    reference_.errors->setReference(std::move(reference), viewOf(current, scene_.scene.get()), path);
+    reference_.errors->setReference(std::move(reference), viewOf(current, &scene()), path);
     convergence_.show = true;
     showMessage(fmt::format("reference {} ({}): the error is measured from the next pass on", path, size));
   } catch (const std::exception& e) {
@@ -31,19 +31,20 @@ void Viewer::loadReference(const std::string& path) {
 }
 
 void Viewer::useImageAsReference() {
-  if (snapshot_.image.width <= 0 || snapshot_.preview) {
+  const RenderSnapshot& shown = a().snapshot();
+  if (shown.image.width <= 0 || shown.preview) {
     showMessage("nothing to take yet: wait for the first full-resolution pass", true);
     return;
   }
   try {
     // Its own generation is never compared with it: those samples are the reference's.
-    reference_.errors->setReference(snapshot_.image, viewOf(snapshot_.settings, scene_.scene.get()),
-                          fmt::format("the image of generation {} ({} spp, {})", snapshot_.generation,
-                                      snapshot_.samplesPerPixel, seriesLabel(snapshot_.settings)),
-                          snapshot_.generation);
+    reference_.errors->setReference(shown.image, viewOf(shown.settings, &scene()),
+                                    fmt::format("the image of generation {} ({} spp, {})", shown.generation,
+                                                shown.samplesPerPixel, seriesLabel(shown.settings)),
+                                    shown.generation);
     convergence_.show = true;
     showMessage(fmt::format("reference: the current image ({} spp); change the configuration to measure another",
-                            snapshot_.samplesPerPixel));
+                            shown.samplesPerPixel));
   } catch (const std::exception& e) {
     showMessage(e.what(), true);
   }
@@ -54,14 +55,14 @@ void Viewer::returnToReferenceView() {
   if (!view) return;
   estimator_.settings.camera = view->camera;
   estimator_.settings.lens = view->lens;
-  const Scene& scene = *scene_.scene;
-  scene_.orbit = OrbitCamera(view->camera.value_or(scene.cameraDesc()), scene.boundsMin(), scene.boundsMax());
+  const Scene& scene = this->scene();
+  scenes_.orbit() = OrbitCamera(view->camera.value_or(scene.cameraDesc()), scene.boundsMin(), scene.boundsMax());
 }
 
 void Viewer::updateReferenceState() {
   ErrorTracker& errors = *reference_.errors;
   std::string why;
-  const ReferenceStatus status = errors.statusFor(renderSettings(estimator_), scene_.scene.get(), &why);
+  const ReferenceStatus status = errors.statusFor(renderSettings(estimator_), &scene(), &why);
   reference_.status = status == ReferenceStatus::Valid || status == ReferenceStatus::None ? std::string() : why;
   if (static_cast<int>(errors.maxSeries()) != convergence_.maxSeries)
     errors.setMaxSeries(static_cast<size_t>(convergence_.maxSeries));
@@ -75,7 +76,7 @@ DisplaySettings Viewer::shownDisplay() const {
   DisplaySettings d = display_;
   // The shown image (a preview included) must be of the reference's view, else its colours lie.
   d.errorView = display_.errorView &&
-                reference_.errors->statusFor(snapshot_.settings, scene_.scene.get()) == ReferenceStatus::Valid;
+                reference_.errors->statusFor(a().snapshot().settings, &scene()) == ReferenceStatus::Valid;
   return d;
 }
 

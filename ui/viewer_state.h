@@ -1,16 +1,17 @@
-// The viewer's state, one small struct per concern. The Viewer (ui/viewer.h) owns one of each, the
-// renderer and the image; the panels (ui/panels.h) are functions over the structs they edit.
+// The viewer's state, one small struct per concern. The Viewer (ui/viewer.h) and its controllers own
+// one of each; the panels (ui/panels/panels.h) are functions over the structs they edit.
 #pragma once
 
 #include "core/converge/error_tracker.h"
 #include "core/render/progressive_renderer.h"
-#include "ui/display_settings.h"
-#include "ui/environment_choice.h"
-#include "ui/orbit_camera.h"
-#include "ui/presets.h"
-#include "ui/scene_loader.h"
-#include "ui/technique_map_view.h"
-#include "ui/texture.h"
+#include "ui/display/display_settings.h"
+#include "ui/estimator/technique_map_view.h"
+#include "ui/gl/texture.h"
+#include "ui/message_line.h"
+#include "ui/presets/presets.h"
+#include "ui/scene/environment_choice.h"
+#include "ui/scene/orbit_camera.h"
+#include "ui/scene/scene_loader.h"
 
 #include <chrono>
 #include <cstdint>
@@ -21,15 +22,12 @@
 
 namespace pathlab::ui {
 
-// Rendering besides the estimator: pausing, the sample target, the render resolution, and the
-// renderer's answer to the last settings.
+// Rendering besides the estimator: pausing, the sample target, the render resolution (each side's
+// renderer and its answer are a RenderLane's, ui/lane/render_lane.h).
 struct RunState {
   bool userPaused = false;
-  bool idleForNoTechnique = false;  // no technique enabled: the renderer idles, the image is black
-  uint64_t targetSpp = 0;           // stop at this many samples per pixel (0: never)
-  float resolutionScale = 1.f;      // render resolution relative to the image area: 1, 0.5 or 0.25
-  std::string settingsError;        // why the renderer refused the last settings ("" if it did not)
-  bool paused() const { return userPaused || idleForNoTechnique; }
+  uint64_t targetSpp = 0;       // stop at this many samples per pixel (0: never)
+  float resolutionScale = 1.f;  // render resolution relative to the image area: 1, 0.5 or 0.25
 };
 
 // The technique grid's own state beside the estimator it edits.
@@ -144,9 +142,7 @@ struct UiState {
   Vec2 pressAt{0.f};      // where the left button went down over the image (a click picks a pixel)
   bool pressOverImage = false;
   double frameMs = 0.0;
-  std::string message;
-  bool messageIsError = false;
-  std::chrono::steady_clock::time_point messageTime{};
+  MessageLine message;
 };
 
 }  // namespace pathlab::ui

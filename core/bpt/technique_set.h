@@ -17,7 +17,7 @@ namespace pathlab {
 // one). So when the maximum length changes the set does not: "all", "s=0;s=1" and "t=1" take in
 // the new lengths by themselves, listed techniques stay what they were, and a tracer simply never
 // asks about lengths beyond its maximum. (Front ends that shorten the maximum drop the listed
-// techniques that no longer fit, ui/technique_grid.h, since a listed technique longer than the
+// techniques that no longer fit, ui/estimator/technique_grid.h, since a listed technique longer than the
 // maximum is refused by validateSettings.)
 //
 // The representation is canonical (rules as bitsets over s and over t, listed techniques that no

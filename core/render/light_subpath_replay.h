@@ -1,5 +1,5 @@
 // The light subpaths a render traces, replayed one at a time without the render's films, pyramid
-// or check (RenderSession allocates those): the viewer's light particles (ui/view3d.h). The same
+// or check (RenderSession allocates those): the viewer's light particles (ui/inspect/view3d.h). The same
 // settings and streams (sampleStream) give exactly the subpaths the render's samples traced.
 #pragma once
 

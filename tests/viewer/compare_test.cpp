@@ -2,8 +2,8 @@
 // printed back canonically, swapped, laid out beside A; presets that set both sides; and end to
 // end, a headless `view --compare` whose two halves each converge to a standalone render of their
 // own configuration and not to the other's.
-#include "ui/compare.h"
-#include "ui/presets.h"
+#include "ui/lane/compare.h"
+#include "ui/presets/presets.h"
 
 #include "core/film/image_io.h"
 #include "tests/viewer/pathlab_process.h"

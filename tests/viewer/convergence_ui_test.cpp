@@ -1,8 +1,8 @@
 // The convergence panel's logic without ImGui: the error view's colour map and scale (the CPU
 // mirror of the shader). The technique table's rows are tested with the core
 // (tests/metrics/technique_table_test.cpp).
-#include "ui/display_settings.h"
-#include "ui/input_script.h"
+#include "ui/display/display_settings.h"
+#include "ui/input/input_script.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The display transform's CPU reference (shaders/display.frag mirrors it): clamp equals PNG
 // output, the filmic curve is monotone and bounded, false colour maps decades of luminance.
-#include "ui/display_settings.h"
+#include "ui/display/display_settings.h"
 
 #include "core/film/image_io.h"
 

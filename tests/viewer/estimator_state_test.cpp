@@ -1,6 +1,6 @@
 // The estimator state the viewer's panels edit: the isolation kept once (mode and technique), a
 // new maximum length keeps the settings renderable, presets, and what the renderer gets.
-#include "ui/estimator_state.h"
+#include "ui/estimator/estimator_state.h"
 
 #include <gtest/gtest.h>
 

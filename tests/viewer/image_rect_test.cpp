@@ -1,6 +1,6 @@
-// Fitting the image into the room the panels leave (ui/image_rect.h): the largest rectangle of the
+// Fitting the image into the room the panels leave (ui/display/image_rect.h): the largest rectangle of the
 // camera's aspect, centred, never larger than the room.
-#include "ui/image_rect.h"
+#include "ui/display/image_rect.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The camera controller: it starts exactly at the scene's camera, orbits about its pivot at a
 // constant distance, pans eye and pivot together, zooms without passing the pivot, never flips.
-#include "ui/orbit_camera.h"
-#include "ui/presets.h"
+#include "ui/presets/presets.h"
+#include "ui/scene/orbit_camera.h"
 
 #include <gtest/gtest.h>
 
@@ -34,7 +34,7 @@ TEST(OrbitCamera, StartsAtTheSceneCamera) {
 }
 
 // The override camera keeps the scene camera's aspect, so an orbit never changes the framing's
-// shape (the viewer fits the image to it, ui/image_rect.h).
+// shape (the viewer fits the image to it, ui/display/image_rect.h).
 TEST(OrbitCamera, MovesKeepTheSceneCamerasAspect) {
   CameraDesc wide = kBoxCamera;
   wide.aspectRatio = 1.5f;

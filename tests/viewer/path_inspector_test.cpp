@@ -1,8 +1,8 @@
-// The viewer's path inspector without a window (ui/path_inspector.h): a picked pixel's sample is
+// The viewer's path inspector without a window (ui/inspect/path_inspector.h): a picked pixel's sample is
 // replayed once per change of pixel, sample, settings or scene, never for the path tracer; its
 // overlay projects the subpaths and connections through the render camera, the camera subpath's
 // first hit onto the picked pixel, and clips what lies behind the lens.
-#include "ui/path_inspector.h"
+#include "ui/inspect/path_inspector.h"
 
 #include "core/scene/gltf_loader.h"
 

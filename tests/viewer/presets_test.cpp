@@ -1,6 +1,6 @@
 // Named presets: the shipped file parses and every preset renders; bad files give one line naming
 // the file, the preset and the problem.
-#include "ui/presets.h"
+#include "ui/presets/presets.h"
 
 #include "core/bpt/technique_set.h"
 

@@ -1,6 +1,6 @@
 // Recording's rules alone: the frame clock (how many clip frames a drawn frame stands for), the
 // frame names, the record directory's policy and ffmpeg's command line.
-#include "ui/recording.h"
+#include "ui/record/recording.h"
 
 #include <gtest/gtest.h>
 

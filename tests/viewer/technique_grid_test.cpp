@@ -1,6 +1,6 @@
 // The technique grid's logic: presets give the sets they promise, the SPEC field takes what fits,
 // toggles of a cell, a length or a column round-trip.
-#include "ui/technique_grid.h"
+#include "ui/estimator/technique_grid.h"
 
 #include <gtest/gtest.h>
 

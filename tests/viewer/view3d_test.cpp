@@ -1,9 +1,9 @@
-// The 3D view without a window (ui/view3d.h): the light particles are the light subpaths the render
+// The 3D view without a window (ui/inspect/view3d.h): the light particles are the light subpaths the render
 // traced (replayed from the same streams as the inspector's full replay), start on an emitter and
 // are replayed only when the pass or the settings change; the view's overlay shows the render
 // camera where it is and the inspected sample's vertices where its own camera sees them; the
 // depth range holds the scene; materials get their preview colours.
-#include "ui/view3d.h"
+#include "ui/inspect/view3d.h"
 
 #include "core/render/sample_inspection.h"
 #include "core/scene/gltf_loader.h"

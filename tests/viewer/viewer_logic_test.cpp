@@ -1,9 +1,9 @@
 // Small parts of the viewer without OpenGL: the shortcut table, fresh output names, background
 // scene loading with one-line errors.
-#include "ui/output_names.h"
-#include "ui/scene_loader.h"
-#include "ui/input_script.h"
-#include "ui/shortcuts.h"
+#include "ui/input/input_script.h"
+#include "ui/input/shortcuts.h"
+#include "ui/record/output_names.h"
+#include "ui/scene/scene_loader.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

@@ -1,0 +1,141 @@
+// The viewer's estimator state and its edits (see the header).
+#include "ui/estimator/estimator_state.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+namespace pathlab::ui {
+
+namespace {
+
+// Moves an isolation out of the settings into the mode and the isolated technique.
+void takeIsolation(EstimatorState& state, RenderSettings settings) {
+  if (settings.isolate) {
+    state.mode = settings.isolate->unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
+    state.isolated = Technique{settings.isolate->s, settings.isolate->t};
+  } else {
+    state.mode = EstimatorMode::Combine;
+  }
+  settings.isolate.reset();
+  state.settings = std::move(settings);
+  setMaxLength(state, state.settings.maxLength);  // the isolated technique and oneLength fit
+}
+
+void preferBidirectional(EstimatorState& state) {
+  if (state.settings.integrator == IntegratorKind::Pt) state.settings.integrator = IntegratorKind::Bpt;
+}
+
+}  // namespace
+
+const char* modeLabel(EstimatorMode mode) {
+  switch (mode) {
+    case EstimatorMode::Combine: return "combine with MIS";
+    case EstimatorMode::IsolateWeighted: return "isolate, weighted";
+    case EstimatorMode::IsolateUnweighted: return "isolate, unweighted";
+  }
+  return "?";
+}
+
+EstimatorState EstimatorState::from(const RenderSettings& settings) {
+  EstimatorState state;
+  takeIsolation(state, settings);
+  return state;
+}
+
+RenderSettings renderSettings(const EstimatorState& state) {
+  RenderSettings s = state.settings;
+  if (s.integrator == IntegratorKind::Pt) {
+    s.isolate.reset();
+    s.pyramidLength = 0;
+    s.checkTechniques = false;
+    s.injectBias.reset();
+  } else if (state.mode != EstimatorMode::Combine) {
+    s.isolate = Isolation{state.isolated.s, state.isolated.t, state.mode == EstimatorMode::IsolateUnweighted};
+    s.checkTechniques = false;  // it compares the enabled techniques, which isolation does not run
+  }
+  return s;
+}
+
+void setMaxLength(EstimatorState& state, int maxLength) {
+  maxLength = std::max(maxLength, 1);
+  state.settings.maxLength = maxLength;
+  state.settings.techniques = state.settings.techniques.fittedTo(maxLength);
+  if (state.isolated.length() > maxLength) {
+    state.isolated.s = std::min(state.isolated.s, maxLength);
+    state.isolated.t = maxLength + 1 - state.isolated.s;
+  }
+  state.oneLength = std::min(state.oneLength, maxLength);
+}
+
+bool setIsolated(EstimatorState& state, Technique x) {
+  if (!x.valid() || x.length() > state.settings.maxLength) return false;
+  state.isolated = x;
+  return true;
+}
+
+void isolate(EstimatorState& state, Technique x, bool unweighted) {
+  preferBidirectional(state);
+  if (!setIsolated(state, x)) return;
+  state.mode = unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
+}
+
+bool isolateOfChosenLength(EstimatorState& state, int chosenLength, int s) {
+  const int k = std::clamp(chosenLength, 1, state.settings.maxLength);
+  if (s < 0 || s > k) return false;
+  const bool unweighted = state.mode == EstimatorMode::IsolateUnweighted;
+  isolate(state, Technique{s, k + 1 - s}, unweighted);
+  return true;
+}
+
+void cycleMode(EstimatorState& state) {
+  preferBidirectional(state);
+  state.mode = static_cast<EstimatorMode>((static_cast<int>(state.mode) + 1) % 3);
+}
+
+void applyPreset(EstimatorState& state, const NamedPreset& preset) {
+  takeIsolation(state, preset.applyTo(state.settings));
+}
+
+bool isolatedTechniqueDisabled(const RenderSettings& s) {
+  if (s.integrator == IntegratorKind::Pt || !s.isolate || s.isolate->unweighted) return false;
+  return !s.techniques.contains(s.isolate->s, s.isolate->t);
+}
+
+std::string describe(const RenderSettings& s) {
+  std::string out = fmt::format("{}, max length {}", integratorName(s.integrator), s.maxLength);
+  // What each integrator really does: the path tracer weighs its light sample against BSDF
+  // sampling with the power heuristic; light tracing has one technique per length, t = 1.
+  if (s.integrator == IntegratorKind::Pt) return out + ", light sample + BSDF sampling, MIS power (beta 2)";
+  const TechniqueSet enabled = enabledTechniques(s);
+  out += fmt::format(", techniques {}", enabled.empty() ? "(none)" : enabled.toString());
+  if (s.integrator == IntegratorKind::Lt && !s.isolate) {
+    out += ", one technique a length (weight 1)";
+  } else if (s.isolate)
+    out += fmt::format(", isolate ({},{}) {}", s.isolate->s, s.isolate->t, s.isolate->unweighted ? "unweighted" : "weighted");
+  else if (s.mis.heuristic == MisHeuristic::Power)
+    out += fmt::format(", MIS power (beta {:g})", s.mis.beta);
+  else
+    out += fmt::format(", MIS {}", misHeuristicName(s.mis.heuristic));
+  if (s.mis.minConnection != kDefaultMinConnection) out += fmt::format(", min connection {:g}", s.mis.minConnection);
+  if (s.connect != ConnectStrategy::All) out += fmt::format(", connect {}", connectStrategyName(s.connect));
+  if (s.injectBias)
+    out += fmt::format(", BIAS INJECTED: ({},{}) x {:g}", s.injectBias->s, s.injectBias->t, s.injectBias->factor);
+  return out;
+}
+
+const std::string& estimatorWarning(EstimatorWarning& cache, const Scene* scene, const RenderSettings& settings) {
+  if (cache.scene != scene || !(cache.settings == settings)) {
+    cache.scene = scene;
+    cache.settings = settings;
+    cache.text = scene ? misOffWarning(*scene, settings) : std::string();
+    if (settings.injectBias && settings.integrator != IntegratorKind::Pt) {
+      if (!cache.text.empty()) cache.text += "\n";
+      cache.text += fmt::format("technique ({},{}) is multiplied by {:g} (inject bias): this image is deliberately wrong",
+                                settings.injectBias->s, settings.injectBias->t, settings.injectBias->factor);
+    }
+  }
+  return cache.text;
+}
+
+}  // namespace pathlab::ui

@@ -1,0 +1,74 @@
+// The viewer's path inspector (issue 12): the sample of a clicked pixel replayed exactly as the
+// render computed it (core/render/sample_inspection.h) and drawn over the image through the render
+// camera — the camera subpath, the light subpath, every (s,t) connection tried (blocked ones
+// marked) and the selected technique's full path — with a table of the techniques and, for the
+// selected one, its path under every technique of its length. Replaying never touches the
+// renderer: nothing restarts. No ImGui or OpenGL here: state, replay and the overlay's geometry.
+#pragma once
+
+#include "core/camera/camera.h"
+#include "core/render/render_settings.h"
+#include "core/render/sample_inspection.h"
+#include "core/scene/scene.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pathlab::ui {
+
+struct PathInspectorState {
+  bool on = false;
+  // Where the image was clicked, as a fraction of its width and height: the pixel under it in
+  // whatever resolution the shown image has (a resize or a --render-scale change keeps the spot).
+  std::optional<Vec2> pick;
+  std::optional<Vec2i> pixel;  // the picked pixel of the inspected image (raster, from the top left)
+  uint64_t sample = 0;         // its sample (pass) index
+  int selected = -1;           // the highlighted technique: an index into the trace's records
+  std::optional<SampleInspection> result;
+  // What `result` was replayed with: a change of the pixel, sample, settings or scene replays.
+  std::optional<Vec2i> inspectedPixel;
+  uint64_t inspectedSample = 0;
+  RenderSettings inspectedSettings;
+  const Scene* inspectedScene = nullptr;
+  std::string error;  // why nothing can be inspected now ("" when it can)
+};
+
+// Replays the picked pixel's sample if anything it depends on changed (the path tracer has no
+// techniques to show: `error` says so); returns whether it replayed. `settings`: those of the image
+// shown; the pixel is the one under `pick` in its raster.
+bool refreshInspection(PathInspectorState& state, const Scene& scene, const RenderSettings& settings);
+
+// The sample of `pixel` among 0 .. n-1 that gave the most light (the luminance of its camera-side
+// estimate plus its weighted t = 1 splats, wherever they land): a firefly hunt.
+uint64_t brightestSample(const Scene& scene, const RenderSettings& settings, Vec2i pixel, uint64_t n);
+
+// Frustum and Particle: the 3D view's (ui/inspect/view3d.h).
+enum class SegmentRole { CameraSubpath, LightSubpath, Connection, BlockedConnection, Selected, Frustum, Particle };
+struct InspectorSegment {
+  Vec2 a{0.f}, b{0.f};  // raster positions
+  SegmentRole role = SegmentRole::Connection;
+  float shade = 1.f;  // Particle: the throughput at its start, 0 (dim) .. 1 (the brightest)
+};
+struct InspectorMarker {
+  Vec2 p{0.f};
+  VertexType type = VertexType::Surface;
+  bool delta = false;  // scattered by a delta lobe, or a point light / pinhole
+  bool cameraSide = true;
+};
+struct InspectorOverlay {
+  std::vector<InspectorSegment> segments;  // drawn in order: subpaths, connections, the selected path
+  std::vector<InspectorMarker> markers;    // the subpaths' vertices
+};
+
+// The overlay of `state.result` in raster coordinates of `camera` (the render camera of the
+// inspected settings): each segment clipped to the part in front of the lens (film-plane
+// projection, so it may reach beyond the image; the drawing clips to the image).
+InspectorOverlay inspectorOverlay(const PathInspectorState& state, const Camera& camera);
+// Appends segment a -- b seen through `camera` (the part in front of the lens) to `overlay`.
+void addOverlaySegment(InspectorOverlay& overlay, const Camera& camera, const Vec3& a, const Vec3& b, SegmentRole role,
+                       float shade = 1.f);
+// Where `camera` sees p (none behind the lens).
+std::optional<Vec2> overlayPoint(const Camera& camera, const Vec3& p);
+
+}  // namespace pathlab::ui

@@ -1,0 +1,104 @@
+// The technique maps section of the side panel: the chooser and the legend or colour bar.
+#include "core/maps/map_colours.h"
+#include "core/render/render_settings.h"
+#include "ui/panels/panels.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+namespace pathlab::ui {
+
+namespace {
+
+ImU32 colour(const Vec3& c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.f)); }
+
+// A square of the map's colour (hatched: the cannot-sample key) and its label, on one line.
+void swatch(const Vec3& c, const std::string& label, bool hatched = false) {
+  const float side = ImGui::GetTextLineHeight();
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(p, ImVec2(p.x + side, p.y + side), colour(c));
+  if (hatched)
+    for (float d = 0.f; d < 2.f * side; d += side / 3.f)
+      draw->AddLine(ImVec2(p.x + std::max(0.f, d - side), p.y + std::min(d, side)),
+                    ImVec2(p.x + std::min(d, side), p.y + std::max(0.f, d - side)), colour(kHatchColour), 1.5f);
+  draw->AddRect(p, ImVec2(p.x + side, p.y + side), IM_COL32(128, 128, 128, 255));
+  ImGui::Dummy(ImVec2(side, side));
+  ImGui::SameLine();
+  ImGui::TextUnformatted(label.c_str());
+}
+
+void techniqueChooser(MapView& view) {
+  int st[2] = {view.technique.s, view.technique.t};
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.f);
+  if (ImGui::InputInt2("(s,t)##mapTechnique", st)) {
+    const Technique x{std::max(st[0], 0), std::max(st[1], 1)};
+    if (x.valid() && x.length() <= view.length) view.technique = x;
+  }
+}
+
+void shareBar(const char* what) {
+  const float w = ImGui::GetContentRegionAvail().x * 0.8f, h = ImGui::GetTextLineHeight();
+  drawViridisBar(ImGui::GetWindowDrawList(), ImGui::GetCursorScreenPos(), w, h);
+  ImGui::Dummy(ImVec2(w, h));
+  ImGui::Text("0%*s1  %s", static_cast<int>(w / ImGui::CalcTextSize(" ").x) - 4, "", what);
+}
+
+}  // namespace
+
+void drawTechniqueMapSection(MapView& view, int maxLength, bool waiting) {
+  ImGui::PushID("maps");
+  ImGui::Checkbox("show a technique map over the image", &view.show);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("from the technique pyramid's weighted films; the first time restarts the image once");
+  const int longest = std::min(maxLength, kMaxPyramidLength);
+  view.length = std::clamp(view.length, 1, longest);
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.f);
+  ImGui::SliderInt("techniques up to length", &view.length, 1, longest);
+  if (!view.show) {
+    ImGui::PopID();
+    return;
+  }
+  int kind = static_cast<int>(view.kind);
+  ImGui::RadioButton("dominant", &kind, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("share", &kind, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("cannot sample", &kind, 2);
+  view.kind = static_cast<MapKind>(kind);
+  if (view.technique.length() > view.length) view.technique = Technique{1, view.length};
+  if (waiting) ImGui::TextDisabled("waiting for the first full pass ...");
+  switch (view.kind) {
+    case MapKind::Dominant: {
+      view.dominantLength = std::clamp(view.dominantLength, 0, view.length);
+      ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.f);
+      ImGui::SliderInt("length (0: all)", &view.dominantLength, 0, view.length);
+      const int first = view.dominantLength > 0 ? view.dominantLength : 1;
+      const int last = view.dominantLength > 0 ? view.dominantLength : view.length;
+      int column = 0;
+      for (const Technique x : TechniqueRange(first, last)) {
+        if (column++ % 4 != 0) ImGui::SameLine(static_cast<float>((column - 1) % 4) * ImGui::GetFontSize() * 4.5f);
+        swatch(techniqueColour(x), fmt::format("({},{})", x.s, x.t));
+      }
+      swatch(kTieColour, "tie (within 1 %)");
+      ImGui::SameLine();
+      swatch(kEmptyColour, "no light");
+      break;
+    }
+    case MapKind::Share:
+      techniqueChooser(view);
+      shareBar("of the image");
+      break;
+    case MapKind::CannotSample:
+      techniqueChooser(view);
+      shareBar("of its length");
+      swatch(viridis(0.f), "cannot sample (hatched)", true);
+      swatch(viridis(0.f), "weighted away");
+      swatch(kEmptyColour, "no light of this length");
+      break;
+  }
+  ImGui::PopID();
+}
+
+}  // namespace pathlab::ui

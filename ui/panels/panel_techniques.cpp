@@ -1,0 +1,326 @@
+// The estimator section: integrator, maximum length, MIS heuristic, the combine / isolate mode and
+// the technique grid laid out like Veach 1997, fig. 10.3 (rows: path length k = s + t - 1 edges;
+// columns: s, the number of light subpath vertices).
+#include "ui/panels/panels.h"
+
+#include "ui/estimator/technique_grid.h"
+
+#include <fmt/core.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+
+namespace pathlab::ui {
+
+namespace {
+
+constexpr int kGridMaxLength = 10;  // longer techniques are edited through the SPEC
+const ImVec4 kTechniqueWarning(1.f, 0.7f, 0.2f, 1.f);
+const ImVec4 kError(1.f, 0.35f, 0.35f, 1.f);
+
+std::string techniqueTooltip(int s, int t) {
+  const int k = s + t - 1;
+  std::string what;
+  if (s == 0) what = "the camera subpath hits an emitter by itself (path tracing without a light sample)";
+  else if (t == 1 && s == 1) what = "a point on an emitter connected to the camera (the emitter seen directly, by light tracing)";
+  else if (t == 1) what = "light tracing: the light subpath's last vertex connected to the camera, splatted on the film";
+  else if (s == 1) what = "next event estimation: a light sample connected to the camera subpath";
+  else what = fmt::format("light subpath vertex {} connected to camera subpath vertex {}", s, t);
+  return fmt::format("(s,t) = ({},{}): {} light and {} camera vertices, path length {}\n{}", s, t, s, t, k, what);
+}
+
+// The grid: one checkbox per (s,t), rows by length, columns by s; its presets and the SPEC field.
+const TechniqueVerdict* verdictOf(const CheckReport* check, Technique x) {
+  if (!check) return nullptr;
+  for (const TechniqueVerdict& v : check->techniques)
+    if (v.technique == x) return &v;
+  return nullptr;
+}
+
+std::string verdictText(const TechniqueVerdict& v, int blocks) {
+  if (v.status != CheckStatus::Agrees && v.status != CheckStatus::Disagrees)
+    return fmt::format("check: {}", checkStatusName(v.status));
+  const std::string region = v.worstRegion == TechniqueCheck::wholeImage(blocks)
+                                 ? std::string("the whole image")
+                                 : fmt::format("block ({},{})", v.worstRegion % blocks, v.worstRegion / blocks);
+  return fmt::format("check: {} (z = {:+.2f} against ({},{}) in {}, whole image z = {:+.2f})", checkStatusName(v.status),
+                     v.z, v.worst.partner.s, v.worst.partner.t, region, v.wholeImageZ);
+}
+
+void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, const Counters& counters,
+                       const CheckReport* check) {
+  RenderSettings& edited = estimator.settings;
+  const TechniqueSet& set = edited.techniques;
+  const bool isolating = estimator.mode != EstimatorMode::Combine;
+  const int oneLength = std::min(grid.oneLength, edited.maxLength);
+  const bool lightTracing = edited.integrator == IntegratorKind::Lt;
+  const int rows = std::min(edited.maxLength, kGridMaxLength);
+
+  // Presets
+  auto presetButton = [&](const char* label, TechniquePreset preset, const char* key) {
+    if (ImGui::SmallButton(label)) edited.techniques = presetTechniques(preset, oneLength);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (key %s)", presetLabel(preset), key);
+  };
+  presetButton("all", TechniquePreset::All, "1");
+  ImGui::SameLine();
+  presetButton("s<=1 (PT)", TechniquePreset::PathTracing, "2");
+  ImGui::SameLine();
+  presetButton("t=1 (LT)", TechniquePreset::LightTracing, "3");
+  ImGui::SameLine();
+  presetButton("clear", TechniquePreset::Clear, "0");
+  presetButton("only length", TechniquePreset::OneLength, "4");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
+  // Moving the length while "only length" is active moves the selection with it.
+  const bool oneLengthActive = edited.techniques == presetTechniques(TechniquePreset::OneLength, oneLength);
+  grid.oneLength = oneLength;
+  if (ImGui::SliderInt("##onelength", &grid.oneLength, 1, edited.maxLength, "k = %d") && oneLengthActive)
+    edited.techniques = presetTechniques(TechniquePreset::OneLength, grid.oneLength);
+
+  // The grid: one checkbox per (s,t); in the isolate modes a click picks the isolated technique.
+  const ImGuiTableFlags flags = ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_NoHostExtendX;
+  if (ImGui::BeginTable("grid", rows + 2, flags)) {
+    ImGui::TableNextRow();
+    ImGui::TableSetColumnIndex(0);
+    ImGui::TextDisabled("k\\s");
+    for (int s = 0; s <= rows; ++s) {
+      ImGui::TableSetColumnIndex(s + 1);
+      ImGui::PushID(1000 + s);
+      // A column header switches every technique with this s.
+      if (ImGui::SmallButton(fmt::format("{}", s).c_str()) && !isolating)
+        edited.techniques = toggleLightVertices(set, edited.maxLength, s);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("s = %d: every technique with %d light vertices on/off", s, s);
+      ImGui::PopID();
+    }
+    for (int k = 1; k <= rows; ++k) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::PushID(2000 + k);
+      // A row label switches every technique of this length.
+      if (ImGui::SmallButton(fmt::format("{}", k).c_str()) && !isolating)
+        edited.techniques = toggleLength(set, edited.maxLength, k);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("length %d: every technique on/off", k);
+      ImGui::PopID();
+      for (const auto [s, t] : techniquesOfLength(k)) {
+        ImGui::TableSetColumnIndex(s + 1);
+        ImGui::PushID(k * 100 + s);
+        const bool isolated = isolating && estimator.isolated == Technique{s, t};
+        if (isolated) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(230, 160, 40, 200));
+        const TechniqueVerdict* verdict = verdictOf(check, {s, t});
+        if (verdict && verdict->status == CheckStatus::Disagrees)
+          ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(220, 40, 40, 230));
+        ImGui::BeginDisabled(lightTracing && t != 1);
+        // The grid ticks what the integrator really uses (techniqueShownEnabled).
+        bool on = techniqueShownEnabled(edited, {s, t});
+        if (ImGui::Checkbox("##t", &on) && edited.integrator != IntegratorKind::Pt) {
+          // Isolating, a click picks the technique shown; Ctrl+click still switches it on or off
+          // (a weighted share depends on which techniques are enabled).
+          if (isolating && !ImGui::GetIO().KeyCtrl) {
+            setIsolated(estimator, {s, t});
+          } else {
+            edited.techniques = toggleTechnique(set, edited.maxLength, {s, t});
+          }
+        }
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+          const TechniqueCounters& c = counters.technique(s, t);
+          ImGui::SetTooltip("%s\nthis generation: %llu connections tried, %llu blocked, %llu contributed, %llu discarded%s",
+                            techniqueTooltip(s, t).c_str(), static_cast<unsigned long long>(c.tried),
+                            static_cast<unsigned long long>(c.blocked), static_cast<unsigned long long>(c.contributed),
+                            static_cast<unsigned long long>(c.discarded.total()),
+                            verdict ? ("\n" + verdictText(*verdict, check->blocks)).c_str() : "");
+        }
+        ImGui::PopID();
+      }
+    }
+    ImGui::EndTable();
+  }
+  if (edited.maxLength > kGridMaxLength)
+    ImGui::TextDisabled("lengths %d..%d: edit the SPEC", kGridMaxLength + 1, edited.maxLength);
+
+  // The SPEC as text (as --techniques takes it); applied on Enter.
+  // A SPEC that does not parse never reaches the settings: its error shows under the field.
+  std::string spec = edited.techniques.toString();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.7f);
+  if (ImGui::InputText("SPEC", &spec, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    try {
+      edited.techniques = parseTypedSpec(spec, edited.maxLength);
+      grid.specError.clear();
+    } catch (const std::invalid_argument& e) {
+      grid.specError = e.what();
+    }
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("';'-separated S,T | s=S | t=T | k=K | all; Enter applies");
+  if (!grid.specError.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kError);
+    ImGui::TextWrapped("%s", grid.specError.c_str());
+    ImGui::PopStyleColor();
+  }
+
+  // Lengths no enabled technique can sample: their light is missing from the image.
+  const TechniqueSet enabled = enabledTechniques(edited);
+  if (const std::vector<int> uncovered = enabled.uncoveredLengths(edited.maxLength);
+      !uncovered.empty() && enabled.anyUpTo(edited.maxLength)) {
+    std::string list;
+    for (int k : uncovered) list += (list.empty() ? "" : ", ") + std::to_string(k);
+    ImGui::PushStyleColor(ImGuiCol_Text, kTechniqueWarning);
+    ImGui::TextWrapped("no enabled technique samples paths of length %s: that light is missing", list.c_str());
+    ImGui::PopStyleColor();
+  } else if (!enabled.anyUpTo(edited.maxLength)) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kTechniqueWarning);
+    ImGui::TextWrapped("no technique enabled: nothing is rendered");
+    ImGui::PopStyleColor();
+  }
+}
+
+}  // namespace
+
+// The consistency check (issue 13, part 4): on/off, its verdict, the |z| map's technique, and a
+// deliberately wrong technique (inject bias) to see what the check and the image make of one.
+void drawCheckControls(EstimatorState& estimator, TechniqueGridState& grid, const CheckReport* check) {
+  RenderSettings& edited = estimator.settings;
+  const bool combining = estimator.mode == EstimatorMode::Combine;
+  ImGui::BeginDisabled(!combining);
+  ImGui::Checkbox("check techniques", &edited.checkTechniques);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("compare every enabled technique's unweighted estimate with the others' on the paths both can\n"
+                      "sample (per %d x %d blocks and the whole image); a technique that disagrees turns red.\n"
+                      "Runs while combining (isolation renders one technique only); `pathlab check` on the CLI.",
+                      edited.checkBlocks, edited.checkBlocks);
+  if (edited.checkTechniques && combining) {
+    ImGui::SameLine();
+    if (!check) {
+      ImGui::TextDisabled("(waiting for passes)");
+    } else if (check->agrees()) {
+      ImGui::TextColored(ImVec4(0.4f, 0.9f, 0.4f, 1.f), "all agree (%llu passes)", static_cast<unsigned long long>(check->passes));
+    } else {
+      ImGui::TextColored(kError, "%d disagree", check->disagreeing());
+    }
+    std::string current = grid.zMap ? fmt::format("({},{})", grid.zMap->s, grid.zMap->t) : std::string("off");
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
+    if (ImGui::BeginCombo("|z| map", current.c_str())) {
+      if (ImGui::Selectable("off", !grid.zMap)) grid.zMap.reset();
+      if (check)
+        for (const TechniqueVerdict& v : check->techniques) {
+          const std::string label = fmt::format("({},{}){}", v.technique.s, v.technique.t,
+                                                v.status == CheckStatus::Disagrees ? "  disagrees" : "");
+          if (ImGui::Selectable(label.c_str(), grid.zMap == v.technique)) grid.zMap = v.technique;
+        }
+      ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("draw the technique's |z| per block over the image");
+  }
+  bool inject = edited.injectBias.has_value();
+  if (ImGui::Checkbox("inject bias", &inject))
+    edited.injectBias = inject ? std::optional<BiasInjection>(BiasInjection{1, 2, 1.05f}) : std::nullopt;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("multiply one technique's unweighted contribution by a factor: a deliberate bug that biases\n"
+                      "the image (named in the caption and the status) and that the check should find");
+  if (edited.injectBias) {
+    BiasInjection& b = *edited.injectBias;
+    int st[2] = {b.s, b.t};
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.35f);
+    if (ImGui::InputInt2("(s,t)##bias", st) && Technique{st[0], st[1]}.valid() &&
+        Technique{st[0], st[1]}.length() <= edited.maxLength)
+      b.s = st[0], b.t = st[1];
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
+    ImGui::SliderFloat("factor##bias", &b.factor, 0.f, 2.f, "%.3f");
+  }
+}
+
+void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
+                          const Counters& counters, const CheckReport* check) {
+  RenderSettings& edited = estimator.settings;
+  ImGui::PushID("estimator");
+  // Integrator
+  int integrator = edited.integrator == IntegratorKind::Bpt ? 0 : edited.integrator == IntegratorKind::Pt ? 1 : 2;
+  ImGui::TextUnformatted("integrator");
+  ImGui::SameLine();
+  ImGui::RadioButton("bpt", &integrator, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("pt", &integrator, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("lt", &integrator, 2);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("light tracing: only the t = 1 techniques");
+  edited.integrator = integrator == 0 ? IntegratorKind::Bpt : integrator == 1 ? IntegratorKind::Pt : IntegratorKind::Lt;
+
+  int maxLength = edited.maxLength;
+  if (ImGui::SliderInt("max length", &maxLength, 1, 32)) setMaxLength(estimator, maxLength);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("maximum path length in edges: 1 shows emitters, 2 adds direct light");
+
+  const bool bidirectional = edited.integrator != IntegratorKind::Pt;
+  ImGui::BeginDisabled(!bidirectional);
+
+  if (!bidirectional) {
+    // The path tracer's own combination, not the bidirectional heuristic it does not use.
+    ImGui::TextWrapped("MIS: power heuristic (beta 2), its light sample against BSDF sampling");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("the grid shows its techniques: s = 0 (BSDF sampling hits a light) and s = 1 (light sample)");
+    ImGui::PopStyleColor();
+  }
+  // MIS heuristic (bpt and lt only: the path tracer's is fixed, above)
+  int heuristic = static_cast<int>(edited.mis.heuristic);
+  if (bidirectional) {
+    ImGui::TextUnformatted("MIS");
+    ImGui::SameLine();
+    ImGui::RadioButton("balance", &heuristic, static_cast<int>(MisHeuristic::Balance));
+    ImGui::SameLine();
+    ImGui::RadioButton("power", &heuristic, static_cast<int>(MisHeuristic::Power));
+    ImGui::SameLine();
+    ImGui::RadioButton("uniform", &heuristic, static_cast<int>(MisHeuristic::Uniform));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("1 / (number of enabled techniques able to sample the path): unbiased");
+    ImGui::SameLine();
+    ImGui::RadioButton("off", &heuristic, static_cast<int>(MisHeuristic::Off));
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("1 / n_k for every enabled technique of length k, whatever the path (Veach's naive\n"
+                        "combination): biased where a technique cannot sample a path (the status says where)");
+  }
+  edited.mis.heuristic = static_cast<MisHeuristic>(heuristic);
+  bool naive = edited.connect == ConnectStrategy::Endpoints;
+  ImGui::Checkbox("naive BPT: connect endpoints only", &naive);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("each technique (s,t) traces a light subpath of s and a camera subpath of t vertices of its own\n"
+                      "and connects their endpoints: same weights and expectation as path reuse, more rays a sample");
+  edited.connect = naive ? ConnectStrategy::Endpoints : ConnectStrategy::All;
+  if (edited.mis.heuristic == MisHeuristic::Power) ImGui::SliderFloat("beta", &edited.mis.beta, 0.5f, 8.f, "%.2f");
+  ImGui::SliderFloat("min connection", &edited.mis.minConnection, 0.f, 0.3f, "%.4f", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("connections shorter than this fraction of the scene's radius are left to the techniques\n"
+                      "that sample that edge (1/d^2 near corners); unbiased at any value, 0 turns it off.\n"
+                      "Uniform weights gain most; balance and power barely notice.");
+
+  // Mode
+  int mode = static_cast<int>(estimator.mode);
+  for (int m = 0; m < 3; ++m) ImGui::RadioButton(modeLabel(static_cast<EstimatorMode>(m)), &mode, m);
+  estimator.mode = static_cast<EstimatorMode>(mode);
+  if (estimator.mode != EstimatorMode::Combine) {
+    const Technique x = estimator.isolated;
+    ImGui::Text("isolated technique (s,t) = (%d,%d), length %d", x.s, x.t, x.length());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("click a cell of the grid or a pyramid thumbnail; arrow keys move it");
+    if (isolatedTechniqueDisabled(renderSettings(estimator))) {
+      ImGui::PushStyleColor(ImGuiCol_Text, kTechniqueWarning);
+      ImGui::TextWrapped("(%d,%d) is not enabled: its weighted share is zero (Ctrl+click enables it)", x.s, x.t);
+      ImGui::PopStyleColor();
+    }
+  }
+
+  ImGui::Separator();
+  drawTechniqueGrid(estimator, grid, counters, check);
+  drawCheckControls(estimator, grid, check);
+  ImGui::EndDisabled();
+  if (!bidirectional) ImGui::TextDisabled("the path tracer ignores the technique set");
+
+  if (!settingsError.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kError);
+    ImGui::TextWrapped("refused: %s", settingsError.c_str());
+    ImGui::PopStyleColor();
+  }
+  ImGui::PopID();
+}
+
+}  // namespace pathlab::ui

@@ -1,0 +1,193 @@
+// Named presets: JSON parsing with one-line errors, and applying a preset to the settings.
+#include "ui/presets/presets.h"
+
+#include "core/bpt/technique_set.h"
+#include "ui/lane/compare.h"
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace pathlab::ui {
+
+namespace {
+
+using Json = nlohmann::json;
+
+const std::set<std::string> kKeys = {"name", "integrator", "techniques", "mis", "beta", "minConnection", "maxLength",
+                                     "isolate", "unweighted", "camera", "compare", "description"};
+
+Vec3 vec3Of(const Json& j, const std::string& what) {
+  if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
+    throw std::invalid_argument(what + " must be an array of 3 numbers");
+  return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
+}
+
+const Json& typed(const Json& p, const char* key, bool (Json::*is)() const noexcept, const char* type) {
+  const Json& v = p.at(key);
+  if (!(v.*is)()) throw std::invalid_argument(fmt::format("\"{}\" must be {}", key, type));
+  return v;
+}
+
+NamedPreset parseOne(const Json& p) {
+  if (!p.is_object()) throw std::invalid_argument("is not an object");
+  for (const auto& [key, value] : p.items())
+    if (!kKeys.count(key)) throw std::invalid_argument(fmt::format("unknown key \"{}\"", key));
+  NamedPreset out;
+  if (!p.contains("name")) throw std::invalid_argument("has no \"name\"");
+  out.name = typed(p, "name", &Json::is_string, "a string").get<std::string>();
+  if (out.name.empty()) throw std::invalid_argument("\"name\" is empty");
+  if (p.contains("integrator")) {
+    const std::string v = typed(p, "integrator", &Json::is_string, "a string").get<std::string>();
+    if (v == "bpt") out.integrator = IntegratorKind::Bpt;
+    else if (v == "pt") out.integrator = IntegratorKind::Pt;
+    else if (v == "lt") out.integrator = IntegratorKind::Lt;
+    else throw std::invalid_argument(fmt::format("integrator \"{}\" is not bpt, pt or lt", v));
+  }
+  if (p.contains("techniques"))
+    out.techniques = TechniqueSet::parse(typed(p, "techniques", &Json::is_string, "a string").get<std::string>());
+  if (p.contains("mis")) {
+    const std::string v = typed(p, "mis", &Json::is_string, "a string").get<std::string>();
+    if (v == "balance") out.mis.heuristic = MisHeuristic::Balance;
+    else if (v == "power") out.mis.heuristic = MisHeuristic::Power;
+    else if (v == "uniform") out.mis.heuristic = MisHeuristic::Uniform;
+    else if (v == "off") out.mis.heuristic = MisHeuristic::Off;
+    else throw std::invalid_argument(fmt::format("mis \"{}\" is not balance, power, uniform or off", v));
+  }
+  if (p.contains("beta")) {
+    out.mis.beta = typed(p, "beta", &Json::is_number, "a number").get<float>();
+    if (!(out.mis.beta >= 0.01f && out.mis.beta <= 100.f)) throw std::invalid_argument("\"beta\" must be in [0.01, 100]");
+  }
+  if (p.contains("minConnection")) {
+    out.mis.minConnection = typed(p, "minConnection", &Json::is_number, "a number").get<float>();
+    if (!(out.mis.minConnection >= 0.f && out.mis.minConnection <= 1.f))
+      throw std::invalid_argument("\"minConnection\" must be in [0, 1]");
+  }
+  if (p.contains("maxLength")) {
+    out.maxLength = typed(p, "maxLength", &Json::is_number_integer, "an integer").get<int>();
+    if (out.maxLength < 1 || out.maxLength > 1000) throw std::invalid_argument("\"maxLength\" must be in [1, 1000]");
+  }
+  out.techniques.checkFits(out.maxLength);  // throws "techniques: ..." on a set that does not fit
+  if (p.contains("isolate")) {
+    const Json& v = p.at("isolate");
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
+      throw std::invalid_argument("\"isolate\" must be [s, t]");
+    Isolation iso{v[0].get<int>(), v[1].get<int>(), false};
+    if (iso.s < 0 || iso.t < 1 || iso.s + iso.t - 1 > out.maxLength || iso.s + iso.t - 1 < 1)
+      throw std::invalid_argument(fmt::format("isolated technique ({},{}) is not a technique of length 1..{}", iso.s,
+                                              iso.t, out.maxLength));
+    if (out.integrator == IntegratorKind::Pt) throw std::invalid_argument("\"isolate\" needs integrator bpt or lt");
+    out.isolate = iso;
+  }
+  if (p.contains("unweighted")) {
+    const bool u = typed(p, "unweighted", &Json::is_boolean, "true or false").get<bool>();
+    if (!out.isolate && u) throw std::invalid_argument("\"unweighted\" needs \"isolate\"");
+    if (out.isolate) out.isolate->unweighted = u;
+  }
+  if (p.contains("camera")) {
+    const Json& c = p.at("camera");
+    if (!c.is_object()) throw std::invalid_argument("\"camera\" must be an object");
+    for (const auto& [key, value] : c.items())
+      if (key != "eye" && key != "target" && key != "yfovDegrees")
+        throw std::invalid_argument(fmt::format("unknown camera key \"{}\"", key));
+    if (!c.contains("eye") || !c.contains("target")) throw std::invalid_argument("\"camera\" needs \"eye\" and \"target\"");
+    const Vec3 eye = vec3Of(c.at("eye"), "camera eye"), target = vec3Of(c.at("target"), "camera target");
+    float yfovDegrees = 39.6f;
+    if (c.contains("yfovDegrees")) {
+      if (!c.at("yfovDegrees").is_number()) throw std::invalid_argument("camera \"yfovDegrees\" must be a number");
+      yfovDegrees = c.at("yfovDegrees").get<float>();
+    }
+    if (!(yfovDegrees > 0.1f && yfovDegrees < 179.f)) throw std::invalid_argument("camera \"yfovDegrees\" must be in (0.1, 179)");
+    const Vec3 d = target - eye;
+    if (!(glm::length(d) > 0.f)) throw std::invalid_argument("camera eye and target coincide");
+    if (glm::length(glm::cross(glm::normalize(d), Vec3(0.f, 1.f, 0.f))) < 1e-4f)
+      throw std::invalid_argument("camera looks straight up or down (the up direction is +y)");
+    out.camera = lookAtCamera(eye, target, glm::radians(yfovDegrees));
+  }
+  if (p.contains("compare")) {
+    // Side B of the A/B comparison as a converge CONFIG, checked now (at this preset's length).
+    const std::string config = typed(p, "compare", &Json::is_string, "a string").get<std::string>();
+    RenderSettings a;
+    a.maxLength = out.maxLength;
+    compareEstimator(config, a);  // throws the parser's line
+    out.compare = config;
+  }
+  return out;
+}
+
+}  // namespace
+
+CameraDesc lookAtCamera(const Vec3& eye, const Vec3& target, float yfov) {
+  const Vec3 f = glm::normalize(target - eye);
+  const Vec3 right = glm::normalize(glm::cross(f, Vec3(0.f, 1.f, 0.f)));
+  const Vec3 up = glm::cross(right, f);
+  CameraDesc d;
+  d.cameraToWorld = Mat4(Vec4(right, 0.f), Vec4(up, 0.f), Vec4(-f, 0.f), Vec4(eye, 1.f));
+  d.yfov = yfov;
+  d.name = "preset";
+  return d;
+}
+
+RenderSettings NamedPreset::applyTo(const RenderSettings& current) const {
+  RenderSettings s = current;
+  s.integrator = integrator;
+  s.techniques = techniques;
+  s.mis = mis;
+  s.maxLength = maxLength;
+  s.isolate = isolate;
+  if (camera) s.camera = camera;
+  return s;
+}
+
+std::vector<NamedPreset> parsePresets(const std::string& text, const std::string& path) {
+  Json root;
+  try {
+    root = Json::parse(text);
+  } catch (const Json::exception& e) {
+    // nlohmann's message starts with "[json.exception.parse_error.101] parse error at line 3, ..."
+    // (or out_of_range.406 for a number such as 1e999 that overflows a double).
+    std::string what = e.what();
+    if (const size_t p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    throw PresetError(path + ": " + what);
+  }
+  if (!root.is_object() || !root.contains("presets") || !root.at("presets").is_array())
+    throw PresetError(path + ": expected an object with an array \"presets\"");
+  std::vector<NamedPreset> out;
+  std::set<std::string> names;
+  size_t index = 0;
+  for (const Json& p : root.at("presets")) {
+    const std::string label = p.is_object() && p.contains("name") && p.at("name").is_string()
+                                  ? fmt::format("preset {} (\"{}\")", index, p.at("name").get<std::string>())
+                                  : fmt::format("preset {}", index);
+    try {
+      out.push_back(parseOne(p));
+    } catch (const std::exception& e) {
+      throw PresetError(fmt::format("{}: {}: {}", path, label, e.what()));
+    }
+    if (!names.insert(out.back().name).second) throw PresetError(fmt::format("{}: {}: duplicate name", path, label));
+    ++index;
+  }
+  return out;
+}
+
+std::vector<NamedPreset> loadPresets(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw PresetError(path + ": cannot open the presets file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parsePresets(text.str(), path);
+}
+
+const NamedPreset& findPreset(const std::vector<NamedPreset>& presets, const std::string& name, const std::string& path) {
+  std::string known;
+  for (const NamedPreset& p : presets) {
+    if (p.name == name) return p;
+    known += (known.empty() ? "" : ", ") + ("\"" + p.name + "\"");
+  }
+  throw PresetError(fmt::format("{}: no preset \"{}\" (known: {})", path, name, known.empty() ? "none" : known));
+}
+
+}  // namespace pathlab::ui
