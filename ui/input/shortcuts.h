@@ -1,5 +1,5 @@
 // The viewer's keyboard shortcuts, one table: the viewer dispatches from it, the help panel and
-// the README list it. Keys are GLFW key codes (ImGui 1.86 indexes io.KeysDown by them).
+// docs/viewer.md list it. Keys are GLFW key codes (ImGui 1.86 indexes io.KeysDown by them).
 #pragma once
 
 #include <span>
