@@ -1,8 +1,8 @@
 // The checks of `pathlab view`'s options that need neither the scene nor a window.
 #include "ui/viewer_options.h"
 
-#include "ui/compare.h"
-#include "ui/technique_map_view.h"
+#include "ui/lane/compare.h"
+#include "ui/estimator/technique_map_view.h"
 
 #include <stdexcept>
 
