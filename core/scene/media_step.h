@@ -1,7 +1,8 @@
-// One step of a random walk in a scene with media (issue 16): from a ray in a known medium to
-// what it meets next, a surface, a scattering event in a medium, or nothing, sampling the distance
-// in every medium it crosses (pbrt-v3 HomogeneousMedium::Sample, spectral MIS over the channels)
-// and passing straight through index-matched boundaries, which change only the medium.
+// One step of a random walk (the bidirectional walks and the path tracer share it): from a ray in
+// a known medium to what it meets next, a surface, a scattering event in a medium, or nothing. In a
+// scene with media (issue 16) it samples the distance in every medium it crosses (pbrt-v3
+// HomogeneousMedium::Sample, spectral MIS over the channels) and passes straight through
+// index-matched boundaries, which change only the medium; in a scene without, it is one ray cast.
 #pragma once
 
 #include "core/math/rng.h"
@@ -26,7 +27,8 @@ struct MediaStep {
 
 // Traces `ray` starting in `medium` (-1: none), counting each ray it casts in counters.rays.
 // Consumes two random numbers per medium segment it samples a distance in (none in vacuum, and none
-// in a purely absorbing medium, whose transmittance is applied as a weight).
+// in a purely absorbing medium, whose transmittance is applied as a weight). In a scene without
+// media every hit is a Surface (index-matched or not) and the weight is exactly one.
 MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng, Counters& counters);
 
 }  // namespace pathlab
