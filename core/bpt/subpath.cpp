@@ -53,7 +53,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     return false;
   };
   while (path.count < options.maxVertices) {
-    const MediaStep step = traceThroughMedia(scene, ray, medium, rng, counters);
+    const MediaStep step = traceStep(scene, ray, medium, rng, counters);
     beta *= step.weight;  // one in vacuum
     if (step.kind == MediaStepKind::Absorbed) break;
     const bool inMedium = step.kind == MediaStepKind::Medium;

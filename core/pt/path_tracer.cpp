@@ -119,7 +119,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
     return true;
   };
   for (int edges = 1;; ++edges) {
-    const MediaStep step = traceThroughMedia(scene_, ray, medium, rng, counters);
+    const MediaStep step = traceStep(scene_, ray, medium, rng, counters);
     beta *= step.weight;  // one in vacuum
     if (step.kind == MediaStepKind::Absorbed) break;
     if (step.kind == MediaStepKind::Medium) {

@@ -1,4 +1,4 @@
-// The walk's step to its next vertex: through media and index-matched boundaries, or in vacuum.
+// The walk's step through media and index-matched boundaries.
 #include "core/scene/media_step.h"
 
 namespace pathlab {
@@ -11,12 +11,6 @@ constexpr int kMaxStepCrossings = 64;
 
 MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng, Counters& counters) {
   MediaStep step;
-  if (!scene.hasMedia()) {
-    ++counters.rays;
-    step.hit = scene.intersect(ray);
-    step.kind = step.hit ? MediaStepKind::Surface : MediaStepKind::Escaped;
-    return step;
-  }
   for (int crossing = 0; crossing < kMaxStepCrossings; ++crossing) {
     ++counters.rays;
     std::optional<SurfaceHit> hit = scene.intersect(ray);
