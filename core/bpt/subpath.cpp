@@ -39,7 +39,6 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
   float prevPhaseG = 0.f;          // the anisotropy of the phase function that chose `ray`...
   bool prevPhase = false;          // ...when a medium vertex did
   const int environment = mode == TransportMode::Radiance ? scene.lights().environment() : -1;
-  const bool media = scene.hasMedia();
   // Both densities at prev of the direction pair (prev.wo, dir), from the scattering that chose
   // dir there; false when no scattering at prev did (an origin vertex, or a delta lobe).
   auto prevDensities = [&](const PathVertex& prev, const Vec3& dir, BsdfDensities& ev) {
@@ -54,23 +53,15 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     return false;
   };
   while (path.count < options.maxVertices) {
-    std::optional<SurfaceHit> hit;
-    bool inMedium = false;
-    Vec3 mediumPoint(0.f);
-    if (!media) {
-      ++counters.rays;
-      hit = scene.intersect(ray);
-    } else {
-      MediaStep step = traceThroughMedia(scene, ray, medium, rng, counters);
-      beta *= step.weight;
-      if (step.kind == MediaStepKind::Absorbed) break;
-      inMedium = step.kind == MediaStepKind::Medium;
-      mediumPoint = step.p;
-      // The step may have crossed index-matched boundaries: a scattering point lies in the medium
-      // the step ended in, not necessarily the one the ray started in.
-      if (inMedium) medium = step.medium;
-      hit = std::move(step.hit);
-    }
+    const MediaStep step = traceStep(scene, ray, medium, rng, counters);
+    beta *= step.weight;  // one in vacuum
+    if (step.kind == MediaStepKind::Absorbed) break;
+    const bool inMedium = step.kind == MediaStepKind::Medium;
+    const Vec3& mediumPoint = step.p;
+    // The step may have crossed index-matched boundaries: a scattering point lies in the medium
+    // the step ended in, not necessarily the one the ray started in.
+    if (inMedium) medium = step.medium;
+    const std::optional<SurfaceHit>& hit = step.hit;
     if (!hit && !inMedium && environment < 0) break;
     PathVertex& prev = path[path.count - 1];
     PathVertex& v = path[path.count];

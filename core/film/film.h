@@ -3,6 +3,7 @@
 // arbitrary raster positions). The two are combined only at read-out.
 #pragma once
 
+#include "core/image/image.h"
 #include "core/math/types.h"
 
 #include <atomic>
@@ -14,15 +15,6 @@
 #include <vector>
 
 namespace pathlab {
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;  // row-major, top row first, 3 floats a pixel
-  Vec3 at(int x, int y) const {
-    const size_t i = 3 * (static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x));
-    return {rgb[i], rgb[i + 1], rgb[i + 2]};
-  }
-};
 
 // The pixel (row-major index) a splat at raster position pRaster lands in; nullopt off the film.
 inline std::optional<size_t> filmPixel(Vec2 pRaster, int width, int height) {

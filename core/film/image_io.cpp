@@ -1,4 +1,4 @@
-// Image file formats through tinyexr and stb_image_write, plus a hand-written PFM codec.
+// Image files written through tinyexr and stb_image_write, plus a hand-written PFM writer.
 #include "core/film/image_io.h"
 
 #include "core/texture/texture.h"
@@ -6,8 +6,6 @@
 #include <stb/stb_image_write.h>
 #include <tinyexr.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,15 +14,6 @@
 namespace pathlab {
 
 namespace fs = std::filesystem;
-
-ImageFormat imageFormatOf(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".exr") return ImageFormat::Exr;
-  if (ext == ".pfm") return ImageFormat::Pfm;
-  if (ext == ".png") return ImageFormat::Png;
-  throw ImageError(path + ": unknown image format '" + ext + "' (use .exr, .pfm or .png)");
-}
 
 float exposeToSrgb(float linear, float exposure) {
   const float v = linear * std::exp2(exposure);
@@ -50,25 +39,6 @@ void writePfm(const std::string& file, const std::string& path, const Image& ima
   if (!f) throw ImageError(path + ": write failed");
 }
 
-Image readPfm(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw ImageError(path + ": cannot open");
-  std::string magic;
-  Image img;
-  float scale = 0.f;
-  f >> magic >> img.width >> img.height >> scale;
-  f.get();
-  if (!f || magic != "PF" || img.width <= 0 || img.height <= 0 || img.width > 65536 || img.height > 65536)
-    throw ImageError(path + ": not a colour PFM file");
-  if (scale > 0.f) throw ImageError(path + ": big-endian PFM is not supported");
-  img.rgb.resize(3 * static_cast<size_t>(img.width) * static_cast<size_t>(img.height));
-  for (int y = img.height - 1; y >= 0; --y)
-    f.read(reinterpret_cast<char*>(&img.rgb[3 * static_cast<size_t>(y) * static_cast<size_t>(img.width)]),
-           static_cast<std::streamsize>(3 * sizeof(float) * static_cast<size_t>(img.width)));
-  if (!f) throw ImageError(path + ": truncated PFM data");
-  return img;
-}
-
 void writeExr(const std::string& file, const std::string& path, const Image& image) {
   const char* err = nullptr;
   if (SaveEXR(image.rgb.data(), image.width, image.height, 3, /*save_as_fp16=*/0, file.c_str(), &err) != TINYEXR_SUCCESS) {
@@ -76,22 +46,6 @@ void writeExr(const std::string& file, const std::string& path, const Image& ima
     if (err) FreeEXRErrorMessage(err);
     throw ImageError(path + ": cannot write EXR: " + msg);
   }
-}
-
-Image readExr(const std::string& path) {
-  float* rgba = nullptr;
-  int w = 0, h = 0;
-  const char* err = nullptr;
-  if (LoadEXR(&rgba, &w, &h, path.c_str(), &err) != TINYEXR_SUCCESS) {
-    std::string msg = err ? err : "unknown error";
-    if (err) FreeEXRErrorMessage(err);
-    throw ImageError(path + ": cannot read EXR: " + msg);
-  }
-  Image img{w, h, std::vector<float>(3 * static_cast<size_t>(w) * static_cast<size_t>(h))};
-  for (size_t i = 0; i < static_cast<size_t>(w) * static_cast<size_t>(h); ++i)
-    for (size_t c = 0; c < 3; ++c) img.rgb[3 * i + c] = rgba[4 * i + c];
-  free(rgba);
-  return img;
 }
 
 }  // namespace
@@ -123,16 +77,6 @@ void writeImage(const std::string& path, const Image& image, float exposure) {
     fs::remove(tmp, ignored);
     throw;
   }
-}
-
-Image readImage(const std::string& path) {
-  if (!fs::exists(path)) throw ImageError(path + ": no such file");
-  switch (imageFormatOf(path)) {
-    case ImageFormat::Exr: return readExr(path);
-    case ImageFormat::Pfm: return readPfm(path);
-    case ImageFormat::Png: break;
-  }
-  throw ImageError(path + ": reading PNG is not supported (use .exr or .pfm)");
 }
 
 }  // namespace pathlab

@@ -1,14 +1,13 @@
 // Environment maps from files (EXR, Radiance HDR) and constant environments from "R,G,B".
 #include "core/lights/environment_file.h"
 
-#include "core/film/image_io.h"
-
-#include <stb/stb_image.h>
+#include "core/image/image_read.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 namespace pathlab {
@@ -32,12 +31,13 @@ std::optional<Spectrum> parseColour(const std::string& text) {
   return c;
 }
 
-void setTexels(EnvironmentDesc& desc, int width, int height, const float* data, int channels) {
+void setTexels(EnvironmentDesc& desc, const Image& image) {
+  const int width = image.width;
   desc.width = width;
-  desc.height = height;
-  desc.texels.resize(static_cast<size_t>(width) * static_cast<size_t>(height));
+  desc.height = image.height;
+  desc.texels.resize(static_cast<size_t>(width) * static_cast<size_t>(image.height));
   for (size_t i = 0; i < desc.texels.size(); ++i) {
-    const float* p = data + static_cast<size_t>(channels) * i;
+    const float* p = image.rgb.data() + 3 * i;
     const Spectrum c(p[0], p[1], p[2]);
     if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b))
       throw EnvironmentError(desc.source + ": texel (" + std::to_string(i % static_cast<size_t>(width)) + ", " +
@@ -61,30 +61,14 @@ EnvironmentDesc readEnvironment(const std::string& spec) {
   if (ext != ".exr" && ext != ".hdr")
     throw EnvironmentError(spec + ": an environment is an .exr or .hdr file or a colour R,G,B");
   if (!std::filesystem::is_regular_file(spec)) throw EnvironmentError(spec + ": no such file");
-  if (ext == ".exr") {
-    Image image;
-    try {
-      image = readImage(spec);
-    } catch (const ImageError& e) {
-      throw EnvironmentError(e.what());
-    }
-    if (image.width <= 0 || image.height <= 0) throw EnvironmentError(spec + ": the image is empty");
-    setTexels(desc, image.width, image.height, image.rgb.data(), 3);
-  } else {
-    int w = 0, h = 0, channels = 0;
-    float* data = stbi_loadf(spec.c_str(), &w, &h, &channels, 3);
-    if (!data) {
-      const char* why = stbi_failure_reason();
-      throw EnvironmentError(spec + ": cannot read the HDR image (" + (why ? why : "unknown error") + ")");
-    }
-    try {
-      setTexels(desc, w, h, data, 3);
-    } catch (...) {
-      stbi_image_free(data);
-      throw;
-    }
-    stbi_image_free(data);
+  Image image;
+  try {
+    image = ext == ".exr" ? readImage(spec) : readRadianceHdr(spec);
+  } catch (const ImageError& e) {
+    throw EnvironmentError(e.what());
   }
+  if (image.width <= 0 || image.height <= 0) throw EnvironmentError(spec + ": the image is empty");
+  setTexels(desc, image);
   return desc;
 }
 

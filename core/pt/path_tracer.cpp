@@ -107,7 +107,6 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
   float prevPdfW = 0.f;
   // The vertex the ray left, as next-event estimation there saw it (the receiver of its light choice).
   LightSampleContext prev{ray.o, Vec3(0.f)};
-  const bool media = scene_.hasMedia();
   // Russian roulette on the throughput (unbiased: survivors are reweighted by 1/q). The survival
   // probability is not capped below one: with a cap of 0.95, paths of the mean length
   // 1 / (1 - albedo) = 1000 of an albedo-0.999 furnace survive with probability 0.95^1000, and
@@ -120,33 +119,27 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
     return true;
   };
   for (int edges = 1;; ++edges) {
-    std::optional<SurfaceHit> hit;
-    if (!media) {
-      ++counters.rays;
-      hit = scene_.intersect(ray);
-    } else {
-      MediaStep step = traceThroughMedia(scene_, ray, medium, rng, counters);
-      beta *= step.weight;
-      if (step.kind == MediaStepKind::Absorbed) break;
-      if (step.kind == MediaStepKind::Medium) {
-        // A scattering point: NEE, then the phase function samples the next direction. Its value
-        // over its density is one, so the throughput is unchanged (sigma_s T / pdf is in weight).
-        if (edges >= maxLength_) break;
-        // The step may have crossed index-matched boundaries into another medium.
-        medium = step.medium;
-        const Vec3 wo = -ray.d;
-        L += beta * sampleDirectInMedium(step.p, medium, wo, rng, counters);
-        const float g = scene_.medium(step.medium).g;
-        const Vec3 wi = samplePhaseHG(wo, g, rng.next2D());
-        prevDelta = false;
-        prevPdfW = phaseHG(wo, wi, g);
-        prev = LightSampleContext{step.p, Vec3(0.f)};
-        ray = Ray{step.p, wi};
-        if (!survivesRoulette(edges)) break;
-        continue;
-      }
-      hit = std::move(step.hit);  // empty when the ray escaped
+    const MediaStep step = traceStep(scene_, ray, medium, rng, counters);
+    beta *= step.weight;  // one in vacuum
+    if (step.kind == MediaStepKind::Absorbed) break;
+    if (step.kind == MediaStepKind::Medium) {
+      // A scattering point: NEE, then the phase function samples the next direction. Its value
+      // over its density is one, so the throughput is unchanged (sigma_s T / pdf is in weight).
+      if (edges >= maxLength_) break;
+      // The step may have crossed index-matched boundaries into another medium.
+      medium = step.medium;
+      const Vec3 wo = -ray.d;
+      L += beta * sampleDirectInMedium(step.p, medium, wo, rng, counters);
+      const float g = scene_.medium(step.medium).g;
+      const Vec3 wi = samplePhaseHG(wo, g, rng.next2D());
+      prevDelta = false;
+      prevPdfW = phaseHG(wo, wi, g);
+      prev = LightSampleContext{step.p, Vec3(0.f)};
+      ray = Ray{step.p, wi};
+      if (!survivesRoulette(edges)) break;
+      continue;
     }
+    const std::optional<SurfaceHit>& hit = step.hit;  // empty when the ray escaped
     if (!hit) {
       if (scene_.lights().environment() >= 0) L += beta * environmentSeen(ray.d, prevDelta, prevPdfW, prev);
       break;

@@ -1,5 +1,5 @@
 // The mean of a filtered texture over a triangle of its uv space: what an emissive triangle's
-// power integrates (Light::area), computed once at load.
+// power integrates (AreaLight), computed once at load.
 #pragma once
 
 #include "core/texture/texture.h"

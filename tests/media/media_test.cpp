@@ -5,6 +5,8 @@
 #include "core/media/medium.h"
 #include "core/media/phase_function.h"
 #include "core/render/render_session.h"
+#include "core/sampling/warp.h"
+#include "core/scene/media_step.h"
 #include "core/scene/scene.h"
 #include "tests/support/chi2.h"
 #include "tests/support/image_means.h"
@@ -251,6 +253,50 @@ TEST(MediaScene, ASceneWithoutMediaTracksNone) {
   ASSERT_TRUE(hit);
   EXPECT_EQ(hit->media.inside, -1);
   EXPECT_FALSE(hit->indexMatched);
+}
+
+// traceStep, the walks' one step. Without media: one ray cast, the hit Scene::intersect gives,
+// the weight exactly one and no random number drawn (the images of every scene without media
+// rest on all four). With media: traceThroughMedia's step, random numbers and ray count included.
+TEST(MediaStep, WithoutMediaIsOneRayCastOfWeightOne) {
+  const Scene scene(test::furnace(0.5f, 1.f));
+  Pcg32 rng(7, 1), untouched(7, 1);
+  Counters counters;
+  const Ray up{Vec3(0.f), Vec3(0.f, 0.f, 1.f)};
+  const MediaStep step = traceStep(scene, up, -1, rng, counters);
+  EXPECT_EQ(step.kind, MediaStepKind::Surface);
+  ASSERT_TRUE(step.hit);
+  EXPECT_EQ(step.hit->t, scene.intersect(up)->t);
+  EXPECT_EQ(step.hit->p, scene.intersect(up)->p);
+  EXPECT_EQ(step.weight, Spectrum(1.f));
+  EXPECT_EQ(counters.rays, 1u);
+  EXPECT_EQ(rng.next1D(), untouched.next1D());
+  const MediaStep away = traceStep(scene, Ray{Vec3(0.f, 0.f, 5.f), Vec3(0.f, 0.f, 1.f)}, -1, rng, counters);
+  EXPECT_EQ(away.kind, MediaStepKind::Escaped);
+  EXPECT_FALSE(away.hit);
+  EXPECT_EQ(away.weight, Spectrum(1.f));
+}
+
+TEST(MediaStep, WithMediaIsTheMediaWalk) {
+  const Scene scene(test::foggyFurnace(0.5f, 1.f, 1.f, 0.3f));
+  ASSERT_TRUE(scene.hasMedia());
+  Pcg32 directions(3, 5);
+  int scattered = 0;
+  for (uint64_t i = 0; i < 64; ++i) {
+    const Ray ray{Vec3(0.1f, 0.2f, 0.3f), sampleUniformSphere(directions.next2D())};
+    Pcg32 a(i, 2), b(i, 2);
+    Counters ca, cb;
+    const MediaStep s = traceStep(scene, ray, 0, a, ca);
+    const MediaStep t = traceThroughMedia(scene, ray, 0, b, cb);
+    EXPECT_EQ(s.kind, t.kind);
+    EXPECT_EQ(s.weight, t.weight);
+    EXPECT_EQ(s.p, t.p);
+    EXPECT_EQ(s.hit.has_value(), t.hit.has_value());
+    EXPECT_EQ(ca.rays, cb.rays);
+    EXPECT_EQ(a.next1D(), b.next1D());
+    scattered += s.kind == MediaStepKind::Medium;
+  }
+  EXPECT_GT(scattered, 0);
 }
 
 }  // namespace
