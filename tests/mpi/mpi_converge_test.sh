@@ -6,7 +6,7 @@
 # `mpirun -n 1` writes what one process writes; a rank that cannot load the scene stops the job
 # within seconds with one line naming it; SIGINT leaves no output behind.
 # Usage: mpi_converge_test.sh PATHLAB SOURCE_DIR MPIEXEC
-. "$(dirname "$0")/../cli_lib.sh"
+. "$(dirname "$0")/../cli/cli_lib.sh"
 . "$(dirname "$0")/mpi_lib.sh"
 COMPARE="python3 $(dirname "$0")/compare_convergence_csv.py"
 # One thread a rank: the splats of a pass are then summed in the same order as in one process.
