@@ -6,6 +6,7 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace pathlab {
@@ -14,9 +15,12 @@ namespace {
 // The pass's splat sums in float (SplatSums) up to this much memory; beyond it (an image of over
 // 44 million pixels) each work item's splats go straight into the film's doubles, in the same order.
 constexpr size_t kMaxSplatSumBytes = size_t{512} << 20;
-// Work items in flight per thread: the splats of an item wait for those of the items before it,
-// so a slow item holds up this many others before a thread idles; each holds its splats meanwhile.
+// Work items in flight: the splats of an item wait for those of the items before it, so an item
+// that is slow (or whose thread the system put aside for a while, on a loaded machine) lets the
+// other threads run this many items ahead before they idle; each holds its splats meanwhile (about
+// 64 KiB an item of 1,024 samples on the Cornell box, 340 KiB with a pyramid and technique maps).
 constexpr size_t kItemsInFlightPerThread = 4;
+constexpr size_t kMinItemsInFlight = 32;
 
 const RenderSettings& validated(const RenderSettings& settings, const Scene& scene) {
   validateSettings(settings);
@@ -129,7 +133,8 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   const uint64_t pass = schedule_.pass(passes_.load(std::memory_order_relaxed));
   // Item i records its splats in buffer i % inFlight: the items in flight are consecutive (they
   // enter and leave the pipeline in order), so no two share a buffer.
-  const size_t inFlight = kItemsInFlightPerThread * static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
+  const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
+  const size_t inFlight = std::max(kMinItemsInFlight, kItemsInFlightPerThread * threads);
   if (bidirTracer_ && tileSplats_.size() < inFlight)
     tileSplats_.resize(inFlight, SplatBuffer(settings_.width, settings_.height));
   size_t next = 0;
