@@ -22,9 +22,4 @@ void SplatBuffer::clear() {
   sampleable_.clear();
 }
 
-size_t SplatBuffer::bytes() const {
-  return image_.capacity() * sizeof(Splat) + technique_.capacity() * sizeof(TechniqueSplat) +
-         sampleable_.capacity() * sizeof(SampleableSplat);
-}
-
 }  // namespace pathlab

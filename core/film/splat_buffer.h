@@ -37,9 +37,7 @@ class SplatBuffer {
   // Adds the recorded splats, each kind in its order, to `sums` (or straight to `film`'s doubles
   // when null) and to `pyramid` (if any), then clears them.
   void addTo(SplatSums* sums, Film& film, TechniqueFilms* pyramid);
-  void clear();
-  // Bytes the records reserve (they keep their capacity from pass to pass).
-  size_t bytes() const;
+  void clear();  // keeps the capacity, for the next item
 
  private:
   struct TechniqueSplat {
