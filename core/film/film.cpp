@@ -25,6 +25,11 @@ void Film::addSplatSums(const std::vector<float>& rgb) {
   for (size_t i = 0; i < splatSum_.size() && i < rgb.size(); ++i) splatSum_[i] += static_cast<double>(rgb[i]);
 }
 
+void Film::addSplats(std::span<const Splat> splats) {
+  for (const Splat& s : splats)
+    for (int c = 0; c < 3; ++c) splatSum_[3 * size_t(s.pixel) + static_cast<size_t>(c)] += s.v[c];
+}
+
 std::array<std::span<double>, 2> Film::sums() {
   static_assert(sizeof(DVec3) == 3 * sizeof(double), "DVec3 must be three packed doubles");
   return {std::span<double>(reinterpret_cast<double*>(cameraSum_.data()), 3 * cameraSum_.size()),

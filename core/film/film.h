@@ -1,6 +1,7 @@
 // The film: box-filtered accumulation in double precision of camera-sample estimates (each pixel
-// owned by one thread during a pass) and, separately, of light-tracing splats (atomic adds at
-// arbitrary raster positions). The two are combined only at read-out.
+// owned by one thread during a pass) and, separately, of light-tracing splats (at arbitrary raster
+// positions: a render session sums them per pass in a fixed order, SplatSums; a lone caller adds
+// them atomically). The two are combined only at read-out.
 #pragma once
 
 #include "core/image/image.h"
@@ -23,6 +24,12 @@ inline std::optional<size_t> filmPixel(Vec2 pRaster, int width, int height) {
   return static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x);
 }
 
+// A splat that landed on the film: its pixel (row-major index) and value.
+struct Splat {
+  uint32_t pixel;
+  Spectrum v;
+};
+
 class Film {
  public:
   Film(int width, int height);
@@ -35,9 +42,12 @@ class Film {
   // the caller counts as discarded samples.
   bool addSample(int x, int y, const Spectrum& L);
   bool splat(Vec2 pRaster, const Spectrum& v);
-  // Adds a whole buffer of splat sums (3 floats a pixel, this film's size): SplatBuffer's merge.
+  // Adds a whole buffer of splat sums (3 floats a pixel, this film's size): SplatSums's merge.
   // Not concurrent with splat() or another merge.
   void addSplatSums(const std::vector<float>& rgb);
+  // Adds splats one by one, in order (a pass's splats when SplatSums would be too large). Not
+  // concurrent with splat() or another merge.
+  void addSplats(std::span<const Splat> splats);
 
   // Called once per completed pass: how many camera samples each pixel received and how many
   // light subpaths were traced in that pass (they set the splat normalisation, camera.h).
@@ -58,7 +68,7 @@ class Film {
  private:
   int width_, height_;
   std::vector<DVec3> cameraSum_;
-  std::vector<double> splatSum_;  // 3 doubles a pixel, updated with std::atomic_ref
+  std::vector<double> splatSum_;  // 3 doubles a pixel; splat() updates it with std::atomic_ref
   uint64_t samplesPerPixel_ = 0;
   uint64_t lightSubpaths_ = 0;
 };

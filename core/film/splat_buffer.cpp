@@ -1,42 +1,25 @@
-// SplatBuffer: per-thread splat sums of a pass.
+// SplatBuffer: a work item's splats, added to the pass's sums in their order.
 #include "core/film/splat_buffer.h"
-
-#include <algorithm>
 
 namespace pathlab {
 
-SplatBuffer::SplatBuffer(int width, int height)
-    : width_(width), height_(height), rgb_(3 * static_cast<size_t>(width) * static_cast<size_t>(height), 0.f) {}
-
-void SplatBuffer::addPending() {
-  // How far ahead to prefetch: enough misses in flight to hide the memory latency (about eight
-  // splats' worth of adds), few enough that the prefetched lines are still there when used.
-  constexpr int kAhead = 8;
-  const int n = pendingCount_;
-  for (int i = 0; i < std::min(n, kAhead); ++i) __builtin_prefetch(&rgb_[3 * size_t(pending_[i].pixel)], 1);
-  for (int i = 0; i < n; ++i) {
-    if (i + kAhead < n) __builtin_prefetch(&rgb_[3 * size_t(pending_[i + kAhead].pixel)], 1);
-    const Pending& p = pending_[i];
-    float* rgb = &rgb_[3 * size_t(p.pixel)];
-    rgb[0] += p.v.r;
-    rgb[1] += p.v.g;
-    rgb[2] += p.v.b;
+void SplatBuffer::addTo(SplatSums* sums, Film& film, TechniqueFilms* pyramid) {
+  if (sums) {
+    sums->add(image_);
+  } else {
+    film.addSplats(image_);
   }
-  if (n > 0) empty_ = false;
-  pendingCount_ = 0;
-}
-
-void SplatBuffer::mergeInto(Film& film) {
-  addPending();
-  if (empty_) return;
-  film.addSplatSums(rgb_);
+  if (pyramid) {
+    for (const TechniqueSplat& x : technique_) pyramid->add(x.s, 1, x.pRaster, x.weighted, x.unweighted);
+    for (const SampleableSplat& x : sampleable_) pyramid->addSampleable(x.k, x.sampleableBy, x.pRaster, true, x.weightedLuminance);
+  }
   clear();
 }
 
 void SplatBuffer::clear() {
-  pendingCount_ = 0;
-  if (!empty_) std::fill(rgb_.begin(), rgb_.end(), 0.f);
-  empty_ = true;
+  image_.clear();
+  technique_.clear();
+  sampleable_.clear();
 }
 
 }  // namespace pathlab

@@ -1,19 +1,13 @@
-// One thread's light-tracing splats of one pass, added to the film when the pass ends: no atomic
-// read-modify-write per splat (each was a compare-and-swap loop on three shared doubles, a few
-// per cent of a bidirectional pass). Float is enough within a pass (a pixel receives a handful of
-// splats); the film keeps the sums over passes in double.
-//
-// The buffer (12 bytes a pixel, 3 MiB at 512²) is larger than the cache and t = 1 connections land
-// anywhere on it, so adding a splat at once stalls on a cache miss (it was over 90 % of the
-// splat's cost, and 7 % of a BPT sample). Splats are therefore queued in arrival order and added
-// a block at a time, each pixel prefetched a few splats ahead: the misses overlap instead of
-// following each other. Each pixel still receives its splats in the same order, so the sums are
-// bit for bit those of adding each splat at once.
+// One work item's light-tracing splats (t = 1) in their order of arrival, for the image and for
+// the technique pyramid: a render thread records them while it renders the item, and the render
+// session adds them to the pass's sums in the items' fixed order (pass_tiles.h), so that no sum
+// depends on which thread rendered what or when it finished (RenderSession::renderPass).
 #pragma once
 
 #include "core/film/film.h"
+#include "core/film/splat_sums.h"
+#include "core/film/technique_films.h"
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -21,40 +15,46 @@ namespace pathlab {
 
 class SplatBuffer {
  public:
-  SplatBuffer(int width, int height);
+  SplatBuffer(int width, int height) : width_(width), height_(height) {}
 
   // The same door and the same pixel as Film::splat.
   bool splat(Vec2 pRaster, const Spectrum& v) {
     if (!isValidContribution(v)) return false;
     const std::optional<size_t> pixel = filmPixel(pRaster, width_, height_);
     if (!pixel) return true;  // off the film: no pixel measures it
-    pending_[pendingCount_++] = Pending{static_cast<uint32_t>(*pixel), v};
-    if (pendingCount_ == kBlock) addPending();
+    image_.push_back(Splat{static_cast<uint32_t>(*pixel), v});
     return true;
   }
-  // Adds this pass's splats to `film` (of the same size) and clears them.
-  void mergeInto(Film& film);
-  void clear();
-
-  // Bytes one buffer of this size takes.
-  static size_t bytesFor(int width, int height) {
-    return 3 * sizeof(float) * static_cast<size_t>(width) * static_cast<size_t>(height) + sizeof(pending_);
+  // TechniqueFilms::add of technique (s, 1) and TechniqueFilms::addSampleable of a splat of a
+  // path of length k, recorded for addTo.
+  void splatTechnique(int s, Vec2 pRaster, const Spectrum& weighted, const Spectrum& unweighted) {
+    technique_.push_back(TechniqueSplat{s, pRaster, weighted, unweighted});
+  }
+  void splatSampleable(int k, uint64_t sampleableBy, Vec2 pRaster, double weightedLuminance) {
+    sampleable_.push_back(SampleableSplat{k, pRaster, sampleableBy, weightedLuminance});
   }
 
- private:
-  struct Pending {
-    uint32_t pixel;
-    Spectrum v;
-  };
-  // A block small enough to stay in the first-level cache (16 KiB).
-  static constexpr int kBlock = 1024;
-  void addPending();
+  // Adds the recorded splats, each kind in its order, to `sums` (or straight to `film`'s doubles
+  // when null) and to `pyramid` (if any), then clears them.
+  void addTo(SplatSums* sums, Film& film, TechniqueFilms* pyramid);
+  void clear();  // keeps the capacity, for the next item
 
+ private:
+  struct TechniqueSplat {
+    int s;
+    Vec2 pRaster;
+    Spectrum weighted, unweighted;
+  };
+  struct SampleableSplat {
+    int k;
+    Vec2 pRaster;
+    uint64_t sampleableBy;
+    double weightedLuminance;
+  };
   int width_, height_;
-  std::vector<float> rgb_;
-  std::array<Pending, kBlock> pending_;
-  int pendingCount_ = 0;
-  bool empty_ = true;
+  std::vector<Splat> image_;
+  std::vector<TechniqueSplat> technique_;
+  std::vector<SampleableSplat> sampleable_;
 };
 
 }  // namespace pathlab

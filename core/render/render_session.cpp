@@ -1,20 +1,26 @@
-// Passes over tiles with TBB; per-thread counters merged after each pass.
+// Passes over the work items (pass_tiles.h) with a TBB pipeline: rendered in parallel, their
+// splats added in the items' order; per-thread counters merged after each pass.
 #include "core/render/render_session.h"
 
-#include <tbb/blocked_range2d.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace pathlab {
 
 namespace {
-constexpr int kTileSize = 16;
-// Per-thread splat buffers (SplatBuffer) up to this much memory for all threads together; beyond
-// it (many threads and a large image) splats go to the film atomically.
-constexpr size_t kMaxThreadSplatBytes = size_t{512} << 20;
+// The pass's splat sums in float (SplatSums) up to this much memory; beyond it (an image of over
+// 44 million pixels) each work item's splats go straight into the film's doubles, in the same order.
+constexpr size_t kMaxSplatSumBytes = size_t{512} << 20;
+// Work items in flight: the splats of an item wait for those of the items before it, so an item
+// that is slow (or whose thread the system put aside for a while, on a loaded machine) lets the
+// other threads run this many items ahead before they idle; each holds its splats meanwhile (about
+// 64 KiB an item of 1,024 samples on the Cornell box, 340 KiB with a pyramid and technique maps).
+constexpr size_t kItemsInFlightPerThread = 4;
+constexpr size_t kMinItemsInFlight = 32;
 
 const RenderSettings& validated(const RenderSettings& settings, const Scene& scene) {
   validateSettings(settings);
@@ -27,11 +33,6 @@ PassSchedule validated(PassSchedule schedule) {
   return schedule;
 }
 }  // namespace
-
-struct RenderSession::ThreadSplats {
-  tbb::enumerable_thread_specific<SplatBuffer> buffers;
-  ThreadSplats(int width, int height) : buffers(width, height) {}
-};
 
 struct RenderSession::ThreadChecks {
   tbb::enumerable_thread_specific<TechniqueCheck::PassSums> sums;
@@ -47,11 +48,11 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
       camera_(settings.camera.value_or(scene.cameraDesc()), settings.width, settings.height, settings.lens),
       pathTracer_(scene, pathTracerOptions(settings)),
       cameraMedium_(scene.mediumAt(camera_.position())),
-      film_(settings.width, settings.height) {
+      film_(settings.width, settings.height),
+      tiles_(passTiles(settings.width, settings.height)) {
   if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
-  const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
-  if (bidirTracer_ && threads * SplatBuffer::bytesFor(settings.width, settings.height) <= kMaxThreadSplatBytes)
-    threadSplats_ = std::make_unique<ThreadSplats>(settings.width, settings.height);
+  if (bidirTracer_ && SplatSums::bytesFor(settings.width, settings.height) <= kMaxSplatSumBytes)
+    splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength,
                                                 settings.techniqueMaps);
@@ -112,53 +113,72 @@ Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTarget
   return pathTracer_.Li(ray, rng, counters, cameraMedium_);
 }
 
+void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats, Counters& c) {
+  SampleTargets targets{&film_, pyramid_.get(), nullptr, {}};
+  targets.splats = splats;
+  targets.check = threadChecks_ ? &threadChecks_->sums.local() : nullptr;
+  for (int y = tile.y0; y < tile.y1; ++y)
+    for (int x = tile.x0; x < tile.x1; ++x) {
+      targets.id = SampleId{x, y, pass};
+      const Spectrum L = sampleAt(x, y, pass, targets, c);
+      if (!film_.addSample(x, y, L)) {
+        countDiscarded(L, c);
+        c.noteDiscard(DiscardExample{x, y, pass, -1, -1, L});
+      }
+    }
+  pixelsDone_.fetch_add(static_cast<uint64_t>(tile.pixels()), std::memory_order_relaxed);
+}
+
 bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   tbb::enumerable_thread_specific<Counters> local;
   pixelsDone_.store(0, std::memory_order_relaxed);
   const uint64_t pass = schedule_.pass(passes_.load(std::memory_order_relaxed));
-  const SampleTargets shared{&film_, pyramid_.get(), nullptr, {}};
-  std::atomic<bool> cancelled{false};
-  tbb::parallel_for(
-      tbb::blocked_range2d<int>(0, settings_.height, kTileSize, 0, settings_.width, kTileSize),
-      [&](const tbb::blocked_range2d<int>& tile) {
-        if (cancel && cancel->load(std::memory_order_relaxed)) {
-          cancelled.store(true, std::memory_order_relaxed);
-          return;
-        }
-        Counters& c = local.local();
-        SplatBuffer* splats = threadSplats_ ? &threadSplats_->buffers.local() : nullptr;
-        TechniqueCheck::PassSums* checkSums = threadChecks_ ? &threadChecks_->sums.local() : nullptr;
-        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y)
-          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            SampleTargets targets = shared;
-            targets.id = SampleId{x, y, pass};
-            targets.splats = splats;
-            targets.check = checkSums;
-            const Spectrum L = sampleAt(x, y, pass, targets, c);
-            if (!film_.addSample(x, y, L)) {
-              countDiscarded(L, c);
-              c.noteDiscard(DiscardExample{x, y, pass, -1, -1, L});
-            }
-          }
-        pixelsDone_.fetch_add(static_cast<uint64_t>(tile.rows().size() * tile.cols().size()),
-                              std::memory_order_relaxed);
-      });
+  // Item i records its splats in buffer i % inFlight: the items in flight are consecutive (they
+  // enter and leave the pipeline in order), so no two share a buffer.
+  const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
+  const size_t inFlight = std::max(kMinItemsInFlight, kItemsInFlightPerThread * threads);
+  if (bidirTracer_ && tileSplats_.size() < inFlight)
+    tileSplats_.resize(inFlight, SplatBuffer(settings_.width, settings_.height));
+  size_t next = 0;
+  bool cancelled = false;  // both only touched by the pipeline's first stage, one item at a time
+  tbb::parallel_pipeline(
+      inFlight,
+      tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& fc) {
+                                       if (next < tiles_.size() && cancel && cancel->load(std::memory_order_relaxed))
+                                         cancelled = true;
+                                       if (cancelled || next == tiles_.size()) {
+                                         fc.stop();
+                                         return size_t{0};
+                                       }
+                                       return next++;
+                                     }) &
+          tbb::make_filter<size_t, size_t>(tbb::filter_mode::parallel,
+                                           [&](size_t i) {
+                                             SplatBuffer* splats = bidirTracer_ ? &tileSplats_[i % inFlight] : nullptr;
+                                             renderTile(tiles_[i], pass, splats, local.local());
+                                             return i;
+                                           }) &
+          // The splats in the items' order (the path tracer has none: any order).
+          tbb::make_filter<size_t, void>(bidirTracer_ ? tbb::filter_mode::serial_in_order : tbb::filter_mode::parallel,
+                                         [&](size_t i) {
+                                           if (bidirTracer_) tileSplats_[i % inFlight].addTo(splatSums_.get(), film_, pyramid_.get());
+                                         }));
   for (const Counters& c : local) counters_ += c;
-  if (threadSplats_)
-    for (SplatBuffer& b : threadSplats_->buffers) {
-      if (cancelled.load()) b.clear();
-      else b.mergeInto(film_);
-    }
+  if (splatSums_) {
+    if (cancelled) splatSums_->clear();
+    else splatSums_->mergeInto(film_);
+  }
   if (threadChecks_) {
     std::vector<TechniqueCheck::PassSums*> sums;
     for (TechniqueCheck::PassSums& t : threadChecks_->sums) sums.push_back(&t);
-    if (cancelled.load()) {
+    if (cancelled) {
       for (TechniqueCheck::PassSums* t : sums) t->clear();
     } else {
       check_->finishPass(sums);
     }
   }
-  if (cancelled.load()) return false;
+  if (cancelled) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
   passes_.fetch_add(1, std::memory_order_relaxed);
   return true;

@@ -1,14 +1,18 @@
 // Progressive multithreaded rendering: one pass = one camera sample per pixel, tiles in parallel.
 // Sample `pass` of pixel (x, y) draws from the stream keyed by (seed, pixel, pass), so any sample
-// can be replayed alone.
+// can be replayed alone, and the splats are summed in a fixed order of tiles (pass_tiles.h), so
+// the same seed gives the same image bit for bit at any thread count.
 #pragma once
 
 #include "core/bpt/bidir_tracer.h"
 #include "core/check/technique_check.h"
 #include "core/film/film.h"
+#include "core/film/splat_buffer.h"
+#include "core/film/splat_sums.h"
 #include "core/film/technique_films.h"
 #include "core/counters/counters.h"
 #include "core/pt/path_tracer.h"
+#include "core/render/pass_tiles.h"
 #include "core/render/render_settings.h"
 #include "core/render/sample_outputs.h"
 #include "core/scene/scene.h"
@@ -96,11 +100,15 @@ class RenderSession {
   std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt and Lt
 
   Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;
+  // Renders one work item's samples: camera estimates into film_, splats into `splats` (Bpt, Lt).
+  void renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats, Counters& counters);
   Film film_;
-  // Each render thread's t = 1 splats of the current pass (SplatBuffer), merged into film_ when
-  // it ends; null (atomic splats into film_) when a buffer per thread would take too much memory.
-  struct ThreadSplats;
-  std::unique_ptr<ThreadSplats> threadSplats_;
+  std::vector<PassTile> tiles_;  // a pass's work items, in the order their splats are summed
+  // The t = 1 splats of the work items in flight (SplatBuffer), then of the current pass in float
+  // (SplatSums), merged into film_ when it ends; splatSums_ is null (splats straight into film_,
+  // in the same order) when it would take too much memory.
+  std::vector<SplatBuffer> tileSplats_;
+  std::unique_ptr<SplatSums> splatSums_;
   std::unique_ptr<TechniqueFilms> pyramid_;
   std::unique_ptr<TechniqueCheck> check_;
   struct ThreadChecks;  // each render thread's sums of the check over the current pass

@@ -61,11 +61,18 @@ void SampleOutputs::record(const TechniqueResult& r) {
   if (targets_.check) targets_.check->add(Technique{r.s, r.t}, r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
   if (r.inPyramid && targets_.pyramid) {
     const Spectrum weighted = r.unweighted * r.weight;
-    targets_.pyramid->add(r.s, r.t, r.pRaster, weighted, r.unweighted);
     // The technique maps' "cannot sample": this path's weighted part, credited to every technique
-    // of its length able to sample it.
-    if (targets_.pyramid->keepsSampleable())
-      targets_.pyramid->addSampleable(r.s + r.t - 1, r.sampleableBy, r.pRaster, r.t == 1, luminance(weighted));
+    // of its length able to sample it. Splats go through the splat buffer if there is one (the
+    // render session sums them in a fixed order).
+    const bool keepsSampleable = targets_.pyramid->keepsSampleable();
+    if (r.t == 1 && targets_.splats) {
+      targets_.splats->splatTechnique(r.s, r.pRaster, weighted, r.unweighted);
+      if (keepsSampleable) targets_.splats->splatSampleable(r.s, r.sampleableBy, r.pRaster, luminance(weighted));
+    } else {
+      targets_.pyramid->add(r.s, r.t, r.pRaster, weighted, r.unweighted);
+      if (keepsSampleable)
+        targets_.pyramid->addSampleable(r.s + r.t - 1, r.sampleableBy, r.pRaster, r.t == 1, luminance(weighted));
+    }
   }
 }
 

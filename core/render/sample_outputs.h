@@ -18,7 +18,7 @@ struct SampleTargets {
   TechniqueFilms* pyramid = nullptr;  // every technique of the pyramid's lengths, weighted and unweighted
   SampleTrace* trace = nullptr;       // a record of every technique tried
   SampleId id;
-  SplatBuffer* splats = nullptr;  // the thread's own buffer of the t = 1 splats, instead of `film`
+  SplatBuffer* splats = nullptr;  // the work item's buffer of the t = 1 splats, instead of `film` and the pyramid's
   TechniqueCheck::PassSums* check = nullptr;  // the thread's sums of the consistency check
 };
 

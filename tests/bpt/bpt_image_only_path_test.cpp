@@ -67,7 +67,9 @@ Run render(const Scene& scene, const BidirOptions& options, bool imageOnlyPath, 
     const Spectrum e = outputs.cameraEstimate();
     for (int c = 0; c < 3; ++c) run.estimates.push_back(std::bit_cast<uint32_t>(e[c]));
   }
-  buffer.mergeInto(film);
+  SplatSums splatSums(kWidth, kHeight);
+  buffer.addTo(&splatSums, film, nullptr);
+  splatSums.mergeInto(film);
   const auto sums = film.sums();
   run.splats.assign(sums[1].begin(), sums[1].end());
   return run;

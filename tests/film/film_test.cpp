@@ -69,41 +69,58 @@ Image testImage() {
   return img;
 }
 
-// SplatBuffer queues splats and adds them a block at a time: each pixel's float sum must be bit
-// for bit the in-order sum of its splats (values of very different magnitudes, so that another
-// order or a lost splat shows), across block boundaries, passes and the door's rejections.
-TEST(SplatBuffer, SumsEqualInOrderAdditionAcrossBlocksAndPasses) {
+// A work item's SplatBuffer keeps its splats in order and SplatSums adds them with the pixels
+// prefetched ahead: each pixel's float sum must be bit for bit the in-order sum of its splats
+// (values of very different magnitudes, so that another order or a lost splat shows), across the
+// buffers of a pass, passes and the door's rejections. Without SplatSums the splats go to the
+// film's doubles one by one, in the same order.
+TEST(SplatBuffer, SumsEqualInOrderAdditionAcrossItemsAndPasses) {
   const int width = 7, height = 5, pixels = width * height;
   SplatBuffer buffer(width, height);
-  Film film(width, height);
-  std::vector<double> expected(3 * pixels, 0.0);
+  SplatSums sums(width, height);
+  Film film(width, height), direct(width, height);
+  std::vector<double> expected(3 * pixels, 0.0), expectedDirect(3 * pixels, 0.0);
   Pcg32 rng(42, 7);
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<float> passSum(3 * pixels, 0.f);
-    for (int i = 0; i < 5000; ++i) {  // several blocks of the queue
-      const Vec2 p(rng.next1D() * (width + 2) - 1.f, rng.next1D() * (height + 2) - 1.f);
-      const float magnitude = std::ldexp(1.f, static_cast<int>(rng.next1D() * 40.f) - 20);
-      const Spectrum v(magnitude * rng.next1D(), magnitude, i % 97 == 0 ? -1.f : 0.5f);
-      const std::optional<size_t> pixel = filmPixel(p, width, height);
-      EXPECT_EQ(buffer.splat(p, v), isValidContribution(v));
-      if (!pixel || !isValidContribution(v)) continue;
-      for (int c = 0; c < 3; ++c) passSum[3 * *pixel + c] += v[c];
+    for (int item = 0; item < 3; ++item) {
+      for (int i = 0; i < 2000; ++i) {
+        const Vec2 p(rng.next1D() * (width + 2) - 1.f, rng.next1D() * (height + 2) - 1.f);
+        const float magnitude = std::ldexp(1.f, static_cast<int>(rng.next1D() * 40.f) - 20);
+        const Spectrum v(magnitude * rng.next1D(), magnitude, i % 97 == 0 ? -1.f : 0.5f);
+        const std::optional<size_t> pixel = filmPixel(p, width, height);
+        EXPECT_EQ(buffer.splat(p, v), isValidContribution(v));
+        if (!pixel || !isValidContribution(v)) continue;
+        for (int c = 0; c < 3; ++c) {
+          passSum[3 * *pixel + c] += v[c];
+          expectedDirect[3 * *pixel + c] += v[c];
+        }
+      }
+      SplatBuffer copy = buffer;
+      buffer.addTo(&sums, film, nullptr);
+      copy.addTo(nullptr, direct, nullptr);
     }
-    buffer.mergeInto(film);
+    sums.mergeInto(film);
     for (int i = 0; i < 3 * pixels; ++i) expected[i] += passSum[i];
   }
   // readout = splat sum x pixels / light subpaths: exactly the sum with as many subpaths as pixels.
   film.finishPass(1, pixels);
-  const Image img = film.readout();
+  direct.finishPass(1, pixels);
+  const Image img = film.readout(), imgDirect = direct.readout();
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
-      for (int c = 0; c < 3; ++c)
-        EXPECT_EQ(img.at(x, y)[c], static_cast<float>(expected[3 * (y * width + x) + c])) << x << "," << y;
-  // A merge after clear() adds nothing.
-  buffer.splat(Vec2(0.5f), Spectrum(1.f));
-  buffer.clear();
+      for (int c = 0; c < 3; ++c) {
+        const size_t i = 3 * static_cast<size_t>(y * width + x) + static_cast<size_t>(c);
+        EXPECT_EQ(img.at(x, y)[c], static_cast<float>(expected[i])) << x << "," << y;
+        EXPECT_EQ(imgDirect.at(x, y)[c], static_cast<float>(expectedDirect[i])) << x << "," << y;
+      }
+  // addTo empties the buffer, and SplatSums after clear() adds nothing.
   Film empty(width, height);
-  buffer.mergeInto(empty);
+  buffer.addTo(&sums, empty, nullptr);
+  buffer.splat(Vec2(0.5f), Spectrum(1.f));
+  buffer.addTo(&sums, empty, nullptr);
+  sums.clear();
+  sums.mergeInto(empty);
   empty.finishPass(1, pixels);
   EXPECT_EQ(empty.readout().at(0, 0), Vec3(0.f));
 }

@@ -3,7 +3,8 @@
 # 6), each in a build directory of its own, configured once like build/:
 #   - ASan + UBSan: every test but the long statistical renders, whose arithmetic the release
 #     suite already checks; the viewer's headless tests included (Mesa runs uninstrumented).
-#   - TSan: the tests where threads meet (progressive renderer, sessions, film) and the viewer's
+#   - TSan: the tests where threads meet (progressive renderer, its destruction mid-pass
+#     included; sessions, reproducible at any thread count; film) and the viewer's
 #     headless tests (`pathlab view --headless`: UI, render and scene loader threads; Mesa's
 #     llvmpipe runs uninstrumented, see tsan.supp), with TBB serial
 #     (tests/support/serial_tbb_under_tsan.cpp, linked into the test binaries and, under TSan, pathlab):
