@@ -1,3 +1,4 @@
+// `pathlab inspect`: the options, one sample replayed, its text and its JSON file.
 #include "app/inspect_command.h"
 
 #include "app/output_check.h"

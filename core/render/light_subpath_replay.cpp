@@ -1,3 +1,4 @@
+// LightSubpathReplay: a render's light subpaths walked again one by one, for the viewer's particles.
 #include "core/render/light_subpath_replay.h"
 
 #include "core/render/render_session.h"

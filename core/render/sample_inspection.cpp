@@ -1,3 +1,4 @@
+// inspectSample: one camera sample replayed with its trace, its splats on a scratch film.
 #include "core/render/sample_inspection.h"
 
 namespace pathlab {

@@ -1,3 +1,4 @@
+// replayRays: logged ray queries traced again through raw Embree, checked against the logged answers.
 #include "core/scene/ray_replay.h"
 
 #include "core/scene/embree_ray.h"
