@@ -122,8 +122,8 @@ template <bool kRecords>
 // 1.3 % more instructions per sample (callgrind; the loop's registers spill).
 template <bool kRecords, bool kTimed>
 [[gnu::noinline]] void BidirTracer::evaluate(int s, int t, const TechniqueUse& use, Vec2 pRaster,
-                                                         uint64_t connectionKey, Walks& walks, SampleSink& sink,
-                                                         Counters& counters) const {
+                                             uint64_t connectionKey, Walks& walks, SampleSink& sink,
+                                             Counters& counters) const {
   TechniqueTally<kTimed> tally(counters, Technique{s, t});
   const SinkDemand& demand = sink.demand();
   // The record the sink receives (kRecords); the image-only instance never fills it.
