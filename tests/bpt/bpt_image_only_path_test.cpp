@@ -242,7 +242,8 @@ TEST(ImageOnlyPath, TheKernelsDoorDropsInvalidContributions) {
     }
     const std::string name = std::to_string(c.x.s) + "," + std::to_string(c.x.t);
     EXPECT_TRUE(finite) << name << ": an invalid contribution reached a pixel estimate";
-    for (const double v : film.sums()[1]) ASSERT_TRUE(std::isfinite(v) && v >= 0.0) << name << ": a splat";
+    const auto sums = film.sums();  // the array of spans outlives the loop (a temporary would not)
+    for (const double v : sums[1]) ASSERT_TRUE(std::isfinite(v) && v >= 0.0) << name << ": a splat";
     const TechniqueCounters& tc = counters.technique(c.x);
     EXPECT_GT(tc.contributed, 50u) << name;
     // By its reason (an Inf factor times a zero channel is a NaN: isValidContribution's order).
