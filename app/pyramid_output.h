@@ -11,11 +11,14 @@ namespace pathlab::app {
 
 // Every file a pyramid of length L writes next to `output` (OUT.ext -> OUT-s0-t2.ext,
 // OUT-s0-t2-unweighted.ext, ..., OUT-pyramid.png, OUT-pyramid-unweighted.png).
-std::vector<std::string> pyramidPaths(const std::string& output, int length);
+// Merges (when `families` has them) as OUT-m-s2-t2.ext.
+std::vector<std::string> pyramidPaths(const std::string& output, int length,
+                                      TechniqueFamilies families = TechniqueFamilies::Connections);
 // Techniques up to `length` (at most the session's pyramid length).
 void writePyramid(const std::string& output, const RenderSession& session, float exposure, int length);
 
-// Tiles of one mosaic, row-major in (k, s) order, with a gap of `gap` pixels of value `background`.
+// Tiles of one mosaic by Technique::index() (an empty image: no tile), laid out by length (rows)
+// and Technique::slot() (columns), with a gap of `gap` pixels of value `background`.
 // labelValue > 0: each tile carries "(s,t) k=K" in its corner, drawn at that value.
 Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap = 4, float background = 0.02f,
                       float labelValue = 0.f);

@@ -171,9 +171,9 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   if (!p.replay && job.leader()) {
     checkOutput(o.output, o.force);
     if (p.pyramidOutput > 0)
-      for (const std::string& path : pyramidPaths(o.output, p.pyramidOutput)) checkOutput(path, o.force);
+      for (const std::string& path : pyramidPaths(o.output, p.pyramidOutput, pyramidFamilies(settings))) checkOutput(path, o.force);
     if (o.techniqueMaps > 0)
-      for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps)) checkOutput(path, o.force);
+      for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps, pyramidFamilies(settings))) checkOutput(path, o.force);
   }
 
   const auto loadStart = std::chrono::steady_clock::now();

@@ -1,6 +1,8 @@
 // Files of the technique maps: EXR of the values, PNG of the colours with their legends.
 #include "app/technique_maps_output.h"
 
+#include "core/sampling/technique_label.h"
+
 #include "app/pyramid_output.h"
 #include "core/film/image_io.h"
 #include "core/maps/map_colours.h"
@@ -22,13 +24,14 @@ std::string besideOutput(const std::string& output, const std::string& suffix) {
 }
 
 std::string dominantName(int k) { return k > 0 ? fmt::format("-dominant-k{}", k) : "-dominant"; }
-std::string techniqueName(const char* what, Technique x) { return fmt::format("-{}-s{}-t{}", what, x.s, x.t); }
+std::string techniqueName(const char* what, Technique x) { return fmt::format("-{}{}", what, techniqueFileTag(x)); }
 
 Image blank(int width, int height) {
   return Image{width, height, std::vector<float>(3 * static_cast<size_t>(width) * static_cast<size_t>(height), 0.f)};
 }
 
-// The EXR of the dominant map: (s, t, the winner's share); (-1, -1, 0) without light and
+// The EXR of the dominant map: (s, t, the winner's share) for a connection, (s, -t, share) for a
+// merge M(s, t) (s >= 2, so never confused with what follows); (-1, -1, 0) without light and
 // (-2, -2, share) for a tie.
 Image dominantValues(const DominantMap& m) {
   Image img = blank(m.width, m.height);
@@ -36,7 +39,7 @@ Image dominantValues(const DominantMap& m) {
     const int x = m.technique[i];
     const Technique tx = x >= 0 ? Technique::fromIndex(static_cast<size_t>(x)) : Technique{x, x};
     img.rgb[3 * i] = static_cast<float>(tx.s);
-    img.rgb[3 * i + 1] = static_cast<float>(tx.t);
+    img.rgb[3 * i + 1] = static_cast<float>(x >= 0 && tx.isMerge() ? -tx.t : tx.t);
     img.rgb[3 * i + 2] = m.share[i];
   }
   return img;
@@ -60,14 +63,15 @@ Image cannotSampleValues(const CannotSampleMap& m) {
   return img;
 }
 
-// The tiles in the pyramid's layout (rows: length, columns: s), each labelled "(s,t)".
-Image labelledMosaic(const std::vector<Image>& tiles, int length) {
+// The tiles (by Technique::index()) in the pyramid's layout (rows: length, columns: slot), each
+// labelled "(s,t)" or "M(s,t)".
+Image labelledMosaic(const std::vector<Image>& tiles, int length, TechniqueFamilies families) {
   constexpr int kGap = 4;
   Image m = techniqueMosaic(tiles, length, kGap, 0.12f);
   const int w = tiles.front().width, h = tiles.front().height;
-  for (const Technique x : techniquesUpTo(length)) {
-    const int x0 = kGap + x.s * (w + kGap) + 3, y0 = kGap + (x.length() - 1) * (h + kGap) + 3;
-    const std::string label = fmt::format("({},{})", x.s, x.t);
+  for (const Technique x : techniquesUpTo(length, families)) {
+    const int x0 = kGap + x.slot() * (w + kGap) + 3, y0 = kGap + (x.length() - 1) * (h + kGap) + 3;
+    const std::string label = techniqueLabel(x);
     drawText(m, x0 + 1, y0 + 1, label, Vec3(0.f));
     drawText(m, x0, y0, label, Vec3(1.f));
   }
@@ -76,12 +80,13 @@ Image labelledMosaic(const std::vector<Image>& tiles, int length) {
 
 }  // namespace
 
-std::vector<std::string> techniqueMapPaths(const std::string& output, int length) {
+std::vector<std::string> techniqueMapPaths(const std::string& output, int length, TechniqueFamilies families) {
   std::vector<std::string> paths;
   for (int k = 0; k <= length; ++k)
     for (const char* ext : {".exr", ".png"}) paths.push_back(besideOutput(output, dominantName(k) + ext));
   for (const char* what : {"share", "cannot"})
-    for (const Technique x : techniquesUpTo(length)) paths.push_back(besideOutput(output, techniqueName(what, x) + ".exr"));
+    for (const Technique x : techniquesUpTo(length, families))
+      paths.push_back(besideOutput(output, techniqueName(what, x) + ".exr"));
   paths.push_back(besideOutput(output, "-share.png"));
   paths.push_back(besideOutput(output, "-cannot-sample.png"));
   return paths;
@@ -96,19 +101,19 @@ void writeTechniqueMaps(const std::string& output, const RenderSession& session,
     writeImage(besideOutput(output, dominantName(k) + ".png"),
                displayToLinear(withDominantLegend(dominantColours(m), m, title)));
   }
-  std::vector<Image> shares, cannot;
-  for (const Technique x : techniquesUpTo(length)) {
+  std::vector<Image> shares(Technique::countUpTo(length)), cannot(shares.size());
+  for (const Technique x : techniquesUpTo(length, lum.families)) {
     const std::vector<float> share = shareMap(lum, x);
     writeImage(besideOutput(output, techniqueName("share", x) + ".exr"), grey(share, lum.width, lum.height));
-    shares.push_back(shareColours(share, lum.width, lum.height));
+    shares[x.index()] = shareColours(share, lum.width, lum.height);
     const CannotSampleMap c = cannotSampleMap(lum, x);
     writeImage(besideOutput(output, techniqueName("cannot", x) + ".exr"), cannotSampleValues(c));
-    cannot.push_back(cannotSampleColours(c));
+    cannot[x.index()] = cannotSampleColours(c);
   }
   writeImage(besideOutput(output, "-share.png"),
-             displayToLinear(withShareBar(labelledMosaic(shares, length), "of the image", false)));
+             displayToLinear(withShareBar(labelledMosaic(shares, length, lum.families), "of the image", false)));
   writeImage(besideOutput(output, "-cannot-sample.png"),
-             displayToLinear(withShareBar(labelledMosaic(cannot, length), "of its length", true)));
+             displayToLinear(withShareBar(labelledMosaic(cannot, length, lum.families), "of its length", true)));
 }
 
 }  // namespace pathlab::app

@@ -4,6 +4,7 @@
 
 #include "core/bpt/path_vertex.h"
 #include "core/math/types.h"
+#include "core/sampling/technique.h"
 
 #include <cstdint>
 #include <vector>
@@ -14,6 +15,8 @@ namespace pathlab {
 // inspector's "one path, every technique"; techniquesOnPath, path_techniques.h).
 struct TechniqueOnPath {
   int s = 0, t = 1;
+  TechniqueKind kind = TechniqueKind::Connection;
+  Technique technique() const { return Technique{s, t, kind}; }
   bool possible = false;  // the technique can sample this path (sampleableTechniques)
   bool enabled = false;
   // p_{s',t'}(x) in area measure: the product over the path's vertices of the density each was
@@ -58,6 +61,8 @@ enum class TechniqueOutcome : uint8_t {
 
 struct TechniqueResult {
   int s = 0, t = 1;
+  TechniqueKind kind = TechniqueKind::Connection;
+  Technique technique() const { return Technique{s, t, kind}; }
   TechniqueOutcome outcome = TechniqueOutcome::Zero;
   Spectrum unweighted{0.f};  // connect(s, t)'s contribution (zero unless Contributed)
   float weight = 0.f;        // its MIS weight among the enabled techniques (0 if disabled)
@@ -67,14 +72,15 @@ struct TechniqueResult {
   Vec2 pRaster{0.f};       // where it lands: the sample's own pixel, or the splat position (t = 1)
   bool inImage = false;    // reaches the image (enabled, or the isolated technique)
   bool inPyramid = false;  // goes to the technique pyramid
-  // Contributed results, when an output asks (SampleOutputs::wantsSampleable): bit s' set when
-  // technique (s', s + t - s') could have sampled this same path (sampleableTechniques, mis.h).
+  // Contributed results, when an output asks (SampleOutputs::wantsSampleable): bit r set when the
+  // technique at slot r of this length (Technique::slot(); r = s' for the connection (s', k + 1 - s'))
+  // could have sampled this same path (sampleableTechniques, mis.h).
   uint64_t sampleableBy = 0;
-  // With sampleableBy: p_{s'} / p_s of this path for s' = 0..s+t-1 (techniqueDensityRatios, mis.h),
-  // in the kernel's scratch; valid only while the outputs consume the result.
+  // With sampleableBy: p_{r} / p_{own} of this path for every slot r of its length
+  // (techniqueDensityRatios, mis.h), in the kernel's scratch; valid only while the outputs consume it.
   const double* densityRatios = nullptr;
-  // For the replay trace: this path under every technique of its length (techniquesOnPath), in
-  // the kernel's scratch; valid only while the outputs consume the result.
+  // For the replay trace: this path under every technique of its length (techniquesOnPath), by
+  // slot, in the kernel's scratch; valid only while the outputs consume the result.
   const std::vector<TechniqueOnPath>* onPath = nullptr;
   // For the replay trace: the path this technique formed (also when blocked), in the kernel's
   // scratch; null when it formed none or no output asked.

@@ -1,6 +1,8 @@
 // TechniqueSet: rules and listed techniques kept canonical, the SPEC parser and printer.
 #include "core/bpt/technique_set.h"
 
+#include "core/sampling/technique_label.h"
+
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -54,8 +56,6 @@ int parseInt(const std::string& text, const std::string& item) {
   return v;
 }
 
-std::string name(Technique x) { return "(" + std::to_string(x.s) + "," + std::to_string(x.t) + ")"; }
-
 void checkRange(int v, int lo, const char* what, const std::string& item) {
   if (v < lo || v > kMaxTechniqueLength)
     throw std::invalid_argument("techniques: '" + item + "': need " + std::to_string(lo) + " <= " + what +
@@ -91,13 +91,24 @@ TechniqueSet TechniqueSet::ofLength(int k) {
   return set;
 }
 
+TechniqueSet TechniqueSet::mergesOfLength(int k) {
+  checkRange(k, 2, "k", "m=" + std::to_string(k));
+  TechniqueSet set;
+  for (Technique x : techniquesOfLength(k, TechniqueFamilies::Merges)) setBit(set.listed_, x.index());
+  return set;
+}
+
 TechniqueSet TechniqueSet::pathTracing() { return withS(0) | withS(1); }
 
 TechniqueSet TechniqueSet::lightTracing() { return withT(1); }
 
 void TechniqueSet::normalise() {
-  if (all_) {
-    sRule_.clear(), tRule_.clear(), listed_.clear();
+  if (all_) {  // every connection: only listed merges remain to say
+    sRule_.clear(), tRule_.clear();
+    forEachBit(listed_, [&](size_t i) {
+      if (!Technique::fromIndex(i).isMerge()) clearBit(listed_, i);
+    });
+    trim(listed_);
     return;
   }
   trim(sRule_), trim(tRule_);
@@ -110,7 +121,7 @@ void TechniqueSet::normalise() {
 
 void TechniqueSet::enable(Technique x) {
   if (!x.valid() || x.length() > kMaxTechniqueLength)
-    throw std::invalid_argument("techniques: " + name(x) + " is not a technique of length 1.." +
+    throw std::invalid_argument("techniques: " + techniqueLabel(x) + " is not a technique of length 1.." +
                                 std::to_string(kMaxTechniqueLength));
   if (!coveredByRule(x)) setBit(listed_, x.index());
 }
@@ -123,15 +134,19 @@ void TechniqueSet::disable(Technique x, int maxLength) {
 }
 
 void TechniqueSet::disable(const TechniqueSet& group, int maxLength) {
-  if (group.all_) {
-    *this = TechniqueSet();
+  if (group.all_) {  // every connection goes; the merges the group does not list stay
+    TechniqueSet r;
+    forEachBit(listed_, [&](size_t i) {
+      if (const Technique x = Technique::fromIndex(i); x.isMerge() && !group.contains(x)) setBit(r.listed_, i);
+    });
+    *this = r;
     return;
   }
   if (all_ && !group.empty()) *this = upTo(maxLength);
   forEachBit(group.sRule_, [&](size_t s) { clearBit(sRule_, s); });
   forEachBit(group.tRule_, [&](size_t t) { clearBit(tRule_, t); });
   normalise();
-  for (const Technique x : techniquesUpTo(maxLength))
+  for (const Technique x : techniquesUpTo(maxLength, TechniqueFamilies::All))
     if (group.contains(x)) disable(x, maxLength);
 }
 
@@ -149,8 +164,18 @@ TechniqueSet& TechniqueSet::operator|=(const TechniqueSet& o) {
 }
 
 TechniqueSet operator&(const TechniqueSet& a, const TechniqueSet& b) {
-  if (a.all_) return b;
-  if (b.all_) return a;
+  // "all" is every connection and the merges it lists: with it, the other set keeps its connections
+  // and the merges both list.
+  auto withAll = [](const TechniqueSet& allSet, const TechniqueSet& other) {
+    TechniqueSet r = other;
+    forEachBit(other.listed_, [&](size_t i) {
+      if (const Technique x = Technique::fromIndex(i); x.isMerge() && !allSet.contains(x)) clearBit(r.listed_, i);
+    });
+    r.normalise();
+    return r;
+  };
+  if (a.all_) return withAll(a, b);
+  if (b.all_) return withAll(b, a);
   TechniqueSet r;
   auto intersect = [](const TechniqueSet::Bits& x, const TechniqueSet::Bits& y) {
     TechniqueSet::Bits out(std::min(x.size(), y.size()));
@@ -181,11 +206,8 @@ TechniqueSet TechniqueSet::upTo(int maxLength) const {
   TechniqueSet r;
   if (maxLength < 1) return r;
   const size_t end = Technique::countUpTo(maxLength);
-  if (all_) {
-    r.listed_.assign((end + 63) / 64, ~uint64_t{0});
-    if (end % 64) r.listed_.back() = (uint64_t{1} << (end % 64)) - 1;
-    return r;
-  }
+  if (all_)  // every connection, then the listed merges below
+    for (const Technique x : techniquesUpTo(maxLength)) setBit(r.listed_, x.index());
   forEachBit(listed_, [&](size_t i) {
     if (i < end) setBit(r.listed_, i);
   });
@@ -213,7 +235,7 @@ TechniqueSet TechniqueSet::fittedTo(int maxLength) const {
 void TechniqueSet::checkFits(int maxLength) const {
   if (const size_t end = bitEnd(listed_); end > Technique::countUpTo(maxLength)) {
     const Technique x = Technique::fromIndex(end - 1);
-    throw std::invalid_argument("techniques: " + name(x) + " has length " + std::to_string(x.length()) +
+    throw std::invalid_argument("techniques: " + techniqueLabel(x) + " has length " + std::to_string(x.length()) +
                                 ", more than the maximum length " + std::to_string(maxLength));
   }
   if (!anyUpTo(maxLength))
@@ -221,7 +243,6 @@ void TechniqueSet::checkFits(int maxLength) const {
 }
 
 int TechniqueSet::count(int maxLength) const {
-  if (all_) return static_cast<int>(Technique::countUpTo(std::max(maxLength, 0)));
   int n = 0;
   for (uint64_t word : upTo(maxLength).listed_) n += std::popcount(word);
   return n;
@@ -237,23 +258,30 @@ bool TechniqueSet::anyUpTo(int maxLength) const {
   return any;
 }
 
-bool TechniqueSet::containsAllUpTo(int maxLength) const {
-  return all_ || count(maxLength) == static_cast<int>(Technique::countUpTo(std::max(maxLength, 0)));
+bool TechniqueSet::containsAllUpTo(int maxLength, TechniqueFamilies families) const {
+  const TechniqueRange range = techniquesUpTo(maxLength, families);
+  if (all_ && families == TechniqueFamilies::Connections) return true;
+  return std::all_of(range.begin(), range.end(), [&](Technique x) { return contains(x); });
+}
+
+TechniqueFamilies TechniqueSet::families() const {
+  unsigned f = all_ || !sRule_.empty() || !tRule_.empty() ? 1u : 0u;
+  forEachBit(listed_, [&](size_t i) { f |= 1u << static_cast<unsigned>(Technique::fromIndex(i).kind); });
+  return static_cast<TechniqueFamilies>(f);
 }
 
 std::vector<int> TechniqueSet::uncoveredLengths(int maxLength) const {
   std::vector<int> out;
   if (all_) return out;
   for (int k = 1; k <= maxLength; ++k) {
-    const TechniqueRange row = techniquesOfLength(k);
+    const TechniqueRange row = techniquesOfLength(k, TechniqueFamilies::All);
     if (std::none_of(row.begin(), row.end(), [&](Technique x) { return contains(x); })) out.push_back(k);
   }
   return out;
 }
 
 std::string TechniqueSet::toString() const {
-  if (all_) return "all";
-  std::string out;
+  std::string out = all_ ? "all" : "";
   auto item = [&](const std::string& text) { out += (out.empty() ? "" : ";") + text; };
   forEachBit(sRule_, [&](size_t s) { item("s=" + std::to_string(s)); });
   forEachBit(tRule_, [&](size_t t) { item("t=" + std::to_string(t)); });
@@ -267,6 +295,17 @@ std::string TechniqueSet::toString() const {
     }
     for (Technique x : row)
       if (test(listed_, x.index())) item(std::to_string(x.s) + "," + std::to_string(x.t));
+  }
+  // Then the merges, by length: "m=K" for all of a length's, else "MS,T" one by one.
+  for (int k = 2; end > 0 && k <= Technique::fromIndex(end - 1).length(); ++k) {
+    const TechniqueRange row = techniquesOfLength(k, TechniqueFamilies::Merges);
+    if (std::none_of(row.begin(), row.end(), [&](Technique x) { return test(listed_, x.index()); })) continue;
+    if (std::all_of(row.begin(), row.end(), [&](Technique x) { return test(listed_, x.index()); })) {
+      item("m=" + std::to_string(k));
+      continue;
+    }
+    for (Technique x : row)
+      if (test(listed_, x.index())) item("M" + std::to_string(x.s) + "," + std::to_string(x.t));
   }
   return out;
 }
@@ -286,15 +325,24 @@ TechniqueSet TechniqueSet::parse(const std::string& spec) {
       const int v = parseInt(item.substr(2), item);
       checkRange(v, item[0] == 's' ? 0 : 1, item.substr(0, 1).c_str(), item);
       set |= item[0] == 's' ? withS(v) : item[0] == 't' ? withT(v) : ofLength(v);
+    } else if (item.size() > 2 && item[0] == 'm' && item[1] == '=') {
+      const int v = parseInt(item.substr(2), item);
+      checkRange(v, 2, "k", item);
+      set |= mergesOfLength(v);
     } else if (const size_t comma = item.find(','); comma != std::string::npos) {
-      const Technique x{parseInt(item.substr(0, comma), item), parseInt(item.substr(comma + 1), item)};
+      const bool merge = item[0] == 'M';
+      const size_t from = merge ? 1 : 0;
+      const Technique x{parseInt(item.substr(from, comma - from), item), parseInt(item.substr(comma + 1), item),
+                        merge ? TechniqueKind::Merge : TechniqueKind::Connection};
+      if (merge && (x.s < 2 || x.t < 2))
+        throw std::invalid_argument("techniques: '" + item + "': a merge needs s >= 2 and t >= 2");
       if (x.s < 0 || x.t < 1) throw std::invalid_argument("techniques: '" + item + "': need s >= 0 and t >= 1");
       if (!x.valid() || x.length() > kMaxTechniqueLength)
         throw std::invalid_argument("techniques: '" + item + "' is not a technique of length 1.." +
                                     std::to_string(kMaxTechniqueLength));
       set.enable(x);
     } else {
-      throw std::invalid_argument("techniques: '" + item + "' is not S,T, s=S, t=T, k=K or all");
+      throw std::invalid_argument("techniques: '" + item + "' is not S,T, MS,T, s=S, t=T, k=K, m=K or all");
     }
     if (end == spec.size()) break;
   }

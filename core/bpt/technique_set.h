@@ -1,5 +1,5 @@
-// The set of enabled bidirectional sampling techniques (s, t) (core/sampling/technique.h) as a
-// value: compared with ==, parsed from a SPEC only at the edges (CLI, the viewer's text field,
+// The set of enabled path sampling techniques, connections C(s, t) and merges M(s, t)
+// (core/sampling/technique.h), as a value: compared with ==, parsed from a SPEC only at the edges (CLI, the viewer's text field,
 // presets, converge configurations) and printed back in one canonical form.
 #pragma once
 
@@ -20,6 +20,9 @@ namespace pathlab {
 // techniques that no longer fit, ui/estimator/technique_grid.h, since a listed technique longer than the
 // maximum is refused by validateSettings.)
 //
+// The rules name connections only ("all" is every connection, what `--integrator bpt` samples);
+// merges are listed ("MS,T", or "m=K" for every merge of length K).
+//
 // The representation is canonical (rules as bitsets over s and over t, listed techniques that no
 // rule already covers as a bitset over Technique::index(), no trailing zero words), so two sets
 // are == exactly when they contain the same techniques: "k=1" equals "0,2;1,1", and
@@ -31,15 +34,16 @@ class TechniqueSet {
   static TechniqueSet all();
   static TechniqueSet withS(int s);       // s = S at every length (S >= 0)
   static TechniqueSet withT(int t);       // t = T at every length (T >= 1)
-  static TechniqueSet ofLength(int k);    // the k + 1 techniques of length k (k >= 1)
+  static TechniqueSet ofLength(int k);    // the k + 1 connections of length k (k >= 1)
+  static TechniqueSet mergesOfLength(int k);  // the k - 1 merges of length k (k >= 2)
   // The path tracer's two techniques, s <= 1: the camera subpath hits an emitter (s = 0) or
   // connects to a light sample (s = 1, next-event estimation).
   static TechniqueSet pathTracing();
   // Light tracing, t = 1: light subpaths connected to the camera and splatted on the film.
   static TechniqueSet lightTracing();
 
-  // SPEC: ';'-separated items "S,T", "s=S", "t=T", "k=K" (every technique of length K), "all";
-  // their union. Throws std::invalid_argument naming the item on bad input or an empty SPEC.
+  // SPEC: ';'-separated items "S,T", "s=S", "t=T", "k=K" (every connection of length K), "all"
+  // (every connection), "MS,T" (a merge), "m=K" (every merge of length K); their union. Throws std::invalid_argument naming the item on bad input or an empty SPEC.
   // Lengths are checked against a maximum only by checkFits.
   static TechniqueSet parse(const std::string& spec);
 
@@ -49,7 +53,9 @@ class TechniqueSet {
     return test(listed_, Technique{s, t}.index()) || test(sRule_, static_cast<size_t>(s)) ||
            test(tRule_, static_cast<size_t>(t));
   }
-  bool contains(Technique x) const { return contains(x.s, x.t); }
+  bool contains(Technique x) const {
+    return x.isMerge() ? x.valid() && test(listed_, x.index()) : contains(x.s, x.t);
+  }
 
   // Adds one technique; throws std::invalid_argument when it is not valid or longer than
   // kMaxTechniqueLength.
@@ -75,9 +81,12 @@ class TechniqueSet {
   void checkFits(int maxLength) const;
 
   bool empty() const { return *this == TechniqueSet(); }
-  int count(int maxLength) const;  // techniques of length 1..maxLength in the set
+  int count(int maxLength) const;  // techniques of length 1..maxLength in the set, of every family
   bool anyUpTo(int maxLength) const;
-  bool containsAllUpTo(int maxLength) const;
+  // Every technique of length 1..maxLength of those families.
+  bool containsAllUpTo(int maxLength, TechniqueFamilies families = TechniqueFamilies::Connections) const;
+  // The families the set has a technique of (at any length): what the tables must be made for.
+  TechniqueFamilies families() const;
   // Lengths 1..maxLength that no technique of the set can sample (their light is missing).
   std::vector<int> uncoveredLengths(int maxLength) const;
 
@@ -92,6 +101,7 @@ class TechniqueSet {
   using Bits = std::vector<uint64_t>;
   static bool test(const Bits& bits, size_t i) { return i / 64 < bits.size() && (bits[i / 64] >> (i % 64)) & 1u; }
   bool coveredByRule(Technique x) const {
+    if (x.isMerge()) return false;
     return all_ || test(sRule_, static_cast<size_t>(x.s)) || test(tRule_, static_cast<size_t>(x.t));
   }
   void normalise();

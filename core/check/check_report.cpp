@@ -1,6 +1,8 @@
 // checkReport: pairwise z-scores, the lower median per technique and region, Holm over techniques.
 #include "core/check/check_report.h"
 
+#include "core/sampling/technique_label.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -79,7 +81,7 @@ CheckReport checkReport(const TechniqueCheck& check, const CheckOptions& options
   report.passes = check.passes();
   report.blocks = check.blocks();
   const int regions = check.regions(), whole = TechniqueCheck::wholeImage(check.blocks());
-  for (const Technique x : techniquesUpTo(check.maxLength())) {
+  for (const Technique x : techniquesUpTo(check.maxLength(), check.families())) {
     if (!check.enabled(x)) continue;
     TechniqueVerdict v;
     v.technique = x;
@@ -89,7 +91,7 @@ CheckReport checkReport(const TechniqueCheck& check, const CheckOptions& options
     // s = 0 nothing to share, and such a partner does not count toward the two comparisons a
     // region needs.
     int sharing = 0;
-    for (const Technique j : techniquesOfLength(k)) {
+    for (const Technique j : techniquesOfLength(k, check.families())) {
       if (j == x || !check.enabled(j)) continue;
       ++v.partners;
       const PairSums whole = check.pair(x, j, TechniqueCheck::wholeImage(check.blocks()));
@@ -99,7 +101,7 @@ CheckReport checkReport(const TechniqueCheck& check, const CheckOptions& options
     double worst = -1.0;
     for (int region = 0; region < regions; ++region) {
       std::vector<PairComparison> pairs;
-      for (const Technique j : techniquesOfLength(k)) {
+      for (const Technique j : techniquesOfLength(k, check.families())) {
         if (j == x || !check.enabled(j)) continue;
         const PairSums p = check.pair(x, j, region);
         sharesPaths |= p.nonzeroA > 0 || p.nonzeroB > 0;
@@ -155,7 +157,7 @@ std::string regionName(int region, int blocks) {
   return fmt::format("block ({},{})", region % blocks, region / blocks);
 }
 
-std::string techniqueName(Technique x) { return fmt::format("({},{})", x.s, x.t); }
+std::string techniqueName(Technique x) { return techniqueLabel(x); }
 
 }  // namespace
 

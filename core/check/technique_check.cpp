@@ -7,14 +7,15 @@
 
 namespace pathlab {
 
-TechniqueCheck::TechniqueCheck(int width, int height, int maxLength, int blocks)
-    : width_(width), height_(height), maxLength_(maxLength), blocks_(blocks) {
-  if (width < 1 || height < 1 || maxLength < 1 || maxLength > 62 /* a bit per technique of a length: kSampleableBits */ || blocks < 1 || blocks > 64)
+TechniqueCheck::TechniqueCheck(int width, int height, int maxLength, int blocks, TechniqueFamilies families)
+    : width_(width), height_(height), maxLength_(maxLength), blocks_(blocks), families_(families) {
+  // sampleableBy has a bit per slot of a length: slots(maxLength) <= 63.
+  if (width < 1 || height < 1 || maxLength < 1 || maxLength > 62 || slots(maxLength) > 63 || blocks < 1 || blocks > 64)
     throw std::invalid_argument("TechniqueCheck: bad size, length or blocks");
   enabled_.assign(Technique::countUpTo(maxLength), 0);
   firstPair_.assign(static_cast<size_t>(maxLength) + 2, 0);
   for (int k = 1; k <= maxLength; ++k)
-    firstPair_[static_cast<size_t>(k) + 1] = firstPair_[static_cast<size_t>(k)] + static_cast<size_t>((k + 1) * (k + 1));
+    firstPair_[static_cast<size_t>(k) + 1] = firstPair_[static_cast<size_t>(k)] + static_cast<size_t>(slots(k) * slots(k));
   pairCount_ = firstPair_[static_cast<size_t>(maxLength) + 1];
   blockPixels_.resize(static_cast<size_t>(blocks * blocks));
   for (int b = 0; b < blocks * blocks; ++b) {
@@ -28,7 +29,7 @@ TechniqueCheck::TechniqueCheck(int width, int height, int maxLength, int blocks)
 
 size_t TechniqueCheck::pairIndex(Technique i, Technique j) const {
   const int k = i.length();
-  return firstPair_[static_cast<size_t>(k)] + static_cast<size_t>(i.s * (k + 1) + j.s);
+  return firstPair_[static_cast<size_t>(k)] + static_cast<size_t>(i.slot() * slots(k) + j.slot());
 }
 
 int TechniqueCheck::blockOf(Vec2 p) const {
@@ -54,9 +55,9 @@ void TechniqueCheck::PassSums::add(Technique x, Vec2 pRaster, float luminance, u
   const size_t block = static_cast<size_t>(c.blockOf(pRaster));
   const size_t blocks = static_cast<size_t>(c.blocks_ * c.blocks_);
   const double v = luminance, v2 = v * v;
-  for (int sp = 0; sp <= k; ++sp) {
-    const Technique partner{sp, k + 1 - sp};
-    if (sp == x.s || !((sampleableBy >> sp) & 1u) || !c.enabled(partner)) continue;
+  for (const Technique partner : techniquesOfLength(k, c.families_)) {
+    const int sp = partner.slot();
+    if (partner == x || !((sampleableBy >> sp) & 1u) || !c.enabled(partner)) continue;
     double* a = &a_[3 * (c.pairIndex(x, partner) * blocks + block)];
     a[0] += v;
     a[1] += v2;
@@ -93,15 +94,14 @@ void TechniqueCheck::finishPass(std::vector<PassSums*> threads) {
     p.ownB2 += b.own2 / (n * n), p.crossB2 += a.cross2 / (n * n);
     // A camera-side technique has one sample per pixel of the region, light tracing one light
     // subpath per pixel of the image, wherever it lands.
-    p.samplesA = i.t == 1 ? pixels : n;
-    p.samplesB = j.t == 1 ? pixels : n;
+    p.samplesA = i.t == 1 && !i.isMerge() ? pixels : n;
+    p.samplesB = j.t == 1 && !j.isMerge() ? pixels : n;
     p.pixels = n;
   };
   for (int k = 1; k <= maxLength_; ++k)
-    for (int si = 0; si <= k; ++si)
-      for (int sj = si + 1; sj <= k; ++sj) {
-        const Technique i{si, k + 1 - si}, j{sj, k + 1 - sj};
-        if (!enabled(i) || !enabled(j)) continue;
+    for (const Technique i : techniquesOfLength(k, families_))
+      for (const Technique j : techniquesOfLength(k, families_)) {
+        if (j.slot() <= i.slot() || !enabled(i) || !enabled(j)) continue;
         const size_t ij = pairIndex(i, j), ji = pairIndex(j, i);
         Values totalA, totalB;
         for (int b = 0; b < blocks; ++b) {

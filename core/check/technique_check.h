@@ -46,12 +46,13 @@ struct PairSums {
 
 class TechniqueCheck {
  public:
-  // `enabled(s, t)` decides which techniques are compared; lengths 1..maxLength (at most 62:
-  // TechniqueResult::sampleableBy has a bit per technique of a length).
+  // `enabled(x)` decides which techniques of `families` are compared; lengths 1..maxLength (at
+  // most 62 connections, 31 with merges: TechniqueResult::sampleableBy has a bit per slot of a length).
   template <class Enabled>
-  TechniqueCheck(int width, int height, int maxLength, int blocks, Enabled enabled)
-      : TechniqueCheck(width, height, maxLength, blocks) {
-    for (const Technique x : techniquesUpTo(maxLength)) enabled_[x.index()] = enabled(x.s, x.t) ? 1 : 0;
+  TechniqueCheck(int width, int height, int maxLength, int blocks, Enabled enabled,
+                 TechniqueFamilies families = TechniqueFamilies::Connections)
+      : TechniqueCheck(width, height, maxLength, blocks, families) {
+    for (const Technique x : techniquesUpTo(maxLength, families)) enabled_[x.index()] = enabled(x) ? 1 : 0;
   }
 
   // One render thread's sums over one pass (no sharing, no atomics).
@@ -60,7 +61,7 @@ class TechniqueCheck {
     explicit PassSums(const TechniqueCheck& check) : check_(&check), a_(check.passValues(), 0.0) {}
     // A contributed technique result: its unweighted contribution's luminance, where it lands and
     // the techniques able to sample the same path (TechniqueResult::sampleableBy).
-    // densityRatios[s'] = p_{s'} / p_s of the path (TechniqueResult::densityRatios).
+    // densityRatios[r] = p_r / p_x of the path for the technique at slot r (TechniqueResult::densityRatios).
     void add(Technique x, Vec2 pRaster, float luminance, uint64_t sampleableBy, const double* densityRatios);
     void clear() { std::fill(a_.begin(), a_.end(), 0.0); }
 
@@ -76,6 +77,7 @@ class TechniqueCheck {
   void finishPass(std::vector<PassSums*> threads);
 
   int maxLength() const { return maxLength_; }
+  TechniqueFamilies families() const { return families_; }
   int blocks() const { return blocks_; }
   int regions() const { return blocks_ * blocks_ + 1; }  // the blocks, row by row, then the whole image
   static int wholeImage(int blocks) { return blocks * blocks; }
@@ -88,11 +90,14 @@ class TechniqueCheck {
   void blockBounds(int block, int& x0, int& y0, int& x1, int& y1) const;
 
  private:
-  TechniqueCheck(int width, int height, int maxLength, int blocks);
+  TechniqueCheck(int width, int height, int maxLength, int blocks, TechniqueFamilies families);
+  // Techniques of length k in the families checked: the pairs of a length are slots(k)^2.
+  int slots(int k) const { return covers(families_, TechniqueKind::Merge) ? 2 * k : k + 1; }
   size_t pairIndex(Technique i, Technique j) const;  // over all lengths
   size_t passValues() const { return 3 * pairCount_ * static_cast<size_t>(blocks_ * blocks_); }
 
   int width_, height_, maxLength_, blocks_;
+  TechniqueFamilies families_;
   std::vector<uint8_t> enabled_;  // by Technique::index
   std::vector<size_t> firstPair_;  // by length: the first ordered pair (s_i, s_j) of length k
   size_t pairCount_ = 0;

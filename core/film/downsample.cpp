@@ -35,11 +35,12 @@ Image downsample(const Image& image, int maxSide) {
   return out;
 }
 
-std::vector<TechniqueThumbnail> techniqueThumbnails(int maxLength, int maxSide, const TechniqueImageSource& image) {
+std::vector<TechniqueThumbnail> techniqueThumbnails(int maxLength, int maxSide, const TechniqueImageSource& image,
+                                                    TechniqueFamilies families) {
   std::vector<TechniqueThumbnail> thumbnails;
-  thumbnails.reserve(Technique::countUpTo(maxLength));
-  for (const Technique x : techniquesUpTo(maxLength))
-    thumbnails.push_back({x.s, x.t, downsample(image(x, false), maxSide), downsample(image(x, true), maxSide)});
+  thumbnails.reserve(Technique::countUpTo(maxLength, families));
+  for (const Technique x : techniquesUpTo(maxLength, families))
+    thumbnails.push_back({x.s, x.t, x.kind, downsample(image(x, false), maxSide), downsample(image(x, true), maxSide)});
   return thumbnails;
 }
 

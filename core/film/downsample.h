@@ -18,12 +18,15 @@ Image downsample(const Image& image, int maxSide);
 // downsampled.
 struct TechniqueThumbnail {
   int s = 0, t = 1;
+  TechniqueKind kind = TechniqueKind::Connection;
+  Technique technique() const { return Technique{s, t, kind}; }
   Image weighted, unweighted;
 };
 
-// Every technique up to maxLength in Technique::index() order, the weighted then the unweighted
+// Every technique of `families` up to maxLength in Technique::index() order, the weighted then the unweighted
 // image(technique, unweighted) of each downsampled to at most maxSide pixels on the longer side.
 using TechniqueImageSource = std::function<Image(Technique technique, bool unweighted)>;
-std::vector<TechniqueThumbnail> techniqueThumbnails(int maxLength, int maxSide, const TechniqueImageSource& image);
+std::vector<TechniqueThumbnail> techniqueThumbnails(int maxLength, int maxSide, const TechniqueImageSource& image,
+                                                    TechniqueFamilies families = TechniqueFamilies::Connections);
 
 }  // namespace pathlab

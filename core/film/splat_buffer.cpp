@@ -10,7 +10,7 @@ void SplatBuffer::addTo(SplatSums* sums, Film& film, TechniqueFilms* pyramid) {
     film.addSplats(image_);
   }
   if (pyramid) {
-    for (const TechniqueSplat& x : technique_) pyramid->add(x.s, 1, x.pRaster, x.weighted, x.unweighted);
+    for (const TechniqueSplat& x : technique_) pyramid->add(Technique{x.s, 1}, x.pRaster, x.weighted, x.unweighted);
     for (const SampleableSplat& x : sampleable_) pyramid->addSampleable(x.k, x.sampleableBy, x.pRaster, true, x.weightedLuminance);
   }
   clear();

@@ -6,17 +6,22 @@
 
 namespace pathlab {
 
-uint64_t TechniqueFilms::bytesFor(int width, int height, int maxLength, bool sampleable) {
+uint64_t TechniqueFilms::bytesFor(int width, int height, int maxLength, bool sampleable, TechniqueFamilies families) {
   const uint64_t valuesPerPixel = 2 * 3 + (sampleable ? 2 : 0);
-  return Technique::countUpTo(maxLength) * valuesPerPixel * sizeof(double) * static_cast<uint64_t>(width) *
+  return Technique::countUpTo(maxLength, families) * valuesPerPixel * sizeof(double) * static_cast<uint64_t>(width) *
          static_cast<uint64_t>(height);
 }
 
-TechniqueFilms::TechniqueFilms(int width, int height, int maxLength, bool sampleable)
-    : width_(width), height_(height), maxLength_(maxLength) {
+TechniqueFilms::TechniqueFilms(int width, int height, int maxLength, bool sampleable, TechniqueFamilies families)
+    : width_(width), height_(height), maxLength_(maxLength), families_(families) {
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-  buffers_.assign(2 * Technique::countUpTo(maxLength), std::vector<double>(3 * pixels, 0.0));
-  if (sampleable) sampleable_.assign(2 * Technique::countUpTo(maxLength), std::vector<double>(pixels, 0.0));
+  buffers_.resize(2 * Technique::countUpTo(maxLength));
+  if (sampleable) sampleable_.resize(2 * Technique::countUpTo(maxLength));
+  for (const Technique x : techniquesUpTo(maxLength, families))
+    for (const bool second : {false, true}) {
+      buffers_[buffer(x, second)].assign(3 * pixels, 0.0);
+      if (sampleable) sampleable_[buffer(x, second)].assign(pixels, 0.0);
+    }
 }
 
 long long TechniqueFilms::pixel(Vec2 pRaster) const {
@@ -25,20 +30,16 @@ long long TechniqueFilms::pixel(Vec2 pRaster) const {
   return static_cast<long long>(y) * width_ + x;
 }
 
-size_t TechniqueFilms::buffer(int s, int t, bool unweighted) const {
-  return 2 * Technique{s, t}.index() + (unweighted ? 1 : 0);
-}
-
-void TechniqueFilms::add(int s, int t, Vec2 pRaster, const Spectrum& weighted, const Spectrum& unweighted) {
-  if (!covers(s, t)) return;
+void TechniqueFilms::add(Technique x, Vec2 pRaster, const Spectrum& weighted, const Spectrum& unweighted) {
+  if (!covers(x)) return;
   const long long p = pixel(pRaster);
   if (p < 0) return;
   const size_t i = 3 * static_cast<size_t>(p);
-  std::vector<double>& w = buffers_[buffer(s, t, false)];
-  std::vector<double>& u = buffers_[buffer(s, t, true)];
+  std::vector<double>& w = buffers_[buffer(x, false)];
+  std::vector<double>& u = buffers_[buffer(x, true)];
   for (int c = 0; c < 3; ++c) {
     const size_t j = i + static_cast<size_t>(c);
-    if (t == 1) {
+    if (x.t == 1 && !x.isMerge()) {
       std::atomic_ref<double>(w[j]).fetch_add(weighted[c], std::memory_order_relaxed);
       std::atomic_ref<double>(u[j]).fetch_add(unweighted[c], std::memory_order_relaxed);
     } else {
@@ -54,9 +55,9 @@ void TechniqueFilms::addSampleable(int k, uint64_t sampleableBy, Vec2 pRaster, b
   if (p < 0) return;
   // A camera contribution lands on the sample's own pixel, which the calling thread owns for the
   // pass; splats land anywhere and go to buffers of their own, atomically.
-  for (const Technique x : techniquesOfLength(k)) {
-    if (x.s >= 64 || !(sampleableBy >> x.s & 1)) continue;
-    double& v = sampleable_[2 * x.index() + (splat ? 1 : 0)][static_cast<size_t>(p)];
+  for (const Technique x : techniquesOfLength(k, families_)) {
+    if (x.slot() >= 64 || !(sampleableBy >> x.slot() & 1)) continue;
+    double& v = sampleable_[buffer(x, splat)][static_cast<size_t>(p)];
     if (splat)
       std::atomic_ref<double>(v).fetch_add(weightedLuminance, std::memory_order_relaxed);
     else
@@ -88,23 +89,23 @@ double normalisation(bool splat, int width, int height, uint64_t samplesPerPixel
 
 }  // namespace
 
-Image TechniqueFilms::readout(int s, int t, bool unweighted, uint64_t samplesPerPixel, uint64_t lightSubpaths) const {
+Image TechniqueFilms::readout(Technique x, bool unweighted, uint64_t samplesPerPixel, uint64_t lightSubpaths) const {
   Image img{width_, height_, std::vector<float>(3 * static_cast<size_t>(width_) * static_cast<size_t>(height_), 0.f)};
-  if (!covers(s, t)) return img;
-  const double scale = normalisation(t == 1, width_, height_, samplesPerPixel, lightSubpaths);
-  const std::vector<double>& b = buffers_[buffer(s, t, unweighted)];
+  if (!covers(x)) return img;
+  const double scale = normalisation(x.t == 1 && !x.isMerge(), width_, height_, samplesPerPixel, lightSubpaths);
+  const std::vector<double>& b = buffers_[buffer(x, unweighted)];
   for (size_t i = 0; i < b.size(); ++i) img.rgb[i] = static_cast<float>(b[i] * scale);
   return img;
 }
 
-std::vector<float> TechniqueFilms::readoutSampleable(int s, int t, uint64_t samplesPerPixel,
+std::vector<float> TechniqueFilms::readoutSampleable(Technique x, uint64_t samplesPerPixel,
                                                      uint64_t lightSubpaths) const {
   std::vector<float> out(static_cast<size_t>(width_) * static_cast<size_t>(height_), 0.f);
-  if (sampleable_.empty() || !covers(s, t)) return out;
+  if (sampleable_.empty() || !covers(x)) return out;
   const double camera = normalisation(false, width_, height_, samplesPerPixel, lightSubpaths);
   const double splat = normalisation(true, width_, height_, samplesPerPixel, lightSubpaths);
-  const std::vector<double>& c = sampleable_[2 * Technique{s, t}.index()];
-  const std::vector<double>& l = sampleable_[2 * Technique{s, t}.index() + 1];
+  const std::vector<double>& c = sampleable_[buffer(x, false)];
+  const std::vector<double>& l = sampleable_[buffer(x, true)];
   for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(c[i] * camera + l[i] * splat);
   return out;
 }

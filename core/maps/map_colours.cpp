@@ -23,7 +23,10 @@ Vec3 techniqueColour(Technique x) {
   static constexpr std::array<uint32_t, kTechniquePaletteSize> kKelly = {
       0xF3C300, 0x875692, 0xF38400, 0xA1CAF1, 0xBE0032, 0xC2B280, 0x848482, 0x008856, 0xE68FAC, 0x0067A5,
       0xF99379, 0x604E97, 0xF6A600, 0xB3446C, 0xDCD300, 0x882D17, 0x8DB600, 0x654522, 0xE25822, 0x2B3D26};
-  const uint32_t c = kKelly[x.index() % kKelly.size()];
+  // By the index within the family, so a connection's colour does not depend on whether merges
+  // exist; merges start half the palette away from the connections of the same number.
+  const size_t offset = x.isMerge() ? kKelly.size() / 2 : 0;
+  const uint32_t c = kKelly[(x.familyIndex() + offset) % kKelly.size()];
   return Vec3(static_cast<float>(c >> 16 & 255), static_cast<float>(c >> 8 & 255), static_cast<float>(c & 255)) / 255.f;
 }
 

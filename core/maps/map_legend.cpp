@@ -2,6 +2,7 @@
 #include "core/maps/map_legend.h"
 
 #include "core/maps/map_colours.h"
+#include "core/sampling/technique_label.h"
 
 #include <fmt/core.h>
 
@@ -83,7 +84,7 @@ Image withDominantLegend(const Image& map, const DominantMap& m, const std::stri
     if (index < 0) continue;
     const Technique x = Technique::fromIndex(static_cast<size_t>(index));
     swatch(img, x0, y, techniqueColour(x));
-    drawText(img, x0 + kSwatch + 6, y, fmt::format("({},{}) {:.0f}%", x.s, x.t, percent(count)), kTextColour);
+    drawText(img, x0 + kSwatch + 6, y, fmt::format("{} {:.0f}%", techniqueLabel(x), percent(count)), kTextColour);
     y += kLine;
   }
   swatch(img, x0, y, kTieColour);

@@ -8,9 +8,9 @@ namespace pathlab {
 
 std::vector<float> TechniqueLuminance::image(int k) const {
   std::vector<float> sum(pixelCount(), 0.f);
-  const TechniqueRange range = k > 0 ? techniquesOfLength(k) : techniquesUpTo(length);
+  const TechniqueRange range = k > 0 ? techniquesOfLength(k, families) : techniquesUpTo(length, families);
   for (const Technique x : range) {
-    if (x.index() >= weighted.size()) break;
+    if (!has(x)) continue;
     const std::vector<float>& w = weighted[x.index()];
     for (size_t i = 0; i < sum.size(); ++i) sum[i] += w[i];
   }
@@ -22,7 +22,7 @@ DominantMap dominantMap(const TechniqueLuminance& lum, int k) {
   DominantMap m{lum.width, lum.height, std::vector<int>(lum.pixelCount(), kDominantEmpty),
                 std::vector<float>(lum.pixelCount(), 0.f)};
   const std::vector<float> image = lum.image(k);
-  const TechniqueRange range = k > 0 ? techniquesOfLength(k) : techniquesUpTo(lum.length);
+  const TechniqueRange range = k > 0 ? techniquesOfLength(k, lum.families) : techniquesUpTo(lum.length, lum.families);
   for (size_t i = 0; i < m.technique.size(); ++i) {
     if (!(image[i] > 0.f)) continue;
     float best = -1.f, second = -1.f;
@@ -45,7 +45,7 @@ DominantMap dominantMap(const TechniqueLuminance& lum, int k) {
 }
 
 std::vector<float> shareMap(const TechniqueLuminance& lum, Technique x) {
-  if (x.index() >= lum.weighted.size()) throw std::invalid_argument("share map: technique outside the pyramid");
+  if (!lum.has(x)) throw std::invalid_argument("share map: technique outside the pyramid");
   const std::vector<float> image = lum.image();
   const std::vector<float>& w = lum.weighted[x.index()];
   std::vector<float> share(image.size(), -1.f);
@@ -55,7 +55,7 @@ std::vector<float> shareMap(const TechniqueLuminance& lum, Technique x) {
 }
 
 CannotSampleMap cannotSampleMap(const TechniqueLuminance& lum, Technique x) {
-  if (x.index() >= lum.sampleable.size())
+  if (!lum.has(x) || x.index() >= lum.sampleable.size() || lum.sampleable[x.index()].empty())
     throw std::invalid_argument("cannot-sample map: the pyramid keeps no sampleable films for this technique");
   const size_t n = lum.pixelCount();
   CannotSampleMap m{lum.width, lum.height, std::vector<Reach>(n, Reach::Empty), std::vector<float>(n, -1.f),

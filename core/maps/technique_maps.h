@@ -13,10 +13,13 @@
 namespace pathlab {
 
 // Per-pixel luminances (row-major) of every technique up to `length`, indexed by Technique::index.
+// Per technique of lengths 1..length, by Technique::index() (a family not kept has empty entries):
 struct TechniqueLuminance {
   int width = 0, height = 0, length = 0;
+  TechniqueFamilies families = TechniqueFamilies::Connections;  // whose entries are filled
   std::vector<std::vector<float>> weighted;    // its MIS-weighted estimate
   std::vector<std::vector<float>> sampleable;  // the part of its length's image it can sample; may be empty
+  bool has(Technique x) const { return x.index() < weighted.size() && !weighted[x.index()].empty(); }
   size_t pixelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   // The image of length k (0: of every length up to `length`): the sum of the weighted films, so
   // that the shares of the techniques in it add up to one. With length = the maximum path length

@@ -1,6 +1,8 @@
 // Per-technique rows and cells from the counters (see the header).
 #include "core/metrics/technique_table.h"
 
+#include "core/sampling/technique_label.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -79,9 +81,10 @@ std::vector<TechniqueRow> techniqueRows(const Counters& c, int maxLength, double
       r.rays = walk.rays;
       finish(r, walk.nanoseconds);
     }
-  auto add = [&](std::string name, int s, int t, const TechniqueCounters& tc) {
+  // A family that never ran (merges without a merging integrator) has no tried row and no line.
+  auto add = [&](std::string name, Technique x, const TechniqueCounters& tc) {
     if (tc.tried == 0) return;
-    TechniqueRow r{std::move(name), false, s, t};
+    TechniqueRow r{std::move(name), false, x.s, x.t, x.kind};
     r.tried = tc.tried;
     r.zero = tc.zero;
     r.blocked = tc.blocked;
@@ -90,9 +93,9 @@ std::vector<TechniqueRow> techniqueRows(const Counters& c, int maxLength, double
     r.rays = tc.shadowRays + tc.walkRays;
     finish(r, tc.nanoseconds);
   };
-  for (const auto [s, t] : techniquesUpTo(std::min(maxLength, kCountedLength)))
-    add(fmt::format("({},{})", s, t), s, t, c.technique(s, t));
-  if (maxLength > kCountedLength) add(fmt::format("k>{}", kCountedLength), -1, -1, c.techniques[kCountedTechniques]);
+  for (const Technique x : techniquesUpTo(std::min(maxLength, kCountedLength), TechniqueFamilies::All))
+    add(techniqueLabel(x), x, c.technique(x));
+  if (maxLength > kCountedLength) add(fmt::format("k>{}", kCountedLength), Technique{-1, -1}, c.techniques[kCountedTechniques]);
   return rows;
 }
 

@@ -13,9 +13,10 @@
 namespace pathlab {
 
 struct TechniqueRow {
-  std::string name;    // "camera walks", "light walks", "(s,t)", "k>12"
+  std::string name;    // "camera walks", "light walks", "(s,t)", "M(s,t)", "k>12"
   bool walk = false;   // a walk: tried counts subpaths, and it has no connection outcomes
   int s = -1, t = -1;  // -1 for the walks and the shared row
+  TechniqueKind kind = TechniqueKind::Connection;
   int order = 0;       // position in techniqueRows: the Name column sorts by it
   uint64_t tried = 0, zero = 0, blocked = 0, contributed = 0, discarded = 0, rays = 0;
   double raysPerSecond = 0.0;

@@ -9,6 +9,8 @@ namespace pathlab {
 
 namespace {
 
+const char* kindName(TechniqueKind k) { return k == TechniqueKind::Merge ? "merge" : "connection"; }
+
 const char* kindName(TracedVertexKind k) {
   switch (k) {
     case TracedVertexKind::Camera: return "camera";
@@ -124,9 +126,10 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
   for (size_t i = 0; i < trace.records.size(); ++i) {
     const TechniqueResult& r = trace.records[i];
     nlohmann::json t;
+    t["kind"] = kindName(r.kind);
     t["s"] = r.s;
     t["t"] = r.t;
-    t["enabled"] = enabled.contains(r.s, r.t);
+    t["enabled"] = enabled.contains(r.technique());
     t["blocked"] = r.blocked();
     t["contribution"] = rgb(r.unweighted);
     t["weight"] = r.weight;
@@ -151,7 +154,8 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
     nlohmann::json densities = nlohmann::json::array();
     if (i < trace.onPath.size())
       for (const TechniqueOnPath& x : trace.onPath[i])
-        densities.push_back({{"s", x.s},
+        densities.push_back({{"kind", kindName(x.kind)},
+                             {"s", x.s},
                              {"t", x.t},
                              {"pdfA", x.pdfA},
                              {"possible", x.possible},
@@ -161,8 +165,8 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
                              {"weights", {{"balance", x.balance}, {"power", x.power}, {"uniform", x.uniform}}}});
     t["densities"] = densities;
     // This technique's own weights under each heuristic (its entry of `densities`).
-    if (i < trace.onPath.size() && static_cast<size_t>(r.s) < trace.onPath[i].size()) {
-      const TechniqueOnPath& own = trace.onPath[i][static_cast<size_t>(r.s)];
+    if (i < trace.onPath.size() && static_cast<size_t>(r.technique().slot()) < trace.onPath[i].size()) {
+      const TechniqueOnPath& own = trace.onPath[i][static_cast<size_t>(r.technique().slot())];
       t["weights"] = {{"balance", own.balance}, {"power", own.power}, {"uniform", own.uniform}};
     }
     techniques.push_back(t);

@@ -159,7 +159,8 @@ void ProgressiveRenderer::State::run() {
         side = thumbnailSide;
       }
       std::vector<TechniqueThumbnail> thumbs = techniqueThumbnails(
-          set.pyramidLength, side, [&](Technique x, bool unweighted) { return session->techniqueImage(x.s, x.t, unweighted); });
+          set.pyramidLength, side, [&](Technique x, bool unweighted) { return session->techniqueImage(x, unweighted); },
+          pyramidFamilies(set));
       std::lock_guard lock(mutex);
       if (generation == gen) {
         thumbnails = std::move(thumbs);

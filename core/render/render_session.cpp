@@ -55,11 +55,11 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
     splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength,
-                                                settings.techniqueMaps);
+                                                settings.techniqueMaps, pyramidFamilies(settings));
   if (bidirTracer_ && settings.checkTechniques) {
     const TechniqueSet enabled = enabledTechniques(settings);
     check_ = std::make_unique<TechniqueCheck>(settings.width, settings.height, settings.maxLength, settings.checkBlocks,
-                                              [&](int s, int t) { return enabled.contains(s, t); });
+                                              [&](Technique x) { return enabled.contains(x); }, enabled.families());
     threadChecks_ = std::make_unique<ThreadChecks>(*check_);
   }
 }
@@ -74,14 +74,14 @@ Pcg32 sampleStream(const RenderSettings& settings, int x, int y, uint64_t pass, 
   return makeSampleRng(settings.seed, pixel, pass, stream);
 }
 
-Image RenderSession::techniqueImage(int s, int t, bool unweighted) const {
+Image RenderSession::techniqueImage(Technique x, bool unweighted) const {
   if (!pyramid_) return Image{film_.width(), film_.height(), std::vector<float>(3 * film_.pixelCount(), 0.f)};
-  return pyramid_->readout(s, t, unweighted, film_.samplesPerPixel(), film_.lightSubpaths());
+  return pyramid_->readout(x, unweighted, film_.samplesPerPixel(), film_.lightSubpaths());
 }
 
-std::vector<float> RenderSession::sampleableLuminance(int s, int t) const {
+std::vector<float> RenderSession::sampleableLuminance(Technique x) const {
   if (!pyramid_) return std::vector<float>(film_.pixelCount(), 0.f);
-  return pyramid_->readoutSampleable(s, t, film_.samplesPerPixel(), film_.lightSubpaths());
+  return pyramid_->readoutSampleable(x, film_.samplesPerPixel(), film_.lightSubpaths());
 }
 
 std::vector<std::span<double>> RenderSession::sums() {

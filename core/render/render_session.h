@@ -69,10 +69,10 @@ class RenderSession {
   Image image() const { return film_.readout(); }
   // Technique (s, t) of the pyramid (settings.pyramidLength > 0), weighted or unweighted.
   bool hasPyramid() const { return pyramid_ != nullptr; }
-  Image techniqueImage(int s, int t, bool unweighted) const;
+  Image techniqueImage(Technique x, bool unweighted) const;
   // With settings.techniqueMaps: per pixel, the luminance of the length-(s+t-1) image that (s, t)
   // can sample (TechniqueFilms::readoutSampleable).
-  std::vector<float> sampleableLuminance(int s, int t) const;
+  std::vector<float> sampleableLuminance(Technique x) const;
   // The consistency check's sums (settings.checkTechniques), else null.
   const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }

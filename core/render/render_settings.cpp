@@ -52,6 +52,10 @@ TechniqueSet enabledTechniques(const RenderSettings& settings) {
   return settings.techniques;
 }
 
+TechniqueFamilies pyramidFamilies(const RenderSettings& settings) {
+  return TechniqueFamilies::Connections | enabledTechniques(settings).families();
+}
+
 BidirOptions bidirOptions(const RenderSettings& s) {
   return BidirOptions{s.maxLength,     s.russianRoulette, enabledTechniques(s), s.mis, s.isolate,
                       s.pyramidLength, s.checkMis,        s.connect,           s.injectBias};
@@ -90,6 +94,9 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument(fmt::format("maximum path length {} is more than the {} edges the {} integrator supports",
                                             s.maxLength, kMaxBidirectionalLength, integratorName(s.integrator)));
   if (bidirectional) s.techniques.checkFits(s.maxLength);  // throws naming the problem
+  // The technique numbering, sets and tables know merges; no tracer samples them yet.
+  if (covers(s.techniques.families(), TechniqueKind::Merge))
+    throw std::invalid_argument("techniques: merging techniques (MS,T, m=K) have no sampler yet: enable connections only");
   if (s.isolate) {
     const Isolation& i = *s.isolate;
     if (!bidirectional) throw std::invalid_argument("isolating a technique needs the bpt or lt integrator");
@@ -133,7 +140,7 @@ void validateSettings(const RenderSettings& s) {
     if (s.pyramidLength > s.maxLength)
       throw std::invalid_argument(
           fmt::format("pyramid length {} is more than the maximum path length {}", s.pyramidLength, s.maxLength));
-    const uint64_t bytes = TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength, s.techniqueMaps);
+    const uint64_t bytes = TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength, s.techniqueMaps, pyramidFamilies(s));
     if (bytes > kMaxPyramidBytes)
       throw std::invalid_argument(fmt::format("a pyramid of length {} at {} x {} needs {:.1f} GiB (at most {} GiB)",
                                               s.pyramidLength, s.width, s.height, static_cast<double>(bytes) / (1ull << 30),

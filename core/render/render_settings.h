@@ -75,6 +75,9 @@ const char* integratorName(IntegratorKind kind);
 // The techniques the bidirectional tracer weighs and adds to the image: settings.techniques, less
 // every t >= 2 under `lt` (light tracing, TechniqueSet::lightTracing). The path tracer ignores them.
 TechniqueSet enabledTechniques(const RenderSettings& settings);
+// The families the technique pyramid keeps: every connection up to its length, and the merges when
+// any is enabled (a family no technique uses costs no memory).
+TechniqueFamilies pyramidFamilies(const RenderSettings& settings);
 // What each tracer needs of the settings.
 BidirOptions bidirOptions(const RenderSettings& settings);
 PathTracerOptions pathTracerOptions(const RenderSettings& settings);

@@ -58,7 +58,7 @@ void SampleOutputs::record(const TechniqueResult& r) {
   if (targets_.trace) trace(r);
   if (r.outcome != TechniqueOutcome::Contributed) return;
   // The check compares every enabled technique's unweighted estimate, whatever its weight.
-  if (targets_.check) targets_.check->add(Technique{r.s, r.t}, r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
+  if (targets_.check) targets_.check->add(r.technique(), r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
   if (r.inPyramid && targets_.pyramid) {
     const Spectrum weighted = r.unweighted * r.weight;
     // The technique maps' "cannot sample": this path's weighted part, credited to every technique
@@ -69,9 +69,9 @@ void SampleOutputs::record(const TechniqueResult& r) {
       targets_.splats->splatTechnique(r.s, r.pRaster, weighted, r.unweighted);
       if (keepsSampleable) targets_.splats->splatSampleable(r.s, r.sampleableBy, r.pRaster, luminance(weighted));
     } else {
-      targets_.pyramid->add(r.s, r.t, r.pRaster, weighted, r.unweighted);
+      targets_.pyramid->add(r.technique(), r.pRaster, weighted, r.unweighted);
       if (keepsSampleable)
-        targets_.pyramid->addSampleable(r.s + r.t - 1, r.sampleableBy, r.pRaster, r.t == 1, luminance(weighted));
+        targets_.pyramid->addSampleable(r.technique().length(), r.sampleableBy, r.pRaster, r.t == 1, luminance(weighted));
     }
   }
 }

@@ -10,12 +10,15 @@ TechniqueLuminance techniqueLuminance(const RenderSession& session, int length) 
   lum.width = s.width;
   lum.height = s.height;
   lum.length = length > 0 && length < s.pyramidLength ? length : s.pyramidLength;
-  for (const Technique x : techniquesUpTo(lum.length)) {
-    const Image img = session.techniqueImage(x.s, x.t, false);
+  lum.families = pyramidFamilies(s);
+  lum.weighted.resize(Technique::countUpTo(lum.length));
+  if (s.techniqueMaps) lum.sampleable.resize(lum.weighted.size());
+  for (const Technique x : techniquesUpTo(lum.length, lum.families)) {
+    const Image img = session.techniqueImage(x, false);
     std::vector<float> y(lum.pixelCount());
     for (size_t i = 0; i < y.size(); ++i) y[i] = luminance(Spectrum(img.rgb[3 * i], img.rgb[3 * i + 1], img.rgb[3 * i + 2]));
-    lum.weighted.push_back(std::move(y));
-    if (s.techniqueMaps) lum.sampleable.push_back(session.sampleableLuminance(x.s, x.t));
+    lum.weighted[x.index()] = std::move(y);
+    if (s.techniqueMaps) lum.sampleable[x.index()] = session.sampleableLuminance(x);
   }
   return lum;
 }

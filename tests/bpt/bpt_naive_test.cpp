@@ -92,7 +92,8 @@ TEST(NaiveBpt, RaysAreFiledUnderEachTechnique) {
   const Counters& c = naiveSession.counters();
   EXPECT_EQ(c.cameraWalk.rays + c.lightWalk.rays, 0u);
   uint64_t walk = 0, shadow = 0;
-  for (const auto [s, t] : techniquesUpTo(K)) {
+  for (const Technique x : techniquesUpTo(K)) {
+    const int s = x.s, t = x.t;
     const TechniqueCounters& tc = c.technique(s, t);
     walk += tc.walkRays;
     shadow += tc.shadowRays;

@@ -59,7 +59,7 @@ TEST(TechniquePyramid, WeightedSharesSumToTheImage) {
     const Image full = session.image();
     Image sum{full.width, full.height, std::vector<float>(full.rgb.size(), 0.f)};
     for (const Technique x : techniquesUpTo(4)) {
-      const Image share = session.techniqueImage(x.s, x.t, false);
+      const Image share = session.techniqueImage(x, false);
       for (size_t i = 0; i < sum.rgb.size(); ++i) sum.rgb[i] += share.rgb[i];
     }
     SCOPED_TRACE(spec);
@@ -82,7 +82,7 @@ TEST(TechniquePyramid, IsolatedRenderEqualsItsPyramidBuffer) {
       RenderSession session(cornellBox(), iso);
       for (int i = 0; i < 2; ++i) session.renderPass();
       SCOPED_TRACE(testing::Message() << "(" << s << "," << t << ")" << (unweighted ? " unweighted" : " weighted"));
-      const Image expected = pyramid.techniqueImage(s, t, unweighted);
+      const Image expected = pyramid.techniqueImage({s, t}, unweighted);
       EXPECT_GT(imageSum(expected), 0.0);
       expectImagesNear(session.image(), expected, 1e-5, "isolated render vs pyramid buffer");
     }
@@ -101,9 +101,9 @@ TEST(TechniquePyramid, UnweightedTechniquesOfOneLengthAgree) {
     for (int i = 0; i < kPasses; ++i) session.renderPass();
     for (int k = 1; k <= kLength; ++k) {
       double weightedSum = 0.0;
-      for (const Technique x : techniquesOfLength(k)) weightedSum += imageSum(session.techniqueImage(x.s, x.t, false));
+      for (const Technique x : techniquesOfLength(k)) weightedSum += imageSum(session.techniqueImage(x, false));
       for (const Technique x : techniquesOfLength(k))
-        diff[x.index()].add(imageSum(session.techniqueImage(x.s, x.t, true)) - weightedSum);
+        diff[x.index()].add(imageSum(session.techniqueImage(x, true)) - weightedSum);
     }
   }
   // 9 comparisons: |z| < 4 has a family-wise false-alarm rate below 9 x 6.3e-5.

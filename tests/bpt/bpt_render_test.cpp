@@ -74,7 +74,8 @@ TEST(BptFurnace, EachUnweightedTechniqueGivesItsLength) {
   const float rho = 0.6f, Le = 0.7f;
   const int K = 4;
   Scene scene(furnace(rho, Le));
-  for (const auto [s, t] : techniquesUpTo(K)) {
+  for (const Technique x : techniquesUpTo(K)) {
+    const int s = x.s, t = x.t;
     RenderSettings settings = bptSettings(12, K, 11 + static_cast<uint64_t>(10 * s + t));
     settings.techniques = TechniqueSet::parse(std::to_string(s) + "," + std::to_string(t));
     const MeanEstimate m = passMeans(scene, settings, 128);

@@ -90,7 +90,7 @@ double relativeDifference(const Image& a, const Image& b) {
 // The weighted shares of length k from the pyramid, summed.
 Image lengthImage(const RenderSession& session, int k) {
   std::vector<Image> shares;
-  for (const Technique x : techniquesOfLength(k)) shares.push_back(session.techniqueImage(x.s, x.t, false));
+  for (const Technique x : techniquesOfLength(k)) shares.push_back(session.techniqueImage(x, false));
   return sumImages(shares);
 }
 
@@ -111,7 +111,7 @@ TEST(TechniqueAgreement, PyramidIsolationAndTechniqueSetsAreTheSameEstimates) {
 
   std::vector<Image> shares;
   for (const Technique x : techniquesUpTo(K)) {
-    const Image weighted = session.techniqueImage(x.s, x.t, false);
+    const Image weighted = session.techniqueImage(x, false);
     if (!set.contains(x)) {
       EXPECT_EQ(*std::max_element(weighted.rgb.begin(), weighted.rgb.end()), 0.f) << technique(x.s, x.t);
     }
@@ -120,7 +120,7 @@ TEST(TechniqueAgreement, PyramidIsolationAndTechniqueSetsAreTheSameEstimates) {
   EXPECT_LT(relativeDifference(sumImages(shares), session.image()), 1e-5);
 
   for (const auto& [sl, t] : std::vector<std::pair<int, int>>{{0, 3}, {1, 2}, {2, 1}, {1, 3}, {3, 2}, {4, 1}}) {
-    const Image unweighted = session.techniqueImage(sl, t, true);
+    const Image unweighted = session.techniqueImage({sl, t}, true);
     ASSERT_GT(*std::max_element(unweighted.rgb.begin(), unweighted.rgb.end()), 0.f) << technique(sl, t);
     RenderSettings alone = bpt(K, 3, technique(sl, t));
     RenderSession aloneSession(scene, alone);
@@ -137,7 +137,7 @@ TEST(TechniqueAgreement, PyramidIsolationAndTechniqueSetsAreTheSameEstimates) {
     }
     EXPECT_LT(relativeDifference(aloneSession.image(), unweighted), 1e-5) << technique(sl, t);
     EXPECT_LT(relativeDifference(isolatedSession.image(), unweighted), 1e-5) << technique(sl, t);
-    EXPECT_LT(relativeDifference(shareSession.image(), session.techniqueImage(sl, t, false)), 1e-5) << technique(sl, t);
+    EXPECT_LT(relativeDifference(shareSession.image(), session.techniqueImage({sl, t}, false)), 1e-5) << technique(sl, t);
   }
 }
 
@@ -160,7 +160,7 @@ TEST(TechniqueAgreement, UnweightedTechniquesOfOneLengthAgree) {
   std::vector<std::pair<int, int>> techniques;
   for (const Technique x : techniquesUpTo(K)) {
     images.push_back([=](const RenderSession& r) {
-      return test::imageDifference(r.techniqueImage(x.s, x.t, true), lengthImage(r, x.length()));
+      return test::imageDifference(r.techniqueImage(x, true), lengthImage(r, x.length()));
     });
     techniques.emplace_back(x.s, x.t);
   }

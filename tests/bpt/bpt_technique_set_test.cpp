@@ -1,4 +1,4 @@
-// Technique and TechniqueSet: the one triangular index, the SPEC parser and its canonical printing,
+// Technique and TechniqueSet: the one index over connections and merges, the SPEC parser and its canonical printing,
 // equality of sets however they are spelled, and a set that does not change with the maximum length.
 #include "core/bpt/technique_set.h"
 #include "core/render/render_settings.h"
@@ -11,26 +11,109 @@
 namespace pathlab {
 namespace {
 
-TEST(Technique, OneTriangularIndexInTheOrderOfTheGrid) {
+TEST(Technique, OneIndexOverConnectionsAndMergesInTheOrderOfTheGrid) {
+  // Length 1: C(0,2), C(1,1); length 2: C(0,3), C(1,2), C(2,1), M(2,2); length 3 from 6.
   EXPECT_EQ((Technique{0, 2}.index()), 0u);
   EXPECT_EQ((Technique{1, 1}.index()), 1u);
   EXPECT_EQ((Technique{0, 3}.index()), 2u);
   EXPECT_EQ((Technique{2, 1}.index()), 4u);
-  EXPECT_EQ((Technique{0, 4}.index()), 5u);
-  EXPECT_EQ(Technique::countUpTo(4), 2u + 3u + 4u + 5u);
+  EXPECT_EQ(Technique::merge(2, 2).index(), 5u);
+  EXPECT_EQ((Technique{0, 4}.index()), 6u);
+  EXPECT_EQ(Technique::merge(3, 2).index(), 11u);
+  EXPECT_EQ(Technique::countUpTo(4), 2u + 4u + 6u + 8u);
+  EXPECT_EQ(Technique::countUpTo(4, TechniqueFamilies::Connections), 2u + 3u + 4u + 5u);
+  EXPECT_EQ(Technique::countUpTo(4, TechniqueFamilies::Merges), 0u + 1u + 2u + 3u);
   EXPECT_EQ((Technique{3, 3}.length()), 5);
+  EXPECT_EQ(Technique::merge(3, 3).length(), 4);  // y_2 and z_2 are one vertex: 3 + 3 - 2 edges
   EXPECT_FALSE((Technique{0, 1}.valid()));
   EXPECT_FALSE((Technique{1, 0}.valid()));
-  size_t i = 0;
-  for (const Technique x : techniquesUpTo(60)) {
+  EXPECT_FALSE(Technique::merge(1, 3).valid());  // not on the light
+  EXPECT_FALSE(Technique::merge(3, 1).valid());  // not at the camera
+  EXPECT_NE(Technique::merge(2, 3), (Technique{2, 3}));
+  size_t i = 0, connections = 0, merges = 0;
+  for (const Technique x : techniquesUpTo(60, TechniqueFamilies::All)) {
     ASSERT_EQ(x.index(), i) << x.s << "," << x.t;
     ASSERT_EQ(Technique::fromIndex(i), x);
+    ASSERT_TRUE(x.valid());
+    ASSERT_EQ(Technique::atSlot(x.length(), x.slot()), x);
+    // Each family keeps a dense numbering of its own (colours are keyed by it).
+    ASSERT_EQ(x.familyIndex(), x.isMerge() ? merges++ : connections++);
     ++i;
   }
   EXPECT_EQ(i, Technique::countUpTo(60));
+  EXPECT_EQ(connections, Technique::countUpTo(60, TechniqueFamilies::Connections));
+  // A family alone skips the other's slots and stops at the same end.
+  size_t c = 0;
+  for (const Technique x : techniquesUpTo(60)) {
+    ASSERT_FALSE(x.isMerge());
+    ++c;
+  }
+  EXPECT_EQ(c, connections);
+  size_t m = 0;
+  for (const Technique x : techniquesUpTo(60, TechniqueFamilies::Merges)) {
+    ASSERT_TRUE(x.isMerge());
+    ++m;
+  }
+  EXPECT_EQ(m, merges);
   std::vector<Technique> row(techniquesOfLength(3).begin(), techniquesOfLength(3).end());
   EXPECT_EQ(row, (std::vector<Technique>{{0, 4}, {1, 3}, {2, 2}, {3, 1}}));
+  const TechniqueRange all3 = techniquesOfLength(3, TechniqueFamilies::All);
+  std::vector<Technique> rowAll(all3.begin(), all3.end());
+  EXPECT_EQ(rowAll, (std::vector<Technique>{{0, 4}, {1, 3}, {2, 2}, {3, 1}, Technique::merge(2, 3), Technique::merge(3, 2)}));
   EXPECT_EQ(techniquesUpTo(0).begin(), techniquesUpTo(0).end());
+  const TechniqueRange noMergeOfLength1 = techniquesOfLength(1, TechniqueFamilies::Merges);
+  EXPECT_EQ(noMergeOfLength1.begin(), noMergeOfLength1.end());
+}
+
+TEST(BptTechniqueSet, MergesAreListedParsedAndPrintedBesideConnections) {
+  const TechniqueSet set = TechniqueSet::parse("all; M2,3 ;m=4");
+  EXPECT_TRUE(set.contains(Technique::merge(2, 3)));
+  EXPECT_FALSE(set.contains(Technique::merge(3, 2)));  // length 3 but not listed
+  for (const Technique x : techniquesOfLength(4, TechniqueFamilies::Merges)) EXPECT_TRUE(set.contains(x));
+  EXPECT_TRUE(set.contains(2, 3));  // the connection of the same (s, t)
+  EXPECT_EQ(set.toString(), "all;M2,3;m=4");
+  EXPECT_EQ(TechniqueSet::parse(set.toString()), set);
+  EXPECT_EQ(set.families(), TechniqueFamilies::All);
+  EXPECT_EQ(TechniqueSet::all().families(), TechniqueFamilies::Connections);
+  EXPECT_EQ(TechniqueSet::parse("M2,2").families(), TechniqueFamilies::Merges);
+  // "all" is every connection and no merge; the counts and the completeness follow.
+  EXPECT_FALSE(TechniqueSet::all().contains(Technique::merge(2, 2)));
+  EXPECT_EQ(set.count(4), 2 + 3 + 4 + 5 + 1 + 3);
+  EXPECT_TRUE(set.containsAllUpTo(4));
+  EXPECT_FALSE(set.containsAllUpTo(4, TechniqueFamilies::All));  // M(2,2) and M(3,2) missing
+  EXPECT_FALSE((set | TechniqueSet::parse("M3,2")).containsAllUpTo(4, TechniqueFamilies::All));
+  EXPECT_TRUE((set | TechniqueSet::parse("M3,2;M2,2")).containsAllUpTo(4, TechniqueFamilies::All));
+  // The set's operations keep merges: disabling one, intersecting, fitting to a maximum.
+  TechniqueSet less = set;
+  less.disable(Technique::merge(2, 3), 4);
+  EXPECT_EQ(less.toString(), "all;m=4");
+  EXPECT_EQ((set & TechniqueSet::parse("M2,3;0,2")).toString(), "0,2;M2,3");
+  EXPECT_EQ(set.fittedTo(3).toString(), "all;M2,3");
+  EXPECT_EQ(TechniqueSet::parse("s=0;M3,3").upTo(4).toString(), "0,2;0,3;0,4;0,5;M3,3");
+  try {
+    TechniqueSet::parse("s=0;M3,3").checkFits(3);
+    ADD_FAILURE() << "M(3,3) has length 4";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("M(3,3) has length 4"), std::string::npos) << e.what();
+  }
+  // By length, connections first; a length's every merge as m=K (M(2,2) is length 2's only one).
+  EXPECT_EQ(TechniqueSet::parse("0,3;M3,2;0,2;M2,2").toString(), "0,2;0,3;m=2;M3,2");
+  for (const char* bad : {"M1,3", "M3,1", "m=1", "M2", "Mx,2", "m=0"})
+    EXPECT_THROW(TechniqueSet::parse(bad), std::invalid_argument) << bad;
+}
+
+TEST(BptTechniqueSet, ARendererRefusesMergesUntilOneSamplesThem) {
+  RenderSettings s;
+  s.maxLength = 4;
+  s.techniques = TechniqueSet::parse("all;M2,2");
+  try {
+    validateSettings(s);
+    ADD_FAILURE() << "merges have no sampler";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("merging techniques"), std::string::npos) << e.what();
+  }
+  s.techniques = TechniqueSet::all();
+  EXPECT_NO_THROW(validateSettings(s));
 }
 
 TEST(BptTechniqueSet, AllHasEveryTechniqueOfEveryLength) {

@@ -51,7 +51,7 @@ TEST(SampleableTechniques, MatchTheDensitiesWithDeltaLightAndGlass) {
 // per block. The comparison's mean difference and standard error are those of the per-pass
 // differences; the culprit among three techniques is the only one named.
 TEST(TechniqueCheck, PairStatisticsAreThoseOfThePerPassDifferences) {
-  TechniqueCheck check(2, 1, 1, 1, [](int, int) { return true; });  // one block, techniques (0,2), (1,1)
+  TechniqueCheck check(2, 1, 1, 1, [](Technique) { return true; });  // one block, techniques (0,2), (1,1)
   TechniqueCheck::PassSums sums(check);
   const Technique i{0, 2}, j{1, 1};
   const double ratios[2] = {1.0, 1.0};
@@ -85,7 +85,7 @@ TEST(TechniqueCheck, PairStatisticsAreThoseOfThePerPassDifferences) {
 
 TEST(TechniqueCheck, NamesTheOneTechniqueThatDisagreesWithTheOthers) {
   // Length 2: (0,3), (1,2), (2,1) estimate the same integral with noise; (1,2) is 5 % high.
-  TechniqueCheck check(8, 8, 2, 2, [](int s, int t) { return s + t == 3; });
+  TechniqueCheck check(8, 8, 2, 2, [](Technique x) { return x.s + x.t == 3; });
   TechniqueCheck::PassSums sums(check);
   Pcg32 rng(5, 5);
   const double ratios[3] = {1.0, 1.0, 1.0};
@@ -105,6 +105,32 @@ TEST(TechniqueCheck, NamesTheOneTechniqueThatDisagreesWithTheOthers) {
   EXPECT_EQ(report.techniques[1].status, CheckStatus::Disagrees);
   EXPECT_EQ(report.techniques[2].status, CheckStatus::Agrees);
   EXPECT_GT(report.techniques[1].z, 5.0);
+}
+
+TEST(TechniqueCheck, ComparesMergesWithTheConnectionsOfTheirLength) {
+  // Length 2 with both families: C(0,3), C(1,2), C(2,1) and M(2,2) estimate the same integral
+  // with noise; the merge is 5 % high (as a biased radius would make it) and is the one named.
+  TechniqueCheck check(8, 8, 2, 2, [](Technique x) { return x.length() == 2; }, TechniqueFamilies::All);
+  TechniqueCheck::PassSums sums(check);
+  Pcg32 rng(5, 5);
+  const double ratios[4] = {1.0, 1.0, 1.0, 1.0};  // by slot
+  const TechniqueRange length2 = techniquesOfLength(2, TechniqueFamilies::All);
+  for (int pass = 0; pass < 400; ++pass) {
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        for (const Technique t : length2) {
+          const float value = (t.isMerge() ? 1.05f : 1.f) * (0.5f + rng.next1D());
+          sums.add(t, Vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f), value, 0b1111, ratios);
+        }
+    check.finishPass({&sums});
+  }
+  const CheckReport report = checkReport(check);
+  ASSERT_EQ(report.techniques.size(), 4u);
+  for (size_t i = 0; i < 3; ++i) EXPECT_EQ(report.techniques[i].status, CheckStatus::Agrees) << i;
+  EXPECT_EQ(report.techniques[3].technique, Technique::merge(2, 2));
+  EXPECT_EQ(report.techniques[3].status, CheckStatus::Disagrees);
+  EXPECT_GT(report.techniques[3].z, 5.0);
+  EXPECT_NE(checkReportText(report).find("M(2,2)"), std::string::npos);
 }
 
 struct CheckRun {
@@ -177,7 +203,7 @@ TEST(TechniqueCheckRender, InjectedBiasMovesTheImageByTheTechniquesShare) {
     for (const float v : img.rgb) total += v;
     return total;
   };
-  const double share = sum(clean.techniqueImage(1, 2, false));
+  const double share = sum(clean.techniqueImage({1, 2}, false));
   ASSERT_GT(share, 0.0);
   EXPECT_NEAR(sum(biased.image()) - sum(clean.image()), 0.05 * share, 1e-4 * share);
 }

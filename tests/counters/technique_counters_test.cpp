@@ -56,7 +56,8 @@ TEST(TechniqueCounters, RaysOfEachTechniqueAndWalk) {
   for (int i = 0; i < 4; ++i) session.renderPass();
   const Counters& c = session.counters();
   uint64_t shadow = 0;
-  for (const auto [s, t] : techniquesUpTo(bpt().maxLength)) {
+  for (const Technique x : techniquesUpTo(bpt().maxLength)) {
+    const int s = x.s, t = x.t;
     const TechniqueCounters& tc = c.technique(s, t);
     shadow += tc.shadowRays;
     if (s == 0) {
@@ -90,7 +91,8 @@ TEST(TechniqueCounters, ShortConnectionsTraceNoShadowRay) {
     excluding.renderPass();
   }
   uint64_t zeroPlain = 0, zeroExcluding = 0;
-  for (const auto [s, t] : techniquesUpTo(settings.maxLength)) {
+  for (const Technique x : techniquesUpTo(settings.maxLength)) {
+    const int s = x.s, t = x.t;
     if (s == 0) continue;
     const TechniqueCounters& tc = excluding.counters().technique(s, t);
     EXPECT_EQ(tc.shadowRays, tc.blocked + tc.contributed) << "(" << s << "," << t << ")";

@@ -71,9 +71,9 @@ void expectInterleavedEqualsWhole(IntegratorKind integrator) {
     for (int s = 0; s <= k; ++s) {
       const int t = k + 1 - s;
       for (bool unweighted : {false, true})
-        expectSameValues(leader.techniqueImage(s, t, unweighted).rgb, whole.techniqueImage(s, t, unweighted).rgb,
+        expectSameValues(leader.techniqueImage({s, t}, unweighted).rgb, whole.techniqueImage({s, t}, unweighted).rgb,
                          unweighted ? "unweighted technique" : "weighted technique");
-      expectSameValues(leader.sampleableLuminance(s, t), whole.sampleableLuminance(s, t), "sampleable luminance");
+      expectSameValues(leader.sampleableLuminance({s, t}), whole.sampleableLuminance({s, t}), "sampleable luminance");
     }
 }
 

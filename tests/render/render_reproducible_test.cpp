@@ -43,9 +43,9 @@ std::vector<uint32_t> bits(const RenderSession& session) {
     for (int k = 1; k <= session.settings().pyramidLength; ++k)
       for (int s = 0; s <= k; ++s) {
         const int t = k + 1 - s;
-        add(session.techniqueImage(s, t, false).rgb);
-        add(session.techniqueImage(s, t, true).rgb);
-        if (session.settings().techniqueMaps) add(session.sampleableLuminance(s, t));
+        add(session.techniqueImage({s, t}, false).rgb);
+        add(session.techniqueImage({s, t}, true).rgb);
+        if (session.settings().techniqueMaps) add(session.sampleableLuminance({s, t}));
       }
   return out;
 }

@@ -12,7 +12,7 @@ namespace pathlab::ui {
 
 const Texture* PyramidImages::texture(Technique x, bool unweighted) const {
   for (size_t i = 0; i < thumbnails.size(); ++i)
-    if (thumbnails[i].s == x.s && thumbnails[i].t == x.t && 2 * i + 1 < textures.size()) {
+    if (thumbnails[i].technique() == x && 2 * i + 1 < textures.size()) {
       const Texture& t = textures[2 * i + (unweighted ? 1 : 0)];
       return t.empty() ? nullptr : &t;
     }
@@ -78,7 +78,8 @@ void drawPyramid(const PyramidView& view, const PyramidImages& images, Estimator
   const ImVec2 size(view.thumbnail.x, view.thumbnail.y);
   const EstimatorMode shownMode = unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
   for (int k = 1; k <= rows; ++k) {
-    for (const auto [s, t] : techniquesOfLength(k)) {
+    for (const Technique x : techniquesOfLength(k)) {
+      const int s = x.s, t = x.t;
       if (s > 0) ImGui::SameLine();
       ImGui::PushID(k * 100 + s);
       const Texture* texture = images.texture({s, t}, unweighted);

@@ -102,7 +102,8 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
         edited.techniques = toggleLength(set, edited.maxLength, k);
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("length %d: every technique on/off", k);
       ImGui::PopID();
-      for (const auto [s, t] : techniquesOfLength(k)) {
+      for (const Technique x : techniquesOfLength(k)) {
+        const int s = x.s, t = x.t;
         ImGui::TableSetColumnIndex(s + 1);
         ImGui::PushID(k * 100 + s);
         const bool isolated = isolating && estimator.isolated == Technique{s, t};

@@ -1,0 +1,20 @@
+// How a technique is written for people and in file names, the same in every report, legend and
+// panel: "(s,t)" for a connection, "M(s,t)" for a merge.
+#pragma once
+
+#include "core/sampling/technique.h"
+
+#include <string>
+
+namespace pathlab {
+
+inline std::string techniqueLabel(Technique x) {
+  return (x.isMerge() ? "M(" : "(") + std::to_string(x.s) + "," + std::to_string(x.t) + ")";
+}
+
+// The part of a file name that names the technique: "-s2-t3", "-m-s2-t3" for a merge.
+inline std::string techniqueFileTag(Technique x) {
+  return (x.isMerge() ? "-m-s" : "-s") + std::to_string(x.s) + "-t" + std::to_string(x.t);
+}
+
+}  // namespace pathlab
