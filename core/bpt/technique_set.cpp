@@ -142,7 +142,9 @@ void TechniqueSet::disable(const TechniqueSet& group, int maxLength) {
     *this = r;
     return;
   }
-  if (all_ && !group.empty()) *this = upTo(maxLength);
+  // A rule cannot have a hole: "all" becomes its connections, listed, when the group takes any
+  // connection (merges are never under a rule).
+  if (all_ && covers(group.families(), TechniqueKind::Connection)) *this = upTo(maxLength);
   forEachBit(group.sRule_, [&](size_t s) { clearBit(sRule_, s); });
   forEachBit(group.tRule_, [&](size_t t) { clearBit(tRule_, t); });
   normalise();

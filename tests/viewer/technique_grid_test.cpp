@@ -53,6 +53,24 @@ TEST(TechniqueGrid, TogglesRoundTrip) {
   EXPECT_EQ(set, TechniqueSet::parse("0,2;0,3;2,1;0,4;2,2;3,1"));
 }
 
+TEST(TechniqueGrid, AMergeTogglesBesideTheConnections) {
+  // A merge cell switches that merge alone: "all" stays "all", and the merge survives the
+  // connections being switched off and on around it.
+  TechniqueSet set = toggleTechnique(TechniqueSet::all(), 4, Technique::merge(2, 3));
+  EXPECT_EQ(set.toString(), "all;M2,3");
+  set = toggleTechnique(set, 4, {1, 1});
+  set = toggleTechnique(set, 4, {1, 1});
+  EXPECT_EQ(set.toString(), "all;M2,3");
+  set = toggleLength(set, 4, 3);
+  EXPECT_TRUE(set.contains(Technique::merge(2, 3)));
+  EXPECT_FALSE(set.contains(1, 3));
+  set = toggleTechnique(toggleLength(set, 4, 3), 4, Technique::merge(2, 3));
+  EXPECT_EQ(set, TechniqueSet::all());
+  RenderSettings pt;
+  pt.integrator = IntegratorKind::Pt;
+  EXPECT_FALSE(techniqueShownEnabled(pt, Technique::merge(2, 2)));
+}
+
 TEST(TechniqueGrid, TheSpecFieldTakesNothingOrASpecThatFits) {
   EXPECT_TRUE(parseTypedSpec(" ; ", 4).empty());
   EXPECT_EQ(parseTypedSpec("k=1", 4), TechniqueSet::parse("0,2;1,1"));

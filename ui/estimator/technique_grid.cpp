@@ -36,14 +36,15 @@ TechniqueSet parseTypedSpec(const std::string& spec, int maxLength) {
 
 namespace {
 
-// Every technique up to the maximum: "all", so that it keeps growing with the maximum.
+// Every connection up to the maximum: "all", so that it keeps growing with the maximum (with the
+// set's merges still listed).
 TechniqueSet compact(TechniqueSet set, int maxLength) {
-  return set.containsAllUpTo(maxLength) ? TechniqueSet::all() : set;
+  return set.containsAllUpTo(maxLength) ? TechniqueSet::all() | set : set;
 }
 
 // All of `group` off when all of it up to maxLength is on, else all of it on.
 TechniqueSet toggleGroup(TechniqueSet set, int maxLength, const TechniqueSet& group) {
-  const TechniqueRange upTo = techniquesUpTo(maxLength);
+  const TechniqueRange upTo = techniquesUpTo(maxLength, TechniqueFamilies::All);
   if (std::all_of(upTo.begin(), upTo.end(), [&](Technique x) { return !group.contains(x) || set.contains(x); })) {
     set.disable(group, maxLength);
     return set;
@@ -72,7 +73,7 @@ bool noTechniqueEnabled(const RenderSettings& settings) {
 }
 
 bool techniqueShownEnabled(const RenderSettings& settings, Technique x) {
-  if (settings.integrator == IntegratorKind::Pt) return x.s <= 1;
+  if (settings.integrator == IntegratorKind::Pt) return !x.isMerge() && x.s <= 1;
   return enabledTechniques(settings).contains(x);
 }
 
