@@ -11,7 +11,7 @@ include = re.compile(r'#include\s+[<"]([^">]+)[">]')
 # The kernels and what they are built from; the consumers of what they compute (films, the check,
 # maps, metrics, convergence runs, render sessions). A folder not named here fails the test, so a
 # new folder is placed on purpose.
-KERNEL = {"image", "io", "math", "sampling", "texture", "bsdf", "camera", "lights", "media", "scene", "counters", "bpt", "pt"}
+KERNEL = {"image", "io", "math", "sampling", "texture", "bsdf", "camera", "lights", "media", "scene", "counters", "bpt", "pt", "merge"}
 CONSUMERS = {"film", "check", "maps", "metrics", "converge", "render"}
 edges, bad = {}, []
 for d in sorted(p.name for p in core.iterdir() if p.is_dir()):

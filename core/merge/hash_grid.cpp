@@ -1,0 +1,47 @@
+// HashGrid::build: buckets computed, points sorted by (bucket, index) and bucket ranges found, all
+// in parallel.
+#include "core/merge/hash_grid.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <stdexcept>
+
+namespace pathlab {
+
+void HashGrid::build(std::span<const Vec3> points, float radius) {
+  if (!(radius > 0.f) || !std::isfinite(radius)) throw std::invalid_argument("HashGrid: the radius must be positive and finite");
+  if (points.size() >= UINT32_MAX) throw std::invalid_argument("HashGrid: too many points");
+  radius_ = radius;
+  radius2_ = radius * radius;
+  invCellSize_ = 1.f / (2.f * radius);
+  const size_t n = points.size();
+  buckets_ = std::max<uint64_t>(n, 1);
+  std::vector<uint64_t> keys(n);  // bucket << 32 | index: sorting them sorts by (bucket, index)
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const Vec3 c = points[i] * invCellSize_;
+      const uint64_t b = bucketOf(cellCoordinate(c.x), cellCoordinate(c.y), cellCoordinate(c.z));
+      keys[i] = b << 32 | i;
+    }
+  });
+  tbb::parallel_sort(keys.begin(), keys.end());
+  index_.resize(n);
+  position_.resize(n);
+  begin_.assign(buckets_, 0);
+  end_.assign(buckets_, 0);
+  // A bucket's range starts where its key first appears and ends after its last: each boundary is
+  // written by the one thread that sees it, so the ranges need no atomics.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t j = r.begin(); j != r.end(); ++j) {
+      const uint32_t i = static_cast<uint32_t>(keys[j]);
+      const uint64_t b = keys[j] >> 32;
+      index_[j] = i;
+      position_[j] = points[i];
+      if (j == 0 || keys[j - 1] >> 32 != b) begin_[b] = static_cast<uint32_t>(j);
+      if (j + 1 == n || keys[j + 1] >> 32 != b) end_[b] = static_cast<uint32_t>(j + 1);
+    }
+  });
+}
+
+}  // namespace pathlab
