@@ -1,15 +1,18 @@
 // misWeight: partition of unity over the techniques able to produce a path, for every heuristic
 // and random enabled subsets, against a brute-force oracle built from explicit full-path
-// densities (each technique's path pdf as a product of area densities).
+// densities (each technique's path pdf as a product of area densities). weightWithMerges
+// (core/merge/merge_mis.h): the same over connections and merges.
 #include "core/bpt/bidir_tracer.h"
 #include "core/bpt/connect.h"
 #include "core/bsdf/bsdf.h"
+#include "core/merge/merge_mis.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"
 #include "tests/support/test_scenes.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 
 namespace pathlab {
@@ -375,5 +378,128 @@ TEST(BptMis, PartitionOfUnityShortConnectionsCornellBox) {
   checkPartition(Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf")), 5, "cornell", 0.3f);
 }
 
+
+// Connections and merges of every path the walks give (checkPartition's paths, glass included),
+// under random eta = pi r^2 N over seven decades and random subsets of both families: each weight
+// against the brute-force oracle, where a merge at x(s'-1) has n p = eta pE(x(s'-1)) p_C(s'), and
+// the weights over C and M summing to one; with no merge enabled, misWeight's weights.
+void checkMergePartition(const Scene& scene, int maxLength, const char* name) {
+  const int size = 8;
+  const Camera camera(scene.cameraDesc(), size, size);
+  Pcg32 rng(77, 3);
+  CameraSubpath cp;
+  LightSubpath lp;
+  Counters counters;
+  int checked = 0, withMerges = 0;
+  for (int sample = 0; sample < 300; ++sample) {
+    const int nt = generateCameraSubpath(scene, camera, Vec2(rng.next1D() * size, rng.next1D() * size), rng.next2D(),
+                                         rng, WalkOptions{maxLength + 1, false, scene.mediumAt(camera.position())}, cp,
+                                         counters);
+    const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, false}, lp, counters);
+    for (int t = 1; t <= nt; ++t)
+      for (int s = 0; s <= ns && s + t - 1 <= maxLength; ++s) {
+        if (s + t < 2) continue;
+        const Connection c = connect(scene, camera, lp, s, cp, t, rng, counters);
+        if (isBlack(c.L)) continue;
+        const int n = s + t;
+        std::vector<PathVertex> x;
+        for (int i = 0; i < s; ++i) x.push_back(i == 0 && s == 1 && t >= 2 ? c.sampled : lp[i]);
+        for (int j = t - 1; j >= 0; --j) x.push_back(j == 0 && t == 1 ? c.sampled : cp[j]);
+        x[0].type = VertexType::Light;
+        const FullPath f = densities(scene, camera, x);
+        std::vector<uint8_t> surface(static_cast<size_t>(n));
+        for (int i = 0; i < n; ++i) surface[static_cast<size_t>(i)] = x[static_cast<size_t>(i)].type == VertexType::Surface;
+        const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
+        const PathDensities d = pathDensities(scene, camera, real);
+        const float minDistance = kDefaultMinConnection * scene.bounds().radius;
+        for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+          const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, kDefaultMinConnection};
+          const MergeMis merge{std::pow(10.0, -4.0 + 7.0 * rng.next1D())};
+          TechniqueSet enabled = TechniqueSet::all();
+          if (rng.next1D() < 0.5f)
+            for (int sp = 0; sp < n; ++sp)
+              if (sp != s && rng.next1D() < 0.4f) enabled.disable({sp, n - sp}, maxLength);
+          for (int sp = 0; sp < n; ++sp)
+            EXPECT_NEAR(weightWithMerges(d, surface, Technique{sp, n - sp}, enabled, o, lightTracingRatio(), minDistance, merge),
+                        weightFromDensities(d, sp, enabled, o, lightTracingRatio(), minDistance), 1e-6)
+                << name << " no merge enabled, s'=" << sp;
+          bool anyMerge = false;
+          for (int sp = 2; sp < n; ++sp)
+            if (rng.next1D() < 0.6f) enabled.enable(Technique::merge(sp, n + 1 - sp)), anyMerge = true;
+          // The oracle: n p of every usable technique of both families as explicit products of the
+          // vertices' densities, a delta's zero counting one (it cancels between the techniques
+          // that share it). Connections: enabled, their edge free of delta vertices, as misWeight
+          // (x0 hittable for s' = 0, no lens point toward infinity); merges: enabled, at an
+          // interior surface vertex without a delta lobe.
+          const double b = h == MisHeuristic::Power ? o.beta : 1.0;
+          auto one = [](double v) { return v != 0.0 ? v : 1.0; };
+          auto pC = [&](int sp) {
+            double prod = 1.0;
+            for (int i = 0; i < n; ++i)
+              prod *= one(i == 0 && sp == 1 ? f.pLNee : i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)]);
+            return prod;
+          };
+          auto delta = [&](int i) { return x[static_cast<size_t>(i)].isDelta; };
+          auto connectionPossible = [&](int sp) {
+            if (!enabled.contains(sp, n - sp)) return false;
+            if (sp == 0) return !x[0].isDeltaPosition && !x[0].isDeltaDirection && !delta(0);
+            if (sp == 1 && n == 2 && x[0].isInfinite) return false;
+            if (sp == 1 && f.pLNee == 0.0) return false;
+            return !delta(sp - 1) && !delta(sp);
+          };
+          // --min-connection: a short connection edge is left out while a connection without one remains.
+          auto shortEdge = [&](int sp) {
+            return sp >= 1 && glm::distance(x[static_cast<size_t>(sp - 1)].p, x[static_cast<size_t>(sp)].p) < minDistance;
+          };
+          bool longRemains = false;
+          for (int sp = 0; sp < n; ++sp) longRemains |= connectionPossible(sp) && !shortEdge(sp);
+          auto connectionUsable = [&](int sp) { return connectionPossible(sp) && !(longRemains && shortEdge(sp)); };
+          std::vector<double> pc(static_cast<size_t>(n), 0.0), pm(static_cast<size_t>(n), 0.0);
+          double sumP = 0.0;
+          int count = 0;
+          for (int sp = 0; sp < n; ++sp) {
+            if (connectionUsable(sp)) {
+              pc[static_cast<size_t>(sp)] = std::pow(pC(sp) * (n - sp == 1 ? lightTracingRatio() : 1.0), b);
+              sumP += pc[static_cast<size_t>(sp)], ++count;
+            }
+            const size_t m = static_cast<size_t>(sp - 1);
+            if (sp >= 2 && sp <= n - 1 && enabled.contains(Technique::merge(sp, n + 1 - sp)) && surface[m] && !delta(sp - 1)) {
+              pm[static_cast<size_t>(sp)] = std::pow(merge.eta * one(f.pE[m]) * pC(sp), b);
+              sumP += pm[static_cast<size_t>(sp)], ++count;
+            }
+          }
+          double sum = 0.0;
+          for (int sp = 0; sp < n; ++sp)
+            for (const bool isMerge : {false, true}) {
+              if (isMerge && sp < 2) continue;
+              const Technique y = isMerge ? Technique::merge(sp, n + 1 - sp) : Technique{sp, n - sp};
+              const double p = (isMerge ? pm : pc)[static_cast<size_t>(sp)];
+              const double expected = p > 0.0 ? (h == MisHeuristic::Uniform ? 1.0 / count : p / sumP) : 0.0;
+              const double w = weightWithMerges(d, surface, y, enabled, o, lightTracingRatio(), minDistance, merge);
+              EXPECT_NEAR(w, expected, 1e-4) << name << " " << (isMerge ? "M" : "C") << "(" << y.s << "," << y.t << ") of ("
+                                             << s << "," << t << ") " << misHeuristicName(h) << " eta " << merge.eta;
+              sum += w;
+            }
+          EXPECT_NEAR(sum, 1.0, 1e-5) << name << " (" << s << "," << t << ") " << misHeuristicName(h);
+          ++checked;
+          withMerges += anyMerge && std::any_of(pm.begin(), pm.end(), [](double p) { return p > 0.0; }) ? 1 : 0;
+        }
+      }
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GT(checked, 100) << name;
+  EXPECT_GT(withMerges, 50) << name;  // merges did take part
+}
+
+TEST(MergeMis, PartitionOfUnityFurnace) { checkMergePartition(Scene(furnace()), 5, "furnace"); }
+TEST(MergeMis, PartitionOfUnityPointLight) { checkMergePartition(Scene(pointLight()), 4, "point"); }
+TEST(MergeMis, PartitionOfUnityEnvironment) { checkMergePartition(Scene(environmentAndSquare()), 4, "environment"); }
+TEST(MergeMis, PartitionOfUnityCausticScene) {
+  checkMergePartition(Scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/caustic.gltf")), 5, "caustic");
+}
+// Medium vertices are never merged: their paths keep only the connections and the surface merges.
+TEST(MergeMis, PartitionOfUnityFoggyFurnace) {
+  checkMergePartition(Scene(test::foggyFurnace(0.5f, 1.f, 1.5f, 0.4f)), 5, "foggy furnace");
+}
 }  // namespace
 }  // namespace pathlab

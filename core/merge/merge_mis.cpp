@@ -1,0 +1,63 @@
+// weightWithMerges: the explicit weight over connections and merges.
+#include "core/merge/merge_mis.h"
+
+#include <cmath>
+#include <vector>
+
+namespace pathlab {
+
+double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface, Technique x,
+                        const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
+                        float minDistance, const MergeMis& merge) {
+  const int n = d.n;
+  const int length = n - 1;
+  auto mergeUsable = [&](int sp) {
+    return sp >= 2 && sp <= n - 1 && techniques.contains(Technique::merge(sp, n + 1 - sp)) &&
+           mergeableVertex(d, surface, sp - 1);
+  };
+  const UsableTechniques usable(d, techniques, minDistance);
+  if (x.length() != length) return 0.0;
+  if (options.heuristic == MisHeuristic::Off) {
+    // Veach 1997 sec. 9.1, both families: 1 / (enabled techniques of the length), whatever the
+    // others can do; zero where x itself cannot form the path.
+    const bool possible = x.isMerge() ? mergeUsable(x.s) : techniques.contains(x) && techniquePossible(d, x.s);
+    if (!possible) return 0.0;
+    int count = 0;
+    for (const Technique y : techniquesOfLength(length, TechniqueFamilies::All)) count += techniques.contains(y) ? 1 : 0;
+    return 1.0 / static_cast<double>(count);
+  }
+  if (x.isMerge() ? !mergeUsable(x.s) : !usable(x.s)) return 0.0;
+  if (options.heuristic == MisHeuristic::Uniform) {
+    int count = 0;
+    for (int sp = 0; sp < n; ++sp) count += (usable(sp) ? 1 : 0) + (mergeUsable(sp) ? 1 : 0);
+    return 1.0 / static_cast<double>(count);
+  }
+
+  // rC[s'] = p_C(s') / p_C(x.s), walked outward from x.s (Veach eq. 10.10, mis.h's ratios), so
+  // that no density of a whole path is formed on its own.
+  thread_local std::vector<double> rC;
+  rC.assign(static_cast<size_t>(n), 0.0);
+  rC[static_cast<size_t>(x.s)] = 1.0;
+  for (int sp = x.s + 1; sp < n; ++sp) rC[static_cast<size_t>(sp)] = rC[static_cast<size_t>(sp - 1)] * ratioToLight(d, sp);
+  for (int sp = x.s - 1; sp >= 0; --sp) rC[static_cast<size_t>(sp)] = rC[static_cast<size_t>(sp + 1)] * ratioToCamera(d, sp);
+
+  const double beta = options.heuristic == MisHeuristic::Balance ? 1.0 : static_cast<double>(options.beta);
+  auto term = [beta](double v) { return beta == 1.0 ? v : beta == 2.0 ? v * v : std::pow(v, beta); };
+  auto connectionCount = [&](int sp) { return n - sp == 1 ? static_cast<double>(lightTracingRatio) : 1.0; };
+  // A zero camera-side density at the merged vertex is a delta lobe next to it (the vertex itself
+  // is not delta): it counts one, as in the ratios, and cancels against C(s'-1), which samples
+  // the merged vertex from the camera side through the same lobe.
+  auto mergeFactor = [&](int sp) { return merge.eta * remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]); };
+  // n_x p_x relative to p_C(x.s).
+  const double own = x.isMerge() ? mergeFactor(x.s) : connectionCount(x.s);
+  double sum = 0.0;
+  for (int sp = 0; sp < n; ++sp) {
+    const double r = rC[static_cast<size_t>(sp)];
+    if (usable(sp)) sum += term(r * connectionCount(sp) / own);
+    if (mergeUsable(sp)) sum += term(r * mergeFactor(sp) / own);
+  }
+  const double w = 1.0 / sum;
+  return std::isfinite(w) ? w : 0.0;
+}
+
+}  // namespace pathlab

@@ -1,0 +1,40 @@
+// Multiple importance sampling over connections and merges (vertex connection and merging:
+// Georgiev, Křivánek, Davidovič and Slusallek 2012, sec. 4; Hachisuka, Pantaleoni and Jensen 2012):
+// the explicit O(n) weight over a path's densities, the oracle of any faster form.
+#pragma once
+
+#include "core/bpt/mis.h"
+
+#include <span>
+
+namespace pathlab {
+
+// A merge M(s', n + 1 - s') of an n-vertex path x0 .. x(n-1) takes x(s'-1) from both sides: the
+// light subpath samples x0 .. x(s'-1), a camera subpath samples x(n-1) .. x(s'-1) and the two
+// ends are accepted within a radius r. Its density is the connection C(s')'s, which samples
+// x(s'-1) from the light side only, times the acceptance probability pi r^2 pFromCamera(x(s'-1))
+// (Georgiev et al. eq. 10), and every light subpath of the pass serves every camera sample, so its
+// sample count is N. The merges enter every weight through eta = pi r^2 N (eq. 11):
+//   n_M p_M(s') = eta * pFromCamera(x(s'-1)) * p_C(s').
+struct MergeMis {
+  double eta = 0.0;
+};
+
+// Whether x_i can be the merged vertex: interior (not x0 on the light, not the camera x(n-1)),
+// on a surface, not scattering by a delta lobe (a merge needs a density there). The caller, who
+// has the vertices, says which are surfaces.
+inline bool mergeableVertex(const PathDensities& d, std::span<const uint8_t> surface, int i) {
+  return i >= 1 && i <= d.n - 2 && surface[static_cast<size_t>(i)] && !d.delta[static_cast<size_t>(i)];
+}
+
+// The weight of technique x of the n-vertex path whose densities are d (a connection C(s, n - s) or
+// a merge M(s, n + 1 - s)) among the enabled connections able to produce it (UsableTechniques, as
+// misWeight) and the enabled merges at mergeable vertices; `surface[i]`: x_i lies on a surface.
+// Balance and power: (n_x p_x)^beta / sum over them of (n_j p_j)^beta; uniform: one over their
+// number; MisHeuristic::Off: one over the enabled techniques of the path's length of both kinds.
+// Zero when x itself is disabled or impossible. With no merge enabled it is misWeight's weight.
+double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface, Technique x,
+                        const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
+                        float minDistance, const MergeMis& merge);
+
+}  // namespace pathlab
