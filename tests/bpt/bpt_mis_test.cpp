@@ -210,19 +210,16 @@ SceneDesc environmentAndSquare() {
   return desc;
 }
 
-// minConnection: MisOptions::minConnection. The default leaves out a connection only at a corner;
-// a large value makes short connections common, the fallback (no long one left) included.
-// cameraDesc: the camera seeing the scene (none: the scene's own).
-void checkPartition(const Scene& scene, int maxLength, const char* name, float minConnection = kDefaultMinConnection,
-                    const std::optional<CameraDesc>& cameraDesc = std::nullopt) {
+// Every path the walks of `samples` camera samples through an 8 x 8 film give, under every
+// technique whose connection contributes: fn(s, t, c, x, lp, cp) with x the path's vertices x0 on
+// the light .. x(n-1) at the camera. Stops after a sample that failed a test.
+template <class Fn>
+void forEachConnectedPath(const Scene& scene, const Camera& camera, int maxLength, int samples, Pcg32& rng, Fn&& fn) {
   const int size = 8;
-  const Camera camera(cameraDesc.value_or(scene.cameraDesc()), size, size);
-  Pcg32 rng(1234, 5);
   CameraSubpath cp;
   LightSubpath lp;
   Counters counters;
-  int checked = 0, shortExcluded = 0;
-  for (int sample = 0; sample < 400; ++sample) {
+  for (int sample = 0; sample < samples; ++sample) {
     const int nt = generateCameraSubpath(scene, camera, Vec2(rng.next1D() * size, rng.next1D() * size), rng.next2D(),
                                          rng, WalkOptions{maxLength + 1, false, scene.mediumAt(camera.position())}, cp,
                                          counters);
@@ -232,55 +229,70 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
         if (s + t < 2) continue;
         const Connection c = connect(scene, camera, lp, s, cp, t, rng, counters);
         if (isBlack(c.L)) continue;
-        const int n = s + t;
         std::vector<PathVertex> x;
         for (int i = 0; i < s; ++i) x.push_back(i == 0 && s == 1 && t >= 2 ? c.sampled : lp[i]);
         for (int j = t - 1; j >= 0; --j) x.push_back(j == 0 && t == 1 ? c.sampled : cp[j]);
         x[0].type = VertexType::Light;  // an emitter found by the camera walk is the light origin
-        const FullPath f = densities(scene, camera, x);
-        for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
-          const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, minConnection};
-          TechniqueSet enabled = TechniqueSet::all();
-          if (rng.next1D() < 0.7f)
-            for (int sp = 0; sp < n; ++sp)
-              if (sp != s && rng.next1D() < 0.4f) enabled.disable({sp, n - sp}, maxLength);
-          const std::vector<double> oracle = oracleWeights(f, enabled, o, minConnection * scene.bounds().radius);
-          shortExcluded += [&] {
-            int excluded = 0;
-            for (int sp = 0; sp < n; ++sp)
-              excluded += enabled.contains(sp, n - sp) && oracle[static_cast<size_t>(sp)] == 0.0 && sp >= 1 &&
-                          glm::distance(f.x[static_cast<size_t>(sp - 1)].p, f.x[static_cast<size_t>(sp)].p) <
-                              minConnection * scene.bounds().radius;
-            return excluded;
-          }();
-          // The weight the tracer computes from the walks' own densities and the connection's.
-          const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-          const float wReal = misWeight(scene, camera, real, enabled, o, lightTracingRatio());
-          EXPECT_NEAR(wReal, oracle[static_cast<size_t>(s)], 1e-4)
-              << name << " (" << s << "," << t << ") " << misHeuristicName(h) << [&] {
-                   const PathDensities d = pathDensities(scene, camera, real);
-                   std::string out;
-                   for (int i = 0; i < n; ++i)
-                     out += "\n x" + std::to_string(i) + " L " + std::to_string(d.pFromLight[size_t(i)]) + " / " +
-                            std::to_string(f.pL[size_t(i)]) + "  E " + std::to_string(d.pFromCamera[size_t(i)]) + " / " +
-                            std::to_string(f.pE[size_t(i)]);
-                   return out;
-                 }();
-          double sum = 0.0;
-          for (int sp = 0; sp < n; ++sp) {
-            const float w = fastWeight(scene, camera, f, sp, enabled, o);
-            EXPECT_NEAR(w, oracle[static_cast<size_t>(sp)], 1e-4) << name << " s'=" << sp << " of (" << s << "," << t << ")"
-                << " light " << static_cast<int>(scene.lights()[static_cast<size_t>(f.x[0].light)].type()) << " pL0 " << f.pL[0]
-                << " pLNee " << f.pLNee << " real x0Nee " << pathDensities(scene, camera, real).x0Nee << " real pL0 "
-                << pathDensities(scene, camera, real).pFromLight[0];
-            sum += w;
-          }
-          EXPECT_NEAR(sum, 1.0, 1e-5) << name << " (" << s << "," << t << ") " << misHeuristicName(h);
-          ++checked;
-        }
+        fn(s, t, c, x, lp, cp);
       }
     if (::testing::Test::HasFailure()) return;
   }
+}
+
+// minConnection: MisOptions::minConnection. The default leaves out a connection only at a corner;
+// a large value makes short connections common, the fallback (no long one left) included.
+// cameraDesc: the camera seeing the scene (none: the scene's own).
+void checkPartition(const Scene& scene, int maxLength, const char* name, float minConnection = kDefaultMinConnection,
+                    const std::optional<CameraDesc>& cameraDesc = std::nullopt) {
+  const Camera camera(cameraDesc.value_or(scene.cameraDesc()), 8, 8);
+  Pcg32 rng(1234, 5);
+  int checked = 0, shortExcluded = 0;
+  forEachConnectedPath(scene, camera, maxLength, 400, rng, [&](int s, int t, const Connection& c,
+                                                          const std::vector<PathVertex>& x, const LightSubpath& lp,
+                                                          const CameraSubpath& cp) {
+    const int n = s + t;
+    const FullPath f = densities(scene, camera, x);
+    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+      const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, minConnection};
+      TechniqueSet enabled = TechniqueSet::all();
+      if (rng.next1D() < 0.7f)
+        for (int sp = 0; sp < n; ++sp)
+          if (sp != s && rng.next1D() < 0.4f) enabled.disable({sp, n - sp}, maxLength);
+      const std::vector<double> oracle = oracleWeights(f, enabled, o, minConnection * scene.bounds().radius);
+      shortExcluded += [&] {
+        int excluded = 0;
+        for (int sp = 0; sp < n; ++sp)
+          excluded += enabled.contains(sp, n - sp) && oracle[static_cast<size_t>(sp)] == 0.0 && sp >= 1 &&
+                      glm::distance(f.x[static_cast<size_t>(sp - 1)].p, f.x[static_cast<size_t>(sp)].p) <
+                          minConnection * scene.bounds().radius;
+        return excluded;
+      }();
+      // The weight the tracer computes from the walks' own densities and the connection's.
+      const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
+      const float wReal = misWeight(scene, camera, real, enabled, o, lightTracingRatio());
+      EXPECT_NEAR(wReal, oracle[static_cast<size_t>(s)], 1e-4)
+          << name << " (" << s << "," << t << ") " << misHeuristicName(h) << [&] {
+               const PathDensities d = pathDensities(scene, camera, real);
+               std::string out;
+               for (int i = 0; i < n; ++i)
+                 out += "\n x" + std::to_string(i) + " L " + std::to_string(d.pFromLight[size_t(i)]) + " / " +
+                        std::to_string(f.pL[size_t(i)]) + "  E " + std::to_string(d.pFromCamera[size_t(i)]) + " / " +
+                        std::to_string(f.pE[size_t(i)]);
+               return out;
+             }();
+      double sum = 0.0;
+      for (int sp = 0; sp < n; ++sp) {
+        const float w = fastWeight(scene, camera, f, sp, enabled, o);
+        EXPECT_NEAR(w, oracle[static_cast<size_t>(sp)], 1e-4) << name << " s'=" << sp << " of (" << s << "," << t << ")"
+            << " light " << static_cast<int>(scene.lights()[static_cast<size_t>(f.x[0].light)].type()) << " pL0 " << f.pL[0]
+            << " pLNee " << f.pLNee << " real x0Nee " << pathDensities(scene, camera, real).x0Nee << " real pL0 "
+            << pathDensities(scene, camera, real).pFromLight[0];
+        sum += w;
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-5) << name << " (" << s << "," << t << ") " << misHeuristicName(h);
+      ++checked;
+    }
+  });
   EXPECT_GT(checked, 100) << name;
   // A large minConnection must actually have left techniques out, or the case is untested.
   if (minConnection >= 0.1f) {
@@ -384,109 +396,92 @@ TEST(BptMis, PartitionOfUnityShortConnectionsCornellBox) {
 // against the brute-force oracle, where a merge at x(s'-1) has n p = eta pE(x(s'-1)) p_C(s'), and
 // the weights over C and M summing to one; with no merge enabled, misWeight's weights.
 void checkMergePartition(const Scene& scene, int maxLength, const char* name) {
-  const int size = 8;
-  const Camera camera(scene.cameraDesc(), size, size);
+  const Camera camera(scene.cameraDesc(), 8, 8);
   Pcg32 rng(77, 3);
-  CameraSubpath cp;
-  LightSubpath lp;
-  Counters counters;
   int checked = 0, withMerges = 0;
-  for (int sample = 0; sample < 300; ++sample) {
-    const int nt = generateCameraSubpath(scene, camera, Vec2(rng.next1D() * size, rng.next1D() * size), rng.next2D(),
-                                         rng, WalkOptions{maxLength + 1, false, scene.mediumAt(camera.position())}, cp,
-                                         counters);
-    const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, false}, lp, counters);
-    for (int t = 1; t <= nt; ++t)
-      for (int s = 0; s <= ns && s + t - 1 <= maxLength; ++s) {
-        if (s + t < 2) continue;
-        const Connection c = connect(scene, camera, lp, s, cp, t, rng, counters);
-        if (isBlack(c.L)) continue;
-        const int n = s + t;
-        std::vector<PathVertex> x;
-        for (int i = 0; i < s; ++i) x.push_back(i == 0 && s == 1 && t >= 2 ? c.sampled : lp[i]);
-        for (int j = t - 1; j >= 0; --j) x.push_back(j == 0 && t == 1 ? c.sampled : cp[j]);
-        x[0].type = VertexType::Light;
-        const FullPath f = densities(scene, camera, x);
-        std::vector<uint8_t> surface(static_cast<size_t>(n));
-        for (int i = 0; i < n; ++i) surface[static_cast<size_t>(i)] = x[static_cast<size_t>(i)].type == VertexType::Surface;
-        const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-        const PathDensities d = pathDensities(scene, camera, real);
-        const float minDistance = kDefaultMinConnection * scene.bounds().radius;
-        for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
-          const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, kDefaultMinConnection};
-          const MergeMis merge{std::pow(10.0, -4.0 + 7.0 * rng.next1D())};
-          TechniqueSet enabled = TechniqueSet::all();
-          if (rng.next1D() < 0.5f)
-            for (int sp = 0; sp < n; ++sp)
-              if (sp != s && rng.next1D() < 0.4f) enabled.disable({sp, n - sp}, maxLength);
-          for (int sp = 0; sp < n; ++sp)
-            EXPECT_NEAR(weightWithMerges(d, surface, Technique{sp, n - sp}, enabled, o, lightTracingRatio(), minDistance, merge),
-                        weightFromDensities(d, sp, enabled, o, lightTracingRatio(), minDistance), 1e-6)
-                << name << " no merge enabled, s'=" << sp;
-          bool anyMerge = false;
-          for (int sp = 2; sp < n; ++sp)
-            if (rng.next1D() < 0.6f) enabled.enable(Technique::merge(sp, n + 1 - sp)), anyMerge = true;
-          // The oracle: n p of every usable technique of both families as explicit products of the
-          // vertices' densities, a delta's zero counting one (it cancels between the techniques
-          // that share it). Connections: enabled, their edge free of delta vertices, as misWeight
-          // (x0 hittable for s' = 0, no lens point toward infinity); merges: enabled, at an
-          // interior surface vertex without a delta lobe.
-          const double b = h == MisHeuristic::Power ? o.beta : 1.0;
-          auto one = [](double v) { return v != 0.0 ? v : 1.0; };
-          auto pC = [&](int sp) {
-            double prod = 1.0;
-            for (int i = 0; i < n; ++i)
-              prod *= one(i == 0 && sp == 1 ? f.pLNee : i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)]);
-            return prod;
-          };
-          auto delta = [&](int i) { return x[static_cast<size_t>(i)].isDelta; };
-          auto connectionPossible = [&](int sp) {
-            if (!enabled.contains(sp, n - sp)) return false;
-            if (sp == 0) return !x[0].isDeltaPosition && !x[0].isDeltaDirection && !delta(0);
-            if (sp == 1 && n == 2 && x[0].isInfinite) return false;
-            if (sp == 1 && f.pLNee == 0.0) return false;
-            return !delta(sp - 1) && !delta(sp);
-          };
-          // --min-connection: a short connection edge is left out while a connection without one remains.
-          auto shortEdge = [&](int sp) {
-            return sp >= 1 && glm::distance(x[static_cast<size_t>(sp - 1)].p, x[static_cast<size_t>(sp)].p) < minDistance;
-          };
-          bool longRemains = false;
-          for (int sp = 0; sp < n; ++sp) longRemains |= connectionPossible(sp) && !shortEdge(sp);
-          auto connectionUsable = [&](int sp) { return connectionPossible(sp) && !(longRemains && shortEdge(sp)); };
-          std::vector<double> pc(static_cast<size_t>(n), 0.0), pm(static_cast<size_t>(n), 0.0);
-          double sumP = 0.0;
-          int count = 0;
-          for (int sp = 0; sp < n; ++sp) {
-            if (connectionUsable(sp)) {
-              pc[static_cast<size_t>(sp)] = std::pow(pC(sp) * (n - sp == 1 ? lightTracingRatio() : 1.0), b);
-              sumP += pc[static_cast<size_t>(sp)], ++count;
-            }
-            const size_t m = static_cast<size_t>(sp - 1);
-            if (sp >= 2 && sp <= n - 1 && enabled.contains(Technique::merge(sp, n + 1 - sp)) && surface[m] && !delta(sp - 1)) {
-              pm[static_cast<size_t>(sp)] = std::pow(merge.eta * one(f.pE[m]) * pC(sp), b);
-              sumP += pm[static_cast<size_t>(sp)], ++count;
-            }
-          }
-          double sum = 0.0;
-          for (int sp = 0; sp < n; ++sp)
-            for (const bool isMerge : {false, true}) {
-              if (isMerge && sp < 2) continue;
-              const Technique y = isMerge ? Technique::merge(sp, n + 1 - sp) : Technique{sp, n - sp};
-              const double p = (isMerge ? pm : pc)[static_cast<size_t>(sp)];
-              const double expected = p > 0.0 ? (h == MisHeuristic::Uniform ? 1.0 / count : p / sumP) : 0.0;
-              const double w = weightWithMerges(d, surface, y, enabled, o, lightTracingRatio(), minDistance, merge);
-              EXPECT_NEAR(w, expected, 1e-4) << name << " " << (isMerge ? "M" : "C") << "(" << y.s << "," << y.t << ") of ("
-                                             << s << "," << t << ") " << misHeuristicName(h) << " eta " << merge.eta;
-              sum += w;
-            }
-          EXPECT_NEAR(sum, 1.0, 1e-5) << name << " (" << s << "," << t << ") " << misHeuristicName(h);
-          ++checked;
-          withMerges += anyMerge && std::any_of(pm.begin(), pm.end(), [](double p) { return p > 0.0; }) ? 1 : 0;
+  forEachConnectedPath(scene, camera, maxLength, 300, rng, [&](int s, int t, const Connection& c,
+                                                          const std::vector<PathVertex>& x, const LightSubpath& lp,
+                                                          const CameraSubpath& cp) {
+    const int n = s + t;
+    const FullPath f = densities(scene, camera, x);
+    std::vector<uint8_t> surface(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) surface[static_cast<size_t>(i)] = x[static_cast<size_t>(i)].type == VertexType::Surface;
+    const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
+    const PathDensities d = pathDensities(scene, camera, real);
+    const float minDistance = kDefaultMinConnection * scene.bounds().radius;
+    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+      const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, kDefaultMinConnection};
+      const MergeMis merge{std::pow(10.0, -4.0 + 7.0 * rng.next1D())};
+      TechniqueSet enabled = TechniqueSet::all();
+      if (rng.next1D() < 0.5f)
+        for (int sp = 0; sp < n; ++sp)
+          if (sp != s && rng.next1D() < 0.4f) enabled.disable({sp, n - sp}, maxLength);
+      for (int sp = 0; sp < n; ++sp)
+        EXPECT_NEAR(weightWithMerges(d, surface, Technique{sp, n - sp}, enabled, o, lightTracingRatio(), minDistance, merge),
+                    weightFromDensities(d, sp, enabled, o, lightTracingRatio(), minDistance), 1e-6)
+            << name << " no merge enabled, s'=" << sp;
+      bool anyMerge = false;
+      for (int sp = 2; sp < n; ++sp)
+        if (rng.next1D() < 0.6f) enabled.enable(Technique::merge(sp, n + 1 - sp)), anyMerge = true;
+      // The oracle: n p of every usable technique of both families as explicit products of the
+      // vertices' densities, a delta's zero counting one (it cancels between the techniques
+      // that share it). Connections: enabled, their edge free of delta vertices, as misWeight
+      // (x0 hittable for s' = 0, no lens point toward infinity); merges: enabled, at an
+      // interior surface vertex without a delta lobe.
+      const double b = h == MisHeuristic::Power ? o.beta : 1.0;
+      auto one = [](double v) { return v != 0.0 ? v : 1.0; };
+      auto pC = [&](int sp) {
+        double prod = 1.0;
+        for (int i = 0; i < n; ++i)
+          prod *= one(i == 0 && sp == 1 ? f.pLNee : i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)]);
+        return prod;
+      };
+      auto delta = [&](int i) { return x[static_cast<size_t>(i)].isDelta; };
+      auto connectionPossible = [&](int sp) {
+        if (!enabled.contains(sp, n - sp)) return false;
+        if (sp == 0) return !x[0].isDeltaPosition && !x[0].isDeltaDirection && !delta(0);
+        if (sp == 1 && n == 2 && x[0].isInfinite) return false;
+        if (sp == 1 && f.pLNee == 0.0) return false;
+        return !delta(sp - 1) && !delta(sp);
+      };
+      // --min-connection: a short connection edge is left out while a connection without one remains.
+      auto shortEdge = [&](int sp) {
+        return sp >= 1 && glm::distance(x[static_cast<size_t>(sp - 1)].p, x[static_cast<size_t>(sp)].p) < minDistance;
+      };
+      bool longRemains = false;
+      for (int sp = 0; sp < n; ++sp) longRemains |= connectionPossible(sp) && !shortEdge(sp);
+      auto connectionUsable = [&](int sp) { return connectionPossible(sp) && !(longRemains && shortEdge(sp)); };
+      std::vector<double> pc(static_cast<size_t>(n), 0.0), pm(static_cast<size_t>(n), 0.0);
+      double sumP = 0.0;
+      int count = 0;
+      for (int sp = 0; sp < n; ++sp) {
+        if (connectionUsable(sp)) {
+          pc[static_cast<size_t>(sp)] = std::pow(pC(sp) * (n - sp == 1 ? lightTracingRatio() : 1.0), b);
+          sumP += pc[static_cast<size_t>(sp)], ++count;
+        }
+        const size_t m = static_cast<size_t>(sp - 1);
+        if (sp >= 2 && sp <= n - 1 && enabled.contains(Technique::merge(sp, n + 1 - sp)) && surface[m] && !delta(sp - 1)) {
+          pm[static_cast<size_t>(sp)] = std::pow(merge.eta * one(f.pE[m]) * pC(sp), b);
+          sumP += pm[static_cast<size_t>(sp)], ++count;
         }
       }
-    if (::testing::Test::HasFailure()) return;
-  }
+      double sum = 0.0;
+      for (int sp = 0; sp < n; ++sp)
+        for (const bool isMerge : {false, true}) {
+          if (isMerge && sp < 2) continue;
+          const Technique y = isMerge ? Technique::merge(sp, n + 1 - sp) : Technique{sp, n - sp};
+          const double p = (isMerge ? pm : pc)[static_cast<size_t>(sp)];
+          const double expected = p > 0.0 ? (h == MisHeuristic::Uniform ? 1.0 / count : p / sumP) : 0.0;
+          const double w = weightWithMerges(d, surface, y, enabled, o, lightTracingRatio(), minDistance, merge);
+          EXPECT_NEAR(w, expected, 1e-4) << name << " " << (isMerge ? "M" : "C") << "(" << y.s << "," << y.t << ") of ("
+                                         << s << "," << t << ") " << misHeuristicName(h) << " eta " << merge.eta;
+          sum += w;
+        }
+      EXPECT_NEAR(sum, 1.0, 1e-5) << name << " (" << s << "," << t << ") " << misHeuristicName(h);
+      ++checked;
+      withMerges += anyMerge && std::any_of(pm.begin(), pm.end(), [](double p) { return p > 0.0; }) ? 1 : 0;
+    }
+  });
   EXPECT_GT(checked, 100) << name;
   EXPECT_GT(withMerges, 50) << name;  // merges did take part
 }
