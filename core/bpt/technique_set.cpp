@@ -98,11 +98,21 @@ TechniqueSet TechniqueSet::mergesOfLength(int k) {
   return set;
 }
 
+TechniqueSet TechniqueSet::allMerges() {
+  TechniqueSet set;
+  set.allMerges_ = true;
+  return set;
+}
+
 TechniqueSet TechniqueSet::pathTracing() { return withS(0) | withS(1); }
 
 TechniqueSet TechniqueSet::lightTracing() { return withT(1); }
 
 void TechniqueSet::normalise() {
+  if (allMerges_)  // every merge: none remains to list
+    forEachBit(listed_, [&](size_t i) {
+      if (Technique::fromIndex(i).isMerge()) clearBit(listed_, i);
+    });
   if (all_) {  // every connection: only listed merges remain to say
     sRule_.clear(), tRule_.clear();
     forEachBit(listed_, [&](size_t i) {
@@ -128,14 +138,26 @@ void TechniqueSet::enable(Technique x) {
 
 void TechniqueSet::disable(Technique x, int maxLength) {
   if (!contains(x)) return;
-  if (coveredByRule(x)) *this = upTo(maxLength);
+  if (x.isMerge() && allMerges_) {  // "m=all" has no hole either: its merges up to maxLength, listed
+    allMerges_ = false;
+    for (const Technique m : techniquesUpTo(maxLength, TechniqueFamilies::Merges)) setBit(listed_, m.index());
+  }
+  if (coveredByRule(x)) *this = upToKeepingMergeRule(maxLength);
   clearBit(listed_, x.index());
   trim(listed_);
 }
 
 void TechniqueSet::disable(const TechniqueSet& group, int maxLength) {
+  if (group.allMerges_) {
+    allMerges_ = false;
+    forEachBit(listed_, [&](size_t i) {
+      if (Technique::fromIndex(i).isMerge()) clearBit(listed_, i);
+    });
+    trim(listed_);
+  }
   if (group.all_) {  // every connection goes; the merges the group does not list stay
     TechniqueSet r;
+    r.allMerges_ = allMerges_;
     forEachBit(listed_, [&](size_t i) {
       if (const Technique x = Technique::fromIndex(i); x.isMerge() && !group.contains(x)) setBit(r.listed_, i);
     });
@@ -144,7 +166,7 @@ void TechniqueSet::disable(const TechniqueSet& group, int maxLength) {
   }
   // A rule cannot have a hole: "all" becomes its connections, listed, when the group takes any
   // connection (merges are never under a rule).
-  if (all_ && covers(group.families(), TechniqueKind::Connection)) *this = upTo(maxLength);
+  if (all_ && covers(group.families(), TechniqueKind::Connection)) *this = upToKeepingMergeRule(maxLength);
   forEachBit(group.sRule_, [&](size_t s) { clearBit(sRule_, s); });
   forEachBit(group.tRule_, [&](size_t t) { clearBit(tRule_, t); });
   normalise();
@@ -154,6 +176,7 @@ void TechniqueSet::disable(const TechniqueSet& group, int maxLength) {
 
 TechniqueSet& TechniqueSet::operator|=(const TechniqueSet& o) {
   all_ = all_ || o.all_;
+  allMerges_ = allMerges_ || o.allMerges_;
   auto unite = [](Bits& a, const Bits& b) {
     if (a.size() < b.size()) a.resize(b.size(), 0);
     for (size_t i = 0; i < b.size(); ++i) a[i] |= b[i];
@@ -166,10 +189,15 @@ TechniqueSet& TechniqueSet::operator|=(const TechniqueSet& o) {
 }
 
 TechniqueSet operator&(const TechniqueSet& a, const TechniqueSet& b) {
-  // "all" is every connection and the merges it lists: with it, the other set keeps its connections
-  // and the merges both list.
+  // "all" is every connection and its merges: with it, the other set keeps its connections and
+  // the merges both have.
   auto withAll = [](const TechniqueSet& allSet, const TechniqueSet& other) {
     TechniqueSet r = other;
+    r.allMerges_ = other.allMerges_ && allSet.allMerges_;
+    if (other.allMerges_ && !allSet.allMerges_)
+      forEachBit(allSet.listed_, [&](size_t i) {
+        if (Technique::fromIndex(i).isMerge()) setBit(r.listed_, i);
+      });
     forEachBit(other.listed_, [&](size_t i) {
       if (const Technique x = Technique::fromIndex(i); x.isMerge() && !allSet.contains(x)) clearBit(r.listed_, i);
     });
@@ -179,6 +207,7 @@ TechniqueSet operator&(const TechniqueSet& a, const TechniqueSet& b) {
   if (a.all_) return withAll(a, b);
   if (b.all_) return withAll(b, a);
   TechniqueSet r;
+  r.allMerges_ = a.allMerges_ && b.allMerges_;
   auto intersect = [](const TechniqueSet::Bits& x, const TechniqueSet::Bits& y) {
     TechniqueSet::Bits out(std::min(x.size(), y.size()));
     for (size_t i = 0; i < out.size(); ++i) out[i] = x[i] & y[i];
@@ -210,6 +239,8 @@ TechniqueSet TechniqueSet::upTo(int maxLength) const {
   const size_t end = Technique::countUpTo(maxLength);
   if (all_)  // every connection, then the listed merges below
     for (const Technique x : techniquesUpTo(maxLength)) setBit(r.listed_, x.index());
+  if (allMerges_)
+    for (const Technique x : techniquesUpTo(maxLength, TechniqueFamilies::Merges)) setBit(r.listed_, x.index());
   forEachBit(listed_, [&](size_t i) {
     if (i < end) setBit(r.listed_, i);
   });
@@ -223,6 +254,13 @@ TechniqueSet TechniqueSet::upTo(int maxLength) const {
       setBit(r.listed_, Technique{k + 1 - static_cast<int>(t), static_cast<int>(t)}.index());
   });
   trim(r.listed_);
+  return r;
+}
+
+TechniqueSet TechniqueSet::upToKeepingMergeRule(int maxLength) const {
+  TechniqueSet r = upTo(maxLength);
+  r.allMerges_ = allMerges_;
+  r.normalise();
   return r;
 }
 
@@ -252,7 +290,7 @@ int TechniqueSet::count(int maxLength) const {
 
 bool TechniqueSet::anyUpTo(int maxLength) const {
   if (maxLength < 1) return false;
-  if (all_) return true;
+  if (all_ || (allMerges_ && maxLength >= 2)) return true;
   bool any = false;
   forEachBit(listed_, [&](size_t i) { any = any || i < Technique::countUpTo(maxLength); });
   forEachBit(sRule_, [&](size_t s) { any = any || std::max(static_cast<int>(s), 1) <= maxLength; });
@@ -267,7 +305,7 @@ bool TechniqueSet::containsAllUpTo(int maxLength, TechniqueFamilies families) co
 }
 
 TechniqueFamilies TechniqueSet::families() const {
-  unsigned f = all_ || !sRule_.empty() || !tRule_.empty() ? 1u : 0u;
+  unsigned f = (all_ || !sRule_.empty() || !tRule_.empty() ? 1u : 0u) | (allMerges_ ? 2u : 0u);
   forEachBit(listed_, [&](size_t i) { f |= 1u << static_cast<unsigned>(Technique::fromIndex(i).kind); });
   return static_cast<TechniqueFamilies>(f);
 }
@@ -298,7 +336,8 @@ std::string TechniqueSet::toString() const {
     for (Technique x : row)
       if (test(listed_, x.index())) item(std::to_string(x.s) + "," + std::to_string(x.t));
   }
-  // Then the merges, by length: "m=K" for all of a length's, else "MS,T" one by one.
+  // Then the merges: "m=all", or by length "m=K" for all of a length's, else "MS,T" one by one.
+  if (allMerges_) item("m=all");
   for (int k = 2; end > 0 && k <= Technique::fromIndex(end - 1).length(); ++k) {
     const TechniqueRange row = techniquesOfLength(k, TechniqueFamilies::Merges);
     if (std::none_of(row.begin(), row.end(), [&](Technique x) { return test(listed_, x.index()); })) continue;
@@ -327,6 +366,8 @@ TechniqueSet TechniqueSet::parse(const std::string& spec) {
       const int v = parseInt(item.substr(2), item);
       checkRange(v, item[0] == 's' ? 0 : 1, item.substr(0, 1).c_str(), item);
       set |= item[0] == 's' ? withS(v) : item[0] == 't' ? withT(v) : ofLength(v);
+    } else if (item == "m=all") {
+      set.allMerges_ = true;
     } else if (item.size() > 2 && item[0] == 'm' && item[1] == '=') {
       const int v = parseInt(item.substr(2), item);
       checkRange(v, 2, "k", item);
@@ -344,7 +385,7 @@ TechniqueSet TechniqueSet::parse(const std::string& spec) {
                                     std::to_string(kMaxTechniqueLength));
       set.enable(x);
     } else {
-      throw std::invalid_argument("techniques: '" + item + "' is not S,T, MS,T, s=S, t=T, k=K, m=K or all");
+      throw std::invalid_argument("techniques: '" + item + "' is not S,T, MS,T, s=S, t=T, k=K, m=K, m=all or all");
     }
     if (end == spec.size()) break;
   }

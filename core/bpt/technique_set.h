@@ -20,8 +20,9 @@ namespace pathlab {
 // techniques that no longer fit, ui/estimator/technique_grid.h, since a listed technique longer than the
 // maximum is refused by validateSettings.)
 //
-// The rules name connections only ("all" is every connection, what `--integrator bpt` samples);
-// merges are listed ("MS,T", or "m=K" for every merge of length K).
+// The rules "all", "s=S" and "t=T" name connections ("all" is every connection, what bpt samples);
+// "m=all" is every merge at every length (with "all": vertex connection and merging), and merges
+// are otherwise listed ("MS,T", or "m=K" for every merge of length K).
 //
 // The representation is canonical (rules as bitsets over s and over t, listed techniques that no
 // rule already covers as a bitset over Technique::index(), no trailing zero words), so two sets
@@ -36,6 +37,7 @@ class TechniqueSet {
   static TechniqueSet withT(int t);       // t = T at every length (T >= 1)
   static TechniqueSet ofLength(int k);    // the k + 1 connections of length k (k >= 1)
   static TechniqueSet mergesOfLength(int k);  // the k - 1 merges of length k (k >= 2)
+  static TechniqueSet allMerges();            // every merge of every length ("m=all")
   // The path tracer's two techniques, s <= 1: the camera subpath hits an emitter (s = 0) or
   // connects to a light sample (s = 1, next-event estimation).
   static TechniqueSet pathTracing();
@@ -43,7 +45,7 @@ class TechniqueSet {
   static TechniqueSet lightTracing();
 
   // SPEC: ';'-separated items "S,T", "s=S", "t=T", "k=K" (every connection of length K), "all"
-  // (every connection), "MS,T" (a merge), "m=K" (every merge of length K); their union. Throws std::invalid_argument naming the item on bad input or an empty SPEC.
+  // (every connection), "MS,T" (a merge), "m=K" (every merge of length K), "m=all"; their union. Throws std::invalid_argument naming the item on bad input or an empty SPEC.
   // Lengths are checked against a maximum only by checkFits.
   static TechniqueSet parse(const std::string& spec);
 
@@ -54,7 +56,7 @@ class TechniqueSet {
            test(tRule_, static_cast<size_t>(t));
   }
   bool contains(Technique x) const {
-    return x.isMerge() ? x.valid() && test(listed_, x.index()) : contains(x.s, x.t);
+    return x.isMerge() ? x.valid() && (allMerges_ || test(listed_, x.index())) : contains(x.s, x.t);
   }
 
   // Adds one technique; throws std::invalid_argument when it is not valid or longer than
@@ -105,8 +107,11 @@ class TechniqueSet {
     return all_ || test(sRule_, static_cast<size_t>(x.s)) || test(tRule_, static_cast<size_t>(x.t));
   }
   void normalise();
+  // upTo, with "m=all" kept as the rule: a hole among the connections lists only them.
+  TechniqueSet upToKeepingMergeRule(int maxLength) const;
 
   bool all_ = false;
+  bool allMerges_ = false;  // "m=all"
   Bits sRule_;   // bit S: s = S at every length
   Bits tRule_;   // bit T: t = T at every length
   Bits listed_;  // bit Technique::index(): listed, and covered by no rule

@@ -1,11 +1,11 @@
 // misWeight: partition of unity over the techniques able to produce a path, for every heuristic
 // and random enabled subsets, against a brute-force oracle built from explicit full-path
 // densities (each technique's path pdf as a product of area densities). weightWithMerges
-// (core/merge/merge_mis.h): the same over connections and merges.
+// (core/bpt/merge_mis.h): the same over connections and merges.
 #include "core/bpt/bidir_tracer.h"
 #include "core/bpt/connect.h"
 #include "core/bsdf/bsdf.h"
-#include "core/merge/merge_mis.h"
+#include "core/bpt/merge_mis.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"
 #include "tests/support/test_scenes.h"

@@ -102,6 +102,31 @@ TEST(BptTechniqueSet, MergesAreListedParsedAndPrintedBesideConnections) {
     EXPECT_THROW(TechniqueSet::parse(bad), std::invalid_argument) << bad;
 }
 
+TEST(BptTechniqueSet, EveryMergeAtEveryLengthIsOneRule) {
+  const TechniqueSet vcm = TechniqueSet::parse("all;m=all");
+  EXPECT_EQ(vcm.toString(), "all;m=all");
+  EXPECT_EQ(TechniqueSet::parse("m=all;M2,3;m=4"), TechniqueSet::allMerges());  // listed ones absorbed
+  for (const Technique x : techniquesUpTo(30, TechniqueFamilies::All)) EXPECT_TRUE(vcm.contains(x));
+  EXPECT_FALSE(TechniqueSet::allMerges().contains(1, 1));
+  EXPECT_EQ(vcm.families(), TechniqueFamilies::All);
+  EXPECT_TRUE(vcm.containsAllUpTo(6, TechniqueFamilies::All));
+  EXPECT_EQ(vcm.count(3), 9 + 3);
+  // A hole lists the merges up to the maximum; switching every merge off leaves the connections.
+  TechniqueSet less = vcm;
+  less.disable(Technique::merge(2, 2), 3);
+  EXPECT_EQ(less.toString(), "all;m=3");
+  less.disable(TechniqueSet::allMerges(), 3);
+  EXPECT_EQ(less, TechniqueSet::all());
+  TechniqueSet noC = vcm;
+  noC.disable({1, 1}, 2);
+  EXPECT_EQ(noC.toString(), "0,2;k=2;m=all");
+  EXPECT_EQ((vcm & TechniqueSet::parse("M2,2;s=0")).toString(), "s=0;m=2");
+  EXPECT_EQ((TechniqueSet::all() & TechniqueSet::allMerges()), TechniqueSet());
+  EXPECT_EQ((vcm & TechniqueSet::allMerges()), TechniqueSet::allMerges());
+  EXPECT_TRUE(TechniqueSet::allMerges().anyUpTo(2));
+  EXPECT_FALSE(TechniqueSet::allMerges().anyUpTo(1));
+}
+
 TEST(BptTechniqueSet, ARendererRefusesMergesUntilOneSamplesThem) {
   RenderSettings s;
   s.maxLength = 4;

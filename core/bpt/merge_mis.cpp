@@ -1,5 +1,5 @@
 // weightWithMerges: the explicit weight over connections and merges.
-#include "core/merge/merge_mis.h"
+#include "core/bpt/merge_mis.h"
 
 #include <cmath>
 #include <vector>
