@@ -52,7 +52,14 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "that sample that edge, when one is enabled (0: off)")
       ->check(CLI::Range(0.f, kMaxMinConnection));
   cmd->add_option("--techniques", o.techniques,
-                  "Enabled (s,t) techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all");
+                  "Enabled techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all (connections), MS,T | m=K | "
+                  "m=all (merges; 'all;m=all' is vertex connection and merging)");
+  cmd->add_option("--radius", s.mergeRadius,
+                  "Merging radius of the first pass, a fraction of the scene's bounding radius")
+      ->check(CLI::Range(0.f, kMaxMergeRadius));
+  cmd->add_option("--radius-alpha", s.mergeRadiusAlpha,
+                  "Progressive radius: pass i merges within r_1 i^((alpha - 1) / 2) (1: fixed radius)")
+      ->check(CLI::Range(0.f, 1.f));
   auto* isolate = cmd->add_option("--isolate", o.isolate,
                                   "Show technique S,T alone: its MIS-weighted share (or with --unweighted its own estimate)");
   cmd->add_flag("--unweighted", o.unweighted,

@@ -60,6 +60,10 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
     misEvaluation_ = options_.techniques.containsAllUpTo(options_.maxLength) ? MisEvaluation::PartialSums
                                                                             : MisEvaluation::Explicit;
   }
+  // With merges every weight is the explicit one over both families (merge_mis.h), MIS off
+  // included (its 1 / n_k counts the merges of the length).
+  merges_ = covers(options_.techniques.families(), TechniqueKind::Merge);
+  if (merges_) misEvaluation_ = MisEvaluation::Explicit;
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
   // The image-only route's preconditions that settings decide: the partial sums, no media, and nothing that
   // changes a result's weight or contribution (isolation, the MIS check, an injected bias).
@@ -74,6 +78,13 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
   };
   for (const Technique x : techniquesUpTo(options_.maxLength))
     if (options_.techniques.contains(x) || x.length() <= options_.pyramidLength) need(x.s, x.t);
+  // A merge M(s, t) uses t camera vertices and s light vertices.
+  if (merges_)
+    for (const Technique x : techniquesUpTo(options_.maxLength, TechniqueFamilies::Merges))
+      if (options_.techniques.contains(x) || x.length() <= options_.pyramidLength) {
+        cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, x.t);
+        lightVerticesNeeded_ = std::max(lightVerticesNeeded_, x.s);
+      }
   if (options_.isolate) need(options_.isolate->s, options_.isolate->t);
 }
 
@@ -85,6 +96,10 @@ template <bool kRecords>
                                                         Counters& counters) const {
   const float ratio = lightTracingRatio();
   const int s = path.s, t = path.t;
+  if (kRecords && merges_)
+    return mergePass_ ? weightWithMerges(scene_, camera_, path, Technique{s, t}, options_.techniques, options_.mis, ratio,
+                                         minConnectionDistance_, MergeMis{mergePass_->eta()})
+                      : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
   if (kRecords && misEvaluation_ == MisEvaluation::Constant) return offWeights_[static_cast<size_t>(s + t - 1)];
   // The partial sums decline (nullopt) a path with a near-coincident connection: misWeight then
   // applies MisOptions::minConnection. An interior connection (s, t >= 2, about half of a
@@ -329,6 +344,63 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& ligh
         evaluate<false>(timed, s, t, use, pRaster, connectionKey, walks, sink, counters);
       }
     }
+  if (mergePass_) evaluateMerges(nt, pRaster, pyramidLength, walks, sink, counters);
+}
+
+void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink,
+                                 Counters& counters) const {
+  // Vertex merging (Georgiev et al. 2012 eq. 11): camera vertex z(t-1) and light vertex y(s-1)
+  // within r make one vertex; the path's contribution over its density is
+  //   beta_camera(z) f_z(toward z(t-2), toward y(s-2)) beta_light(y) / (pi r^2 N),
+  // the camera vertex's BSDF standing for the merged vertex's (each beta stops short of its own
+  // vertex's cosine, which the density estimate's area measure absorbs).
+  const MergePass& pass = *mergePass_;
+  const MergeMis mis{pass.eta()};
+  const float normalisation = static_cast<float>(pass.normalisation());
+  const SinkDemand& demand = sink.demand();
+  const bool imageHasMerges = !options_.isolate;  // an isolated connection shows alone
+  for (int t = 2; t <= nt; ++t) {
+    const PathVertex& z = walks.camera[t - 1];
+    if (z.type != VertexType::Surface || z.isDelta) continue;
+    const Bsdf& bsdf = walks.camera.bsdf(t - 1);
+    pass.grid.query(z.p, [&](uint32_t i) {
+      const uint32_t v = pass.mergeable[i];
+      const uint32_t start = pass.pathStart[v];
+      const int s = static_cast<int>(v - start) + 1;
+      const Technique x = Technique::merge(s, t);
+      if (x.length() > options_.maxLength) return;
+      const bool enabled = options_.techniques.contains(x);
+      const bool inImage = enabled && imageHasMerges, inPyramid = x.length() <= pyramidLength;
+      if (!inImage && !inPyramid) return;
+      TechniqueTally<false> tally(counters, x);
+      const PathVertex& y = pass.vertices[v];
+      const BsdfEval f = bsdf.eval(z.wo, y.wo, TransportMode::Radiance);
+      const Spectrum L = z.beta * f.f * y.beta * normalisation;
+      if (isBlack(L)) return tally.zero();
+      const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
+      const float w = enabled ? weightWithMerges(scene_, camera_, path, x, options_.techniques, options_.mis,
+                                                 lightTracingRatio(), minConnectionDistance_, mis)
+                              : 0.f;
+      tally.contributed();
+      if (!isValidContribution(L)) return tally.discard(L, sink.id());
+      if (demand.records() || inPyramid) {
+        TechniqueResult r;
+        r.s = s;
+        r.t = t;
+        r.kind = TechniqueKind::Merge;
+        r.outcome = TechniqueOutcome::Contributed;
+        r.unweighted = L;
+        r.weight = w;
+        r.imageWeight = inImage ? w : 0.f;
+        r.pRaster = pRaster;
+        r.inImage = inImage;
+        r.inPyramid = inPyramid;
+        sink.record(r);
+      }
+      if (!inImage || !(w > 0.f)) return;
+      if (!sink.toImage(t, pRaster, L * w)) tally.discard(L * w, sink.id());
+    });
+  }
 }
 
 void BidirTracer::sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionKey, bool timed, int pyramidLength,

@@ -6,6 +6,8 @@
 
 #include "core/bpt/bidir_options.h"
 #include "core/bpt/mis.h"
+#include "core/bpt/merge_mis.h"
+#include "core/bpt/merge_pass.h"
 #include "core/bpt/mis_partial_sums.h"
 #include "core/bpt/sample_sink.h"
 #include "core/bpt/subpath.h"
@@ -49,6 +51,15 @@ class BidirTracer {
   int traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out, Counters& counters) const;
 
   const TechniqueSet& techniques() const { return options_.techniques; }
+
+  // Vertex merging (merge_pass.h): whether the technique set has merges, and the pass's stored
+  // light subpaths they merge with, set between passes (never during one). Each camera vertex
+  // z(t-1), t >= 2, merges with every stored light vertex within the pass's radius; every weight,
+  // connections' included, is then the explicit one over connections and merges (merge_mis.h).
+  bool merges() const { return merges_; }
+  void setMergePass(const MergePass* pass) { mergePass_ = pass; }
+  // How many light vertices a walk keeps (what the merge pass stores of each light subpath).
+  int lightVerticesNeeded() const { return lightVerticesNeeded_; }
   MisEvaluation misEvaluation() const { return misEvaluation_; }
 
   // Time the walks and every technique's connection and weight into the counters, on one camera
@@ -98,6 +109,8 @@ class BidirTracer {
   // evaluate's (false: the image-only route, whose preconditions fix the partial sums).
   template <bool kRecords>
   float weight(const MisPath& path, const Connection& c, const Walks& walks, Counters& counters) const;
+  // The merges of the sample's camera subpath (nt vertices) with the pass's light vertices.
+  void evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink, Counters& counters) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 
   const Scene& scene_;
@@ -113,6 +126,8 @@ class BidirTracer {
   bool timing_ = false;
   bool imageOnlyPath_ = false;     // the image-only route's preconditions that the settings decide
   bool imageOnlyPathOff_ = false;  // setImageOnlyPath(false)
+  bool merges_ = false;
+  const MergePass* mergePass_ = nullptr;
 };
 
 }  // namespace pathlab

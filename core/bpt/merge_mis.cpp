@@ -60,4 +60,22 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
   return std::isfinite(w) ? w : 0.0;
 }
 
+float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& path, Technique x,
+                       const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
+                       float minDistance, const MergeMis& merge) {
+  if (!techniques.contains(x)) return 0.f;
+  if (!x.isMerge() && path.t == 1 && camera.isOrthographic()) return 0.f;
+  // Per-thread scratch, as misWeight's: no allocation once grown.
+  thread_local PathDensities d;
+  thread_local std::vector<uint8_t> surface;
+  pathDensities(scene, camera, path, d);
+  surface.resize(static_cast<size_t>(d.n));
+  for (int i = 0; i < d.n; ++i) {
+    const PathVertex& v = i < path.s ? lightVertex(path, i) : cameraVertex(path, d.n - 1 - i);
+    surface[static_cast<size_t>(i)] = v.type == VertexType::Surface;
+  }
+  const double w = weightWithMerges(d, surface, x, techniques, options, lightTracingRatio, minDistance, merge);
+  return std::isfinite(w) ? static_cast<float>(w) : 0.f;
+}
+
 }  // namespace pathlab

@@ -37,4 +37,11 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
                         const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
                         float minDistance, const MergeMis& merge);
 
+// The same on a path as the tracer holds it: a connection C(s, t)'s MisPath for x = C(s, t); for a
+// merge M(s, t), the MisPath of the connection C(s, t - 1) that joins the same vertices (the light
+// prefix through the merged vertex y(s-1), then z(t-2) .. z0), the merged vertex taken as y(s-1).
+float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& path, Technique x,
+                       const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
+                       float minDistance, const MergeMis& merge);
+
 }  // namespace pathlab

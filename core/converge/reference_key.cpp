@@ -82,6 +82,8 @@ std::string describe(const RenderSettings& s) {
   if (s.isolate) text += fmt::format(" isolate={},{},{}", s.isolate->s, s.isolate->t, s.isolate->unweighted);
   // Only when not the default, so the keys of existing caches stay what they were.
   if (s.connect != ConnectStrategy::All) text += fmt::format(" connect={}", connectStrategyName(s.connect));
+  if (covers(s.techniques.families(), TechniqueKind::Merge))
+    text += fmt::format(" radius={} alpha={}", s.mergeRadius, s.mergeRadiusAlpha);
   if (s.camera) {
     text += fmt::format(" yfov={} aspect={} camera=", s.camera->yfov, s.camera->aspectRatio.value_or(0.f));
     for (int c = 0; c < 4; ++c)

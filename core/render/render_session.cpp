@@ -3,6 +3,7 @@
 #include "core/render/render_session.h"
 
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
@@ -66,6 +67,9 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
 
 Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats,
                                      SampleTrace* trace) const {
+  // A merge needs its pass's every light subpath: not kept per sample.
+  if (bidirTracer_ && bidirTracer_->merges())
+    throw std::invalid_argument("replaying a sample (--replay, inspect) with merging techniques is not supported yet");
   return sampleAt(x, y, pass, SampleTargets{splats, nullptr, trace, SampleId{x, y, pass}}, counters);
 }
 
@@ -129,10 +133,55 @@ void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer*
   pixelsDone_.fetch_add(static_cast<uint64_t>(tile.pixels()), std::memory_order_relaxed);
 }
 
+void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
+  if (!mergePass_) mergePass_ = std::make_unique<MergePass>();
+  MergePass& m = *mergePass_;
+  // Each work item walks its pixels' light subpaths into a list of its own; the lists are then
+  // joined in item order, so the store (and the order of every merge) is the same at any thread
+  // count. Serial work: one offset per item.
+  struct ItemPaths {
+    std::vector<PathVertex> vertices;
+    std::vector<uint32_t> pathStart;  // within the item
+  };
+  std::vector<ItemPaths> items(tiles_.size());
+  tbb::enumerable_thread_specific<Counters> local;
+  tbb::parallel_for(size_t{0}, tiles_.size(), [&](size_t i) {
+    const PassTile& tile = tiles_[i];
+    ItemPaths& out = items[i];
+    Counters& c = local.local();
+    std::vector<PathVertex> path;
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        Pcg32 lightRng = sampleStream(settings_, x, y, pass, RngStream::Light);
+        const uint64_t raysBefore = c.rays;
+        const int n = bidirTracer_->traceLightSubpath(lightRng, path, c);
+        c.lightWalk.rays += c.rays - raysBefore;
+        const uint32_t start = static_cast<uint32_t>(out.vertices.size());
+        out.vertices.insert(out.vertices.end(), path.begin(), path.begin() + n);
+        out.pathStart.insert(out.pathStart.end(), static_cast<size_t>(n), start);
+      }
+  });
+  for (const Counters& c : local) counters += c;
+  std::vector<size_t> offset(items.size() + 1, 0);
+  for (size_t i = 0; i < items.size(); ++i) offset[i + 1] = offset[i] + items[i].vertices.size();
+  if (offset.back() >= UINT32_MAX) throw std::runtime_error("vertex merging: too many light vertices in one pass");
+  m.vertices.resize(offset.back());
+  m.pathStart.resize(offset.back());
+  tbb::parallel_for(size_t{0}, items.size(), [&](size_t i) {
+    std::copy(items[i].vertices.begin(), items[i].vertices.end(), m.vertices.begin() + static_cast<std::ptrdiff_t>(offset[i]));
+    for (size_t j = 0; j < items[i].pathStart.size(); ++j)
+      m.pathStart[offset[i] + j] = static_cast<uint32_t>(offset[i]) + items[i].pathStart[j];
+  });
+  m.lightSubpaths = lightSubpathsPerPass(film_.pixelCount());
+  m.index(mergeRadius(settings_.mergeRadius * scene_.bounds().radius, settings_.mergeRadiusAlpha, pass));
+  bidirTracer_->setMergePass(&m);
+}
+
 bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   tbb::enumerable_thread_specific<Counters> local;
   pixelsDone_.store(0, std::memory_order_relaxed);
   const uint64_t pass = schedule_.pass(passes_.load(std::memory_order_relaxed));
+  if (bidirTracer_ && bidirTracer_->merges()) traceMergePass(pass, local.local());
   // Item i records its splats in buffer i % inFlight: the items in flight are consecutive (they
   // enter and leave the pipeline in order), so no two share a buffer.
   const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));

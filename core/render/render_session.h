@@ -102,6 +102,10 @@ class RenderSession {
   Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;
   // Renders one work item's samples: camera estimates into film_, splats into `splats` (Bpt, Lt).
   void renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats, Counters& counters);
+  // Vertex merging: every pixel's light subpath of `pass` (the very one its camera sample walks:
+  // same stream, same length), stored and indexed for the merges, before the pass's camera samples.
+  void traceMergePass(uint64_t pass, Counters& counters);
+  std::unique_ptr<MergePass> mergePass_;
   Film film_;
   std::vector<PassTile> tiles_;  // a pass's work items, in the order their splats are summed
   // The t = 1 splats of the work items in flight (SplatBuffer), then of the current pass in float

@@ -94,9 +94,17 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument(fmt::format("maximum path length {} is more than the {} edges the {} integrator supports",
                                             s.maxLength, kMaxBidirectionalLength, integratorName(s.integrator)));
   if (bidirectional) s.techniques.checkFits(s.maxLength);  // throws naming the problem
-  // The technique numbering, sets and tables know merges; no tracer samples them yet.
-  if (covers(s.techniques.families(), TechniqueKind::Merge))
-    throw std::invalid_argument("techniques: merging techniques (MS,T, m=K) have no sampler yet: enable connections only");
+  if (bidirectional && covers(enabledTechniques(s).families(), TechniqueKind::Merge)) {
+    // Vertex merging: light subpaths of the whole pass, merged at surfaces with path reuse.
+    if (!(s.mergeRadius > 0.f && s.mergeRadius <= kMaxMergeRadius))
+      throw std::invalid_argument(fmt::format("--radius {} is outside (0, {}]", s.mergeRadius, kMaxMergeRadius));
+    if (!(s.mergeRadiusAlpha > 0.f && s.mergeRadiusAlpha <= 1.f))
+      throw std::invalid_argument(fmt::format("--radius-alpha {} is outside (0, 1]", s.mergeRadiusAlpha));
+    if (s.connect == ConnectStrategy::Endpoints)
+      throw std::invalid_argument("merging techniques need path reuse (--connect all), not naive BPT");
+    if (s.checkTechniques)
+      throw std::invalid_argument("the consistency check does not compare merging techniques yet (biased by the radius)");
+  }
   if (s.isolate) {
     const Isolation& i = *s.isolate;
     if (!bidirectional) throw std::invalid_argument("isolating a technique needs the bpt or lt integrator");

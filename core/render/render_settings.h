@@ -44,6 +44,11 @@ struct RenderSettings {
   // others on the paths both can sample (core/check/technique_check.h).
   bool checkTechniques = false;
   int checkBlocks = 4;  // the check's regions: a checkBlocks x checkBlocks grid and the whole image
+  // Vertex merging (the techniques' merges): the first pass's radius as a fraction of the scene's
+  // bounding radius, and alpha of the progressive schedule r_i = r_1 i^((alpha - 1) / 2)
+  // (core/bpt/merge_pass.h). SmallVCM's defaults.
+  float mergeRadius = 0.003f;
+  float mergeRadiusAlpha = 0.75f;
   // Check on every path that the MIS weights of the enabled techniques able to produce it sum to
   // one (Counters::misPartitionFailures). On by default in debug builds.
 #ifdef NDEBUG
@@ -56,6 +61,7 @@ struct RenderSettings {
 };
 
 inline constexpr int kMaxPyramidLength = 8;
+inline constexpr float kMaxMergeRadius = 0.5f;  // of the scene's bounding radius
 // The consistency check keeps a mask of the techniques able to sample each path (one bit each).
 inline constexpr int kMaxCheckedLength = 30;
 inline constexpr float kMaxInjectedBias = 1e6f;

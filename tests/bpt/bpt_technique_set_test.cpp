@@ -127,18 +127,32 @@ TEST(BptTechniqueSet, EveryMergeAtEveryLengthIsOneRule) {
   EXPECT_FALSE(TechniqueSet::allMerges().anyUpTo(1));
 }
 
-TEST(BptTechniqueSet, ARendererRefusesMergesUntilOneSamplesThem) {
+TEST(BptTechniqueSet, ARendererTakesMergesWhereItCanSampleThem) {
   RenderSettings s;
+  s.integrator = IntegratorKind::Bpt;
   s.maxLength = 4;
   s.techniques = TechniqueSet::parse("all;M2,2");
-  try {
-    validateSettings(s);
-    ADD_FAILURE() << "merges have no sampler";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("merging techniques"), std::string::npos) << e.what();
-  }
-  s.techniques = TechniqueSet::all();
   EXPECT_NO_THROW(validateSettings(s));
+  auto refused = [&](RenderSettings bad, const std::string& what) {
+    try {
+      validateSettings(bad);
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  RenderSettings naive = s;
+  naive.connect = ConnectStrategy::Endpoints;
+  refused(naive, "path reuse");
+  RenderSettings check = s;
+  check.checkTechniques = true;
+  refused(check, "consistency check");
+  RenderSettings radius = s;
+  radius.mergeRadius = 0.f;
+  refused(radius, "--radius");
+  RenderSettings alpha = s;
+  alpha.mergeRadiusAlpha = 1.5f;
+  refused(alpha, "--radius-alpha");
 }
 
 TEST(BptTechniqueSet, AllHasEveryTechniqueOfEveryLength) {

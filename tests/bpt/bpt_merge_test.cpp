@@ -1,0 +1,85 @@
+// Vertex merging: each merge length estimates the same image as the connections of that length
+// (the radius's bias held below the test's resolution), vertex connection and merging agrees with
+// BPT, and the merge pass is the same at any thread count.
+#include "core/render/render_session.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/agreement.h"
+#include "tests/support/bpt_scenes.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <iostream>
+
+namespace pathlab {
+namespace {
+
+constexpr int kSize = 24;
+
+// In the integrating sphere (bpt_scenes.h) every surface is Lambertian and no edge is concave:
+// a merge's blur moves no light across a corner, so its bias is only the kernel's curvature
+// term, far below the noise at these radii.
+const Scene& integratingSphere() {
+  static const Scene scene(test::integratingSphere());
+  return scene;
+}
+
+RenderSettings bidirectional(const std::string& techniques, uint64_t seed, float radius = 0.02f) {
+  RenderSettings s;
+  s.width = s.height = kSize;
+  s.maxLength = 4;
+  s.integrator = IntegratorKind::Bpt;
+  s.techniques = TechniqueSet::parse(techniques);
+  s.mergeRadius = radius;
+  s.mergeRadiusAlpha = 1.f;
+  s.seed = 1000 * test::testSeedBase() + seed;
+  return s;
+}
+
+TEST(VertexMerging, EachMergeLengthEstimatesTheConnectionsImageOfItsLength) {
+  const Scene& scene = integratingSphere();
+  const test::PixelLabels grid = test::gridLabels(kSize, kSize, 2, 2);
+  std::vector<test::EstimatorSpec> estimators;
+  std::vector<test::PairSpec> pairs;
+  for (int k = 2; k <= 4; ++k) {
+    const std::string c = "k=" + std::to_string(k), m = "m=" + std::to_string(k);
+    estimators.push_back({c, bidirectional(c, 10 + static_cast<uint64_t>(k)), 64});
+    estimators.push_back({m, bidirectional(m, 20 + static_cast<uint64_t>(k)), 64});
+    pairs.push_back({m, c, 0, 0.1});
+  }
+  const auto run = test::runAgreement(scene, estimators, {grid}, pairs, test::kFamilyAlpha);
+  std::cout << run.summary();
+  test::expectAgreement(run, "merges against connections, by length");
+}
+
+TEST(VertexMerging, ConnectionsAndMergesTogetherAgreeWithBpt) {
+  // The integrating sphere, and a glass sphere's caustic, where the merges take the paths
+  // light -> glass -> glass -> floor -> camera that only light tracing and s = 0 connect.
+  static const Scene caustic(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/caustic.gltf"));
+  const std::vector<std::pair<const char*, const Scene*>> scenes = {{"integrating sphere", &integratingSphere()},
+                                                                    {"caustic", &caustic}};
+  for (const auto& [name, scene] : scenes) {
+    const test::PixelLabels grid = test::gridLabels(kSize, kSize, 3, 3);
+    const std::vector<test::EstimatorSpec> estimators = {{"bpt", bidirectional("all", 31), 128},
+                                                         {"vcm", bidirectional("all;m=all", 32, 0.01f), 128}};
+    const auto run = test::runAgreement(*scene, estimators, {grid}, {{"vcm", "bpt", 0, 0.05}}, test::kFamilyAlpha);
+    std::cout << run.summary();
+    test::expectAgreement(run, name);
+  }
+}
+
+TEST(VertexMerging, TheSameImageAtAnyThreadCount) {
+  RenderSettings s = bidirectional("all;m=all", 5);
+  auto render = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+    RenderSession session(integratingSphere(), s);
+    for (int p = 0; p < 3; ++p) session.renderPass();
+    return session.image();
+  };
+  const Image one = render(1);
+  EXPECT_EQ(render(2).rgb, one.rgb);
+  EXPECT_EQ(render(4).rgb, one.rgb);
+}
+
+}  // namespace
+}  // namespace pathlab
