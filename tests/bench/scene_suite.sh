@@ -7,8 +7,9 @@
 #   tests/bench/scene_suite.sh [BIN=build/app/pathlab] [BASE_BIN] [OUT_DIR=out/suite]
 # Environment (defaults in brackets):
 #   SUITE_SCENES  [every assets/*.gltf]  scene names without .gltf
-#   SUITE_TIME    [10]    seconds per configuration (equal time); SUITE_SPP, when set, renders
-#                         that many samples per pixel instead (error per sample)
+#   SUITE_TIME    [3]     seconds per configuration (equal time); SUITE_SPP, when set, renders
+#                         that many samples per pixel instead (error per sample). The reference's
+#                         own error adds to every relMSE: keep the spp well below SUITE_REF_SPP
 #   SUITE_CONFIGS ["bpt;pt"]  `pathlab converge --configs`
 #   SUITE_WIDTH   [128]   image width (the height follows the camera's aspect)
 #   SUITE_MAX_LENGTH [10] maximum path length in edges
@@ -22,7 +23,7 @@ BIN=${1:-$SRC/build/app/pathlab}
 BASE_BIN=${2:-}
 OUT=${3:-$SRC/out/suite}
 SUITE_SCENES=${SUITE_SCENES:-$(cd "$SRC/assets" && ls *.gltf | sed 's/\.gltf$//')}
-SUITE_TIME=${SUITE_TIME:-10}
+SUITE_TIME=${SUITE_TIME:-3}
 SUITE_SPP=${SUITE_SPP:-}
 SUITE_CONFIGS=${SUITE_CONFIGS:-bpt;pt}
 SUITE_WIDTH=${SUITE_WIDTH:-128}
