@@ -124,7 +124,7 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
   cmd->add_option("--max-length", o.maxLength, "Maximum path length in edges (a configuration may override it)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  cmd->add_flag("--rr,!--no-rr", o.russianRoulette, "Russian roulette from the third edge on (default on)");
+  cmd->add_flag("--rr,!--no-rr", o.russianRoulette, "Russian roulette from the second scattering on, delta bounces always continued (default on)");
   cmd->add_option("--seed", o.seed, "Seed of every configuration's random streams");
   addThreadsOption(cmd, o.threads);
   addLoadOptions(cmd, o.scene.load, o.scene.environment);

@@ -70,7 +70,7 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "biases the image (for teaching and for `pathlab check`)");
   // A callback, not a negated flag: CLI11 prints a negated flag as "--no-rr{false}".
   cmd->add_flag_callback("--no-rr", [&s] { s.russianRoulette = false; },
-                         "Turn Russian roulette off (it is on by default, from the third edge on)");
+                         "Turn Russian roulette off (it is on by default, from the second scattering on; delta bounces always continue)");
   cmd->add_option("--seed", s.seed, "Seed of every random stream (samples are keyed by seed, pixel, index)");
   cmd->add_option("--aperture", s.lens.apertureRadius, "Thin-lens aperture radius in scene units (0: pinhole)")
       ->check(CLI::Range(0.f, kMaxAperture));

@@ -608,9 +608,9 @@ def centroid(points):
     return mul(tuple(map(sum, zip(*points))), 1.0 / len(points))
 
 
-def cornell_box():
-    """The measured Cornell box, all Lambertian, light radiance (17, 12, 4) as in common use."""
-    b = GltfBuilder()
+def cornell_walls(b):
+    """The measured box's materials and walls; returns the white material, the light's material and
+    the wall nodes."""
     white = b.add_material("white", (0.73, 0.73, 0.73), lambertian=True)
     red = b.add_material("red", (0.63, 0.065, 0.05), lambertian=True)
     green = b.add_material("green", (0.14, 0.45, 0.091), lambertian=True)
@@ -622,20 +622,50 @@ def cornell_box():
         quad = mm(quad)
         g = polygon(quad, sub(inside, centroid(quad)))
         nodes.append(b.add_node(name, b.add_geom(g, materials.get(name, white), name)))
-    for name, faces in (("shortBlock", CORNELL_SHORT_BLOCK), ("tallBlock", CORNELL_TALL_BLOCK)):
-        faces = [mm(f) for f in faces]
-        middle = centroid([p for f in faces for p in f])
-        g = merged(*(polygon(f, sub(centroid(f), middle)) for f in faces))
-        nodes.append(b.add_node(name, b.add_geom(g, white, name)))
+    return white, light, nodes
+
+
+def cornell_light_and_camera(b, light, nodes):
     # 130 x 105 mm, as measured, 1 mm below the ceiling, facing down.
     quad = rect((0.278, 0.5478, 0.2795), (0.0, -1.0, 0.0), 0.065, 0.0525)
     nodes.append(b.add_node("light", b.add_geom(quad, light, "light")))
     # Measured camera: 35 mm focal length, 25 mm film -> yfov = 2 atan(12.5 / 35).
     nodes.append(b.add_camera_node((0.278, 0.273, -0.8), (0.278, 0.273, 0.0),
                                    2.0 * math.atan(12.5 / 35.0)))
+
+
+def cornell_box():
+    """The measured Cornell box, all Lambertian, light radiance (17, 12, 4) as in common use."""
+    b = GltfBuilder()
+    white, light, nodes = cornell_walls(b)
+    for name, faces in (("shortBlock", CORNELL_SHORT_BLOCK), ("tallBlock", CORNELL_TALL_BLOCK)):
+        faces = [mm(f) for f in faces]
+        middle = centroid([p for f in faces for p in f])
+        g = merged(*(polygon(f, sub(centroid(f), middle)) for f in faces))
+        nodes.append(b.add_node(name, b.add_geom(g, white, name)))
+    cornell_light_and_camera(b, light, nodes)
     b.add_scene("cornell-box", nodes)
     return b
 
+
+def cornell_spheres():
+    """SmallVCM's "mirror ball + glass ball" box in the measured Cornell box: the same walls, light
+    and camera as cornell_box, the blocks replaced by a mirror sphere (left) and a glass sphere (IOR
+    1.6, right) on the floor, each of radius 0.196 x the box's width and centred 2/7 of the width
+    from its wall, as in SmallVCM's scene.hxx. Meshes, like SmallVCM's scene as measured in issue 31."""
+    b = GltfBuilder()
+    _, light, nodes = cornell_walls(b)
+    mirror = b.add_material("mirror", (1.0, 1.0, 1.0), metallic=1.0, roughness=0.0)
+    glass = b.add_material("glass", (1.0, 1.0, 1.0), roughness=0.0, glass=True, ior=1.6)
+    width = 0.556
+    radius = 0.196 * width
+    for name, x, material in (("mirrorSphere", width * 5.0 / 7.0, mirror),
+                              ("glassSphere", width * 2.0 / 7.0, glass)):
+        sphere = uv_sphere((x, radius, 0.25), radius, segments=96, rings=48)
+        nodes.append(b.add_node(name, b.add_geom(sphere, material, name)))
+    cornell_light_and_camera(b, light, nodes)
+    b.add_scene("cornell-spheres", nodes)
+    return b
 
 def veach_mis():
     """Veach 1997, fig. 9.2: glossy plates (top: near mirror, bottom: rough) reflecting four
@@ -1116,6 +1146,7 @@ def square_light_radiance():
 
 def main():
     write(ASSETS / "cornell-box.gltf", cornell_box().gltf_bytes())
+    write(ASSETS / "cornell-spheres.gltf", cornell_spheres().gltf_bytes())
     write(ASSETS / "veach-mis.gltf", veach_mis().gltf_bytes())
     write(ASSETS / "bidir-lamp.gltf", bidir_lamp().gltf_bytes())
     write(ASSETS / "caustic.gltf", caustic().gltf_bytes())

@@ -34,7 +34,8 @@ void setEnvironmentVertex(const Scene& scene, const Ray& ray, const PathVertex& 
 // remain a partition of unity (pbrt-v3's BDPT does the same).
 void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, TransportMode mode, Pcg32& rng,
                 const WalkOptions& options, Subpath& path, Counters& counters, int medium) {
-  const Spectrum betaStart = beta;
+  RussianRoulette roulette(beta);
+  bool delta = false;  // the last scattering was a delta lobe
   const Bsdf* prevBsdf = nullptr;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
   float prevPhaseG = 0.f;          // the anisotropy of the phase function that chose `ray`...
   bool prevPhase = false;          // ...when a medium vertex did
@@ -130,6 +131,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       prevPhase = true;
       prev.pdfRevA = convertDensity(pdfFwdW, v, prev);
       ray = Ray{v.p, wi};
+      delta = false;
     } else {
       // Every surface vertex, the last included, gets its BSDF: connect() evaluates it.
       Bsdf& bsdf = path.bsdfs[static_cast<size_t>(path.count)];
@@ -147,6 +149,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       float pdfRevW = bs->pdfRevW;
       prevBsdf = nullptr;
       prevPhase = false;
+      delta = bs->isDelta;
       if (bs->isDelta) {
         // pbrt: a delta vertex stores zero densities, remapped to one where ratios are formed.
         v.isDelta = true;
@@ -159,16 +162,9 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       medium = v.media.toward(v.ng, bs->wi);
     }
 
-    // Russian roulette as in the path tracer, on the throughput gained since the walk began
-    // (a light subpath starts with the emitted power's scale). Unbiased; the MIS densities leave
-    // it out, which keeps the weights a partition of unity. Not capped below one (path_tracer.cpp).
-    const int edges = path.count - 1;
-    if (options.russianRoulette && edges >= kRussianRouletteStart) {
-      const Spectrum rel = beta / glm::max(betaStart, Spectrum(1e-30f));
-      const float q = glm::min(maxComponent(rel), 1.f);
-      if (!(q > 0.f) || rng.next1D() >= q) break;
-      beta /= q;
-    }
+    // Russian roulette as in the path tracer (russian_roulette.h). Unbiased; the MIS densities
+    // leave it out, which keeps the weights a partition of unity.
+    if (options.russianRoulette && !roulette.survives(beta, delta, path.count - 1, rng)) break;
   }
 }
 

@@ -39,7 +39,7 @@ struct LightSubpath : Subpath {};
 
 struct WalkOptions {
   int maxVertices = 0;         // camera subpath: maxLength + 1; light subpath: maxLength
-  bool russianRoulette = true;  // the path tracer's rule (russian_roulette.h), on the walk's own throughput
+  bool russianRoulette = true;  // the path tracer's policy (russian_roulette.h), on the walk's own throughput
   int cameraMedium = -1;        // camera walks: the medium the camera is in (Scene::mediumAt)
 };
 

@@ -107,16 +107,9 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
   float prevPdfW = 0.f;
   // The vertex the ray left, as next-event estimation there saw it (the receiver of its light choice).
   LightSampleContext prev{ray.o, Vec3(0.f)};
-  // Russian roulette on the throughput (unbiased: survivors are reweighted by 1/q). The survival
-  // probability is not capped below one: with a cap of 0.95, paths of the mean length
-  // 1 / (1 - albedo) = 1000 of an albedo-0.999 furnace survive with probability 0.95^1000, and
-  // the estimate, unbiased in theory, is wrong for any practical sample count.
-  auto survivesRoulette = [&](int edges) {
-    if (!russianRoulette_ || edges < kRussianRouletteStart) return true;
-    const float q = glm::min(maxComponent(beta), 1.f);
-    if (!(q > 0.f) || rng.next1D() >= q) return false;
-    beta /= q;
-    return true;
+  RussianRoulette roulette(beta);
+  auto survivesRoulette = [&](int edges, bool delta) {
+    return !russianRoulette_ || roulette.survives(beta, delta, edges, rng);
   };
   for (int edges = 1;; ++edges) {
     const MediaStep step = traceStep(scene_, ray, medium, rng, counters);
@@ -136,7 +129,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
       prevPdfW = phaseHG(wo, wi, g);
       prev = LightSampleContext{step.p, Vec3(0.f)};
       ray = Ray{step.p, wi};
-      if (!survivesRoulette(edges)) break;
+      if (!survivesRoulette(edges, false)) break;
       continue;
     }
     const std::optional<SurfaceHit>& hit = step.hit;  // empty when the ray escaped
@@ -174,7 +167,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
     ray = Ray{offsetRayOrigin(hit->p, hit->pError, hit->ng, bs->wi), bs->wi};
     medium = hit->media.toward(hit->ng, bs->wi);
 
-    if (!survivesRoulette(edges)) break;
+    if (!survivesRoulette(edges, bs->isDelta)) break;
   }
   return L;
 }

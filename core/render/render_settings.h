@@ -6,7 +6,6 @@
 #include "core/bpt/mis_options.h"
 #include "core/bpt/technique_set.h"
 #include "core/pt/path_tracer.h"
-#include "core/sampling/russian_roulette.h"
 #include "core/camera/camera.h"
 #include "core/scene/scene_desc.h"
 
@@ -23,7 +22,7 @@ struct RenderSettings {
   int width = 512;
   int height = 512;
   int maxLength = 10;            // maximum path length in edges (a visible emitter is 1)
-  bool russianRoulette = true;   // starts at kRussianRouletteStart edges
+  bool russianRoulette = true;   // core/sampling/russian_roulette.h
   uint64_t seed = 0;
   IntegratorKind integrator = IntegratorKind::Pt;
   LensOptions lens;

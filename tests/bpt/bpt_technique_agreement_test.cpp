@@ -219,12 +219,15 @@ TEST(TechniqueAgreement, EachLengthMatchesThePathTracer) {
     p.maxLength = k;
     p.seed = 1000 * test::testSeedBase() + 61;
     RegionMeans ptLength;
+    // 768 passes: roulette from the second scattering on (russian_roulette.h) ends some of the
+    // length-3 and -4 paths, whose survivors carry 1/q, and 512 left the blue channel of length 4
+    // at 2.06 % (seed 0) against the 2 % below.
     if (k == 1) {
-      ptLength = test::renderRegionMeans(scene, p, 512, grid);
+      ptLength = test::renderRegionMeans(scene, p, 768, grid);
     } else {
       RenderSettings shorter = p;
       shorter.maxLength = k - 1;
-      ptLength = test::renderPairedDifference(scene, p, shorter, 512, grid);
+      ptLength = test::renderPairedDifference(scene, p, shorter, 768, grid);
     }
     const RegionMeans& b = bptLengths[static_cast<size_t>(k - 1)].front();
     results.push_back(test::compareRegions(b, ptLength));

@@ -46,7 +46,7 @@ void expectRenderable(const SceneDesc& d) {
 
 TEST(GltfBundledScenes, EverySceneLoadsLitFramedAndFinite) {
   for (const char* file :
-       {"assets/cornell-box.gltf", "assets/veach-mis.gltf", "assets/bidir-lamp.gltf",
+       {"assets/cornell-box.gltf", "assets/cornell-spheres.gltf", "assets/veach-mis.gltf", "assets/bidir-lamp.gltf",
         "assets/caustic.gltf", "assets/many-lights.gltf", "tests/scenes/furnace.gltf", "tests/scenes/square-light.gltf",
         "tests/scenes/punctual.gltf", "tests/scenes/hierarchy.gltf", "tests/scenes/textured.gltf",
         "tests/scenes/cornell-box.glb"}) {

@@ -56,13 +56,19 @@ SceneDesc furnace(float rho, float Le) {
   return desc;
 }
 
-Material mediumBoundary(Spectrum sigmaT, bool scatters, float g) {
+Material smoothGlass(float ior) {
   Material m;
-  m.name = "medium boundary";
+  m.name = "glass";
   m.transmissionFactor = 1.f;
-  m.ior = 1.f;
+  m.ior = ior;
   m.roughnessFactor = 0.f;
   m.metallicFactor = 0.f;
+  return m;
+}
+
+Material mediumBoundary(Spectrum sigmaT, bool scatters, float g) {
+  Material m = smoothGlass(1.f);
+  m.name = "medium boundary";
   VolumeDesc v;
   v.attenuationColor = glm::exp(-sigmaT);
   v.attenuationDistance = 1.f;
@@ -89,6 +95,21 @@ SceneDesc foggyFurnace(float rho, float Le, float sigmaT, float g) {
   desc.path = "foggy furnace";
   desc.materials.push_back(mediumBoundary(Spectrum(sigmaT), true, g));
   for (TriangleMesh& m : outwardBox(Vec3(-0.999f), Vec3(0.999f), 1)) desc.meshes.push_back(std::move(m));
+  return desc;
+}
+
+SceneDesc deltaFurnace(float rho, float Le) {
+  SceneDesc desc = furnace(rho, Le);
+  desc.path = "delta furnace";
+  Material mirror;
+  mirror.name = "mirror";
+  mirror.metallicFactor = 1.f;
+  mirror.roughnessFactor = 0.f;
+  desc.materials.push_back(smoothGlass(1.6f));
+  desc.materials.push_back(mirror);
+  // In front of the furnace's camera, which looks toward (1, -0.3, -0.5) from (0.1, 0.2, 0.3).
+  for (TriangleMesh& m : outwardBox(Vec3(0.4f, -0.4f, -0.5f), Vec3(0.8f, 0.f, -0.1f), 1)) desc.meshes.push_back(std::move(m));
+  for (TriangleMesh& m : outwardBox(Vec3(0.4f, 0.1f, -0.9f), Vec3(0.7f, 0.4f, -0.6f), 2)) desc.meshes.push_back(std::move(m));
   return desc;
 }
 

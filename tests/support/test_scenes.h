@@ -22,6 +22,9 @@ std::vector<TriangleMesh> inwardBox(float h, int material);
 // and a camera inside it.
 SceneDesc furnace(float rho, float Le);
 
+// Smooth glass of index `ior` (transmission 1), no volume: every lobe a delta.
+Material smoothGlass(float ior);
+
 // An index-matched boundary (transmission 1, ior 1, smooth) around a homogeneous medium of
 // extinction sigmaT per unit length (attenuationDistance 1); scattering with single-scattering
 // albedo 1 and anisotropy g when `scatters` (multiscatterColor 1), else purely absorbing.
@@ -33,6 +36,12 @@ std::vector<TriangleMesh> outwardBox(const Vec3& lo, const Vec3& hi, int materia
 // The furnace filled with a scattering, non-absorbing medium (sigmaT, g) bounded by an
 // index-matched box just inside the walls: still Le / (1 - rho) everywhere for long paths.
 SceneDesc foggyFurnace(float rho, float Le, float sigmaT, float g);
+
+// The furnace holding a smooth glass cube (ior 1.6) and a mirror cube (metal, reflectance 1):
+// lossless and not emitting, they leave the field Le / (1 - rho) everywhere for long paths
+// (inside the glass Le / (1 - rho) eta^2), so every path through them is a delta chain whose
+// expectation is known.
+SceneDesc deltaFurnace(float rho, float Le);
 
 // A 100 m x 100 m Lambertian floor at y = 0 facing +y (no light, no camera).
 SceneDesc floorScene(float rho);
