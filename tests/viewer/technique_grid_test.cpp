@@ -69,6 +69,14 @@ TEST(TechniqueGrid, AMergeTogglesBesideTheConnections) {
   RenderSettings pt;
   pt.integrator = IntegratorKind::Pt;
   EXPECT_FALSE(techniqueShownEnabled(pt, Technique::merge(2, 2)));
+  // The merge row's label and the "+merges (VCM)" button round-trip.
+  TechniqueSet vcm = toggleAllMerges(TechniqueSet::all(), 4);
+  EXPECT_EQ(vcm.toString(), "all;m=all");
+  TechniqueSet row = toggleMergesOfLength(vcm, 4, 3);
+  EXPECT_EQ(row.toString(), "all;m=2;m=4");
+  EXPECT_EQ(toggleMergesOfLength(row, 4, 3).toString(), "all;m=all");  // compacted, as "all" is
+  EXPECT_EQ(toggleAllMerges(vcm, 4), TechniqueSet::all());
+  EXPECT_EQ(toggleAllMerges(row, 4).toString(), "all;m=all");
 }
 
 TEST(TechniqueGrid, TheSpecFieldTakesNothingOrASpecThatFits) {

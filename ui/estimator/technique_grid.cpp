@@ -39,7 +39,12 @@ namespace {
 // Every connection up to the maximum: "all", so that it keeps growing with the maximum (with the
 // set's merges still listed).
 TechniqueSet compact(TechniqueSet set, int maxLength) {
-  return set.containsAllUpTo(maxLength) ? TechniqueSet::all() | set : set;
+  if (set.containsAllUpTo(maxLength)) set = TechniqueSet::all() | set;
+  // Likewise every merge up to the maximum: "m=all".
+  if (maxLength >= 2 && covers(set.families(), TechniqueKind::Merge) &&
+      set.containsAllUpTo(maxLength, TechniqueFamilies::Merges))
+    set |= TechniqueSet::allMerges();
+  return set;
 }
 
 // All of `group` off when all of it up to maxLength is on, else all of it on.
@@ -66,6 +71,19 @@ TechniqueSet toggleLength(const TechniqueSet& set, int maxLength, int k) {
 
 TechniqueSet toggleLightVertices(const TechniqueSet& set, int maxLength, int s) {
   return toggleGroup(set, maxLength, TechniqueSet::withS(s));
+}
+
+TechniqueSet toggleMergesOfLength(const TechniqueSet& set, int maxLength, int k) {
+  return toggleGroup(set, maxLength, TechniqueSet::mergesOfLength(std::max(k, 2)));
+}
+
+TechniqueSet toggleAllMerges(const TechniqueSet& set, int maxLength) {
+  if (set.containsAllUpTo(maxLength, TechniqueFamilies::Merges)) {
+    TechniqueSet off = set;
+    off.disable(TechniqueSet::allMerges(), maxLength);
+    return off;
+  }
+  return set | TechniqueSet::allMerges();
 }
 
 bool noTechniqueEnabled(const RenderSettings& settings) {

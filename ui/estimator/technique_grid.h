@@ -26,6 +26,11 @@ TechniqueSet parseTypedSpec(const std::string& spec, int maxLength);
 TechniqueSet toggleTechnique(const TechniqueSet& set, int maxLength, Technique x);
 TechniqueSet toggleLength(const TechniqueSet& set, int maxLength, int k);
 TechniqueSet toggleLightVertices(const TechniqueSet& set, int maxLength, int s);
+// Every merge of length k (the grid's merge row label) on or off, as toggleLength.
+TechniqueSet toggleMergesOfLength(const TechniqueSet& set, int maxLength, int k);
+// Every merge of every length on ("m=all" beside the connections: vertex connection and merging),
+// or off when all are on.
+TechniqueSet toggleAllMerges(const TechniqueSet& set, int maxLength);
 // True when the settings enable no technique up to their maximum length (Bpt and Lt): the
 // renderer cannot run them.
 bool noTechniqueEnabled(const RenderSettings& settings);

@@ -30,7 +30,14 @@ std::string techniqueTooltip(int s, int t) {
   return fmt::format("(s,t) = ({},{}): {} light and {} camera vertices, path length {}\n{}", s, t, s, t, k, what);
 }
 
-// The grid: one checkbox per (s,t), rows by length, columns by s; its presets and the SPEC field.
+std::string mergeTooltip(Technique x) {
+  return fmt::format("M({},{}): light subpath vertex {} merged with camera subpath vertex {} within the pass's radius "
+                     "(vertex merging), path length {}",
+                     x.s, x.t, x.s, x.t, x.length());
+}
+
+// The grid: one checkbox per (s,t), rows by length, columns by s, each length's merges in a row of
+// their own under its connections; its presets and the SPEC field.
 const TechniqueVerdict* verdictOf(const CheckReport* check, Technique x) {
   if (!check) return nullptr;
   for (const TechniqueVerdict& v : check->techniques)
@@ -56,6 +63,7 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
   const int oneLength = std::min(grid.oneLength, edited.maxLength);
   const bool lightTracing = edited.integrator == IntegratorKind::Lt;
   const int rows = std::min(edited.maxLength, kGridMaxLength);
+  const bool showMerges = covers(set.families(), TechniqueKind::Merge);
 
   // Presets
   auto presetButton = [&](const char* label, TechniquePreset preset, const char* key) {
@@ -69,6 +77,12 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
   presetButton("t=1 (LT)", TechniquePreset::LightTracing, "3");
   ImGui::SameLine();
   presetButton("clear", TechniquePreset::Clear, "0");
+  ImGui::SameLine();
+  // Vertex connection and merging: every merge added to (or taken from) what is enabled.
+  if (ImGui::SmallButton("+merges (VCM)") && !isolating && edited.integrator == IntegratorKind::Bpt)
+    edited.techniques = toggleAllMerges(set, edited.maxLength);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("every merging technique M(s,t) on or off (vertex merging; --techniques \"all;m=all\" is VCM)");
   presetButton("only length", TechniquePreset::OneLength, "4");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
@@ -134,6 +148,30 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
         }
         ImGui::PopID();
       }
+      // The merges of this length, M(s, k + 2 - s) under column s = 2..k, when the set has any.
+      if (k < 2 || !showMerges) continue;
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::PushID(3000 + k);
+      if (ImGui::SmallButton(fmt::format("M{}", k).c_str()) && !isolating)
+        edited.techniques = toggleMergesOfLength(set, edited.maxLength, k);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("length %d: every merge on/off", k);
+      ImGui::PopID();
+      for (const Technique x : techniquesOfLength(k, TechniqueFamilies::Merges)) {
+        ImGui::TableSetColumnIndex(x.s + 1);
+        ImGui::PushID(k * 100 + 50 + x.s);
+        ImGui::BeginDisabled(lightTracing || isolating);
+        bool on = techniqueShownEnabled(edited, x);
+        if (ImGui::Checkbox("##m", &on) && edited.integrator == IntegratorKind::Bpt)
+          edited.techniques = toggleTechnique(set, edited.maxLength, x);
+        ImGui::EndDisabled();
+        if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+          const TechniqueCounters& c = counters.technique(x);
+          ImGui::SetTooltip("%s\nthis generation: %llu merges tried, %llu contributed", mergeTooltip(x).c_str(),
+                            static_cast<unsigned long long>(c.tried), static_cast<unsigned long long>(c.contributed));
+        }
+        ImGui::PopID();
+      }
     }
     ImGui::EndTable();
   }
@@ -152,7 +190,8 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
       grid.specError = e.what();
     }
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("';'-separated S,T | s=S | t=T | k=K | all; Enter applies");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("';'-separated S,T | s=S | t=T | k=K | all, merges MS,T | m=K | m=all; Enter applies");
   if (!grid.specError.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, kError);
     ImGui::TextWrapped("%s", grid.specError.c_str());
