@@ -308,7 +308,9 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& ligh
   const uint64_t walkStart = timed ? ticks() : 0;
   const int nt = walkCamera(pRaster, uLens, cameraVerticesNeeded_, cameraRng, walks, counters);
   const uint64_t cameraRays = counters.rays, cameraEnd = timed ? ticks() : 0;
-  const int ns = walkLight(lightVerticesNeeded_, lightRng, walks, counters);
+  // With merges the pass already walked this pixel's light subpath (from the same stream) and
+  // stored it: the connections take it from there.
+  const int ns = mergePass_ ? storedLightSubpath(sink.id(), walks) : walkLight(lightVerticesNeeded_, lightRng, walks, counters);
   counters.cameraWalk.rays += cameraRays - raysBefore;
   counters.lightWalk.rays += counters.rays - cameraRays;
   if (timed) {
@@ -345,6 +347,24 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& ligh
       }
     }
   if (mergePass_) evaluateMerges(nt, pRaster, pyramidLength, walks, sink, counters);
+}
+
+int BidirTracer::storedLightSubpath(const SampleId& id, Walks& walks) const {
+  const MergePass& pass = *mergePass_;
+  const size_t pixel = static_cast<size_t>(id.y) * static_cast<size_t>(pass.width) + static_cast<size_t>(id.x);
+  if (pixel >= pass.pixelPathCount.size()) return 0;
+  const int n = static_cast<int>(pass.pixelPathCount[pixel]);
+  LightSubpath& path = walks.light;
+  path.setCapacity(std::max(n, 1));
+  path.count = n;
+  const PathVertex* stored = &pass.vertices[pass.pixelPathStart[pixel]];
+  for (int i = 0; i < n; ++i) {
+    const PathVertex& v = path[i] = stored[i];
+    // The BSDF the walk built beside each surface vertex, built again from the same inputs.
+    if (v.type == VertexType::Surface)
+      path.bsdfs[static_cast<size_t>(i)] = scene_.bsdf(v.material, ShadingInputs{v.uv, v.uv1, v.color}, v.ns, v.ng);
+  }
+  return n;
 }
 
 void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink,

@@ -109,6 +109,8 @@ class BidirTracer {
   // evaluate's (false: the image-only route, whose preconditions fix the partial sums).
   template <bool kRecords>
   float weight(const MisPath& path, const Connection& c, const Walks& walks, Counters& counters) const;
+  // The sample's light subpath from the merge pass into walks.light; its vertex count.
+  int storedLightSubpath(const SampleId& id, Walks& walks) const;
   // The merges of the sample's camera subpath (nt vertices) with the pass's light vertices.
   void evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink, Counters& counters) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own

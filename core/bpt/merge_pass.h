@@ -23,6 +23,10 @@ struct MergePass {
   std::vector<PathVertex> vertices;   // every light subpath of the pass, path after path
   std::vector<uint32_t> pathStart;    // per vertex: the index of its path's vertex 0
   std::vector<uint32_t> mergeable;    // the vertices a camera vertex may merge with (HashGrid point i)
+  // Pixel (x, y)'s light subpath: vertices[pixelPathStart[p] ..] for pixelPathCount[p] vertices,
+  // p = y * width + x; its camera sample connects to it instead of walking it again.
+  int width = 0;
+  std::vector<uint32_t> pixelPathStart, pixelPathCount;
   HashGrid grid;
   float radius = 0.f;
   uint64_t lightSubpaths = 0;  // N

@@ -142,6 +142,8 @@ void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
   struct ItemPaths {
     std::vector<PathVertex> vertices;
     std::vector<uint32_t> pathStart;  // within the item
+    std::vector<uint32_t> pixels;     // the item's pixels (y * width + x), their paths in order
+    std::vector<uint32_t> pixelStart, pixelCount;  // within the item
   };
   std::vector<ItemPaths> items(tiles_.size());
   tbb::enumerable_thread_specific<Counters> local;
@@ -159,6 +161,9 @@ void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
         const uint32_t start = static_cast<uint32_t>(out.vertices.size());
         out.vertices.insert(out.vertices.end(), path.begin(), path.begin() + n);
         out.pathStart.insert(out.pathStart.end(), static_cast<size_t>(n), start);
+        out.pixels.push_back(static_cast<uint32_t>(y) * static_cast<uint32_t>(settings_.width) + static_cast<uint32_t>(x));
+        out.pixelStart.push_back(start);
+        out.pixelCount.push_back(static_cast<uint32_t>(n));
       }
   });
   for (const Counters& c : local) counters += c;
@@ -167,10 +172,18 @@ void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
   if (offset.back() >= UINT32_MAX) throw std::runtime_error("vertex merging: too many light vertices in one pass");
   m.vertices.resize(offset.back());
   m.pathStart.resize(offset.back());
+  m.width = settings_.width;
+  m.pixelPathStart.assign(film_.pixelCount(), 0);
+  m.pixelPathCount.assign(film_.pixelCount(), 0);
   tbb::parallel_for(size_t{0}, items.size(), [&](size_t i) {
-    std::copy(items[i].vertices.begin(), items[i].vertices.end(), m.vertices.begin() + static_cast<std::ptrdiff_t>(offset[i]));
-    for (size_t j = 0; j < items[i].pathStart.size(); ++j)
-      m.pathStart[offset[i] + j] = static_cast<uint32_t>(offset[i]) + items[i].pathStart[j];
+    const ItemPaths& item = items[i];
+    const uint32_t base = static_cast<uint32_t>(offset[i]);
+    std::copy(item.vertices.begin(), item.vertices.end(), m.vertices.begin() + static_cast<std::ptrdiff_t>(base));
+    for (size_t j = 0; j < item.pathStart.size(); ++j) m.pathStart[base + j] = base + item.pathStart[j];
+    for (size_t j = 0; j < item.pixels.size(); ++j) {
+      m.pixelPathStart[item.pixels[j]] = base + item.pixelStart[j];
+      m.pixelPathCount[item.pixels[j]] = item.pixelCount[j];
+    }
   });
   m.lightSubpaths = lightSubpathsPerPass(film_.pixelCount());
   m.index(mergeRadius(settings_.mergeRadius * scene_.bounds().radius, settings_.mergeRadiusAlpha, pass));
