@@ -33,14 +33,6 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
     return 1.0 / static_cast<double>(count);
   }
 
-  // rC[s'] = p_C(s') / p_C(x.s), walked outward from x.s (Veach eq. 10.10, mis.h's ratios), so
-  // that no density of a whole path is formed on its own.
-  thread_local std::vector<double> rC;
-  rC.assign(static_cast<size_t>(n), 0.0);
-  rC[static_cast<size_t>(x.s)] = 1.0;
-  for (int sp = x.s + 1; sp < n; ++sp) rC[static_cast<size_t>(sp)] = rC[static_cast<size_t>(sp - 1)] * ratioToLight(d, sp);
-  for (int sp = x.s - 1; sp >= 0; --sp) rC[static_cast<size_t>(sp)] = rC[static_cast<size_t>(sp + 1)] * ratioToCamera(d, sp);
-
   const double beta = options.heuristic == MisHeuristic::Balance ? 1.0 : static_cast<double>(options.beta);
   auto term = [beta](double v) { return beta == 1.0 ? v : beta == 2.0 ? v * v : std::pow(v, beta); };
   auto connectionCount = [&](int sp) { return n - sp == 1 ? static_cast<double>(lightTracingRatio) : 1.0; };
@@ -50,12 +42,18 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
   auto mergeFactor = [&](int sp) { return merge.eta * remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]); };
   // n_x p_x relative to p_C(x.s).
   const double own = x.isMerge() ? mergeFactor(x.s) : connectionCount(x.s);
+  // r = p_C(s') / p_C(x.s), walked outward from x.s (Veach eq. 10.10, mis.h's ratios), so that no
+  // density of a whole path is formed on its own; each s' adds its connection and its merge.
   double sum = 0.0;
-  for (int sp = 0; sp < n; ++sp) {
-    const double r = rC[static_cast<size_t>(sp)];
+  auto add = [&](int sp, double r) {
     if (usable(sp)) sum += term(r * connectionCount(sp) / own);
     if (mergeUsable(sp)) sum += term(r * mergeFactor(sp) / own);
-  }
+  };
+  add(x.s, 1.0);
+  double r = 1.0;
+  for (int sp = x.s + 1; sp < n; ++sp) add(sp, r *= ratioToLight(d, sp));
+  r = 1.0;
+  for (int sp = x.s - 1; sp >= 0; --sp) add(sp, r *= ratioToCamera(d, sp));
   const double w = 1.0 / sum;
   return std::isfinite(w) ? w : 0.0;
 }
