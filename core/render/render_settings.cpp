@@ -3,6 +3,7 @@
 #include "core/render/render_settings.h"
 
 #include "core/bpt/mis_off.h"
+#include "core/bpt/path_vertex.h"
 #include "core/film/technique_films.h"
 #include "core/math/types.h"
 
@@ -50,6 +51,13 @@ const char* integratorName(IntegratorKind kind) {
 TechniqueSet enabledTechniques(const RenderSettings& settings) {
   if (settings.integrator == IntegratorKind::Lt) return settings.techniques & TechniqueSet::lightTracing();
   return settings.techniques;
+}
+
+uint64_t mergeStoreBytes(const RenderSettings& s) {
+  // A stored vertex, its path index, and in the grid its key, index and position.
+  constexpr uint64_t kPerVertex = sizeof(PathVertex) + sizeof(uint32_t) + 2 * sizeof(uint64_t) + sizeof(Vec3);
+  return static_cast<uint64_t>(s.width) * static_cast<uint64_t>(s.height) * static_cast<uint64_t>(std::max(s.maxLength, 0)) *
+         kPerVertex;
 }
 
 TechniqueFamilies pyramidFamilies(const RenderSettings& settings) {
@@ -104,6 +112,14 @@ void validateSettings(const RenderSettings& s) {
       throw std::invalid_argument("merging techniques need path reuse (--connect all), not naive BPT");
     if (s.checkTechniques)
       throw std::invalid_argument("the consistency check does not compare merging techniques yet (biased by the radius)");
+    // The merge pass stores every pixel's light subpath, up to maxLength vertices each: refused
+    // before allocating when its worst case passes the budget.
+    const uint64_t bytes = mergeStoreBytes(s);
+    if (bytes > kMaxMergeStoreBytes)
+      throw std::invalid_argument(fmt::format(
+          "merging at {} x {} with maximum length {} may store {:.1f} GiB of light vertices per pass (at most {} GiB): "
+          "lower --max-length or the image size",
+          s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxMergeStoreBytes >> 30));
   }
   if (s.isolate) {
     const Isolation& i = *s.isolate;

@@ -61,6 +61,7 @@ struct RenderSettings {
 
 inline constexpr int kMaxPyramidLength = 8;
 inline constexpr float kMaxMergeRadius = 0.5f;  // of the scene's bounding radius
+inline constexpr uint64_t kMaxMergeStoreBytes = 8ull << 30;
 // The consistency check keeps a mask of the techniques able to sample each path (one bit each).
 inline constexpr int kMaxCheckedLength = 30;
 inline constexpr float kMaxInjectedBias = 1e6f;
@@ -83,6 +84,9 @@ TechniqueSet enabledTechniques(const RenderSettings& settings);
 // The families the technique pyramid keeps: every connection up to its length, and the merges when
 // any is enabled (a family no technique uses costs no memory).
 TechniqueFamilies pyramidFamilies(const RenderSettings& settings);
+// The most a pass's merge store (core/bpt/merge_pass.h) can take: every pixel's light subpath at
+// the maximum length.
+uint64_t mergeStoreBytes(const RenderSettings& settings);
 // What each tracer needs of the settings.
 BidirOptions bidirOptions(const RenderSettings& settings);
 PathTracerOptions pathTracerOptions(const RenderSettings& settings);

@@ -153,6 +153,10 @@ TEST(BptTechniqueSet, ARendererTakesMergesWhereItCanSampleThem) {
   RenderSettings alpha = s;
   alpha.mergeRadiusAlpha = 1.5f;
   refused(alpha, "--radius-alpha");
+  RenderSettings huge = s;  // 8192 x 8192 pixels, 40 vertices each: the store would take tens of GiB
+  huge.width = huge.height = 8192;
+  huge.maxLength = 40;
+  refused(huge, "GiB of light vertices");
 }
 
 TEST(BptTechniqueSet, AllHasEveryTechniqueOfEveryLength) {
