@@ -1,13 +1,13 @@
 // FNV-1a hashing of the reference's inputs.
 #include "core/converge/reference_key.h"
 
+#include "core/io/guarded_file.h"
+
 #include <fmt/core.h>
 #include <tiny_gltf.h>
 
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -35,7 +35,12 @@ struct ExternalFiles {
   Fnv1a* hash;
 
   static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* self) {
-    if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+    try {
+      *out = readGuardedFile(path);
+    } catch (const FileError& e) {
+      if (err) *err += e.what();
+      return false;
+    }
     Fnv1a& h = *static_cast<ExternalFiles*>(self)->hash;
     h.add(fmt::format("\nfile {}\n", out->size()));
     h.add(std::string_view(reinterpret_cast<const char*>(out->data()), out->size()));
@@ -93,9 +98,12 @@ std::string describe(const RenderSettings& s) {
 }  // namespace
 
 std::string referenceKey(const std::string& scenePath, const RenderSettings& settings, const std::string& budget) {
-  std::ifstream in(scenePath, std::ios::binary);
-  if (!in) throw std::runtime_error(scenePath + ": cannot read the scene file");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes;
+  try {
+    bytes = readGuardedText(scenePath);
+  } catch (const FileError& e) {
+    throw std::runtime_error(scenePath + ": cannot read the scene file: " + e.problem());
+  }
   Fnv1a hash;
   hash.add(bytes);
   hashExternalFiles(scenePath, bytes, hash);

@@ -2,12 +2,12 @@
 #include "ui/presets/presets.h"
 
 #include "core/bpt/technique_set.h"
+#include "core/io/guarded_file.h"
 #include "ui/lane/compare.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -16,6 +16,9 @@ namespace pathlab::ui {
 namespace {
 
 using Json = nlohmann::json;
+
+// A presets file is a page of JSON written by hand: 16 MiB is far past any real one.
+constexpr uint64_t kMaxPresetsBytes = uint64_t(16) << 20;
 
 const std::set<std::string> kKeys = {"name", "integrator", "techniques", "mis", "beta", "minConnection", "maxLength",
                                      "isolate", "unweighted", "camera", "compare", "description"};
@@ -174,11 +177,13 @@ std::vector<NamedPreset> parsePresets(const std::string& text, const std::string
 }
 
 std::vector<NamedPreset> loadPresets(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw PresetError(path + ": cannot open the presets file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parsePresets(text.str(), path);
+  std::string text;
+  try {
+    text = readGuardedText(path, kMaxPresetsBytes);
+  } catch (const FileError& e) {
+    throw PresetError(path + ": cannot read the presets file: " + e.problem());
+  }
+  return parsePresets(text, path);
 }
 
 const NamedPreset& findPreset(const std::vector<NamedPreset>& presets, const std::string& name, const std::string& path) {
