@@ -8,6 +8,9 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -23,10 +26,27 @@ constexpr uint64_t kMaxPresetsBytes = uint64_t(16) << 20;
 const std::set<std::string> kKeys = {"name", "integrator", "techniques", "mis", "beta", "minConnection", "maxLength",
                                      "isolate", "unweighted", "camera", "compare", "description"};
 
+// A JSON number as a float, refused when it is not finite as a float (1e39 is a double but no float,
+// and would come back as "camera transform entry -nan" far from the file).
+float finiteFloat(const Json& j, const std::string& what) {
+  const double v = j.get<double>();
+  if (!(std::abs(v) <= double(std::numeric_limits<float>::max())))
+    throw std::invalid_argument(fmt::format("{} {} is not a finite 32-bit number", what, j.dump()));
+  return float(v);
+}
+
 Vec3 vec3Of(const Json& j, const std::string& what) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
     throw std::invalid_argument(what + " must be an array of 3 numbers");
-  return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
+  return {finiteFloat(j[0], what), finiteFloat(j[1], what), finiteFloat(j[2], what)};
+}
+
+// A JSON integer in [lo, hi], compared before narrowing (get<int> wraps 4294967300 to 4).
+int integerIn(const Json& j, const std::string& what, int lo, int hi) {
+  const bool inRange = j.is_number_unsigned() ? j.get<uint64_t>() <= uint64_t(std::max(hi, 0)) && j.get<int64_t>() >= lo
+                                              : j.get<int64_t>() >= lo && j.get<int64_t>() <= hi;
+  if (!inRange) throw std::invalid_argument(fmt::format("{} must be in [{}, {}], not {}", what, lo, hi, j.dump()));
+  return int(j.get<int64_t>());
 }
 
 const Json& typed(const Json& p, const char* key, bool (Json::*is)() const noexcept, const char* type) {
@@ -61,24 +81,24 @@ NamedPreset parseOne(const Json& p) {
     else throw std::invalid_argument(fmt::format("mis \"{}\" is not balance, power, uniform or off", v));
   }
   if (p.contains("beta")) {
-    out.mis.beta = typed(p, "beta", &Json::is_number, "a number").get<float>();
+    out.mis.beta = finiteFloat(typed(p, "beta", &Json::is_number, "a number"), "\"beta\"");
     if (!(out.mis.beta >= 0.01f && out.mis.beta <= 100.f)) throw std::invalid_argument("\"beta\" must be in [0.01, 100]");
   }
   if (p.contains("minConnection")) {
-    out.mis.minConnection = typed(p, "minConnection", &Json::is_number, "a number").get<float>();
+    out.mis.minConnection = finiteFloat(typed(p, "minConnection", &Json::is_number, "a number"), "\"minConnection\"");
     if (!(out.mis.minConnection >= 0.f && out.mis.minConnection <= 1.f))
       throw std::invalid_argument("\"minConnection\" must be in [0, 1]");
   }
   if (p.contains("maxLength")) {
-    out.maxLength = typed(p, "maxLength", &Json::is_number_integer, "an integer").get<int>();
-    if (out.maxLength < 1 || out.maxLength > 1000) throw std::invalid_argument("\"maxLength\" must be in [1, 1000]");
+    out.maxLength = integerIn(typed(p, "maxLength", &Json::is_number_integer, "an integer"), "\"maxLength\"", 1, 1000);
   }
   out.techniques.checkFits(out.maxLength);  // throws "techniques: ..." on a set that does not fit
   if (p.contains("isolate")) {
     const Json& v = p.at("isolate");
     if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
       throw std::invalid_argument("\"isolate\" must be [s, t]");
-    Isolation iso{v[0].get<int>(), v[1].get<int>(), false};
+    Isolation iso{integerIn(v[0], "\"isolate\" s", 0, out.maxLength), integerIn(v[1], "\"isolate\" t", 1, out.maxLength + 1),
+                  false};
     if (iso.s < 0 || iso.t < 1 || iso.s + iso.t - 1 > out.maxLength || iso.s + iso.t - 1 < 1)
       throw std::invalid_argument(fmt::format("isolated technique ({},{}) is not a technique of length 1..{}", iso.s,
                                               iso.t, out.maxLength));
@@ -101,7 +121,7 @@ NamedPreset parseOne(const Json& p) {
     float yfovDegrees = 39.6f;
     if (c.contains("yfovDegrees")) {
       if (!c.at("yfovDegrees").is_number()) throw std::invalid_argument("camera \"yfovDegrees\" must be a number");
-      yfovDegrees = c.at("yfovDegrees").get<float>();
+      yfovDegrees = finiteFloat(c.at("yfovDegrees"), "camera \"yfovDegrees\"");
     }
     if (!(yfovDegrees > 0.1f && yfovDegrees < 179.f)) throw std::invalid_argument("camera \"yfovDegrees\" must be in (0.1, 179)");
     const Vec3 d = target - eye;
@@ -115,7 +135,7 @@ NamedPreset parseOne(const Json& p) {
     const std::string config = typed(p, "compare", &Json::is_string, "a string").get<std::string>();
     RenderSettings a;
     a.maxLength = out.maxLength;
-    compareEstimator(config, a);  // throws the parser's line
+    compareEstimator(config, a, "\"compare\"");  // throws the parser's line
     out.compare = config;
   }
   return out;
