@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <string_view>
 #include <vector>
 
@@ -46,6 +47,12 @@ struct ExternalFiles {
     h.add(std::string_view(reinterpret_cast<const char*>(out->data()), out->size()));
     return true;
   }
+  // Existence by stat(), never an open: tinygltf::FileExists fopens the path, which waits forever
+  // on a FIFO; the read then refuses what is not a regular file.
+  static bool exists(const std::string& path, void*) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0;
+  }
   static bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
                                 const unsigned char*, int, void*) {
     return true;
@@ -55,7 +62,7 @@ struct ExternalFiles {
 void hashExternalFiles(const std::string& scenePath, const std::string& bytes, Fnv1a& hash) {
   ExternalFiles files{&hash};
   tinygltf::TinyGLTF context;
-  context.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &ExternalFiles::read,
+  context.SetFsCallbacks({&ExternalFiles::exists, &tinygltf::ExpandFilePath, &ExternalFiles::read,
                           &tinygltf::WriteWholeFile, &files});
   context.SetImageLoader(&ExternalFiles::skipImageDecoding, nullptr);
   tinygltf::Model model;

@@ -33,41 +33,92 @@ namespace {
 // PIZ modes; RLE reaches 64:1), so a header claiming more than this is refused before decoding.
 constexpr uint64_t kMaxCompressionRatio = 1100;
 
-Image decodeExr(const std::vector<unsigned char>& bytes, const std::string& name) {
-  EXRVersion version;
-  if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
-    throw ImageError(name + ": cannot read EXR: not an OpenEXR file");
-  if (version.multipart || version.non_image) throw ImageError(name + ": cannot read EXR: multi-part or deep files are not supported");
-  EXRHeader header;
-  InitEXRHeader(&header);
-  const char* err = nullptr;
-  auto fail = [&](const std::string& what) {
-    std::string msg = err ? err : what;
-    if (err) FreeEXRErrorMessage(err);
+// tinyexr's LoadEXRFromMemory leaks its header and image on every error path (found by
+// tests/fuzz/image_decoder_fuzz.cpp), so its steps are taken here with the frees on all paths.
+class ExrDecoding {
+ public:
+  explicit ExrDecoding(const std::string& name) : name_(name) {
+    InitEXRHeader(&header_);
+    InitEXRImage(&image_);
+  }
+  ~ExrDecoding() {
+    if (imageLoaded_) FreeEXRImage(&image_);
+    if (headerParsed_) FreeEXRHeader(&header_);
+  }
+  ExrDecoding(const ExrDecoding&) = delete;
+  ExrDecoding& operator=(const ExrDecoding&) = delete;
+
+  Image decode(const std::vector<unsigned char>& bytes) {
+    EXRVersion version;
+    if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
+      fail("not an OpenEXR file");
+    if (version.multipart || version.non_image) fail("multi-part or deep files are not supported");
+    headerParsed_ = true;  // a failed parse may have allocated channels and attributes: freed all the same
+    if (ParseEXRHeaderFromMemory(&header_, &version, bytes.data(), bytes.size(), &err_) != TINYEXR_SUCCESS)
+      fail("bad header");
+    const int64_t w = int64_t(header_.data_window.max_x) - header_.data_window.min_x + 1;
+    const int64_t h = int64_t(header_.data_window.max_y) - header_.data_window.min_y + 1;
+    const uint64_t channels = uint64_t(std::max(header_.num_channels, 1));
+    const bool compressed = header_.compression_type != TINYEXR_COMPRESSIONTYPE_NONE;
+    // At least two bytes (half floats) per channel and texel, losslessly compressed at most kMaxCompressionRatio.
+    const uint64_t texels = w > 0 && h > 0 && uint64_t(w) <= kMaxImageTexels / uint64_t(h) ? uint64_t(w * h) : 0;
+    checkClaimedSize(name_, "EXR", w, h, (2 * channels * texels) / (compressed ? kMaxCompressionRatio : 1), bytes.size());
+    int rgb[3] = {-1, -1, -1};
+    for (int c = 0; c < header_.num_channels; ++c) {
+      const std::string channel = header_.channels[c].name;
+      if (channel == "R" || channel == "Y" || header_.num_channels == 1) rgb[0] = rgb[0] < 0 ? c : rgb[0];
+      if (channel == "G") rgb[1] = c;
+      if (channel == "B") rgb[2] = c;
+      if (header_.pixel_types[c] == TINYEXR_PIXELTYPE_HALF) header_.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+      if (header_.pixel_types[c] == TINYEXR_PIXELTYPE_UINT) fail("channel " + channel + " is not half or float");
+    }
+    if (rgb[0] < 0) fail("no R, G, B (or single) channel");
+    if (rgb[1] < 0 || rgb[2] < 0) rgb[1] = rgb[2] = rgb[0];  // grey: one channel for all three
+    imageLoaded_ = true;
+    if (LoadEXRImageFromMemory(&image_, &header_, bytes.data(), bytes.size(), &err_) != TINYEXR_SUCCESS) {
+      imageLoaded_ = false;  // tinyexr frees what it allocated before failing
+      fail("bad pixel data");
+    }
+    Image img{image_.width, image_.height, std::vector<float>(3 * size_t(image_.width) * size_t(image_.height))};
+    auto copy = [&](unsigned char** planes, int planeWidth, int x0, int y0, int width, int height) {
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+          const int px = x0 + x, py = y0 + y;
+          if (px < 0 || py < 0 || px >= img.width || py >= img.height) continue;
+          for (int c = 0; c < 3; ++c)
+            img.rgb[3 * (size_t(py) * size_t(img.width) + size_t(px)) + size_t(c)] =
+                reinterpret_cast<const float*>(planes[rgb[c]])[size_t(y) * size_t(planeWidth) + size_t(x)];
+        }
+    };
+    if (header_.tiled) {
+      for (int t = 0; t < image_.num_tiles; ++t) {
+        const EXRTile& tile = image_.tiles[t];
+        copy(tile.images, header_.tile_size_x, tile.offset_x * header_.tile_size_x, tile.offset_y * header_.tile_size_y,
+             tile.width, tile.height);
+      }
+    } else {
+      copy(image_.images, image_.width, 0, 0, image_.width, image_.height);
+    }
+    return img;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) {
+    std::string msg = err_ ? err_ : what;
+    if (err_) FreeEXRErrorMessage(err_);
+    err_ = nullptr;
     // tinyexr's messages end in a newline and may hold several lines: one line, as every refusal.
     std::replace(msg.begin(), msg.end(), '\n', ' ');
     while (!msg.empty() && msg.back() == ' ') msg.pop_back();
-    throw ImageError(name + ": cannot read EXR: " + msg);
-  };
-  if (ParseEXRHeaderFromMemory(&header, &version, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS)
-    fail("bad header");
-  const int64_t w = int64_t(header.data_window.max_x) - header.data_window.min_x + 1;
-  const int64_t h = int64_t(header.data_window.max_y) - header.data_window.min_y + 1;
-  const uint64_t channels = uint64_t(std::max(header.num_channels, 1));
-  const bool compressed = header.compression_type != TINYEXR_COMPRESSIONTYPE_NONE;
-  FreeEXRHeader(&header);
-  // At least two bytes (half floats) per channel and texel, losslessly compressed at most kMaxCompressionRatio.
-  const uint64_t texels = w > 0 && h > 0 && uint64_t(w) <= kMaxImageTexels / uint64_t(h) ? uint64_t(w * h) : 0;
-  checkClaimedSize(name, "EXR", w, h, (2 * channels * texels) / (compressed ? kMaxCompressionRatio : 1), bytes.size());
-  float* rgba = nullptr;
-  int width = 0, height = 0;
-  if (LoadEXRFromMemory(&rgba, &width, &height, bytes.data(), bytes.size(), &err) != TINYEXR_SUCCESS) fail("unknown error");
-  Image img{width, height, std::vector<float>(3 * static_cast<size_t>(width) * static_cast<size_t>(height))};
-  for (size_t i = 0; i < static_cast<size_t>(width) * static_cast<size_t>(height); ++i)
-    for (size_t c = 0; c < 3; ++c) img.rgb[3 * i + c] = rgba[4 * i + c];
-  free(rgba);
-  return img;
-}
+    throw ImageError(name_ + ": cannot read EXR: " + msg);
+  }
+
+  const std::string& name_;
+  EXRHeader header_;
+  EXRImage image_;
+  const char* err_ = nullptr;
+  bool headerParsed_ = false, imageLoaded_ = false;
+};
 
 // "PF", width, height and scale as text, one whitespace byte, then little-endian rows bottom-up.
 Image decodePfm(const std::vector<unsigned char>& bytes, const std::string& name) {
@@ -111,7 +162,7 @@ std::vector<unsigned char> readBytes(const std::string& path) {
 
 Image decodeImage(const std::vector<unsigned char>& bytes, ImageFormat format, const std::string& name) {
   switch (format) {
-    case ImageFormat::Exr: return decodeExr(bytes, name);
+    case ImageFormat::Exr: return ExrDecoding(name).decode(bytes);
     case ImageFormat::Pfm: return decodePfm(bytes, name);
     case ImageFormat::Png: break;
   }

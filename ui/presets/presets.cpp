@@ -138,6 +138,8 @@ NamedPreset parseOne(const Json& p) {
     compareEstimator(config, a, "\"compare\"");  // throws the parser's line
     out.compare = config;
   }
+  // Everything the command line's settings check refuses (e.g. isolating (1,2) under light tracing).
+  validateSettings(out.applyTo(RenderSettings{}));
   return out;
 }
 
