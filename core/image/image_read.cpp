@@ -53,6 +53,8 @@ class ExrDecoding {
     if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) != TINYEXR_SUCCESS)
       fail("not an OpenEXR file");
     if (version.multipart || version.non_image) fail("multi-part or deep files are not supported");
+    if (version.tiled) fail("tiled files are not supported (write it as scanlines)");
+    checkAttributes(bytes);
     headerParsed_ = true;  // a failed parse may have allocated channels and attributes: freed all the same
     if (ParseEXRHeaderFromMemory(&header_, &version, bytes.data(), bytes.size(), &err_) != TINYEXR_SUCCESS)
       fail("bad header");
@@ -80,29 +82,43 @@ class ExrDecoding {
       fail("bad pixel data");
     }
     Image img{image_.width, image_.height, std::vector<float>(3 * size_t(image_.width) * size_t(image_.height))};
-    auto copy = [&](unsigned char** planes, int planeWidth, int x0, int y0, int width, int height) {
-      for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-          const int px = x0 + x, py = y0 + y;
-          if (px < 0 || py < 0 || px >= img.width || py >= img.height) continue;
-          for (int c = 0; c < 3; ++c)
-            img.rgb[3 * (size_t(py) * size_t(img.width) + size_t(px)) + size_t(c)] =
-                reinterpret_cast<const float*>(planes[rgb[c]])[size_t(y) * size_t(planeWidth) + size_t(x)];
-        }
-    };
-    if (header_.tiled) {
-      for (int t = 0; t < image_.num_tiles; ++t) {
-        const EXRTile& tile = image_.tiles[t];
-        copy(tile.images, header_.tile_size_x, tile.offset_x * header_.tile_size_x, tile.offset_y * header_.tile_size_y,
-             tile.width, tile.height);
-      }
-    } else {
-      copy(image_.images, image_.width, 0, 0, image_.width, image_.height);
-    }
+    // Scanlines only (tiled files are refused above): one plane a channel, row-major.
+    for (size_t i = 0; i < size_t(img.width) * size_t(img.height); ++i)
+      for (size_t c = 0; c < 3; ++c) img.rgb[3 * i + c] = reinterpret_cast<const float*>(image_.images[rgb[c]])[i];
     return img;
   }
 
  private:
+  // Debian's tinyexr asserts (aborts) on a "type" attribute that does not match the layout and on a
+  // "tiles" attribute of the wrong size (found by the fuzzer): the header's attributes (name, type
+  // name, 32-bit size, value; an empty name ends them) are walked here first. A malformed walk
+  // stops and is left to tinyexr's own checks.
+  void checkAttributes(const std::vector<unsigned char>& bytes) {
+    size_t pos = 8;  // magic and version
+    auto cstring = [&](std::string& out) {
+      const auto end = std::find(bytes.begin() + std::ptrdiff_t(pos), bytes.end(), 0);
+      if (end == bytes.end()) return false;
+      out.assign(bytes.begin() + std::ptrdiff_t(pos), end);
+      pos = size_t(end - bytes.begin()) + 1;
+      return true;
+    };
+    std::string name, type;
+    while (pos < bytes.size() && bytes[pos] != 0) {
+      if (!cstring(name) || !cstring(type) || bytes.size() - pos < 4) return;
+      const uint32_t size = uint32_t(bytes[pos]) | uint32_t(bytes[pos + 1]) << 8 | uint32_t(bytes[pos + 2]) << 16 |
+                            uint32_t(bytes[pos + 3]) << 24;
+      pos += 4;
+      if (bytes.size() - pos < size) return;
+      if (name == "tiles") fail("tiled files are not supported (write it as scanlines)");
+      if (name == "type" && size > 0 && bytes[pos] != 0) {
+        const std::string value(bytes.begin() + std::ptrdiff_t(pos),
+                                std::find(bytes.begin() + std::ptrdiff_t(pos), bytes.begin() + std::ptrdiff_t(pos + size), 0));
+        if (value != "scanlineimage") fail("only scanline images are supported, not type '" + value.substr(0, 40) + "'");
+      }
+      pos += size;
+    }
+  }
+
   [[noreturn]] void fail(const std::string& what) {
     std::string msg = err_ ? err_ : what;
     if (err_) FreeEXRErrorMessage(err_);

@@ -26,7 +26,7 @@ seed() {  # seed TARGET: the corpus folder, filled with the target's seeds
   case $1 in
     gltf_loader_fuzz) cp -n assets/*.gltf tests/scenes/*.gltf tests/scenes/*.glb tests/scenes/bad/* "$corpus"/ 2>/dev/null || true ;;
     image_decoder_fuzz)
-      cp -n assets/*.hdr "$corpus"/ 2>/dev/null || true
+      cp -n assets/*.hdr tests/image/bad/* "$corpus"/ 2>/dev/null || true
       python3 - "$corpus" <<'PY'
 import struct, sys
 d = sys.argv[1]

@@ -188,3 +188,20 @@ TEST(ImageDecode, ExrSizesAreCheckedAndTruncationRefused) {
 
 }  // namespace
 }  // namespace pathlab
+
+namespace pathlab {
+namespace {
+
+// Inputs the image fuzzer (tests/fuzz/image_decoder_fuzz.cpp) found crashing, each named for what
+// it is: refused in one line now.
+TEST(ImageDecode, FuzzerFindingsAreRefused) {
+  size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(PATHLAB_SOURCE_DIR) / "tests/image/bad")) {
+    ++files;
+    EXPECT_NE(refusal(entry.path().string()), "") << entry.path();
+  }
+  EXPECT_GE(files, 1u);
+}
+
+}  // namespace
+}  // namespace pathlab
