@@ -12,7 +12,7 @@
 namespace pathlab {
 namespace {
 
-[[noreturn]] void fail(const std::string& name, const std::string& what) {
+[[noreturn]] void hdrFail(const std::string& name, const std::string& what) {
   throw ImageError(name + ": cannot read the HDR image (" + what + ")");
 }
 
@@ -21,17 +21,17 @@ class Reader {
   Reader(const std::vector<unsigned char>& bytes, const std::string& name) : bytes_(bytes), name_(name) {}
   size_t left() const { return bytes_.size() - pos_; }
   unsigned char next() {
-    if (pos_ >= bytes_.size()) fail(name_, "truncated HDR data (the file ends inside the pixels)");
+    if (pos_ >= bytes_.size()) hdrFail(name_, "truncated HDR data (the file ends inside the pixels)");
     return bytes_[pos_++];
   }
   // One header line without its '\n'; a header line longer than any Radiance writes is refused.
   std::string line() {
     std::string text;
     for (;;) {
-      if (pos_ >= bytes_.size()) fail(name_, "truncated HDR header");
+      if (pos_ >= bytes_.size()) hdrFail(name_, "truncated HDR header");
       const char c = char(bytes_[pos_++]);
       if (c == '\n') return text;
-      if (text.size() > 4096) fail(name_, "not a Radiance HDR file (header line too long)");
+      if (text.size() > 4096) hdrFail(name_, "not a Radiance HDR file (header line too long)");
       text += c;
     }
   }
@@ -57,7 +57,7 @@ void parseResolution(const std::string& text, const std::string& name, int64_t& 
   long long h = 0, w = 0;
   int end = 0;
   if (std::sscanf(text.c_str(), "-Y %lld +X %lld%n", &h, &w, &end) != 2 || size_t(end) != text.size())
-    fail(name, "unsupported HDR resolution line '" + text.substr(0, 40) + "' (only -Y H +X W)");
+    hdrFail(name, "unsupported HDR resolution line '" + text.substr(0, 40) + "' (only -Y H +X W)");
   width = w;
   height = h;
 }
@@ -72,7 +72,7 @@ void readRleScanline(Reader& in, const std::string& name, int width, std::vector
       const bool run = count > 128;
       if (run) count -= 128;
       if (count == 0 || count > width - i)
-        fail(name, "corrupt HDR run length " + std::to_string(count) + " at texel " +
+        hdrFail(name, "corrupt HDR run length " + std::to_string(count) + " at texel " +
                          std::to_string(i) + " of a scanline of " + std::to_string(width));
       if (run) {
         const unsigned char value = in.next();
@@ -89,12 +89,12 @@ void readRleScanline(Reader& in, const std::string& name, int width, std::vector
 Image decodeRadianceHdr(const std::vector<unsigned char>& bytes, const std::string& name) {
   Reader in(bytes, name);
   const std::string magic = in.line();
-  if (magic != "#?RADIANCE" && magic != "#?RGBE") fail(name, "not a Radiance HDR file (bad magic)");
+  if (magic != "#?RADIANCE" && magic != "#?RGBE") hdrFail(name, "not a Radiance HDR file (bad magic)");
   bool rgbe = false;
   for (std::string l = in.line(); !l.empty(); l = in.line())
     if (l == "FORMAT=32-bit_rle_rgbe") rgbe = true;
-    else if (l.rfind("FORMAT=", 0) == 0) fail(name, "unsupported HDR " + l.substr(0, 40));
-  if (!rgbe) fail(name, "HDR header has no FORMAT=32-bit_rle_rgbe");
+    else if (l.rfind("FORMAT=", 0) == 0) hdrFail(name, "unsupported HDR " + l.substr(0, 40));
+  if (!rgbe) hdrFail(name, "HDR header has no FORMAT=32-bit_rle_rgbe");
   int64_t width = 0, height = 0;
   parseResolution(in.line(), name, width, height);
   // RLE only for 8 <= width < 32768 (Radiance's rule); a flat texel takes 4 bytes, an RLE scanline
@@ -111,19 +111,19 @@ Image decodeRadianceHdr(const std::vector<unsigned char>& bytes, const std::stri
     unsigned char head[4];
     for (unsigned char& b : head) b = in.next();
     if (head[0] != 2 || head[1] != 2 || (head[2] & 0x80)) {
-      if (y > 0) fail(name, "corrupt HDR scanline " + std::to_string(y) + " (not run-length encoded)");
+      if (y > 0) hdrFail(name, "corrupt HDR scanline " + std::to_string(y) + " (not run-length encoded)");
       rgbeToFloat(head, img.rgb.data());  // a flat file: these bytes were its first texel
       texel = 1;
       flat = true;
       break;
     }
     if ((int(head[2]) << 8 | int(head[3])) != width)
-      fail(name, "corrupt HDR scanline " + std::to_string(y) + " (length differs from the width)");
+      hdrFail(name, "corrupt HDR scanline " + std::to_string(y) + " (length differs from the width)");
     readRleScanline(in, name, int(width), scanline);
     for (int x = 0; x < width; ++x) rgbeToFloat(&scanline[4 * size_t(x)], &img.rgb[3 * texel++]);
   }
   if (flat) {
-    if (in.left() < 4 * (texels - texel)) fail(name, "truncated HDR data (the file ends inside the pixels)");
+    if (in.left() < 4 * (texels - texel)) hdrFail(name, "truncated HDR data (the file ends inside the pixels)");
     for (; texel < texels; ++texel) {
       unsigned char rgbe[4];
       for (unsigned char& b : rgbe) b = in.next();

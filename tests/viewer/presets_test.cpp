@@ -125,6 +125,9 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [1e39, 0, 0], "target": [0, 0, 1]}}]})",
                             "preset 0 (\"x\"): camera eye 1e+39 is not a finite 32-bit number"},
                     BadCase{R"({"presets": [{"name": "x", "beta": 1e300}]})", "\"beta\" 1e+300 is not a finite"},
+                    // A JSON string may hold a newline: escaped, the message stays one line (found by presets_fuzz).
+                    BadCase{"{\"presets\": [{\"name\": \"x\", \"maxL\\ngth\": 5}]}", "unknown key \"maxL\\ngth\""},
+                    BadCase{"{\"presets\": [{\"name\": \"a\\nb\", \"mis\": \"?\"}]}", "preset 0 (\"a\\nb\")"},
                     // A number that overflows a double is nlohmann's out_of_range, not a parse_error.
                     BadCase{R"({"presets": [{"name": "x", "beta": 1e999}]})", "1e999"}),
     [](const testing::TestParamInfo<BadCase>& info) { return "case" + std::to_string(info.index); });

@@ -55,6 +55,20 @@ const Json& typed(const Json& p, const char* key, bool (Json::*is)() const noexc
   return v;
 }
 
+// The file's strings (names, keys, values) go into messages as they are, and a JSON string may hold
+// a newline ("\n"): control characters are written as escapes, so a message stays one line.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f) out += c;
+    else if (c == '\n') out += "\\n";
+    else out += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+  }
+  return out;
+}
+
+[[noreturn]] void refuse(const std::string& message) { throw PresetError(oneLine(message)); }
+
 NamedPreset parseOne(const Json& p) {
   if (!p.is_object()) throw std::invalid_argument("is not an object");
   for (const auto& [key, value] : p.items())
@@ -176,10 +190,10 @@ std::vector<NamedPreset> parsePresets(const std::string& text, const std::string
     // (or out_of_range.406 for a number such as 1e999 that overflows a double).
     std::string what = e.what();
     if (const size_t p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    throw PresetError(path + ": " + what);
+    refuse(path + ": " + what);
   }
   if (!root.is_object() || !root.contains("presets") || !root.at("presets").is_array())
-    throw PresetError(path + ": expected an object with an array \"presets\"");
+    refuse(path + ": expected an object with an array \"presets\"");
   std::vector<NamedPreset> out;
   std::set<std::string> names;
   size_t index = 0;
@@ -190,9 +204,9 @@ std::vector<NamedPreset> parsePresets(const std::string& text, const std::string
     try {
       out.push_back(parseOne(p));
     } catch (const std::exception& e) {
-      throw PresetError(fmt::format("{}: {}: {}", path, label, e.what()));
+      refuse(fmt::format("{}: {}: {}", path, label, e.what()));
     }
-    if (!names.insert(out.back().name).second) throw PresetError(fmt::format("{}: {}: duplicate name", path, label));
+    if (!names.insert(out.back().name).second) refuse(fmt::format("{}: {}: duplicate name", path, label));
     ++index;
   }
   return out;
@@ -203,7 +217,7 @@ std::vector<NamedPreset> loadPresets(const std::string& path) {
   try {
     text = readGuardedText(path, kMaxPresetsBytes);
   } catch (const FileError& e) {
-    throw PresetError(path + ": cannot read the presets file: " + e.problem());
+    refuse(path + ": cannot read the presets file: " + e.problem());
   }
   return parsePresets(text, path);
 }
@@ -214,7 +228,7 @@ const NamedPreset& findPreset(const std::vector<NamedPreset>& presets, const std
     if (p.name == name) return p;
     known += (known.empty() ? "" : ", ") + ("\"" + p.name + "\"");
   }
-  throw PresetError(fmt::format("{}: no preset \"{}\" (known: {})", path, name, known.empty() ? "none" : known));
+  refuse(fmt::format("{}: no preset \"{}\" (known: {})", path, name, known.empty() ? "none" : known));
 }
 
 }  // namespace pathlab::ui
