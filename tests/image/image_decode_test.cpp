@@ -17,23 +17,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string scratchPath(const std::string& name) {
+std::string decodePath(const std::string& name) {
   static const bool made = fs::create_directories(PATHLAB_TEST_TMP) || fs::is_directory(PATHLAB_TEST_TMP);
   return made ? std::string(PATHLAB_TEST_TMP) + "/image_decode_" + name : name;
 }
 
-void writeBytes(const std::string& path, const std::string& bytes) {
+void writeDecodeInput(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), std::streamsize(bytes.size()));
 }
 
-std::string readBytes(const std::string& path) {
+std::string readDecodeInput(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // The one-line refusal of reading `path` (readImage, or readRadianceHdr for .hdr), "" if it loads;
 // a refusal that takes more than a few seconds fails (a decoder working on a lying header).
-std::string refusal(const std::string& path) {
+std::string decodeRefusal(const std::string& path) {
   const auto start = std::chrono::steady_clock::now();
   std::string message;
   try {
@@ -48,7 +48,7 @@ std::string refusal(const std::string& path) {
   return message;
 }
 
-std::string pfm(int w, int h, size_t floats) {
+std::string pfmBytes(int w, int h, size_t floats) {
   std::string s = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1.0\n";
   for (size_t i = 0; i < floats; ++i) {
     const float v = float(i);
@@ -58,24 +58,24 @@ std::string pfm(int w, int h, size_t floats) {
 }
 
 TEST(ImageDecode, PfmSizesAreCheckedBeforeAllocating) {
-  const std::string p = scratchPath("claims.pfm");
-  writeBytes(p, pfm(60000, 60000, 6));
-  EXPECT_NE(refusal(p).find("claims 60000x60000 texels, more than the"), std::string::npos) << refusal(p);
-  writeBytes(p, pfm(10000, 10000, 6));  // within the budget, but 1.2 GB of data missing
-  EXPECT_NE(refusal(p).find("(truncated)"), std::string::npos) << refusal(p);
-  writeBytes(p, pfm(2, 2, 11));  // one float short
-  EXPECT_NE(refusal(p).find("(truncated)"), std::string::npos) << refusal(p);
-  writeBytes(p, pfm(-2, 2, 12));
-  EXPECT_NE(refusal(p).find("an empty image"), std::string::npos) << refusal(p);
-  writeBytes(p, pfm(2, 2, 12));
-  ASSERT_EQ(refusal(p), "");
+  const std::string p = decodePath("claims.pfm");
+  writeDecodeInput(p, pfmBytes(60000, 60000, 6));
+  EXPECT_NE(decodeRefusal(p).find("claims 60000x60000 texels, more than the"), std::string::npos) << decodeRefusal(p);
+  writeDecodeInput(p, pfmBytes(10000, 10000, 6));  // within the budget, but 1.2 GB of data missing
+  EXPECT_NE(decodeRefusal(p).find("(truncated)"), std::string::npos) << decodeRefusal(p);
+  writeDecodeInput(p, pfmBytes(2, 2, 11));  // one float short
+  EXPECT_NE(decodeRefusal(p).find("(truncated)"), std::string::npos) << decodeRefusal(p);
+  writeDecodeInput(p, pfmBytes(-2, 2, 12));
+  EXPECT_NE(decodeRefusal(p).find("an empty image"), std::string::npos) << decodeRefusal(p);
+  writeDecodeInput(p, pfmBytes(2, 2, 12));
+  ASSERT_EQ(decodeRefusal(p), "");
   const Image img = readImage(p);
   EXPECT_EQ(img.at(0, 1), Vec3(0.f, 1.f, 2.f));  // bottom row first in the file
   EXPECT_EQ(img.at(1, 0), Vec3(9.f, 10.f, 11.f));
 }
 
 // Radiance header, then the data.
-std::string hdr(int w, int h, const std::string& data) {
+std::string hdrBytes(int w, int h, const std::string& data) {
   return "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(h) + " +X " + std::to_string(w) + "\n" + data;
 }
 
@@ -104,9 +104,9 @@ TEST(ImageDecode, RadianceHdrDecodesFlatAndRunLengthFiles) {
   const unsigned char two[4] = {128, 64, 32, 130};  // (128, 64, 32) / 256 * 2^(130-128) = (2, 1, 0.5)
   std::string rle;
   for (int y = 0; y < 3; ++y) rle += rleScanline(300, two);
-  const std::string p = scratchPath("rle.hdr");
-  writeBytes(p, hdr(300, 3, rle));
-  ASSERT_EQ(refusal(p), "");
+  const std::string p = decodePath("rle.hdr");
+  writeDecodeInput(p, hdrBytes(300, 3, rle));
+  ASSERT_EQ(decodeRefusal(p), "");
   const Image img = readRadianceHdr(p);
   ASSERT_EQ(img.width, 300);
   ASSERT_EQ(img.height, 3);
@@ -114,8 +114,8 @@ TEST(ImageDecode, RadianceHdrDecodesFlatAndRunLengthFiles) {
   EXPECT_EQ(img.at(299, 2), Vec3(2.f, 1.f, 0.5f));
   std::string flat;
   for (int i = 0; i < 4; ++i) flat.append(reinterpret_cast<const char*>(two), 4);
-  writeBytes(p, hdr(2, 2, flat));
-  ASSERT_EQ(refusal(p), "");
+  writeDecodeInput(p, hdrBytes(2, 2, flat));
+  ASSERT_EQ(decodeRefusal(p), "");
   EXPECT_EQ(readRadianceHdr(p).at(1, 1), Vec3(2.f, 1.f, 0.5f));
   // The bundled sky decodes to finite, positive texels.
   const Image sky = readRadianceHdr(std::string(PATHLAB_SOURCE_DIR) + "/assets/sky.hdr");
@@ -127,15 +127,15 @@ TEST(ImageDecode, TruncatedOrLyingRadianceHdrIsRefused) {
   const unsigned char c[4] = {100, 100, 100, 128};
   std::string rle;
   for (int y = 0; y < 64; ++y) rle += rleScanline(512, c);
-  const std::string p = scratchPath("bad.hdr");
+  const std::string p = decodePath("bad.hdr");
   // Cut in the middle of a scanline (stb_image 2.27 loops forever on the empty runs past the end).
-  writeBytes(p, hdr(512, 64, rle.substr(0, rle.size() - 7)));
-  EXPECT_NE(refusal(p).find("truncated"), std::string::npos) << refusal(p);
+  writeDecodeInput(p, hdrBytes(512, 64, rle.substr(0, rle.size() - 7)));
+  EXPECT_NE(decodeRefusal(p).find("truncated"), std::string::npos) << decodeRefusal(p);
   // An empty run inside a scanline.
   std::string zero = rleScanline(512, c);
   zero[4] = 0;
-  writeBytes(p, hdr(512, 1, zero));
-  EXPECT_NE(refusal(p).find("corrupt HDR run length 0"), std::string::npos) << refusal(p);
+  writeDecodeInput(p, hdrBytes(512, 1, zero));
+  EXPECT_NE(decodeRefusal(p).find("corrupt HDR run length 0"), std::string::npos) << decodeRefusal(p);
   // A run past the end of its scanline.
   std::string over = rleScanline(512, c);
   over[4] = char(128 + 127);
@@ -143,18 +143,18 @@ TEST(ImageDecode, TruncatedOrLyingRadianceHdrIsRefused) {
   over[8] = char(128 + 127);
   over[10] = char(128 + 127);
   over[12] = char(128 + 127);
-  writeBytes(p, hdr(512, 1, over));
-  EXPECT_NE(refusal(p).find("corrupt HDR run length"), std::string::npos) << refusal(p);
+  writeDecodeInput(p, hdrBytes(512, 1, over));
+  EXPECT_NE(decodeRefusal(p).find("corrupt HDR run length"), std::string::npos) << decodeRefusal(p);
   // A flat file a texel short (stb_image accepts it, the missing texels undefined).
-  writeBytes(p, hdr(4, 1, std::string(12, char(100))));
-  EXPECT_NE(refusal(p).find("truncated"), std::string::npos) << refusal(p);
+  writeDecodeInput(p, hdrBytes(4, 1, std::string(12, char(100))));
+  EXPECT_NE(decodeRefusal(p).find("truncated"), std::string::npos) << decodeRefusal(p);
   // A header claiming 16384 x 8192 with no pixels, and one past the budget.
-  writeBytes(p, hdr(16384, 8192, ""));
-  EXPECT_NE(refusal(p).find("claims 16384x8192 texels, which take at least"), std::string::npos) << refusal(p);
-  writeBytes(p, hdr(1 << 20, 1 << 20, ""));
-  EXPECT_NE(refusal(p).find("more than the"), std::string::npos) << refusal(p);
-  writeBytes(p, "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n0000");
-  EXPECT_NE(refusal(p).find("unsupported HDR FORMAT"), std::string::npos) << refusal(p);
+  writeDecodeInput(p, hdrBytes(16384, 8192, ""));
+  EXPECT_NE(decodeRefusal(p).find("claims 16384x8192 texels, which take at least"), std::string::npos) << decodeRefusal(p);
+  writeDecodeInput(p, hdrBytes(1 << 20, 1 << 20, ""));
+  EXPECT_NE(decodeRefusal(p).find("more than the"), std::string::npos) << decodeRefusal(p);
+  writeDecodeInput(p, "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 1 +X 1\n0000");
+  EXPECT_NE(decodeRefusal(p).find("unsupported HDR FORMAT"), std::string::npos) << decodeRefusal(p);
 }
 
 // Patches the dataWindow of an EXR pathlab wrote to claim `w` x `h`.
@@ -168,21 +168,21 @@ std::string withDataWindow(std::string exr, int w, int h) {
 }
 
 TEST(ImageDecode, ExrSizesAreCheckedAndTruncationRefused) {
-  const std::string good = scratchPath("good.exr");
+  const std::string good = decodePath("good.exr");
   fs::remove(good);
   Image img{8, 4, std::vector<float>(3 * 32, 0.25f)};
   writeImage(good, img);
-  ASSERT_EQ(refusal(good), "");
+  ASSERT_EQ(decodeRefusal(good), "");
   EXPECT_EQ(readImage(good).at(7, 3), Vec3(0.25f));
-  const std::string bytes = readBytes(good);
-  const std::string p = scratchPath("bad.exr");
-  writeBytes(p, withDataWindow(bytes, 60000, 60000));
-  EXPECT_NE(refusal(p).find("claims 60000x60000 texels, more than the"), std::string::npos) << refusal(p);
-  writeBytes(p, withDataWindow(bytes, 8000, 8000));
-  EXPECT_NE(refusal(p).find("(truncated)"), std::string::npos) << refusal(p);
+  const std::string bytes = readDecodeInput(good);
+  const std::string p = decodePath("bad.exr");
+  writeDecodeInput(p, withDataWindow(bytes, 60000, 60000));
+  EXPECT_NE(decodeRefusal(p).find("claims 60000x60000 texels, more than the"), std::string::npos) << decodeRefusal(p);
+  writeDecodeInput(p, withDataWindow(bytes, 8000, 8000));
+  EXPECT_NE(decodeRefusal(p).find("(truncated)"), std::string::npos) << decodeRefusal(p);
   for (size_t cut : {bytes.size() / 2, bytes.size() - 1, size_t(20)}) {
-    writeBytes(p, bytes.substr(0, cut));
-    EXPECT_NE(refusal(p), "") << "cut at " << cut;
+    writeDecodeInput(p, bytes.substr(0, cut));
+    EXPECT_NE(decodeRefusal(p), "") << "cut at " << cut;
   }
 }
 
@@ -198,7 +198,7 @@ TEST(ImageDecode, FuzzerFindingsAreRefused) {
   size_t files = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(PATHLAB_SOURCE_DIR) / "tests/image/bad")) {
     ++files;
-    EXPECT_NE(refusal(entry.path().string()), "") << entry.path();
+    EXPECT_NE(decodeRefusal(entry.path().string()), "") << entry.path();
   }
   EXPECT_GE(files, 1u);
 }

@@ -20,14 +20,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
+fs::path guardedPath(const std::string& name) {
   const fs::path dir = fs::path(PATHLAB_TEST_TMP) / "guarded_file";
   fs::create_directories(dir);
   fs::remove(dir / name);
   return dir / name;
 }
 
-std::string refusal(const std::string& path, uint64_t maxBytes = kMaxFileBytes) {
+std::string guardRefusal(const std::string& path, uint64_t maxBytes = kMaxFileBytes) {
   try {
     readGuardedFile(path, maxBytes);
   } catch (const FileError& e) {
@@ -37,7 +37,7 @@ std::string refusal(const std::string& path, uint64_t maxBytes = kMaxFileBytes) 
 }
 
 TEST(GuardedFile, ReadsARegularFileWhole) {
-  const fs::path p = scratch("plain.txt");
+  const fs::path p = guardedPath("plain.txt");
   std::ofstream(p) << "hello";
   EXPECT_EQ(readGuardedText(p.string()), "hello");
 }
@@ -45,25 +45,25 @@ TEST(GuardedFile, ReadsARegularFileWhole) {
 // A thread blocked in open() on a FIFO cannot be stopped: the read runs detached, and a hang fails
 // the test at the deadline (the process then exits with the thread still blocked).
 TEST(GuardedFile, RefusesAFifoWithoutBlocking) {
-  const fs::path p = scratch("fifo");
+  const fs::path p = guardedPath("fifo");
   ASSERT_EQ(mkfifo(p.c_str(), 0600), 0);
   auto promise = std::make_shared<std::promise<std::string>>();
   std::future<std::string> message = promise->get_future();
-  std::thread([promise, path = p.string()] { promise->set_value(refusal(path)); }).detach();
+  std::thread([promise, path = p.string()] { promise->set_value(guardRefusal(path)); }).detach();
   ASSERT_EQ(message.wait_for(std::chrono::seconds(10)), std::future_status::ready) << "the read blocked on a FIFO";
   EXPECT_EQ(message.get(), p.string() + ": is a FIFO, not a regular file");
 }
 
 TEST(GuardedFile, RefusesDirectoriesDevicesMissingAndOversizedFiles) {
-  const fs::path dir = scratch("dir");
+  const fs::path dir = guardedPath("dir");
   fs::create_directory(dir);
-  EXPECT_EQ(refusal(dir.string()), dir.string() + ": is a directory, not a regular file");
-  EXPECT_EQ(refusal("/dev/zero"), "/dev/zero: is a character device, not a regular file");
-  EXPECT_EQ(refusal(scratch("missing").string()), scratch("missing").string() + ": file not found");
-  const fs::path big = scratch("big.txt");
+  EXPECT_EQ(guardRefusal(dir.string()), dir.string() + ": is a directory, not a regular file");
+  EXPECT_EQ(guardRefusal("/dev/zero"), "/dev/zero: is a character device, not a regular file");
+  EXPECT_EQ(guardRefusal(guardedPath("missing").string()), guardedPath("missing").string() + ": file not found");
+  const fs::path big = guardedPath("big.txt");
   std::ofstream(big) << std::string(100, 'x');
-  EXPECT_NE(refusal(big.string(), 99).find("is 100 bytes, more than the 99"), std::string::npos);
-  EXPECT_EQ(refusal(big.string(), 100), "");
+  EXPECT_NE(guardRefusal(big.string(), 99).find("is 100 bytes, more than the 99"), std::string::npos);
+  EXPECT_EQ(guardRefusal(big.string(), 100), "");
 }
 
 // Every way the sources open a file by name, outside core/io/guarded_file.cpp. A new reader must
