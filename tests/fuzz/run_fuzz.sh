@@ -38,7 +38,7 @@ PY
       # A small EXR written by pathlab itself, when the release build is there to write one.
       [ -x build/app/pathlab ] && build/app/pathlab render assets/cornell-box.gltf -o "$corpus/small.exr" --spp 1 \
         --width 8 --height 6 --force >/dev/null 2>&1 || true ;;
-    presets_fuzz) cp -n assets/presets.json "$corpus"/ ;;
+    presets_fuzz) cp -n assets/presets.json "$corpus"/ 2>/dev/null || true ;;
   esac
   echo "$corpus"
 }
