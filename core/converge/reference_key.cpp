@@ -1,14 +1,15 @@
 // FNV-1a hashing of the reference's inputs.
 #include "core/converge/reference_key.h"
 
+#include "core/io/guarded_file.h"
+
 #include <fmt/core.h>
 #include <tiny_gltf.h>
 
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <string_view>
 #include <vector>
 
@@ -35,11 +36,22 @@ struct ExternalFiles {
   Fnv1a* hash;
 
   static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* self) {
-    if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+    try {
+      *out = readGuardedFile(path);
+    } catch (const FileError& e) {
+      if (err) *err += e.what();
+      return false;
+    }
     Fnv1a& h = *static_cast<ExternalFiles*>(self)->hash;
     h.add(fmt::format("\nfile {}\n", out->size()));
     h.add(std::string_view(reinterpret_cast<const char*>(out->data()), out->size()));
     return true;
+  }
+  // Existence by stat(), never an open: tinygltf::FileExists fopens the path, which waits forever
+  // on a FIFO; the read then refuses what is not a regular file.
+  static bool exists(const std::string& path, void*) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0;
   }
   static bool skipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
                                 const unsigned char*, int, void*) {
@@ -50,7 +62,7 @@ struct ExternalFiles {
 void hashExternalFiles(const std::string& scenePath, const std::string& bytes, Fnv1a& hash) {
   ExternalFiles files{&hash};
   tinygltf::TinyGLTF context;
-  context.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &ExternalFiles::read,
+  context.SetFsCallbacks({&ExternalFiles::exists, &tinygltf::ExpandFilePath, &ExternalFiles::read,
                           &tinygltf::WriteWholeFile, &files});
   context.SetImageLoader(&ExternalFiles::skipImageDecoding, nullptr);
   tinygltf::Model model;
@@ -95,9 +107,12 @@ std::string describe(const RenderSettings& s) {
 }  // namespace
 
 std::string referenceKey(const std::string& scenePath, const RenderSettings& settings, const std::string& budget) {
-  std::ifstream in(scenePath, std::ios::binary);
-  if (!in) throw std::runtime_error(scenePath + ": cannot read the scene file");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes;
+  try {
+    bytes = readGuardedText(scenePath);
+  } catch (const FileError& e) {
+    throw std::runtime_error(scenePath + ": cannot read the scene file: " + e.problem());
+  }
   Fnv1a hash;
   hash.add(bytes);
   hashExternalFiles(scenePath, bytes, hash);

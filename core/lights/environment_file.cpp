@@ -60,7 +60,8 @@ EnvironmentDesc readEnvironment(const std::string& spec) {
   const std::string ext = lowerExtension(spec);
   if (ext != ".exr" && ext != ".hdr")
     throw EnvironmentError(spec + ": an environment is an .exr or .hdr file or a colour R,G,B");
-  if (!std::filesystem::is_regular_file(spec)) throw EnvironmentError(spec + ": no such file");
+  // Existence by stat, never an open: the reader refuses a FIFO or a device by name.
+  if (!std::filesystem::exists(spec)) throw EnvironmentError(spec + ": no such file");
   Image image;
   try {
     image = ext == ".exr" ? readImage(spec) : readRadianceHdr(spec);

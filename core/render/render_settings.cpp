@@ -121,27 +121,33 @@ void validateSettings(const RenderSettings& s) {
           "lower --max-length or the image size",
           s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxMergeStoreBytes >> 30));
   }
+  // The technique messages start with the option and its value (issue 37: both options gave the
+  // same line, naming neither).
   if (s.isolate) {
     const Isolation& i = *s.isolate;
+    const std::string option = fmt::format("--isolate {},{}: ", i.s, i.t);
     if (!bidirectional) throw std::invalid_argument("isolating a technique needs the bpt or lt integrator");
     const int k = i.s + i.t - 1;
     if (i.s < 0 || i.t < 1 || k < 1)
-      throw std::invalid_argument(fmt::format("technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", i.s, i.t));
-    if (k > s.maxLength)
       throw std::invalid_argument(
-          fmt::format("technique ({},{}) has length {}, more than the maximum length {}", i.s, i.t, k, s.maxLength));
+          fmt::format("{}technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", option, i.s, i.t));
+    if (k > s.maxLength)
+      throw std::invalid_argument(fmt::format("{}technique ({},{}) has length {}, more than the maximum length {}",
+                                              option, i.s, i.t, k, s.maxLength));
     if (s.integrator == IntegratorKind::Lt && i.t != 1)
-      throw std::invalid_argument(fmt::format("light tracing has only the t = 1 techniques, not ({},{})", i.s, i.t));
+      throw std::invalid_argument(fmt::format("{}light tracing has only the t = 1 techniques, not ({},{})", option, i.s, i.t));
   }
   if (s.injectBias) {
     const BiasInjection& b = *s.injectBias;
+    const std::string option = fmt::format("--inject-bias {},{},{:g}: ", b.s, b.t, b.factor);
     if (!bidirectional) throw std::invalid_argument("injecting a bias needs the bpt or lt integrator");
     const Technique x{b.s, b.t};
     if (!x.valid())
-      throw std::invalid_argument(fmt::format("technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", b.s, b.t));
+      throw std::invalid_argument(
+          fmt::format("{}technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", option, b.s, b.t));
     if (x.length() > s.maxLength)
-      throw std::invalid_argument(fmt::format("technique ({},{}) has length {}, more than the maximum length {}", b.s,
-                                              b.t, x.length(), s.maxLength));
+      throw std::invalid_argument(fmt::format("{}technique ({},{}) has length {}, more than the maximum length {}",
+                                              option, b.s, b.t, x.length(), s.maxLength));
     checkRange("injected bias factor", b.factor, 0.f, kMaxInjectedBias);
   }
   if (s.checkTechniques) {

@@ -1,6 +1,10 @@
 // Bounds-checked reading of glTF accessors (glTF 2.0 spec, sec. 3.6) into float and index arrays.
 #include "core/scene/gltf_internal.h"
 
+#include "core/image/image_budget.h"
+
+#include <stb/stb_image.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -206,6 +210,30 @@ std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor,
   return out;
 }
 
+namespace {
+
+// Decoded bytes per byte of a PNG at the most: deflate's limit is 1032:1.
+constexpr uint64_t kMaxPngRatio = 1100;
+
+// Why stb_image must not decode these bytes, or "": a Radiance HDR (stb_image 2.27 hangs on a
+// truncated one, and glTF has no HDR textures), or a header whose size exceeds kMaxImageTexels or
+// what a PNG of `size` bytes can hold. stbi_info reads the header only.
+std::string imageClaimProblem(const unsigned char* bytes, int size) {
+  if (stbi_is_hdr_from_memory(bytes, size)) return "a Radiance HDR image, not a glTF texture (use PNG or JPEG)";
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_memory(bytes, size, &w, &h, &comp)) return "";  // stb_image refuses it itself
+  const bool png = size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0;
+  const uint64_t texels = w > 0 && h > 0 ? uint64_t(w) * uint64_t(h) : 0;
+  const std::string claim = "the header claims " + std::to_string(w) + "x" + std::to_string(h) + " texels";
+  if (texels > kMaxImageTexels) return claim + ", more than the " + std::to_string(kMaxImageTexels) + " pathlab reads";
+  // A PNG row is a filter byte and at least a bit per texel (1-bit grey or palette).
+  if (png && uint64_t(h) * (1 + (uint64_t(w) + 7) / 8) > kMaxPngRatio * uint64_t(size))
+    return claim + ", more than " + std::to_string(size) + " bytes of PNG can hold (truncated or corrupt)";
+  return "";
+}
+
+}  // namespace
+
 bool loadImageChecked(tinygltf::Image* image, int imageIndex, std::string* err, std::string* warn,
                       int reqWidth, int reqHeight, const unsigned char* bytes, int size,
                       void* userData) {
@@ -226,6 +254,10 @@ bool loadImageChecked(tinygltf::Image* image, int imageIndex, std::string* err, 
   }
   if (bytes == nullptr || size <= 0) {
     if (err) *err += "image " + std::to_string(imageIndex) + " is empty\n";
+    return false;
+  }
+  if (const std::string why = imageClaimProblem(bytes, size); !why.empty()) {
+    if (err) *err += "image " + std::to_string(imageIndex) + ": " + why + "\n";
     return false;
   }
   // Decoded to 8 or 16 bits by tinygltf's own stb_image loader, keeping the file's channels: an

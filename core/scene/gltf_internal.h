@@ -55,12 +55,8 @@ std::string quotedName(const std::string& name);  // " 'name'", or "" for an unn
 tinygltf::Model parseFile(const std::string& path, Warnings& warnings);
 
 // ---- file access (gltf_fs.cpp) ---------------------------------------------------------------
-// The most pathlab reads from one file: a GLB cannot be larger (its length field is 32 bits), and
-// an external buffer this large already holds more triangles than the default limit admits.
-constexpr uint64_t kMaxFileBytes = uint64_t(1) << 32;
-
-// The whole of `path` if it is a regular file (symlinks followed) of at most kMaxFileBytes;
-// otherwise LoadError saying what it is ("is a FIFO, not a regular file"), without the path.
+// readGuardedFile (core/io/guarded_file.h), its refusal as a LoadError without the path
+// ("is a FIFO, not a regular file"): the loader's messages name the file their own way.
 std::vector<unsigned char> readRegularFile(const std::string& path);
 
 // tinygltf's file-system callbacks for the files a scene references, resolved in its directory

@@ -309,7 +309,11 @@ Material MaterialReader::convert(int index) {
   }
 
   if (const tinygltf::Value* e = findExtension(g.extensions, "KHR_materials_emissive_strength")) {
-    m.emissiveStrength = std::max(number(*e, "emissiveStrength", 1.f), 0.f);
+    // The extension's schema has minimum 0: a negative strength is an invalid file, not "no light".
+    m.emissiveStrength = number(*e, "emissiveStrength", 1.f);
+    if (m.emissiveStrength < 0.f)
+      throw LoadError(label_ + ": KHR_materials_emissive_strength emissiveStrength " + formatNumber(m.emissiveStrength) +
+                      " is negative (the extension requires >= 0)");
   }
   // The renderer's emitted radiance is this product, in float (the texture only scales it down).
   const Spectrum emission = m.emissiveFactor * m.emissiveStrength;

@@ -8,7 +8,10 @@
 #include "core/scene/normal_map.h"
 #include "core/scene/ray_log.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <limits>
 
@@ -62,6 +65,19 @@ RTCScene buildBvh(RTCDevice device, const std::vector<TriangleMesh>& meshes,
   }
   rtcCommitScene(scene);
   return scene;
+}
+
+// The environment's radiance is its texels x the strength (--environment-strength), and its power
+// that integral over the sphere x the scene's disc; in float, either can overflow where each factor
+// fits (issue 37: 1e35 texels x 1e6 rendered with every environment sample dropped as Inf).
+void checkEnvironmentPower(const EnvironmentDesc& desc, const EnvironmentLight& light) {
+  const Spectrum power = light.power();
+  if (std::isfinite(power.r) && std::isfinite(power.g) && std::isfinite(power.b)) return;
+  float brightest = maxComponent(desc.constant);
+  for (const Spectrum& t : desc.texels) brightest = std::max(brightest, maxComponent(t));
+  throw SceneError(fmt::format("{}: radiance up to {:g} x --environment-strength {:g} overflows a 32-bit float "
+                               "over the scene's sphere (its power is not finite); lower the strength",
+                               desc.source, brightest, desc.strength));
 }
 
 }  // namespace
@@ -148,6 +164,7 @@ Scene::Scene(SceneDesc desc)
     }
   if (desc_.environment) {
     environment_ = std::make_unique<EnvironmentLight>(*desc_.environment, bounds_.center, bounds_.radius);
+    checkEnvironmentPower(*desc_.environment, *environment_);
     lights.push_back(Light::environment(environment_.get()));
     if (hasMedia()) lightMedia.push_back(MediumInterface{});
   }

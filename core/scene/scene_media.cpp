@@ -10,21 +10,6 @@ namespace {
 
 bool isVolumeMaterial(const Material& m) { return m.volume && m.transmissionFactor > 0.f; }
 
-// Moller-Trumbore, both faces, t > 0: whether the ray o + t d crosses triangle (a, b, c).
-bool crosses(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 e1 = b - a, e2 = c - a, pv = glm::cross(d, e2);
-  const float det = glm::dot(e1, pv);
-  if (std::abs(det) < 1e-20f) return false;
-  const float inv = 1.f / det;
-  const Vec3 tv = o - a;
-  const float u = glm::dot(tv, pv) * inv;
-  if (u < 0.f || u > 1.f) return false;
-  const Vec3 qv = glm::cross(tv, e1);
-  const float v = glm::dot(d, qv) * inv;
-  if (v < 0.f || u + v > 1.f) return false;
-  return glm::dot(e2, qv) * inv > 0.f;
-}
-
 }  // namespace
 
 SceneMedia::SceneMedia(const SceneDesc& desc) {
@@ -52,19 +37,26 @@ SceneMedia::SceneMedia(const SceneDesc& desc) {
     volumes_.clear();
     return;
   }
-  meshList_ = &desc.meshes;
+  std::vector<std::vector<CrossingGrid::Triangle>> volumeTriangles(volumes_.size());
   for (size_t m = 0; m < meshCount; ++m) {
     const int vi = materialVolume[static_cast<size_t>(desc.meshes[m].material)];
     if (vi < 0) continue;
     Volume& v = volumes_[static_cast<size_t>(vi)];
-    for (const Vec3& p : desc.meshes[m].positions) {
+    const TriangleMesh& mesh = desc.meshes[m];
+    for (const Vec3& p : mesh.positions) {
       v.lo = glm::min(v.lo, p);
       v.hi = glm::max(v.hi, p);
     }
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const uint32_t* i = &mesh.indices[3 * t];
+      volumeTriangles[size_t(vi)].push_back({mesh.positions[i[0]], mesh.positions[i[1]], mesh.positions[i[2]]});
+    }
   }
-  for (Volume& v : volumes_) {
+  for (size_t i = 0; i < volumes_.size(); ++i) {
+    Volume& v = volumes_[i];
     const Vec3 e = glm::max(v.hi - v.lo, Vec3(0.f));
     v.size = e.x * e.y * e.z;
+    v.boundary = CrossingGrid(std::move(volumeTriangles[i]));
   }
   for (size_t m = 0; m < meshCount; ++m) {
     const TriangleMesh& mesh = desc.meshes[m];
@@ -86,17 +78,7 @@ SceneMedia::SceneMedia(const SceneDesc& desc) {
 
 bool SceneMedia::contains(const Volume& v, const Vec3& p) const {
   if (glm::any(glm::lessThan(p, v.lo)) || glm::any(glm::greaterThan(p, v.hi))) return false;
-  // A direction no axis-aligned or diagonal wall is parallel to, so that grazing hits are rare.
-  const Vec3 d = glm::normalize(Vec3(0.5773f, 0.6213f, 0.5297f));
-  int crossings = 0;
-  for (const TriangleMesh& mesh : *meshList_) {
-    if (mesh.material != v.material) continue;
-    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-      const uint32_t* i = &mesh.indices[3 * t];
-      crossings += crosses(p, d, mesh.positions[i[0]], mesh.positions[i[1]], mesh.positions[i[2]]) ? 1 : 0;
-    }
-  }
-  return crossings % 2 == 1;
+  return v.boundary.crossings(p) % 2 == 1;
 }
 
 const SceneMedia::Volume* SceneMedia::innermost(const Vec3& p, int excludeMaterial) const {

@@ -8,6 +8,7 @@
 
 #include "core/media/medium.h"
 #include "core/math/medium_interface.h"
+#include "core/scene/crossing_grid.h"
 #include "core/scene/scene_desc.h"
 
 #include <cstdint>
@@ -36,14 +37,13 @@ class SceneMedia {
     int medium = -1;                // index in media_, or -1 for a glass solid without a medium
     Vec3 lo{0.f}, hi{0.f};          // bounds of its triangles
     float size = 0.f;               // bounding-box volume, to find the innermost container
+    CrossingGrid boundary;          // its triangles, for the parity of crossings
   };
   // Whether p is inside volume v: the parity of the crossings of a ray from p with its triangles.
   bool contains(const Volume& v, const Vec3& p) const;
   // The innermost volume containing p other than `exclude` (a material index), or nullptr.
   const Volume* innermost(const Vec3& p, int excludeMaterial) const;
 
-  // The scene's meshes (Scene owns them for as long as this lives), for containment tests.
-  const std::vector<TriangleMesh>* meshList_ = nullptr;
   std::vector<HomogeneousMedium> media_;
   std::vector<Volume> volumes_;
   std::vector<MediumInterface> meshes_;

@@ -98,5 +98,28 @@ TEST(GltfEnvironment, AnEnvironmentJoinsTheFilesLights) {
   EXPECT_EQ(notices(loadGltf(kNoLight, options)), 0);  // the environment asked for is no default
 }
 
+// Issue 37: each factor fits a float, their product over the sphere does not; refused in one line
+// naming the map and the option instead of rendering with every environment sample dropped as Inf.
+TEST(GltfEnvironment, AnEnvironmentWhosePowerOverflowsIsRefused) {
+  LoadOptions options;
+  auto env = std::make_shared<EnvironmentDesc>();
+  env->source = "bright.exr";
+  env->width = 2;
+  env->height = 1;
+  env->texels = {Spectrum(1e35f), Spectrum(1.f)};
+  env->strength = 1e6f;
+  options.environment = env;
+  try {
+    const Scene scene(loadGltf(kSource + "/assets/cornell-box.gltf", options));
+    FAIL() << "the overflowing environment was accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("bright.exr: radiance up to 1e+35 x --environment-strength 1e+06 overflows", 0), 0u) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  env->strength = 1.f;  // 1e35 alone fits
+  EXPECT_NO_THROW(Scene(loadGltf(kSource + "/assets/cornell-box.gltf", options)));
+}
+
 }  // namespace
 }  // namespace pathlab

@@ -53,6 +53,10 @@ std::vector<OverflowCase> overflowCases() {
   cases.push_back({"emissive-product.gltf",
                    triangleScene("", R"({"emissiveFactor":[1e20,1,1],)" + emissive + "1e20}}}"),
                    {"material 0", "emissiveFactor x emissiveStrength (1e+20 x 1e+20) overflows"}});
+  // Invalid by the extension's schema (minimum 0): refused, not taken as "no light" (issue 37).
+  cases.push_back({"emissive-negative.gltf",
+                   triangleScene("", R"({"emissiveFactor":[1,1,1],)" + emissive + "-1}}}"),
+                   {"material 0", "emissiveStrength -1 is negative"}});
   cases.push_back({"emissive-factor.gltf", triangleScene("", R"({"emissiveFactor":[1e300,0,0]})"),
                    {"emissiveFactor 1e+300 overflows"}});
   cases.push_back({"base-color.gltf",

@@ -6,6 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <filesystem>
+#include <future>
+#include <memory>
+#include <sys/stat.h>
+#include <thread>
+
 namespace pathlab::ui {
 namespace {
 
@@ -110,6 +117,17 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [0, 0], "target": [0, 0, 1]}}]})",
                             "3 numbers"},
                     BadCase{R"({"presets": [{"name": "x"}, {"name": "x"}]})", "preset 1 (\"x\"): duplicate"},
+                    // Issue 37: no wrap-around to int (4294967300 is 4 as an int), no float overflow.
+                    BadCase{R"({"presets": [{"name": "x", "maxLength": 4294967300}]})",
+                            "preset 0 (\"x\"): \"maxLength\" must be in [1, 1000], not 4294967300"},
+                    BadCase{R"({"presets": [{"name": "x", "maxLength": -4294967295}]})", "not -4294967295"},
+                    BadCase{R"({"presets": [{"name": "x", "isolate": [4294967297, 1]}]})", "not 4294967297"},
+                    BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [1e39, 0, 0], "target": [0, 0, 1]}}]})",
+                            "preset 0 (\"x\"): camera eye 1e+39 is not a finite 32-bit number"},
+                    BadCase{R"({"presets": [{"name": "x", "beta": 1e300}]})", "\"beta\" 1e+300 is not a finite"},
+                    // A JSON string may hold a newline: escaped, the message stays one line (found by presets_fuzz).
+                    BadCase{"{\"presets\": [{\"name\": \"x\", \"maxL\\ngth\": 5}]}", "unknown key \"maxL\\ngth\""},
+                    BadCase{"{\"presets\": [{\"name\": \"a\\nb\", \"mis\": \"?\"}]}", "preset 0 (\"a\\nb\")"},
                     // A number that overflows a double is nlohmann's out_of_range, not a parse_error.
                     BadCase{R"({"presets": [{"name": "x", "beta": 1e999}]})", "1e999"}),
     [](const testing::TestParamInfo<BadCase>& info) { return "case" + std::to_string(info.index); });
@@ -126,6 +144,26 @@ TEST(Presets, UnknownNameListsTheKnownOnes) {
 
 TEST(Presets, MissingFile) {
   EXPECT_THROW(loadPresets("/nonexistent/presets.json"), PresetError);
+}
+
+// Read through the guarded reader: a FIFO is refused at once (the read would wait for a writer).
+TEST(Presets, FifoIsRefusedWithoutBlocking) {
+  const std::string fifo = std::string(PATHLAB_TEST_TMP) + "/presets-fifo.json";
+  std::filesystem::create_directories(PATHLAB_TEST_TMP);
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  auto done = std::make_shared<std::promise<std::string>>();
+  std::future<std::string> message = done->get_future();
+  std::thread([done, fifo] {
+    try {
+      loadPresets(fifo);
+      done->set_value("");
+    } catch (const PresetError& e) {
+      done->set_value(e.what());
+    }
+  }).detach();
+  ASSERT_EQ(message.wait_for(std::chrono::seconds(10)), std::future_status::ready) << "blocked on a FIFO";
+  EXPECT_EQ(message.get(), fifo + ": cannot read the presets file: is a FIFO, not a regular file");
 }
 
 }  // namespace

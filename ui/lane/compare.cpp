@@ -22,14 +22,22 @@ void copyView(RenderSettings& to, const RenderSettings& from) {
 
 }  // namespace
 
-EstimatorState compareEstimator(const std::string& config, const RenderSettings& a) {
+EstimatorState compareEstimator(const std::string& config, const RenderSettings& a, const std::string& option) {
   RenderSettings base;
   copyView(base, a);
   base.maxLength = a.maxLength;
   base.integrator = IntegratorKind::Bpt;
-  const std::vector<ConvergenceConfig> parsed = parseConvergenceConfigs(config, base);
+  std::vector<ConvergenceConfig> parsed;
+  try {
+    parsed = parseConvergenceConfigs(config, base);
+  } catch (const std::invalid_argument& e) {
+    // The parser speaks of converge's --configs; here the text came from `option` (issue 37).
+    std::string what = e.what();
+    if (const std::string converge = "--configs: "; what.rfind(converge, 0) == 0) what.erase(0, converge.size());
+    throw std::invalid_argument(option + ": " + what);
+  }
   if (parsed.size() != 1)
-    throw std::invalid_argument(fmt::format("--compare {}: one configuration, not {}", config, parsed.size()));
+    throw std::invalid_argument(fmt::format("{} {}: one configuration, not {}", option, config, parsed.size()));
   return EstimatorState::from(parsed.front().settings);
 }
 

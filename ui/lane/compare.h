@@ -26,8 +26,10 @@ struct CompareState {
 // Side B's estimator from a CONFIG as `pathlab converge --configs` takes one (INTEGRATOR[:key=value,
 // ...], core/converge/convergence_config.h): the default estimator (all techniques, balance
 // heuristic, path reuse, no isolation) changed by the CONFIG's keys, at side A's maximum length
-// unless the CONFIG sets one. Throws std::invalid_argument with the parser's one line.
-EstimatorState compareEstimator(const std::string& config, const RenderSettings& a);
+// unless the CONFIG sets one. Throws std::invalid_argument with the parser's one line, starting
+// with `option` (where the CONFIG came from: the command line's --compare, a preset's "compare").
+EstimatorState compareEstimator(const std::string& config, const RenderSettings& a,
+                                const std::string& option = "--compare");
 
 // The settings side B's renderer gets: B's estimator (renderSettings) in A's view — A's size,
 // camera, lens, seed and Russian roulette. The pyramid, the technique maps and the consistency check

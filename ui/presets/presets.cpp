@@ -2,12 +2,15 @@
 #include "ui/presets/presets.h"
 
 #include "core/bpt/technique_set.h"
+#include "core/io/guarded_file.h"
 #include "ui/lane/compare.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include <fstream>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -17,13 +20,33 @@ namespace {
 
 using Json = nlohmann::json;
 
+// A presets file is a page of JSON written by hand: 16 MiB is far past any real one.
+constexpr uint64_t kMaxPresetsBytes = uint64_t(16) << 20;
+
 const std::set<std::string> kKeys = {"name", "integrator", "techniques", "mis", "beta", "minConnection", "maxLength",
                                      "isolate", "unweighted", "camera", "compare", "description"};
+
+// A JSON number as a float, refused when it is not finite as a float (1e39 is a double but no float,
+// and would come back as "camera transform entry -nan" far from the file).
+float finiteFloat(const Json& j, const std::string& what) {
+  const double v = j.get<double>();
+  if (!(std::abs(v) <= double(std::numeric_limits<float>::max())))
+    throw std::invalid_argument(fmt::format("{} {} is not a finite 32-bit number", what, j.dump()));
+  return float(v);
+}
 
 Vec3 vec3Of(const Json& j, const std::string& what) {
   if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
     throw std::invalid_argument(what + " must be an array of 3 numbers");
-  return {j[0].get<float>(), j[1].get<float>(), j[2].get<float>()};
+  return {finiteFloat(j[0], what), finiteFloat(j[1], what), finiteFloat(j[2], what)};
+}
+
+// A JSON integer in [lo, hi], compared before narrowing (get<int> wraps 4294967300 to 4).
+int integerIn(const Json& j, const std::string& what, int lo, int hi) {
+  const bool inRange = j.is_number_unsigned() ? j.get<uint64_t>() <= uint64_t(std::max(hi, 0)) && j.get<int64_t>() >= lo
+                                              : j.get<int64_t>() >= lo && j.get<int64_t>() <= hi;
+  if (!inRange) throw std::invalid_argument(fmt::format("{} must be in [{}, {}], not {}", what, lo, hi, j.dump()));
+  return int(j.get<int64_t>());
 }
 
 const Json& typed(const Json& p, const char* key, bool (Json::*is)() const noexcept, const char* type) {
@@ -31,6 +54,20 @@ const Json& typed(const Json& p, const char* key, bool (Json::*is)() const noexc
   if (!(v.*is)()) throw std::invalid_argument(fmt::format("\"{}\" must be {}", key, type));
   return v;
 }
+
+// The file's strings (names, keys, values) go into messages as they are, and a JSON string may hold
+// a newline ("\n"): control characters are written as escapes, so a message stays one line.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f) out += c;
+    else if (c == '\n') out += "\\n";
+    else out += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+  }
+  return out;
+}
+
+[[noreturn]] void refuse(const std::string& message) { throw PresetError(oneLine(message)); }
 
 NamedPreset parseOne(const Json& p) {
   if (!p.is_object()) throw std::invalid_argument("is not an object");
@@ -58,24 +95,24 @@ NamedPreset parseOne(const Json& p) {
     else throw std::invalid_argument(fmt::format("mis \"{}\" is not balance, power, uniform or off", v));
   }
   if (p.contains("beta")) {
-    out.mis.beta = typed(p, "beta", &Json::is_number, "a number").get<float>();
+    out.mis.beta = finiteFloat(typed(p, "beta", &Json::is_number, "a number"), "\"beta\"");
     if (!(out.mis.beta >= 0.01f && out.mis.beta <= 100.f)) throw std::invalid_argument("\"beta\" must be in [0.01, 100]");
   }
   if (p.contains("minConnection")) {
-    out.mis.minConnection = typed(p, "minConnection", &Json::is_number, "a number").get<float>();
+    out.mis.minConnection = finiteFloat(typed(p, "minConnection", &Json::is_number, "a number"), "\"minConnection\"");
     if (!(out.mis.minConnection >= 0.f && out.mis.minConnection <= 1.f))
       throw std::invalid_argument("\"minConnection\" must be in [0, 1]");
   }
   if (p.contains("maxLength")) {
-    out.maxLength = typed(p, "maxLength", &Json::is_number_integer, "an integer").get<int>();
-    if (out.maxLength < 1 || out.maxLength > 1000) throw std::invalid_argument("\"maxLength\" must be in [1, 1000]");
+    out.maxLength = integerIn(typed(p, "maxLength", &Json::is_number_integer, "an integer"), "\"maxLength\"", 1, 1000);
   }
   out.techniques.checkFits(out.maxLength);  // throws "techniques: ..." on a set that does not fit
   if (p.contains("isolate")) {
     const Json& v = p.at("isolate");
     if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
       throw std::invalid_argument("\"isolate\" must be [s, t]");
-    Isolation iso{v[0].get<int>(), v[1].get<int>(), false};
+    Isolation iso{integerIn(v[0], "\"isolate\" s", 0, out.maxLength), integerIn(v[1], "\"isolate\" t", 1, out.maxLength + 1),
+                  false};
     if (iso.s < 0 || iso.t < 1 || iso.s + iso.t - 1 > out.maxLength || iso.s + iso.t - 1 < 1)
       throw std::invalid_argument(fmt::format("isolated technique ({},{}) is not a technique of length 1..{}", iso.s,
                                               iso.t, out.maxLength));
@@ -98,7 +135,7 @@ NamedPreset parseOne(const Json& p) {
     float yfovDegrees = 39.6f;
     if (c.contains("yfovDegrees")) {
       if (!c.at("yfovDegrees").is_number()) throw std::invalid_argument("camera \"yfovDegrees\" must be a number");
-      yfovDegrees = c.at("yfovDegrees").get<float>();
+      yfovDegrees = finiteFloat(c.at("yfovDegrees"), "camera \"yfovDegrees\"");
     }
     if (!(yfovDegrees > 0.1f && yfovDegrees < 179.f)) throw std::invalid_argument("camera \"yfovDegrees\" must be in (0.1, 179)");
     const Vec3 d = target - eye;
@@ -112,9 +149,11 @@ NamedPreset parseOne(const Json& p) {
     const std::string config = typed(p, "compare", &Json::is_string, "a string").get<std::string>();
     RenderSettings a;
     a.maxLength = out.maxLength;
-    compareEstimator(config, a);  // throws the parser's line
+    compareEstimator(config, a, "\"compare\"");  // throws the parser's line
     out.compare = config;
   }
+  // Everything the command line's settings check refuses (e.g. isolating (1,2) under light tracing).
+  validateSettings(out.applyTo(RenderSettings{}));
   return out;
 }
 
@@ -151,10 +190,10 @@ std::vector<NamedPreset> parsePresets(const std::string& text, const std::string
     // (or out_of_range.406 for a number such as 1e999 that overflows a double).
     std::string what = e.what();
     if (const size_t p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    throw PresetError(path + ": " + what);
+    refuse(path + ": " + what);
   }
   if (!root.is_object() || !root.contains("presets") || !root.at("presets").is_array())
-    throw PresetError(path + ": expected an object with an array \"presets\"");
+    refuse(path + ": expected an object with an array \"presets\"");
   std::vector<NamedPreset> out;
   std::set<std::string> names;
   size_t index = 0;
@@ -165,20 +204,22 @@ std::vector<NamedPreset> parsePresets(const std::string& text, const std::string
     try {
       out.push_back(parseOne(p));
     } catch (const std::exception& e) {
-      throw PresetError(fmt::format("{}: {}: {}", path, label, e.what()));
+      refuse(fmt::format("{}: {}: {}", path, label, e.what()));
     }
-    if (!names.insert(out.back().name).second) throw PresetError(fmt::format("{}: {}: duplicate name", path, label));
+    if (!names.insert(out.back().name).second) refuse(fmt::format("{}: {}: duplicate name", path, label));
     ++index;
   }
   return out;
 }
 
 std::vector<NamedPreset> loadPresets(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw PresetError(path + ": cannot open the presets file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parsePresets(text.str(), path);
+  std::string text;
+  try {
+    text = readGuardedText(path, kMaxPresetsBytes);
+  } catch (const FileError& e) {
+    refuse(path + ": cannot read the presets file: " + e.problem());
+  }
+  return parsePresets(text, path);
 }
 
 const NamedPreset& findPreset(const std::vector<NamedPreset>& presets, const std::string& name, const std::string& path) {
@@ -187,7 +228,7 @@ const NamedPreset& findPreset(const std::vector<NamedPreset>& presets, const std
     if (p.name == name) return p;
     known += (known.empty() ? "" : ", ") + ("\"" + p.name + "\"");
   }
-  throw PresetError(fmt::format("{}: no preset \"{}\" (known: {})", path, name, known.empty() ? "none" : known));
+  refuse(fmt::format("{}: no preset \"{}\" (known: {})", path, name, known.empty() ? "none" : known));
 }
 
 }  // namespace pathlab::ui
