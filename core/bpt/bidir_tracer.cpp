@@ -96,10 +96,18 @@ template <bool kRecords>
                                                         Counters& counters) const {
   const float ratio = lightTracingRatio();
   const int s = path.s, t = path.t;
-  if (kRecords && merges_)
-    return mergePass_ ? weightWithMerges(scene_, camera_, path, Technique{s, t}, options_.techniques, options_.mis, ratio,
-                                         minConnectionDistance_, MergeMis{mergePass_->eta()})
-                      : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+  if (kRecords && merges_) {
+    if (!mergePass_) return misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+    const MergeMis merge{mergePass_->eta()};
+    if (options_.checkMis) {
+      ++counters.misPartitionChecks;
+      const double sum = weightSumWithMerges(scene_, camera_, path, options_.techniques, options_.mis, ratio,
+                                             minConnectionDistance_, merge);
+      if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
+    }
+    return weightWithMerges(scene_, camera_, path, Technique{s, t}, options_.techniques, options_.mis, ratio,
+                            minConnectionDistance_, merge);
+  }
   if (kRecords && misEvaluation_ == MisEvaluation::Constant) return offWeights_[static_cast<size_t>(s + t - 1)];
   // The partial sums decline (nullopt) a path with a near-coincident connection: misWeight then
   // applies MisOptions::minConnection. An interior connection (s, t >= 2, about half of a

@@ -6,6 +6,27 @@
 
 namespace pathlab {
 
+namespace {
+
+// A path's densities and which of its vertices lie on surfaces, in per-thread scratch (as
+// misWeight's: no allocation once grown).
+struct PathScratch {
+  PathDensities d;
+  std::vector<uint8_t> surface;
+};
+const PathScratch& densitiesOf(const Scene& scene, const Camera& camera, const MisPath& path) {
+  thread_local PathScratch p;
+  pathDensities(scene, camera, path, p.d);
+  p.surface.resize(static_cast<size_t>(p.d.n));
+  for (int i = 0; i < p.d.n; ++i) {
+    const PathVertex& v = i < path.s ? lightVertex(path, i) : cameraVertex(path, p.d.n - 1 - i);
+    p.surface[static_cast<size_t>(i)] = v.type == VertexType::Surface;
+  }
+  return p;
+}
+
+}  // namespace
+
 double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface, Technique x,
                         const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
                         float minDistance, const MergeMis& merge) {
@@ -63,17 +84,19 @@ float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& 
                        float minDistance, const MergeMis& merge) {
   if (!techniques.contains(x)) return 0.f;
   if (!x.isMerge() && path.t == 1 && camera.isOrthographic()) return 0.f;
-  // Per-thread scratch, as misWeight's: no allocation once grown.
-  thread_local PathDensities d;
-  thread_local std::vector<uint8_t> surface;
-  pathDensities(scene, camera, path, d);
-  surface.resize(static_cast<size_t>(d.n));
-  for (int i = 0; i < d.n; ++i) {
-    const PathVertex& v = i < path.s ? lightVertex(path, i) : cameraVertex(path, d.n - 1 - i);
-    surface[static_cast<size_t>(i)] = v.type == VertexType::Surface;
-  }
-  const double w = weightWithMerges(d, surface, x, techniques, options, lightTracingRatio, minDistance, merge);
+  const PathScratch& p = densitiesOf(scene, camera, path);
+  const double w = weightWithMerges(p.d, p.surface, x, techniques, options, lightTracingRatio, minDistance, merge);
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;
+}
+
+double weightSumWithMerges(const Scene& scene, const Camera& camera, const MisPath& path,
+                           const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
+                           float minDistance, const MergeMis& merge) {
+  const PathScratch& p = densitiesOf(scene, camera, path);
+  double sum = 0.0;
+  for (const Technique x : techniquesOfLength(p.d.n - 1, TechniqueFamilies::All))
+    sum += weightWithMerges(p.d, p.surface, x, techniques, options, lightTracingRatio, minDistance, merge);
+  return sum;
 }
 
 }  // namespace pathlab

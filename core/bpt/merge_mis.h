@@ -44,4 +44,10 @@ float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& 
                        const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
                        float minDistance, const MergeMis& merge);
 
+// The sum over every technique of the path's length, both families, of weightWithMerges on this
+// connection's path: one when the weights are a partition of unity (the MIS check, checkMis).
+double weightSumWithMerges(const Scene& scene, const Camera& camera, const MisPath& path,
+                           const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
+                           float minDistance, const MergeMis& merge);
+
 }  // namespace pathlab

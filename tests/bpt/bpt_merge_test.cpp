@@ -68,6 +68,20 @@ TEST(VertexMerging, ConnectionsAndMergesTogetherAgreeWithBpt) {
   }
 }
 
+// The MIS check (checkMis) sums, on every connection the render forms, the weights of every
+// technique of its length, connections and merges: one on each.
+TEST(VertexMerging, TheWeightsOverConnectionsAndMergesSumToOneOnEveryPath) {
+  for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+    RenderSettings s = bidirectional("all;m=all", 7, 0.05f);
+    s.mis.heuristic = h;
+    s.checkMis = true;
+    RenderSession session(integratingSphere(), s);
+    session.renderPass();
+    EXPECT_GT(session.counters().misPartitionChecks, 1000u) << misHeuristicName(h);
+    EXPECT_EQ(session.counters().misPartitionFailures, 0u) << misHeuristicName(h);
+  }
+}
+
 TEST(VertexMerging, TheSameImageAtAnyThreadCount) {
   RenderSettings s = bidirectional("all;m=all", 5);
   auto render = [&](int threads) {
