@@ -14,19 +14,19 @@
 namespace pathlab {
 namespace {
 
-constexpr int kSize = 24;
+constexpr int kMergeImageSize = 24;
 
 // In the integrating sphere (bpt_scenes.h) every surface is Lambertian and no edge is concave:
 // a merge's blur moves no light across a corner, so its bias is only the kernel's curvature
 // term, far below the noise at these radii.
-const Scene& integratingSphere() {
+const Scene& mergeSphere() {
   static const Scene scene(test::integratingSphere());
   return scene;
 }
 
-RenderSettings bidirectional(const std::string& techniques, uint64_t seed, float radius = 0.02f) {
+RenderSettings mergeSettings(const std::string& techniques, uint64_t seed, float radius = 0.02f) {
   RenderSettings s;
-  s.width = s.height = kSize;
+  s.width = s.height = kMergeImageSize;
   s.maxLength = 4;
   s.integrator = IntegratorKind::Bpt;
   s.techniques = TechniqueSet::parse(techniques);
@@ -37,14 +37,14 @@ RenderSettings bidirectional(const std::string& techniques, uint64_t seed, float
 }
 
 TEST(VertexMerging, EachMergeLengthEstimatesTheConnectionsImageOfItsLength) {
-  const Scene& scene = integratingSphere();
-  const test::PixelLabels grid = test::gridLabels(kSize, kSize, 2, 2);
+  const Scene& scene = mergeSphere();
+  const test::PixelLabels grid = test::gridLabels(kMergeImageSize, kMergeImageSize, 2, 2);
   std::vector<test::EstimatorSpec> estimators;
   std::vector<test::PairSpec> pairs;
   for (int k = 2; k <= 4; ++k) {
     const std::string c = "k=" + std::to_string(k), m = "m=" + std::to_string(k);
-    estimators.push_back({c, bidirectional(c, 10 + static_cast<uint64_t>(k)), 64});
-    estimators.push_back({m, bidirectional(m, 20 + static_cast<uint64_t>(k)), 64});
+    estimators.push_back({c, mergeSettings(c, 10 + static_cast<uint64_t>(k)), 64});
+    estimators.push_back({m, mergeSettings(m, 20 + static_cast<uint64_t>(k)), 64});
     pairs.push_back({m, c, 0, 0.1});
   }
   const auto run = test::runAgreement(scene, estimators, {grid}, pairs, test::kFamilyAlpha);
@@ -56,12 +56,12 @@ TEST(VertexMerging, ConnectionsAndMergesTogetherAgreeWithBpt) {
   // The integrating sphere, and a glass sphere's caustic, where the merges take the paths
   // light -> glass -> glass -> floor -> camera that only light tracing and s = 0 connect.
   static const Scene caustic(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/caustic.gltf"));
-  const std::vector<std::pair<const char*, const Scene*>> scenes = {{"integrating sphere", &integratingSphere()},
+  const std::vector<std::pair<const char*, const Scene*>> scenes = {{"integrating sphere", &mergeSphere()},
                                                                     {"caustic", &caustic}};
   for (const auto& [name, scene] : scenes) {
-    const test::PixelLabels grid = test::gridLabels(kSize, kSize, 3, 3);
-    const std::vector<test::EstimatorSpec> estimators = {{"bpt", bidirectional("all", 31), 128},
-                                                         {"vcm", bidirectional("all;m=all", 32, 0.01f), 128}};
+    const test::PixelLabels grid = test::gridLabels(kMergeImageSize, kMergeImageSize, 3, 3);
+    const std::vector<test::EstimatorSpec> estimators = {{"bpt", mergeSettings("all", 31), 128},
+                                                         {"vcm", mergeSettings("all;m=all", 32, 0.01f), 128}};
     const auto run = test::runAgreement(*scene, estimators, {grid}, {{"vcm", "bpt", 0, 0.05}}, test::kFamilyAlpha);
     std::cout << run.summary();
     test::expectAgreement(run, name);
@@ -72,10 +72,10 @@ TEST(VertexMerging, ConnectionsAndMergesTogetherAgreeWithBpt) {
 // technique of its length, connections and merges: one on each.
 TEST(VertexMerging, TheWeightsOverConnectionsAndMergesSumToOneOnEveryPath) {
   for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
-    RenderSettings s = bidirectional("all;m=all", 7, 0.05f);
+    RenderSettings s = mergeSettings("all;m=all", 7, 0.05f);
     s.mis.heuristic = h;
     s.checkMis = true;
-    RenderSession session(integratingSphere(), s);
+    RenderSession session(mergeSphere(), s);
     session.renderPass();
     EXPECT_GT(session.counters().misPartitionChecks, 1000u) << misHeuristicName(h);
     EXPECT_EQ(session.counters().misPartitionFailures, 0u) << misHeuristicName(h);
@@ -83,10 +83,10 @@ TEST(VertexMerging, TheWeightsOverConnectionsAndMergesSumToOneOnEveryPath) {
 }
 
 TEST(VertexMerging, TheSameImageAtAnyThreadCount) {
-  RenderSettings s = bidirectional("all;m=all", 5);
+  RenderSettings s = mergeSettings("all;m=all", 5);
   auto render = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
-    RenderSession session(integratingSphere(), s);
+    RenderSession session(mergeSphere(), s);
     for (int p = 0; p < 3; ++p) session.renderPass();
     return session.image();
   };

@@ -13,7 +13,7 @@
 namespace pathlab {
 namespace {
 
-std::vector<uint32_t> bruteForce(const std::vector<Vec3>& points, Vec3 x, float r) {
+std::vector<uint32_t> bruteForceWithin(const std::vector<Vec3>& points, Vec3 x, float r) {
   std::vector<uint32_t> out;
   for (size_t i = 0; i < points.size(); ++i) {
     const Vec3 d = points[i] - x;
@@ -22,22 +22,22 @@ std::vector<uint32_t> bruteForce(const std::vector<Vec3>& points, Vec3 x, float 
   return out;
 }
 
-std::vector<uint32_t> found(const HashGrid& grid, Vec3 x) {
+std::vector<uint32_t> gridFinds(const HashGrid& grid, Vec3 x) {
   std::vector<uint32_t> out;
   grid.query(x, [&](uint32_t i) { out.push_back(i); });
   std::sort(out.begin(), out.end());
   return out;
 }
 
-Vec3 uniformIn(Pcg32& rng, Vec3 lo, Vec3 hi) { return lo + (hi - lo) * Vec3(rng.next1D(), rng.next1D(), rng.next1D()); }
+Vec3 uniformInBox(Pcg32& rng, Vec3 lo, Vec3 hi) { return lo + (hi - lo) * Vec3(rng.next1D(), rng.next1D(), rng.next1D()); }
 
 TEST(HashGrid, FindsEveryPointWithinTheRadiusOnceAndNoneOutside) {
   Pcg32 rng(11, 3);
   // Clusters of light vertices (a lit floor, a caustic, walls) plus scattered ones, over a box
   // whose size is many radii.
   std::vector<Vec3> points;
-  for (int i = 0; i < 3000; ++i) points.push_back(uniformIn(rng, Vec3(-5.f), Vec3(5.f)));
-  for (int i = 0; i < 3000; ++i) points.push_back(uniformIn(rng, Vec3(1.f, 0.f, 1.f), Vec3(1.3f, 0.001f, 1.3f)));
+  for (int i = 0; i < 3000; ++i) points.push_back(uniformInBox(rng, Vec3(-5.f), Vec3(5.f)));
+  for (int i = 0; i < 3000; ++i) points.push_back(uniformInBox(rng, Vec3(1.f, 0.f, 1.f), Vec3(1.3f, 0.001f, 1.3f)));
   for (int i = 0; i < 500; ++i) points.push_back(Vec3(-2.f, 1.f, 0.5f));  // coincident
   size_t pairs = 0;
   for (const float r : {0.01f, 0.05f, 0.3f, 7.f}) {
@@ -46,9 +46,9 @@ TEST(HashGrid, FindsEveryPointWithinTheRadiusOnceAndNoneOutside) {
     ASSERT_EQ(grid.size(), points.size());
     for (int q = 0; q < 400; ++q) {
       // Queries near the points (where merges happen) and anywhere in and beyond the box.
-      const Vec3 x = q % 2 ? points[rng.nextU32() % points.size()] + uniformIn(rng, Vec3(-r), Vec3(r))
-                           : uniformIn(rng, Vec3(-7.f), Vec3(7.f));
-      const std::vector<uint32_t> expected = bruteForce(points, x, r), got = found(grid, x);
+      const Vec3 x = q % 2 ? points[rng.nextU32() % points.size()] + uniformInBox(rng, Vec3(-r), Vec3(r))
+                           : uniformInBox(rng, Vec3(-7.f), Vec3(7.f));
+      const std::vector<uint32_t> expected = bruteForceWithin(points, x, r), got = gridFinds(grid, x);
       ASSERT_EQ(got, expected) << "r " << r << " query " << q;
       pairs += got.size();
     }
@@ -59,12 +59,12 @@ TEST(HashGrid, FindsEveryPointWithinTheRadiusOnceAndNoneOutside) {
 TEST(HashGrid, EmptyAndSinglePointGridsAndFarQueries) {
   HashGrid grid;
   grid.build({}, 0.1f);
-  EXPECT_TRUE(found(grid, Vec3(0.f)).empty());
+  EXPECT_TRUE(gridFinds(grid, Vec3(0.f)).empty());
   const std::vector<Vec3> one{Vec3(1e6f, -1e6f, 3.f)};
   grid.build(one, 0.1f);
-  EXPECT_EQ(found(grid, Vec3(1e6f, -1e6f, 3.05f)), (std::vector<uint32_t>{0}));
-  EXPECT_TRUE(found(grid, Vec3(1e6f, -1e6f, 3.2f)).empty());
-  EXPECT_TRUE(found(grid, Vec3(1e30f, 0.f, 0.f)).empty());  // clamped cell coordinates, no overflow
+  EXPECT_EQ(gridFinds(grid, Vec3(1e6f, -1e6f, 3.05f)), (std::vector<uint32_t>{0}));
+  EXPECT_TRUE(gridFinds(grid, Vec3(1e6f, -1e6f, 3.2f)).empty());
+  EXPECT_TRUE(gridFinds(grid, Vec3(1e30f, 0.f, 0.f)).empty());  // clamped cell coordinates, no overflow
   EXPECT_THROW(grid.build(one, 0.f), std::invalid_argument);
   EXPECT_THROW(grid.build(one, std::numeric_limits<float>::infinity()), std::invalid_argument);
 }
@@ -72,7 +72,7 @@ TEST(HashGrid, EmptyAndSinglePointGridsAndFarQueries) {
 TEST(HashGrid, TheSameOrderWhateverTheThreadCount) {
   Pcg32 rng(4, 4);
   std::vector<Vec3> points;
-  for (int i = 0; i < 200000; ++i) points.push_back(uniformIn(rng, Vec3(-1.f), Vec3(1.f)));
+  for (int i = 0; i < 200000; ++i) points.push_back(uniformInBox(rng, Vec3(-1.f), Vec3(1.f)));
   auto order = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
     HashGrid grid;
