@@ -147,6 +147,10 @@ TEST(BptTechniqueSet, ARendererTakesMergesWhereItCanSampleThem) {
   RenderSettings check = s;
   check.checkTechniques = true;
   refused(check, "consistency check");
+  RenderSettings maps = s;
+  maps.pyramidLength = 2;
+  maps.techniqueMaps = true;
+  refused(maps, "technique maps");
   RenderSettings radius = s;
   radius.mergeRadius = 0.f;
   refused(radius, "--radius");
