@@ -27,12 +27,11 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
   cmd->add_option("--max-length", s.maxLength,
                   "Maximum path length in edges (1: emitters seen directly, 2: direct lighting)")
       ->check(CLI::Range(1, 100000));
-  cmd->add_option("--integrator", s.integrator,
-                  "Estimator: bpt (bidirectional, default), pt (path tracer), lt (light tracing: the t = 1 techniques)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, IntegratorKind>{{"pt", IntegratorKind::Pt}, {"bpt", IntegratorKind::Bpt},
-                                                {"lt", IntegratorKind::Lt}},
-          CLI::ignore_case));
+  cmd->add_option("--integrator", o.integrator,
+                  "Estimator: bpt (bidirectional, default), pt (path tracer), lt (light tracing: the t = 1 techniques), "
+                  "vcm (bpt with every merge: vertex connection and merging), bpm (the merges alone: bidirectional "
+                  "photon mapping)")
+      ->transform(CLI::IsMember({"pt", "bpt", "lt", "vcm", "bpm"}, CLI::ignore_case));
   cmd->add_option("--mis", s.mis.heuristic,
                   "MIS heuristic of bpt: balance, power, uniform, or off (1/n_k per technique of length k: biased "
                   "with delta lights or BSDFs)")
@@ -79,7 +78,23 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
 }
 
 void finishEstimatorOptions(EstimatorOptions& o) {
-  o.settings.techniques = TechniqueSet::parse(o.techniques);
+  // vcm and bpm are bpt with a technique set of their own.
+  static const std::map<std::string, std::pair<IntegratorKind, const char*>> kIntegrators = {
+      {"pt", {IntegratorKind::Pt, "all"}},
+      {"bpt", {IntegratorKind::Bpt, "all"}},
+      {"lt", {IntegratorKind::Lt, "all"}},
+      {"vcm", {IntegratorKind::Bpt, "all;m=all"}},
+      {"bpm", {IntegratorKind::Bpt, "m=all"}}};
+  const auto integrator = kIntegrators.find(o.integrator);
+  if (integrator == kIntegrators.end()) throw std::invalid_argument(fmt::format("--integrator: '{}' is unknown", o.integrator));
+  const auto [kind, ownTechniques] = integrator->second;
+  const bool setsTechniques = o.integrator == "vcm" || o.integrator == "bpm";
+  if (setsTechniques && !o.techniques.empty())
+    throw std::invalid_argument(fmt::format("--integrator {} sets the techniques ({}): for another set use --integrator "
+                                            "bpt --techniques",
+                                            o.integrator, ownTechniques));
+  o.settings.integrator = kind;
+  o.settings.techniques = TechniqueSet::parse(o.techniques.empty() ? ownTechniques : o.techniques);
   if (!o.isolate.empty()) {
     const size_t comma = o.isolate.find(',');
     if (comma == std::string::npos)

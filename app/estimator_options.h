@@ -19,7 +19,11 @@ struct EstimatorOptions {
     s.integrator = IntegratorKind::Bpt;
     return s;
   }();
-  std::string techniques = "all";  // a TechniqueSet SPEC
+  // --integrator as typed: pt, bpt, lt, or vcm / bpm (bpt with the merges: every connection and
+  // every merge, or the merges alone, Georgiev et al. 2012's vertex connection and merging and
+  // bidirectional photon mapping), which set the techniques.
+  std::string integrator = "bpt";
+  std::string techniques;  // a TechniqueSet SPEC; empty: the integrator's own ("all" for bpt)
   std::string isolate;      // "S,T" or empty
   bool unweighted = false;  // with --isolate
   std::string injectBias;   // "S,T,FACTOR" or empty

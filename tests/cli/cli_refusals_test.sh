@@ -51,6 +51,16 @@ expect_error "view --screenshot a directory" "dir.png: is a directory" view "$NO
 expect_error "view --error-csv missing parent" "errors.csv: the directory .*/missing does not exist" \
   view "$NONE" --reference "$TMP/ref.exr" --error-csv "$TMP/missing/errors.csv"
 
+# Vertex merging: vcm and bpm set their own techniques; what merging cannot do yet is refused.
+expect_error "render --integrator vcm --techniques" "--integrator vcm sets the techniques" \
+  render "$BOX" -o "$TMP/x.png" --integrator vcm --techniques all
+expect_error "render vcm with the maps" "technique maps do not cover merging" \
+  render "$BOX" -o "$TMP/x.png" --integrator vcm --pyramid 2 --technique-maps 2
+expect_error "inspect vcm" "with merging techniques is not supported yet" inspect "$BOX" --integrator vcm --pixel 1,1
+expect_error "render --radius 0" "--radius" render "$BOX" -o "$TMP/x.png" --integrator vcm --radius 0
+"$PATHLAB" render "$BOX" -o "$TMP/vcm.exr" --integrator vcm --spp 1 --width 16 --height 16 --force >/dev/null 2>&1 &&
+  [ -s "$TMP/vcm.exr" ] && ok || fail "render --integrator vcm"
+
 # With a real scene and a long budget the refusal still comes at once, not after the render.
 start=$(date +%s)
 expect_error "render -o /proc with a budget" "/proc/x.png" render "$BOX" -o /proc/x.png --time 20
