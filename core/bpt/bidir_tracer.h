@@ -58,8 +58,6 @@ class BidirTracer {
   // connections' included, is then the explicit one over connections and merges (merge_mis.h).
   bool merges() const { return merges_; }
   void setMergePass(const MergePass* pass) { mergePass_ = pass; }
-  // How many light vertices a walk keeps (what the merge pass stores of each light subpath).
-  int lightVerticesNeeded() const { return lightVerticesNeeded_; }
   MisEvaluation misEvaluation() const { return misEvaluation_; }
 
   // Time the walks and every technique's connection and weight into the counters, on one camera

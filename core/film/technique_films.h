@@ -30,7 +30,6 @@ class TechniqueFilms {
                  TechniqueFamilies families = TechniqueFamilies::Connections);
 
   int maxLength() const { return maxLength_; }
-  TechniqueFamilies families() const { return families_; }
   bool covers(Technique x) const {
     return x.valid() && x.length() <= maxLength_ && pathlab::covers(families_, x.kind);
   }
