@@ -60,14 +60,22 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
     misEvaluation_ = options_.techniques.containsAllUpTo(options_.maxLength) ? MisEvaluation::PartialSums
                                                                             : MisEvaluation::Explicit;
   }
-  // With merges every weight is the explicit one over both families (merge_mis.h), MIS off
-  // included (its 1 / n_k counts the merges of the length).
+  // With merges the partial sums count them too (mis_partial_sums.h MergeTerms) when each family
+  // is enabled whole or not at all; otherwise every weight is the explicit one over both families
+  // (merge_mis.h), MIS off included (its 1 / n_k counts the merges of the length).
   merges_ = covers(options_.techniques.families(), TechniqueKind::Merge);
-  if (merges_) misEvaluation_ = MisEvaluation::Explicit;
+  if (merges_) {
+    const bool anyConnection = covers(options_.techniques.families(), TechniqueKind::Connection);
+    const bool allConnections = options_.techniques.containsAllUpTo(options_.maxLength);
+    const bool allMerges = options_.techniques.containsAllUpTo(options_.maxLength, TechniqueFamilies::Merges);
+    connectionsInSums_ = allConnections ? 1.0 : 0.0;
+    if (misEvaluation_ != MisEvaluation::Constant)
+      misEvaluation_ = allMerges && (allConnections || !anyConnection) ? MisEvaluation::PartialSums : MisEvaluation::Explicit;
+  }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
   // The image-only route's preconditions that settings decide: the partial sums, no media, and nothing that
   // changes a result's weight or contribution (isolation, the MIS check, an injected bias).
-  imageOnlyPath_ = misEvaluation_ == MisEvaluation::PartialSums && !scene.hasMedia() && !options_.checkMis &&
+  imageOnlyPath_ = misEvaluation_ == MisEvaluation::PartialSums && !merges_ && !scene.hasMedia() && !options_.checkMis &&
                       !options_.isolate && !options_.injectBias;
   cameraMedium_ = scene.mediumAt(camera.position());
   // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
@@ -104,6 +112,16 @@ template <bool kRecords>
       const double sum = weightSumWithMerges(scene_, camera_, path, options_.techniques, options_.mis, ratio,
                                              minConnectionDistance_, merge);
       if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
+    }
+    if (misEvaluation_ == MisEvaluation::PartialSums) {
+      const MergeTerms terms = mergeTerms(merge.eta);
+      const std::optional<float> fast =
+          s >= 2 && t >= 2 ? misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2,
+                                               walks.lightSums, walks.cameraSums, misPower_, ratio,
+                                               minConnectionDistance_, terms)
+                           : misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_,
+                                               ratio, minConnectionDistance_, terms);
+      if (fast) return *fast;
     }
     return weightWithMerges(scene_, camera_, path, Technique{s, t}, options_.techniques, options_.mis, ratio,
                             minConnectionDistance_, merge);
@@ -275,7 +293,12 @@ template <bool kRecords>
 int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, Walks& walks, Counters& counters) const {
   const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, rng,
                                        WalkOptions{vertices, options_.russianRoulette, cameraMedium_}, walks.camera, counters);
-  if (misEvaluation_ == MisEvaluation::PartialSums) accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums);
+  if (misEvaluation_ == MisEvaluation::PartialSums) {
+    if (mergePass_)
+      accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, mergeTerms(mergePass_->eta()));
+    else
+      accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums);
+  }
   return nt;
 }
 
@@ -287,10 +310,23 @@ int BidirTracer::walkLight(int vertices, Pcg32& rng, Walks& walks, Counters& cou
 }
 
 int BidirTracer::traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out, Counters& counters) const {
-  thread_local Walks walks;
-  const int ns = lightVerticesNeeded_ > 0 ? walkLight(lightVerticesNeeded_, lightRng, walks, counters) : 0;
-  out.assign(walks.light.data(), walks.light.data() + ns);
+  // The walk alone: a merge pass accumulates its paths' sums once the pass's radius is known
+  // (lightSubpathSums).
+  thread_local LightSubpath path;
+  const int ns = lightVerticesNeeded_ > 0 ? generateLightSubpath(scene_, lightRng,
+                                                                 WalkOptions{lightVerticesNeeded_, options_.russianRoulette},
+                                                                 path, counters)
+                                          : 0;
+  out.assign(path.data(), path.data() + ns);
   return ns;
+}
+
+MergeTerms BidirTracer::mergeTerms(double eta) const { return MergeTerms{connectionsInSums_, true, eta}; }
+
+void BidirTracer::lightSubpathSums(const MergePass& pass, const PathVertex* path, int count, double* sum,
+                                   float* shortestEdge2) const {
+  if (misEvaluation_ != MisEvaluation::PartialSums) return;
+  accumulateLightSums(path, count, misPower_, sum, shortestEdge2, mergeTerms(pass.eta()));
 }
 
 void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, SampleSink& sink,
@@ -372,6 +408,8 @@ int BidirTracer::storedLightSubpath(const SampleId& id, Walks& walks) const {
     if (v.type == VertexType::Surface)
       path.bsdfs[static_cast<size_t>(i)] = scene_.bsdf(v.material, ShadingInputs{v.uv, v.uv1, v.color}, v.ns, v.ng);
   }
+  if (n > 0 && misEvaluation_ == MisEvaluation::PartialSums)
+    accumulateLightSums(path, misPower_, walks.lightSums, mergeTerms(pass.eta()));
   return n;
 }
 
@@ -384,6 +422,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
   // vertex's cosine, which the density estimate's area measure absorbs).
   const MergePass& pass = *mergePass_;
   const MergeMis mis{pass.eta()};
+  const MergeTerms terms = mergeTerms(pass.eta());
   const float normalisation = static_cast<float>(pass.normalisation());
   const SinkDemand& demand = sink.demand();
   const bool imageHasMerges = !options_.isolate;  // an isolated connection shows alone
@@ -405,10 +444,19 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       const BsdfEval f = bsdf.eval(z.wo, y.wo, TransportMode::Radiance);
       const Spectrum L = z.beta * f.f * y.beta * normalisation;
       if (isBlack(L)) return tally.zero();
-      const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
-      const float w = enabled ? weightWithMerges(scene_, camera_, path, x, options_.techniques, options_.mis,
-                                                 lightTracingRatio(), minConnectionDistance_, mis)
-                              : 0.f;
+      // The merged path's two densities at z's BSDF (mergedPathDensities): toward y(s-2) and z(t-2).
+      const MergePdfs pdfs{f.pdfFwdW, f.pdfRevW};
+      float w = 0.f;
+      if (enabled) {
+        std::optional<float> fast;
+        if (misEvaluation_ == MisEvaluation::PartialSums)
+          fast = mergeWeightFromSums(scene_, &pass.vertices[start], s, &pass.misSum[start], &pass.misShortestEdge2[start],
+                                     walks.camera, t, walks.cameraSums, pdfs, misPower_, lightTracingRatio(),
+                                     minConnectionDistance_, terms);
+        w = fast ? *fast
+                 : mergeWeight(&pass.vertices[start], s, walks.camera.data(), t, pdfs, options_.techniques,
+                               options_.mis, lightTracingRatio(), minConnectionDistance_, mis);
+      }
       tally.contributed();
       if (!isValidContribution(L)) return tally.discard(L, sink.id());
       if (demand.records() || inPyramid) {

@@ -58,6 +58,11 @@ class BidirTracer {
   // connections' included, is then the explicit one over connections and merges (merge_mis.h).
   bool merges() const { return merges_; }
   void setMergePass(const MergePass* pass) { mergePass_ = pass; }
+  // The MIS partial sums of one of `pass`'s light subpaths (count vertices from `path`) into
+  // sum[i] / shortestEdge2[i] (accumulateLightSums' pointer form) with the pass's eta: what a
+  // merge with its vertices reads (MergePass::misSum). Nothing when the weights are explicit.
+  void lightSubpathSums(const MergePass& pass, const PathVertex* path, int count, double* sum,
+                        float* shortestEdge2) const;
   MisEvaluation misEvaluation() const { return misEvaluation_; }
 
   // Time the walks and every technique's connection and weight into the counters, on one camera
@@ -111,6 +116,8 @@ class BidirTracer {
   int storedLightSubpath(const SampleId& id, Walks& walks) const;
   // The merges of the sample's camera subpath (nt vertices) with the pass's light vertices.
   void evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink, Counters& counters) const;
+  // The merges' part of the partial sums for a pass of this eta.
+  MergeTerms mergeTerms(double eta) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 
   const Scene& scene_;
@@ -127,6 +134,7 @@ class BidirTracer {
   bool imageOnlyPath_ = false;     // the image-only route's preconditions that the settings decide
   bool imageOnlyPathOff_ = false;  // setImageOnlyPath(false)
   bool merges_ = false;
+  double connectionsInSums_ = 1.0;  // MergeTerms::connections: every connection enabled, or none
   const MergePass* mergePass_ = nullptr;
 };
 

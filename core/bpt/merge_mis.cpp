@@ -89,6 +89,53 @@ float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& 
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;
 }
 
+void mergedPathDensities(const PathVertex* lightPath, int s, const PathVertex* cameraPath, int t, const MergePdfs& pdfs,
+                         PathDensities& d, std::vector<uint8_t>& surface) {
+  const int n = s + t - 1;
+  d.n = n;
+  d.pFromLight.resize(static_cast<size_t>(n));
+  d.pFromCamera.resize(static_cast<size_t>(n));
+  d.delta.resize(static_cast<size_t>(n));
+  d.edgeLength2.resize(static_cast<size_t>(n - 1));
+  surface.resize(static_cast<size_t>(n));
+  // x_i: the light walk's vertex i < s (the merged one, i = s - 1, at y(s-1)'s place for its edge
+  // to x(s-2)), the camera walk's z(n-1-i) beyond.
+  auto at = [&](int i) -> const PathVertex& { return i < s ? lightPath[i] : cameraPath[n - 1 - i]; };
+  for (int i = 0; i < n; ++i) {
+    const PathVertex& v = at(i);
+    const size_t k = static_cast<size_t>(i);
+    d.pFromLight[k] = i < s ? v.pdfFwdA : v.pdfRevA;
+    d.pFromCamera[k] = i < s ? v.pdfRevA : v.pdfFwdA;
+    d.delta[k] = v.isDelta;
+    surface[k] = v.type == VertexType::Surface;
+  }
+  const PathVertex& y = lightPath[s - 1];
+  const PathVertex& z = cameraPath[t - 1];
+  const size_t merged = static_cast<size_t>(s - 1);
+  d.pFromCamera[merged] = z.pdfFwdA;
+  d.delta[merged] = false;
+  surface[merged] = 1;
+  d.pFromCamera[merged - 1] = pdfs.towardLightW * y.areaToPrev;
+  d.pFromLight[merged + 1] = pdfs.towardCameraW * z.areaToPrev;
+  for (int i = 0; i + 1 < n; ++i)
+    d.edgeLength2[static_cast<size_t>(i)] = i == s - 1 ? edgeLength2(z, cameraPath[t - 2]) : edgeLength2(at(i), at(i + 1));
+  d.x0CanBeHit = canBeHitAsOrigin(lightPath[0]);
+  d.x0Infinite = lightPath[0].isInfinite;
+  // The light choice the light walk stored for its x1 (n >= 3 here).
+  d.x0Nee = lightPath[0].pdfNeeA;
+  d.neeRefused = d.x0Nee == 0.0;
+}
+
+float mergeWeight(const PathVertex* lightPath, int s, const PathVertex* cameraPath, int t, const MergePdfs& pdfs,
+                  const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio, float minDistance,
+                  const MergeMis& merge) {
+  thread_local PathScratch p;
+  mergedPathDensities(lightPath, s, cameraPath, t, pdfs, p.d, p.surface);
+  const double w = weightWithMerges(p.d, p.surface, Technique::merge(s, t), techniques, options, lightTracingRatio,
+                                    minDistance, merge);
+  return std::isfinite(w) ? static_cast<float>(w) : 0.f;
+}
+
 double weightSumWithMerges(const Scene& scene, const Camera& camera, const MisPath& path,
                            const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
                            float minDistance, const MergeMis& merge) {

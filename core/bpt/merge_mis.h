@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/bpt/mis.h"
+#include "core/bpt/mis_partial_sums.h"
 
 #include <span>
 
@@ -43,6 +44,23 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
 float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& path, Technique x,
                        const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
                        float minDistance, const MergeMis& merge);
+
+// The path a merge M(s, t) of light vertex y(s-1) (lightPath[s - 1]) and camera vertex z(t-1)
+// (cameraPath[t - 1]) stands for, n = s + t - 1 vertices x0 .. x(s-2), X, z(t-2) .. z0, and its
+// densities (Georgiev et al. 2012 sec. 4.2, as SmallVCM weighs a merge): the merged vertex X
+// keeps both walks' densities of it (y's pdfFwdA from the light, z's pdfFwdA from the camera) and
+// scatters by z's BSDF between z's direction and y's (MergePdfs, converted to area by y's and z's
+// areaToPrev); every other density is its walk's. The two ends lie within r of each other, so
+// this is the connection C(s, t - 1) through y(s-1) up to O(r): exactly what the merge's weight
+// needs and the O(1) form (mergeWeightFromSums) computes. `surface[i]`: x_i lies on a surface.
+void mergedPathDensities(const PathVertex* lightPath, int s, const PathVertex* cameraPath, int t, const MergePdfs& pdfs,
+                         PathDensities& d, std::vector<uint8_t>& surface);
+
+// The explicit weight of merge M(s, t) on its merged path (mergedPathDensities): the oracle of
+// mergeWeightFromSums and its fallback.
+float mergeWeight(const PathVertex* lightPath, int s, const PathVertex* cameraPath, int t, const MergePdfs& pdfs,
+                  const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio, float minDistance,
+                  const MergeMis& merge);
 
 // The sum over every technique of the path's length, both families, of weightWithMerges on this
 // connection's path: one when the weights are a partition of unity (the MIS check, checkMis).

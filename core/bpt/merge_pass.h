@@ -27,6 +27,11 @@ struct MergePass {
   // p = y * width + x; its camera sample connects to it instead of walking it again.
   int width = 0;
   std::vector<uint32_t> pixelPathStart, pixelPathCount;
+  // The MIS partial sums of every stored vertex (BidirTracer::lightSubpathSums): misSum[v] for
+  // vertex v, i-th of its path, is SubpathMisSums::sum[i] (its prefix before it), misShortestEdge2[v]
+  // the shortest edge up to it. Empty when the weights are explicit.
+  std::vector<double> misSum;
+  std::vector<float> misShortestEdge2;
   HashGrid grid;
   float radius = 0.f;
   uint64_t lightSubpaths = 0;  // N

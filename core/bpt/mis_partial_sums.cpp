@@ -14,21 +14,25 @@ constexpr float kNoEdge = std::numeric_limits<float>::infinity();
 
 double ratio(double numerator, double denominator) { return remap0(numerator) / remap0(denominator); }
 
-void accumulateShortestEdges(const Subpath& path, SubpathMisSums& sums) {
-  sums.shortestEdge2.resize(static_cast<size_t>(std::max(path.count, 1)));
-  sums.shortestEdge2[0] = kNoEdge;
-  for (int i = 1; i < path.count; ++i)
-    sums.shortestEdge2[static_cast<size_t>(i)] =
-        std::min(sums.shortestEdge2[static_cast<size_t>(i - 1)], edgeLength2(path[i - 1], path[i]));
+void accumulateShortestEdges(const PathVertex* path, int count, float* shortestEdge2) {
+  shortestEdge2[0] = kNoEdge;
+  for (int i = 1; i < count; ++i) shortestEdge2[i] = std::min(shortestEdge2[i - 1], edgeLength2(path[i - 1], path[i]));
 }
 
-}  // namespace
+// A merge's term of the sums: T(eta pFromCamera(merged vertex)), a zero density (a delta lobe next
+// to the merged vertex) counting one as in the ratios (merge_mis.cpp).
+[[gnu::always_inline]] inline double mergeTerm(const MisPower& power, const MergeTerms& m, double pFromCamera) {
+  return power(m.eta * remap0(pFromCamera));
+}
 
-void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisSums& sums) {
-  sums.sum.resize(static_cast<size_t>(path.count) + 1);
+// sum[0 .. count] of a light subpath (sum[count] when withLast).
+template <bool kMerges>
+void lightSums(const PathVertex* path, int count, const MisPower& power, const MergeTerms& m, double* sum,
+               bool withLast) {
   double left = 0.0;
-  sums.sum[0] = left;
-  for (int i = 0; i < path.count; ++i) {
+  sum[0] = left;
+  const int last = withLast ? count : count - 1;
+  for (int i = 0; i < last; ++i) {
     const PathVertex& v = path[i];
     // Technique s' = i connects x(i-1) and x(i); s' = 0 needs x0 on an area light; s' = 1 a
     // next-event density above zero (mis.h techniquePossible; a light subpath's x0 has pdfFwdA > 0,
@@ -42,14 +46,41 @@ void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisS
     const double r = i == 0   ? ratio(v.pdfRevA, v.pdfNeeA)
                      : i == 1 ? ratio(v.pdfRevA, v.pdfFwdA) * ratio(path[0].pdfNeeA, path[0].pdfFwdA)
                               : ratio(v.pdfRevA, v.pdfFwdA);
-    left = power(r) * ((usable ? 1.0 : 0.0) + left);
-    sums.sum[static_cast<size_t>(i) + 1] = left;
+    double w = usable ? 1.0 : 0.0;
+    // Merge M(i, .) merges x(i-1) (i >= 2: not the light's origin).
+    if constexpr (kMerges) {
+      w *= m.connections;
+      if (m.merges && i >= 2 && mergeableVertex(path[i - 1])) w += mergeTerm(power, m, path[i - 1].pdfRevA);
+    }
+    left = power(r) * (w + left);
+    sum[i + 1] = left;
   }
-  accumulateShortestEdges(path, sums);
 }
 
-void accumulateCameraSums(const Subpath& path, const MisPower& power, float lightTracingRatio,
-                          SubpathMisSums& sums) {
+}  // namespace
+
+void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisSums& sums, const MergeTerms& merges) {
+  sums.sum.resize(static_cast<size_t>(path.count) + 1);
+  if (merges.merges || merges.connections != 1.0)
+    lightSums<true>(path.data(), path.count, power, merges, sums.sum.data(), true);
+  else
+    lightSums<false>(path.data(), path.count, power, merges, sums.sum.data(), true);
+  sums.shortestEdge2.resize(static_cast<size_t>(std::max(path.count, 1)));
+  accumulateShortestEdges(path.data(), path.count, sums.shortestEdge2.data());
+}
+
+void accumulateLightSums(const PathVertex* path, int count, const MisPower& power, double* sum, float* shortestEdge2,
+                         const MergeTerms& merges) {
+  if (count <= 0) return;
+  lightSums<true>(path, count, power, merges, sum, false);
+  accumulateShortestEdges(path, count, shortestEdge2);
+}
+
+namespace {
+
+template <bool kMerges>
+void cameraSums(const Subpath& path, const MisPower& power, float lightTracingRatio, const MergeTerms& m,
+                SubpathMisSums& sums) {
   sums.sum.resize(static_cast<size_t>(std::max(path.count, 1)) + 1);
   // No technique has t' = 0: the prefixes of zero and one camera vertex have nothing to sum.
   double right = 0.0;
@@ -60,35 +91,57 @@ void accumulateCameraSums(const Subpath& path, const MisPower& power, float ligh
     // Technique t' = j connects y(j) and y(j-1).
     const bool usable = !v.isDelta && !path[j - 1].isDelta;
     const double count = j == 1 ? lightTracingCount : 1.0;
-    right = power(ratio(v.pdfRevA, v.pdfFwdA)) * ((usable ? count : 0.0) + right);
+    double w = usable ? count : 0.0;
+    // Its merge merges y(j), sampled by the camera walk (pdfFwdA).
+    if constexpr (kMerges) {
+      w *= m.connections;
+      if (m.merges && mergeableVertex(v)) w += mergeTerm(power, m, v.pdfFwdA);
+    }
+    right = power(ratio(v.pdfRevA, v.pdfFwdA)) * (w + right);
     sums.sum[static_cast<size_t>(j) + 1] = right;
   }
-  accumulateShortestEdges(path, sums);
+  sums.shortestEdge2.resize(static_cast<size_t>(std::max(path.count, 1)));
+  accumulateShortestEdges(path.data(), path.count, sums.shortestEdge2.data());
+}
+
+}  // namespace
+
+void accumulateCameraSums(const Subpath& path, const MisPower& power, float lightTracingRatio, SubpathMisSums& sums,
+                          const MergeTerms& merges) {
+  if (merges.merges || merges.connections != 1.0)
+    cameraSums<true>(path, power, lightTracingRatio, merges, sums);
+  else
+    cameraSums<false>(path, power, lightTracingRatio, merges, sums);
 }
 
 namespace {
 
 // An edge of the path shorter than minConnectionDistance: the prefixes' shortest edges (the fresh
 // endpoint of s = 1 or t = 1 stands alone on its side) and the connection's own, connection2
-// (infinite when there is none: s = 0).
-[[gnu::always_inline]] inline bool hasShortEdge(int s, int t, float connection2, const SubpathMisSums& lightSums,
-                                                const SubpathMisSums& cameraSums, float minConnectionDistance) {
+// (infinite when there is none: s = 0). lightShortest[i] / cameraShortest[j]: the shortest edge of
+// the prefix of i + 1 / j + 1 vertices.
+[[gnu::always_inline]] inline bool hasShortEdge(int s, int t, float connection2, const float* lightShortest,
+                                                const float* cameraShortest, float minConnectionDistance) {
   const float minDistance2 = minConnectionDistance * minConnectionDistance;
   if (!(minDistance2 > 0.f)) return false;
   float shortest = kNoEdge;
-  if (s >= 2) shortest = std::min(shortest, lightSums.shortestEdge2[static_cast<size_t>(s - 1)]);
-  if (t >= 2) shortest = std::min(shortest, cameraSums.shortestEdge2[static_cast<size_t>(t - 1)]);
+  if (s >= 2) shortest = std::min(shortest, lightShortest[s - 1]);
+  if (t >= 2) shortest = std::min(shortest, cameraShortest[t - 1]);
   shortest = std::min(shortest, connection2);
   return shortest < minDistance2;
 }
 
-// The weight from the sums once the connection's densities are known: both entry points below.
+// The weight from the sums once the connection's densities are known: every entry point below.
 // Inline into each, so that the interior one (s, t >= 2 known) loses the branches of s <= 1.
+// lightSum / cameraSum: SubpathMisSums::sum of each side. kMerges: the sums and the weight count
+// the merges (MergeTerms); `isMerge`: the technique weighed is the merge at qs, M(s, t + 1), on
+// the path of connection C(s, t) (the merged path, merge_mis.h), rather than C(s, t) itself.
+template <bool kMerges>
 [[gnu::always_inline]] inline std::optional<float> weightFromSums(const Scene& scene, const MisPath& path,
                                                                   const ConnectionEnds& e, const ConnectionDensities& c,
-                                                                  const SubpathMisSums& lightSums,
-                                                                  const SubpathMisSums& cameraSums, const MisPower& power,
-                                                                  float lightTracingRatio) {
+                                                                  const double* lightSum, const double* cameraSum,
+                                                                  const MisPower& power, float lightTracingRatio,
+                                                                  const MergeTerms& m, bool isMerge) {
   const int s = path.s, t = path.t;
   const PathVertex& pt = *e.pt;
   // x0's density under technique s' = 1 over its density as a light subpath's origin, for paths
@@ -108,8 +161,15 @@ namespace {
       neeRefused = x0FromLight == 0.0;
     }
   }
-  // Light side: left(s) = T(r_{s-1}) (u(s-1) + T(r_{s-2}) (u(s-2) + left(s-2))). qs and pt count
-  // as non-delta (connect() formed the path through them).
+  // The connections' count (one, or zero when none is enabled) and the merge of x(s'-1) of
+  // technique s' (s' >= 2: x0 is never merged) with its camera-side density.
+  const double connections = kMerges ? m.connections : 1.0;
+  auto merge = [&](int sp, const PathVertex& merged, double pFromCamera) {
+    if constexpr (!kMerges) return 0.0;
+    return m.merges && sp >= 2 && mergeableVertex(merged) ? mergeTerm(power, m, pFromCamera) : 0.0;
+  };
+  // Light side: left(s) = T(r_{s-1}) (w(s-1) + T(r_{s-2}) (w(s-2) + left(s-2))). qs and pt count
+  // as non-delta (connect() formed the path through them; a merge's qs is its merged vertex).
   double left = 0.0;
   if (e.qs) {
     double beyond = 0.0;
@@ -122,7 +182,10 @@ namespace {
       const double r = s == 2   ? ratio(c.qsMinusFromCamera, e.qsMinus->pdfNeeA)
                        : s == 3 ? ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA) * neeOverOrigin
                                 : ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA);
-      beyond = power(r) * ((usable ? 1.0 : 0.0) + lightSums.sum[static_cast<size_t>(s - 2)]);
+      double w = usable ? connections : 0.0;
+      if constexpr (kMerges)
+        if (s >= 4) w += merge(s - 2, path.lightPath[s - 3], path.lightPath[s - 3].pdfRevA);
+      beyond = power(r) * (w + lightSum[s - 2]);
     }
     // s = 2: the term is technique s' = 1's.
     const bool usable = s == 1 ? canBeHitAsOrigin(*e.qs) : !e.qsMinus->isDelta && (s != 2 || e.qsMinus->pdfNeeA != 0.f);
@@ -131,7 +194,10 @@ namespace {
     const double r = s == 1   ? ratio(c.qsFromCamera, n >= 3 ? e.qs->pdfNeeA : e.qs->pdfFwdA)
                      : s == 2 ? ratio(c.qsFromCamera, e.qs->pdfFwdA) * neeOverOrigin
                               : ratio(c.qsFromCamera, e.qs->pdfFwdA);
-    left = power(r) * ((usable ? 1.0 : 0.0) + beyond);
+    double w = usable ? connections : 0.0;
+    if constexpr (kMerges)
+      if (s >= 3) w += merge(s - 1, *e.qsMinus, c.qsMinusFromCamera);
+    left = power(r) * (w + beyond);
   }
   // Camera side, the mirror image: technique t' weighs the ratios of y(t') .. y(t-1), and the
   // t' = 1 techniques count lightTracingRatio samples (Veach's n_i).
@@ -145,22 +211,40 @@ namespace {
       // s = 0: p_2 / p_1 also changes x0's density from next-event estimation's to the origin's.
       const double r = s == 0 ? ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA) / neeOverOrigin
                               : ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA);
-      beyond = power(r) * ((usable ? count(t - 2) : 0.0) + cameraSums.sum[static_cast<size_t>(t - 2)]);
+      double w = usable ? count(t - 2) * connections : 0.0;
+      // Technique t' = t - 2's merge merges ptMinus (s' = s + 2 >= 2).
+      if constexpr (kMerges) w += merge(2, *e.ptMinus, e.ptMinus->pdfFwdA);
+      beyond = power(r) * (w + cameraSum[t - 2]);
     }
     // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
     // infinity (the path environment -> camera, s = 0, t = 2).
     // s = 0, t >= 3: the term is technique s' = 1's, which needs x0's next-event density.
-    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite) && !(s == 0 && t >= 3 && neeRefused);
+    // A merge's pt is a camera vertex no connection formed: it may be delta.
+    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite) && !(s == 0 && t >= 3 && neeRefused) &&
+                        !(kMerges && pt.isDelta);
     // s = 0: technique s' = 1 samples x0 = pt by next-event estimation (x0FromLight); s = 1:
     // every technique on this side has s' >= 2, where x0 is a light subpath's origin.
     const double r = s == 0 ? ratio(x0FromLight, pt.pdfFwdA)
                      : s == 1 ? ratio(c.ptFromLight, pt.pdfFwdA) / neeOverOrigin
                               : ratio(c.ptFromLight, pt.pdfFwdA);
-    right = power(r) * ((usable ? count(t - 1) : 0.0) + beyond);
+    double w = usable ? count(t - 1) * connections : 0.0;
+    // Technique t' = t - 1's merge merges pt (s' = s + 1: not x0, s >= 1).
+    if constexpr (kMerges) w += merge(s + 1, pt, pt.pdfFwdA);
+    right = power(r) * (w + beyond);
   }
-  // Veach eq. 10.9 relative to the technique's own (n_s p_s)^beta.
-  const double own = t == 1 ? lightTracingCount : 1.0;
-  const double w = own / (own + left + right);
+  // Veach eq. 10.9 relative to C(s, t)'s own (n_s p_s)^beta, and with merges the merge at qs
+  // (M(s, t + 1), whose density is C(s, t)'s times eta pFromCamera(qs)).
+  double own = t == 1 ? lightTracingCount : 1.0;
+  double sum = own + left + right;
+  if constexpr (kMerges) {
+    const double connection = own;
+    // The connection is usable here unless its camera end is a delta vertex (a merge's pt).
+    const double connectionTerm = pt.isDelta ? 0.0 : connection * m.connections;
+    const double mergeAtQs = e.qs ? merge(s, *e.qs, c.qsFromCamera) : 0.0;
+    own = isMerge ? mergeAtQs : connection;
+    sum = connectionTerm + mergeAtQs + left + right;
+  }
+  const double w = own / sum;
   if (!std::isfinite(left + right) || !std::isfinite(w)) return std::nullopt;
   return static_cast<float>(w);
 }
@@ -171,28 +255,96 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
                                        const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
   const ConnectionEnds e = connectionEnds(path);
-  if (hasShortEdge(path.s, path.t, e.qs ? edgeLength2(*e.qs, *e.pt) : kNoEdge, lightSums, cameraSums,
-                   minConnectionDistance))
+  if (hasShortEdge(path.s, path.t, e.qs ? edgeLength2(*e.qs, *e.pt) : kNoEdge, lightSums.shortestEdge2.data(),
+                   cameraSums.shortestEdge2.data(), minConnectionDistance))
     return std::nullopt;
-  return weightFromSums(scene, path, e, connectionDensities(scene, camera, path, e), lightSums, cameraSums, power,
-                        lightTracingRatio);
+  return weightFromSums<false>(scene, path, e, connectionDensities(scene, camera, path, e), lightSums.sum.data(),
+                               cameraSums.sum.data(), power, lightTracingRatio, MergeTerms{}, false);
 }
 
-std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
-                                       int t, const ConnectionPdfs& pdfs, float connectionLength2,
+std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
-                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance,
+                                       const MergeTerms& merges) {
+  const ConnectionEnds e = connectionEnds(path);
+  if (hasShortEdge(path.s, path.t, e.qs ? edgeLength2(*e.qs, *e.pt) : kNoEdge, lightSums.shortestEdge2.data(),
+                   cameraSums.shortestEdge2.data(), minConnectionDistance))
+    return std::nullopt;
+  return weightFromSums<true>(scene, path, e, connectionDensities(scene, camera, path, e), lightSums.sum.data(),
+                              cameraSums.sum.data(), power, lightTracingRatio, merges, false);
+}
+
+namespace {
+
+template <bool kMerges>
+[[gnu::always_inline]] inline std::optional<float> interiorWeight(
+    const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath, int t, const ConnectionPdfs& pdfs,
+    float connectionLength2, const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums, const MisPower& power,
+    float lightTracingRatio, float minConnectionDistance, const MergeTerms& merges) {
   assert(s >= 2 && t >= 2);
   if (s < 2 || t < 2) __builtin_unreachable();  // lets the compiler drop weightFromSums' cases s, t <= 1
-  if (hasShortEdge(s, t, connectionLength2, lightSums, cameraSums, minConnectionDistance)) return std::nullopt;
+  if (hasShortEdge(s, t, connectionLength2, lightSums.shortestEdge2.data(), cameraSums.shortestEdge2.data(),
+                   minConnectionDistance))
+    return std::nullopt;
   const MisPath path{lightPath.data(), s, cameraPath.data(), t, nullptr, &pdfs};
   ConnectionEnds e;
   e.qsMinus = &lightPath[s - 2];
   e.qs = &lightPath[s - 1];
   e.pt = &cameraPath[t - 1];
   e.ptMinus = &cameraPath[t - 2];
-  return weightFromSums(scene, path, e, evaluatedConnectionDensities(*e.qs, *e.pt, pdfs, true, t), lightSums,
-                        cameraSums, power, lightTracingRatio);
+  return weightFromSums<kMerges>(scene, path, e, evaluatedConnectionDensities(*e.qs, *e.pt, pdfs, true, t),
+                                 lightSums.sum.data(), cameraSums.sum.data(), power, lightTracingRatio, merges, false);
+}
+
+}  // namespace
+
+std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
+                                       int t, const ConnectionPdfs& pdfs, float connectionLength2,
+                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
+  return interiorWeight<false>(scene, lightPath, s, cameraPath, t, pdfs, connectionLength2, lightSums, cameraSums,
+                               power, lightTracingRatio, minConnectionDistance, MergeTerms{});
+}
+
+std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
+                                       int t, const ConnectionPdfs& pdfs, float connectionLength2,
+                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance,
+                                       const MergeTerms& merges) {
+  return interiorWeight<true>(scene, lightPath, s, cameraPath, t, pdfs, connectionLength2, lightSums, cameraSums,
+                              power, lightTracingRatio, minConnectionDistance, merges);
+}
+
+std::optional<float> mergeWeightFromSums(const Scene& scene, const PathVertex* lightPath, int s,
+                                         const double* lightSum, const float* lightShortestEdge2,
+                                         const Subpath& cameraPath, int t, const SubpathMisSums& cameraSums,
+                                         const MergePdfs& pdfs, const MisPower& power, float lightTracingRatio,
+                                         float minConnectionDistance, const MergeTerms& merges) {
+  // The merged path (merge_mis.h mergedPathDensities) is connection C(s, t - 1)'s: the light prefix
+  // through the merged vertex, then z(t-2) .. z0. Its edge into the camera prefix is the camera
+  // walk's z(t-1) -> z(t-2).
+  assert(s >= 2 && t >= 2);
+  const PathVertex& y = lightPath[s - 1];
+  const PathVertex& z = cameraPath[t - 1];
+  const int tc = t - 1;
+  if (hasShortEdge(s, tc, edgeLength2(z, cameraPath[tc - 1]), lightShortestEdge2, cameraSums.shortestEdge2.data(),
+                   minConnectionDistance))
+    return std::nullopt;
+  const MisPath path{lightPath, s, cameraPath.data(), tc, nullptr, nullptr};
+  ConnectionEnds e;
+  e.qsMinus = &lightPath[s - 2];
+  e.qs = &y;
+  e.pt = &cameraPath[tc - 1];
+  e.ptMinus = tc >= 2 ? &cameraPath[tc - 2] : nullptr;
+  // The merged vertex keeps both walks' densities of it (y's from the light, z's from the camera);
+  // the vertices beside it see z's BSDF (mergedPathDensities).
+  ConnectionDensities c;
+  c.qsFromCamera = z.pdfFwdA;
+  c.qsMinusFromCamera = pdfs.towardLightW * y.areaToPrev;
+  c.ptFromLight = pdfs.towardCameraW * z.areaToPrev;
+  if (tc >= 3) c.ptMinusFromLight = e.ptMinus->pdfRevA;
+  return weightFromSums<true>(scene, path, e, c, lightSum, cameraSums.sum.data(), power, lightTracingRatio, merges,
+                              true);
 }
 
 }  // namespace pathlab

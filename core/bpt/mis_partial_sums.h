@@ -12,6 +12,14 @@
 // so left(s - 2), which holds only densities the walk fixed, is stored per vertex, and the two
 // ratios the connection changes (r_{s-1}, r_{s-2}) are applied on top. The camera side is the
 // mirror image with 1 / r and the light-tracing sample count on its t' = 1 term.
+//
+// Vertex merging (merge_mis.h) adds to each s' its merge at x(s'-1): the count u(s') becomes
+//   w(s') = c u(s') + m(s') T(eta pFromCamera(x(s'-1))),
+// c one when every connection is enabled and zero when none is, m(s') one where every merge is
+// enabled and x(s'-1) can be merged (Georgiev et al. 2012 eq. 11; SmallVCM's dVM quantities). A
+// merge's pFromCamera on the light side is the reverse density the walk stored (pdfRevA) except
+// at the two vertices the connection changes, and on the camera side the forward density: so the
+// same recursion, with the same two patches, gives the weights over connections and merges.
 #pragma once
 
 #include "core/bpt/mis.h"
@@ -35,6 +43,18 @@ struct MisPower {
   }
 };
 
+// The merges' part of the sums: which families are enabled (each all or nothing: a subset is
+// misWeight's or weightWithMerges' job) and the pass's eta = pi r^2 N. The default adds nothing.
+struct MergeTerms {
+  double connections = 1.0;  // 1: every connection enabled; 0: none (bpm)
+  bool merges = false;       // every merge enabled
+  double eta = 0.0;
+};
+
+// A vertex a merge may take as its merged vertex: on a surface, not scattered by a delta lobe (an
+// interior vertex: callers rule out x0 and the camera).
+inline bool mergeableVertex(const PathVertex& v) { return v.type == VertexType::Surface && !v.isDelta; }
+
 // Per subpath: sum[i] is the partial sum of the prefix of i vertices (left(i) on the light side,
 // its mirror on the camera side), shortestEdge2[i] the squared length of the shortest edge among
 // vertices 0..i (infinite for one vertex).
@@ -43,10 +63,15 @@ struct SubpathMisSums {
   std::vector<float> shortestEdge2;
 };
 
-void accumulateLightSums(const Subpath& lightPath, const MisPower& power, SubpathMisSums& sums);
+void accumulateLightSums(const Subpath& lightPath, const MisPower& power, SubpathMisSums& sums,
+                         const MergeTerms& merges = {});
+// The same on `count` stored vertices (a merge pass's light subpath): sum[i] and shortestEdge2[i]
+// for i < count written to sum[i], shortestEdge2[i] (no sum[count]).
+void accumulateLightSums(const PathVertex* lightPath, int count, const MisPower& power, double* sum,
+                         float* shortestEdge2, const MergeTerms& merges = {});
 // lightTracingRatio: the sample count of the t' = 1 techniques (bidir_tracer.h).
 void accumulateCameraSums(const Subpath& cameraPath, const MisPower& power, float lightTracingRatio,
-                          SubpathMisSums& sums);
+                          SubpathMisSums& sums, const MergeTerms& merges = {});
 
 // The weight of technique (path.s, path.t) among all techniques of its length, from the sums of
 // the subpaths path.lightPath and path.cameraPath point into. nullopt where the sums cannot give
@@ -55,6 +80,11 @@ void accumulateCameraSums(const Subpath& cameraPath, const MisPower& power, floa
 std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
                                        const MisPower& power, float lightTracingRatio, float minConnectionDistance);
+// The same among the connections and merges `merges` enables (sums accumulated with them).
+std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
+                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance,
+                                       const MergeTerms& merges);
 
 // misWeightFromSums of an interior technique (s, t >= 2) whose connection formInteriorConnection
 // formed (its densities `pdfs`, its squared length connectionLength2), the same bits, without the
@@ -64,5 +94,29 @@ std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightP
                                        int t, const ConnectionPdfs& pdfs, float connectionLength2,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
                                        const MisPower& power, float lightTracingRatio, float minConnectionDistance);
+std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
+                                       int t, const ConnectionPdfs& pdfs, float connectionLength2,
+                                       const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance,
+                                       const MergeTerms& merges);
+
+// The densities a merge M(s, t) fixes beside its walks' (merge_mis.h mergedPathDensities): at the
+// merged vertex the camera vertex z(t-1)'s BSDF between its own direction and the light vertex
+// y(s-1)'s, in solid angle: toward y(s-2) (the camera side continuing) and toward z(t-2) (the
+// light side continuing) (BsdfEval::pdfFwdW and pdfRevW of eval(z.wo, y.wo)).
+struct MergePdfs {
+  float towardLightW = 0.f;
+  float towardCameraW = 0.f;
+};
+
+// The weight of merge M(s, t) of light vertex lightPath[s - 1] (a stored light subpath, its sums
+// lightSum / lightShortestEdge2 per vertex as accumulateLightSums' pointer form wrote them) and
+// camera vertex cameraPath[t - 1] among the techniques `merges` enables: the path and densities
+// of mergedPathDensities, in O(1). nullopt as misWeightFromSums'.
+std::optional<float> mergeWeightFromSums(const Scene& scene, const PathVertex* lightPath, int s,
+                                         const double* lightSum, const float* lightShortestEdge2,
+                                         const Subpath& cameraPath, int t, const SubpathMisSums& cameraSums,
+                                         const MergePdfs& pdfs, const MisPower& power, float lightTracingRatio,
+                                         float minConnectionDistance, const MergeTerms& merges);
 
 }  // namespace pathlab

@@ -187,6 +187,15 @@ void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
   });
   m.lightSubpaths = lightSubpathsPerPass(film_.pixelCount());
   m.index(mergeRadius(settings_.mergeRadius * scene_.bounds().radius, settings_.mergeRadiusAlpha, pass));
+  // Each stored path's MIS partial sums, now that eta is known (a merge reads them in O(1)).
+  m.misSum.resize(m.vertices.size());
+  m.misShortestEdge2.resize(m.vertices.size());
+  tbb::parallel_for(size_t{0}, m.pixelPathStart.size(), [&](size_t p) {
+    const uint32_t start = m.pixelPathStart[p], count = m.pixelPathCount[p];
+    if (count > 0)
+      bidirTracer_->lightSubpathSums(m, &m.vertices[start], static_cast<int>(count), &m.misSum[start],
+                                     &m.misShortestEdge2[start]);
+  });
   bidirTracer_->setMergePass(&m);
 }
 
