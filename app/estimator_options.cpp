@@ -30,8 +30,9 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
   cmd->add_option("--integrator", o.integrator,
                   "Estimator: bpt (bidirectional, default), pt (path tracer), lt (light tracing: the t = 1 techniques), "
                   "vcm (bpt with every merge: vertex connection and merging), bpm (the merges alone: bidirectional "
-                  "photon mapping)")
-      ->transform(CLI::IsMember({"pt", "bpt", "lt", "vcm", "bpm"}, CLI::ignore_case));
+                  "photon mapping), ppm (progressive photon mapping: merges at the first non-specular camera vertex, "
+                  "and camera paths that hit a light)")
+      ->transform(CLI::IsMember({"pt", "bpt", "lt", "vcm", "bpm", "ppm"}, CLI::ignore_case));
   cmd->add_option("--mis", s.mis.heuristic,
                   "MIS heuristic of bpt: balance, power, uniform, or off (1/n_k per technique of length k: biased "
                   "with delta lights or BSDFs)")
@@ -84,16 +85,20 @@ void finishEstimatorOptions(EstimatorOptions& o) {
       {"bpt", {IntegratorKind::Bpt, "all"}},
       {"lt", {IntegratorKind::Lt, "all"}},
       {"vcm", {IntegratorKind::Bpt, "all;m=all"}},
-      {"bpm", {IntegratorKind::Bpt, "m=all"}}};
+      {"bpm", {IntegratorKind::Bpt, "m=all"}},
+      {"ppm", {IntegratorKind::Bpt, "s=0;m=all"}}};
   const auto integrator = kIntegrators.find(o.integrator);
   if (integrator == kIntegrators.end()) throw std::invalid_argument(fmt::format("--integrator: '{}' is unknown", o.integrator));
   const auto [kind, ownTechniques] = integrator->second;
-  const bool setsTechniques = o.integrator == "vcm" || o.integrator == "bpm";
+  const bool setsTechniques = o.integrator == "vcm" || o.integrator == "bpm" || o.integrator == "ppm";
   if (setsTechniques && !o.techniques.empty())
     throw std::invalid_argument(fmt::format("--integrator {} sets the techniques ({}): for another set use --integrator "
                                             "bpt --techniques",
                                             o.integrator, ownTechniques));
   o.settings.integrator = kind;
+  // ppm: the merges at each camera subpath's first non-specular vertex, and the camera subpaths
+  // that hit a light (what no merge samples: lights seen directly or in mirrors and glass).
+  o.settings.mergeSite = o.integrator == "ppm" ? MergeSite::FirstNonSpecular : MergeSite::Every;
   o.settings.techniques = TechniqueSet::parse(o.techniques.empty() ? ownTechniques : o.techniques);
   if (!o.isolate.empty()) {
     const size_t comma = o.isolate.find(',');

@@ -33,6 +33,13 @@ struct BiasInjection {
 enum class ConnectStrategy { All, Endpoints };
 const char* connectStrategyName(ConnectStrategy c);
 
+// Where a camera subpath merges: at every vertex that can be merged (vertex connection and
+// merging, bidirectional photon mapping), or only at its first one that is not a delta scatter,
+// its "first diffuse hit" (progressive photon mapping). A path then has at most one merge able to
+// sample it, the one at that vertex; the weights count no other (merge_mis.h).
+enum class MergeSite { Every, FirstNonSpecular };
+const char* mergeSiteName(MergeSite m);
+
 struct BidirOptions {
   int maxLength = 10;           // edges
   bool russianRoulette = true;  // sampling/russian_roulette.h
@@ -43,6 +50,7 @@ struct BidirOptions {
   bool checkMis = false;  // test every weighted path's partition of unity (Counters)
   ConnectStrategy connect = ConnectStrategy::All;
   std::optional<BiasInjection> injectBias;
+  MergeSite mergeSite = MergeSite::Every;
 };
 
 }  // namespace pathlab

@@ -23,6 +23,7 @@ struct BidirTracer::Walks {
 };
 
 const char* connectStrategyName(ConnectStrategy c) { return c == ConnectStrategy::Endpoints ? "endpoints" : "all"; }
+const char* mergeSiteName(MergeSite m) { return m == MergeSite::FirstNonSpecular ? "first-non-specular" : "every"; }
 
 namespace {
 
@@ -70,7 +71,9 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
     const bool allMerges = options_.techniques.containsAllUpTo(options_.maxLength, TechniqueFamilies::Merges);
     connectionsInSums_ = allConnections ? 1.0 : 0.0;
     if (misEvaluation_ != MisEvaluation::Constant)
-      misEvaluation_ = allMerges && (allConnections || !anyConnection) ? MisEvaluation::PartialSums : MisEvaluation::Explicit;
+      misEvaluation_ = allMerges && (allConnections || !anyConnection) && options_.mergeSite == MergeSite::Every
+                           ? MisEvaluation::PartialSums
+                           : MisEvaluation::Explicit;
   }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
   // The image-only route's preconditions that settings decide: the partial sums, no media, and nothing that
@@ -106,7 +109,7 @@ template <bool kRecords>
   const int s = path.s, t = path.t;
   if (kRecords && merges_) {
     if (!mergePass_) return misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
-    const MergeMis merge{mergePass_->eta()};
+    const MergeMis merge{mergePass_->eta(), options_.mergeSite == MergeSite::FirstNonSpecular};
     if (options_.checkMis) {
       ++counters.misPartitionChecks;
       const double sum = weightSumWithMerges(scene_, camera_, path, options_.techniques, options_.mis, ratio,
@@ -421,12 +424,15 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
   // the camera vertex's BSDF standing for the merged vertex's (each beta stops short of its own
   // vertex's cosine, which the density estimate's area measure absorbs).
   const MergePass& pass = *mergePass_;
-  const MergeMis mis{pass.eta()};
+  const MergeMis mis{pass.eta(), options_.mergeSite == MergeSite::FirstNonSpecular};
   const MergeTerms terms = mergeTerms(pass.eta());
   const float normalisation = static_cast<float>(pass.normalisation());
   const SinkDemand& demand = sink.demand();
   const bool imageHasMerges = !options_.isolate;  // an isolated connection shows alone
+  const bool firstNonSpecularOnly = options_.mergeSite == MergeSite::FirstNonSpecular;
   for (int t = 2; t <= nt; ++t) {
+    // Progressive photon mapping: nothing beyond the first vertex that is not a delta scatter.
+    if (firstNonSpecularOnly && t >= 3 && !walks.camera[t - 2].isDelta) break;
     const PathVertex& z = walks.camera[t - 1];
     if (z.type != VertexType::Surface || z.isDelta) continue;
     const Bsdf& bsdf = walks.camera.bsdf(t - 1);

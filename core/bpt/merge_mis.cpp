@@ -1,6 +1,7 @@
 // weightWithMerges: the explicit weight over connections and merges.
 #include "core/bpt/merge_mis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -32,9 +33,14 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
                         float minDistance, const MergeMis& merge) {
   const int n = d.n;
   const int length = n - 1;
+  // With merges at the first non-specular camera vertex only, the one merge that can sample the
+  // path is at x(firstSite - 1): every camera-side vertex after it is delta.
+  int firstSite = n - 1;
+  if (merge.firstNonSpecularOnly)
+    while (firstSite >= 2 && d.delta[static_cast<size_t>(firstSite - 1)]) --firstSite;
   auto mergeUsable = [&](int sp) {
     return sp >= 2 && sp <= n - 1 && techniques.contains(Technique::merge(sp, n + 1 - sp)) &&
-           mergeableVertex(d, surface, sp - 1);
+           mergeableVertex(d, surface, sp - 1) && (!merge.firstNonSpecularOnly || sp == firstSite);
   };
   const UsableTechniques usable(d, techniques, minDistance);
   if (x.length() != length) return 0.0;
@@ -43,8 +49,11 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
     // others can do; zero where x itself cannot form the path.
     const bool possible = x.isMerge() ? mergeUsable(x.s) : techniques.contains(x) && techniquePossible(d, x.s);
     if (!possible) return 0.0;
-    int count = 0;
-    for (const Technique y : techniquesOfLength(length, TechniqueFamilies::All)) count += techniques.contains(y) ? 1 : 0;
+    // At the first non-specular vertex only, the merges of a length are one technique.
+    int count = 0, merges = 0;
+    for (const Technique y : techniquesOfLength(length, TechniqueFamilies::All))
+      (y.isMerge() ? merges : count) += techniques.contains(y) ? 1 : 0;
+    count += merge.firstNonSpecularOnly ? std::min(merges, 1) : merges;
     return 1.0 / static_cast<double>(count);
   }
   if (x.isMerge() ? !mergeUsable(x.s) : !usable(x.s)) return 0.0;

@@ -19,6 +19,9 @@ namespace pathlab {
 //   n_M p_M(s') = eta * pFromCamera(x(s'-1)) * p_C(s').
 struct MergeMis {
   double eta = 0.0;
+  // MergeSite::FirstNonSpecular (progressive photon mapping): a merge at x(s'-1) counts only when
+  // every vertex between it and the camera, x(s') .. x(n-2), scattered by a delta lobe.
+  bool firstNonSpecularOnly = false;
 };
 
 // Whether x_i can be the merged vertex: interior (not x0 on the light, not the camera x(n-1)),

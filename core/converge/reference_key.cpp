@@ -96,6 +96,7 @@ std::string describe(const RenderSettings& s) {
   if (s.connect != ConnectStrategy::All) text += fmt::format(" connect={}", connectStrategyName(s.connect));
   if (covers(s.techniques.families(), TechniqueKind::Merge))
     text += fmt::format(" radius={} alpha={}", s.mergeRadius, s.mergeRadiusAlpha);
+  if (s.mergeSite != MergeSite::Every) text += fmt::format(" mergeSite={}", mergeSiteName(s.mergeSite));
   if (s.camera) {
     text += fmt::format(" yfov={} aspect={} camera=", s.camera->yfov, s.camera->aspectRatio.value_or(0.f));
     for (int c = 0; c < 4; ++c)

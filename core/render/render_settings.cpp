@@ -65,8 +65,8 @@ TechniqueFamilies pyramidFamilies(const RenderSettings& settings) {
 }
 
 BidirOptions bidirOptions(const RenderSettings& s) {
-  return BidirOptions{s.maxLength,     s.russianRoulette, enabledTechniques(s), s.mis, s.isolate,
-                      s.pyramidLength, s.checkMis,        s.connect,           s.injectBias};
+  return BidirOptions{s.maxLength,     s.russianRoulette, enabledTechniques(s), s.mis,       s.isolate,
+                      s.pyramidLength, s.checkMis,        s.connect,           s.injectBias, s.mergeSite};
 }
 
 PathTracerOptions pathTracerOptions(const RenderSettings& s) { return PathTracerOptions{s.maxLength, s.russianRoulette}; }

@@ -48,6 +48,9 @@ struct RenderSettings {
   // (core/bpt/merge_pass.h). SmallVCM's defaults.
   float mergeRadius = 0.003f;
   float mergeRadiusAlpha = 0.75f;
+  // Progressive photon mapping (Hachisuka, Ogaki and Jensen 2008) among the merges: a camera
+  // subpath merges only at its first vertex that is not a delta scatter (MergeSite).
+  MergeSite mergeSite = MergeSite::Every;
   // Check on every path that the MIS weights of the enabled techniques able to produce it sum to
   // one (Counters::misPartitionFailures). On by default in debug builds.
 #ifdef NDEBUG

@@ -68,6 +68,24 @@ TEST(VertexMerging, ConnectionsAndMergesTogetherAgreeWithBpt) {
   }
 }
 
+// Progressive photon mapping (--integrator ppm): the merges at each camera subpath's first
+// non-specular vertex and the camera subpaths that hit a light, MIS-weighted where both sample a
+// path, estimate BPT's image: on the integrating sphere and through the caustic's glass.
+TEST(VertexMerging, ProgressivePhotonMappingAgreesWithBpt) {
+  static const Scene caustic(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/caustic.gltf"));
+  const std::vector<std::pair<const char*, const Scene*>> scenes = {{"integrating sphere", &mergeSphere()},
+                                                                    {"caustic", &caustic}};
+  for (const auto& [name, scene] : scenes) {
+    const test::PixelLabels grid = test::gridLabels(kMergeImageSize, kMergeImageSize, 3, 3);
+    RenderSettings ppm = mergeSettings("s=0;m=all", 42, 0.02f);
+    ppm.mergeSite = MergeSite::FirstNonSpecular;
+    const std::vector<test::EstimatorSpec> estimators = {{"bpt", mergeSettings("all", 41), 128}, {"ppm", ppm, 128}};
+    const auto run = test::runAgreement(*scene, estimators, {grid}, {{"ppm", "bpt", 0, 0.05}}, test::kFamilyAlpha);
+    std::cout << run.summary();
+    test::expectAgreement(run, name);
+  }
+}
+
 // The MIS check (checkMis) sums, on every connection the render forms, the weights of every
 // technique of its length, connections and merges: one on each.
 TEST(VertexMerging, TheWeightsOverConnectionsAndMergesSumToOneOnEveryPath) {
@@ -79,6 +97,16 @@ TEST(VertexMerging, TheWeightsOverConnectionsAndMergesSumToOneOnEveryPath) {
     session.renderPass();
     EXPECT_GT(session.counters().misPartitionChecks, 1000u) << misHeuristicName(h);
     EXPECT_EQ(session.counters().misPartitionFailures, 0u) << misHeuristicName(h);
+    // Progressive photon mapping: the camera paths that hit a light and the one merge at their
+    // first non-specular vertex.
+    RenderSettings ppm = mergeSettings("s=0;m=all", 8, 0.05f);
+    ppm.mergeSite = MergeSite::FirstNonSpecular;
+    ppm.mis.heuristic = h;
+    ppm.checkMis = true;
+    RenderSession ppmSession(mergeSphere(), ppm);
+    ppmSession.renderPass();
+    EXPECT_GT(ppmSession.counters().misPartitionChecks, 100u) << misHeuristicName(h);
+    EXPECT_EQ(ppmSession.counters().misPartitionFailures, 0u) << "ppm " << misHeuristicName(h);
   }
 }
 
