@@ -89,6 +89,8 @@ std::vector<std::string> techniqueMapPaths(const std::string& output, int length
       paths.push_back(besideOutput(output, techniqueName(what, x) + ".exr"));
   paths.push_back(besideOutput(output, "-share.png"));
   paths.push_back(besideOutput(output, "-cannot-sample.png"));
+  if (covers(families, TechniqueKind::Merge))
+    for (const char* ext : {".exr", ".png"}) paths.push_back(besideOutput(output, std::string("-share-merges") + ext));
   return paths;
 }
 
@@ -114,6 +116,13 @@ void writeTechniqueMaps(const std::string& output, const RenderSession& session,
              displayToLinear(withShareBar(labelledMosaic(shares, length, lum.families), "of the image", false)));
   writeImage(besideOutput(output, "-cannot-sample.png"),
              displayToLinear(withShareBar(labelledMosaic(cannot, length, lum.families), "of its length", true)));
+  if (covers(lum.families, TechniqueKind::Merge)) {
+    // Every merge together: where vertex merging carries the image.
+    const std::vector<float> share = familyShareMap(lum, TechniqueKind::Merge);
+    writeImage(besideOutput(output, "-share-merges.exr"), grey(share, lum.width, lum.height));
+    writeImage(besideOutput(output, "-share-merges.png"),
+               displayToLinear(withShareBar(shareColours(share, lum.width, lum.height), "merges' share", false)));
+  }
 }
 
 }  // namespace pathlab::app

@@ -268,7 +268,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
     drawDisplaySection(display_, run_, pyramid_, a().snapshot().image);
   if (ImGui::CollapsingHeader("Technique maps", maps_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
-    drawTechniqueMapSection(maps_, estimator_.settings.maxLength, techniqueImages_.maps.texture.empty());
+    drawTechniqueMapSection(maps_, estimator_.settings.maxLength, pyramidFamilies(estimator_.settings),
+                            techniqueImages_.maps.texture.empty());
   if (ImGui::CollapsingHeader("Reference and error", convergence_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawReferenceSection(reference_, convergence_, display_, estimator_.settings, a().snapshot().image, requests);
   if (ImGui::CollapsingHeader("Environment",

@@ -2,6 +2,7 @@
 #include "core/bpt/bidir_tracer.h"
 
 #include "core/bpt/connect.h"
+#include "core/bpt/merge_sampleable.h"
 #include "core/bpt/mis_off.h"
 #include "core/bpt/path_techniques.h"
 #include "core/counters/technique_tally.h"
@@ -269,7 +270,8 @@ template <bool kRecords, bool kTimed>
     r.weight = w;
     r.imageWeight = imageWeight;
     r.pRaster = pRaster;
-    if (demand.sampleable) r.sampleableBy = sampleableTechniques(path);
+    if (demand.sampleable)
+      r.sampleableBy = merges_ ? sampleableWithMerges(path, TechniqueKind::Connection) : sampleableTechniques(path);
     if (demand.densityRatios) {
       walks.densityRatios.resize(static_cast<size_t>(s + t));
       techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
@@ -477,6 +479,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         r.pRaster = pRaster;
         r.inImage = inImage;
         r.inPyramid = inPyramid;
+        if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge);
         sink.record(r);
       }
       if (!inImage || !(w > 0.f)) return;

@@ -30,6 +30,11 @@ Vec3 techniqueColour(Technique x) {
   return Vec3(static_cast<float>(c >> 16 & 255), static_cast<float>(c >> 8 & 255), static_cast<float>(c & 255)) / 255.f;
 }
 
+Vec3 techniqueColourAt(Technique x, int /*px*/, int py) {
+  const Vec3 c = techniqueColour(x);
+  return x.isMerge() && onMergeStripe(py) ? c * (1.f - kMergeStripeDarkening) : c;
+}
+
 namespace {
 
 Image blank(int width, int height) {
@@ -46,11 +51,14 @@ void put(Image& img, size_t i, const Vec3& c) {
 
 Image dominantColours(const DominantMap& m) {
   Image img = blank(m.width, m.height);
-  for (size_t i = 0; i < m.technique.size(); ++i) {
-    const int x = m.technique[i];
-    put(img, i, x == kDominantEmpty ? kEmptyColour : x == kDominantTie ? kTieColour
-                                                     : techniqueColour(Technique::fromIndex(static_cast<size_t>(x))));
-  }
+  for (int y = 0; y < m.height; ++y)
+    for (int px = 0; px < m.width; ++px) {
+      const size_t i = static_cast<size_t>(y) * static_cast<size_t>(m.width) + static_cast<size_t>(px);
+      const int x = m.technique[i];
+      put(img, i, x == kDominantEmpty ? kEmptyColour
+                  : x == kDominantTie ? kTieColour
+                                      : techniqueColourAt(Technique::fromIndex(static_cast<size_t>(x)), px, y));
+    }
   return img;
 }
 

@@ -24,6 +24,15 @@ inline const Vec3 kHatchColour{0.8f, 0.8f, 0.8f};
 // Whether pixel (x, y) lies on a stripe of the hatching (diagonal, 8-pixel period).
 inline bool onHatch(int x, int y) { return ((x + y) / 4) % 2 == 0; }
 
+// A merge M(s,t) is told from a connection by pattern, not by colour alone: the palette repeats
+// past length 5 and a merge's colour is some connection's. Its pixels in the dominant map (and
+// its legend swatch) are crossed by dark horizontal lines, one row in three, unlike the
+// cannot-sample map's diagonal hatching.
+inline bool onMergeStripe(int y) { return y % 3 == 0; }
+inline constexpr float kMergeStripeDarkening = 0.55f;
+// Technique x's colour at pixel (x, y) of a map: techniqueColour, striped for a merge.
+Vec3 techniqueColourAt(Technique x, int px, int py);
+
 // width x height display images of the maps.
 Image dominantColours(const DominantMap& m);
 Image shareColours(const std::vector<float>& share, int width, int height);  // viridis; black where -1

@@ -35,6 +35,12 @@ void swatch(Image& img, int x, int y, const Vec3& colour) {
   fillRect(img, x + 1, y + 1, kSwatch - 2, kSwatch - 2, colour);
 }
 
+// A technique's swatch as the map draws it (a merge's striped, in the map's own rows).
+void techniqueSwatch(Image& img, int x, int y, Technique t) {
+  fillRect(img, x, y, kSwatch, kSwatch, Vec3(0.5f));
+  for (int dy = 1; dy < kSwatch - 1; ++dy) fillRect(img, x + 1, y + dy, kSwatch - 2, 1, techniqueColourAt(t, 0, dy));
+}
+
 }  // namespace
 
 void fillRect(Image& img, int x0, int y0, int w, int h, const Vec3& colour) {
@@ -83,7 +89,7 @@ Image withDominantLegend(const Image& map, const DominantMap& m, const std::stri
   for (const auto& [index, count] : wins) {
     if (index < 0) continue;
     const Technique x = Technique::fromIndex(static_cast<size_t>(index));
-    swatch(img, x0, y, techniqueColour(x));
+    techniqueSwatch(img, x0, y, x);
     drawText(img, x0 + kSwatch + 6, y, fmt::format("{} {:.0f}%", techniqueLabel(x), percent(count)), kTextColour);
     y += kLine;
   }

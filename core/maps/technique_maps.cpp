@@ -54,6 +54,22 @@ std::vector<float> shareMap(const TechniqueLuminance& lum, Technique x) {
   return share;
 }
 
+std::vector<float> familyShareMap(const TechniqueLuminance& lum, TechniqueKind kind) {
+  const TechniqueFamilies family = kind == TechniqueKind::Merge ? TechniqueFamilies::Merges : TechniqueFamilies::Connections;
+  if (!covers(lum.families, kind)) throw std::invalid_argument("share map: the pyramid keeps no techniques of that family");
+  const std::vector<float> image = lum.image();
+  std::vector<double> sum(image.size(), 0.0);
+  for (const Technique x : techniquesUpTo(lum.length, family)) {
+    if (!lum.has(x)) continue;
+    const std::vector<float>& w = lum.weighted[x.index()];
+    for (size_t i = 0; i < sum.size(); ++i) sum[i] += w[i];
+  }
+  std::vector<float> share(image.size(), -1.f);
+  for (size_t i = 0; i < share.size(); ++i)
+    if (image[i] > 0.f) share[i] = std::clamp(static_cast<float>(sum[i] / image[i]), 0.f, 1.f);
+  return share;
+}
+
 CannotSampleMap cannotSampleMap(const TechniqueLuminance& lum, Technique x) {
   if (!lum.has(x) || x.index() >= lum.sampleable.size() || lum.sampleable[x.index()].empty())
     throw std::invalid_argument("cannot-sample map: the pyramid keeps no sampleable films for this technique");

@@ -47,6 +47,11 @@ DominantMap dominantMap(const TechniqueLuminance& lum, int k = 0);
 // is zero. The shares of all techniques add up to one wherever the image is not zero.
 std::vector<float> shareMap(const TechniqueLuminance& lum, Technique x);
 
+// A family's weighted estimate (every merge M(s,t) up to lum.length, or every connection) over the
+// image of every length, in [0, 1]; -1 where the image is zero. With merges on, the merges' share
+// is where vertex merging carries the image (the caustics no connection samples).
+std::vector<float> familyShareMap(const TechniqueLuminance& lum, TechniqueKind kind);
+
 // Where technique x of length k stands at a pixel, for the "cannot sample" map.
 enum class Reach : uint8_t {
   Empty,         // the length-k image is zero here: nothing to sample

@@ -112,9 +112,6 @@ void validateSettings(const RenderSettings& s) {
       throw std::invalid_argument("merging techniques need path reuse (--connect all), not naive BPT");
     if (s.checkTechniques)
       throw std::invalid_argument("the consistency check does not compare merging techniques yet (biased by the radius)");
-    // A merge's contribution does not yet say which techniques could sample its path
-    // (TechniqueResult::sampleableBy), so its "cannot sample" map would be wrong.
-    if (s.techniqueMaps) throw std::invalid_argument("the technique maps do not cover merging techniques yet");
     // The merge pass stores every pixel's light subpath, up to maxLength vertices each: refused
     // before allocating when its worst case passes the budget.
     const uint64_t bytes = mergeStoreBytes(s);

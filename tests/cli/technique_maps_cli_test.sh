@@ -15,6 +15,16 @@ if "$PATHLAB" render "$BOX" -o "$TMP/m.exr" "${small[@]}" --technique-maps 2 2>"
   ls -a "$TMP" | grep -q '\.tmp' && fail "temporary files left behind: $(ls -a "$TMP")"
 else fail "maps render: $(cat "$TMP/err")"; fi
 
+# With merges (--integrator vcm) the maps cover them: M(2,2), the one merge up to length 2, gets its
+# share and cannot-sample files beside the connections' (k = 0..2: 6 dominant files; 6 techniques;
+# the two mosaics; the merges' share together as EXR and PNG).
+if "$PATHLAB" render "$BOX" -o "$TMP/v.exr" "${small[@]}" --integrator vcm --technique-maps 2 2>"$TMP/err"; then
+  count=$(ls "$TMP" | grep -c '^v-')
+  [ "$count" -eq 22 ] && [ -s "$TMP/v-share-m-s2-t2.exr" ] && [ -s "$TMP/v-cannot-m-s2-t2.exr" ] &&
+    [ -s "$TMP/v-share-merges.png" ] && [ -s "$TMP/v-share-merges.exr" ] &&
+    [ -s "$TMP/v-dominant-k2.png" ] && ok || fail "vcm map files: $(ls "$TMP")"
+else fail "vcm maps render: $(cat "$TMP/err")"; fi
+
 # An existing map refuses the render (before any work) and leaves every file as it was.
 before=$(md5sum "$TMP/m-dominant.png")
 rm "$TMP/m.exr"

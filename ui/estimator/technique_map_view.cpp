@@ -2,6 +2,7 @@
 #include "ui/estimator/technique_map_view.h"
 
 #include "core/maps/map_colours.h"
+#include "core/sampling/technique_label.h"
 
 #include <fmt/core.h>
 
@@ -14,7 +15,8 @@ namespace pathlab::ui {
 Image mapImage(const TechniqueLuminance& lum, const MapView& view) {
   if (lum.length < 1 || lum.weighted.empty()) return {};
   Technique x = view.technique;
-  if (!x.valid() || x.length() > lum.length) x = Technique{std::min(1, lum.length - 1), lum.length};
+  // A merge chosen while the pyramid keeps none (bpt without merges) falls back like a length.
+  if (!x.valid() || x.length() > lum.length || !lum.has(x)) x = Technique{std::min(1, lum.length - 1), lum.length};
   switch (view.kind) {
     case MapKind::Dominant: return dominantColours(dominantMap(lum, std::clamp(view.dominantLength, 0, lum.length)));
     case MapKind::Share: return shareColours(shareMap(lum, x), lum.width, lum.height);
@@ -36,15 +38,22 @@ MapView parseMapView(const std::string& text) {
     v.length = std::max(v.length, a);
     return v;
   }
-  for (const auto& [prefix, kind] : {std::pair{"share:%d,%d%c", MapKind::Share}, std::pair{"cannot:%d,%d%c", MapKind::CannotSample}})
-    if (std::sscanf(text.c_str(), prefix, &a, &b, &extra) == 2 && Technique{a, b}.valid()) {
-      v.kind = kind;
-      v.technique = Technique{a, b};
-      v.length = std::max(v.length, v.technique.length());
-      return v;
-    }
+  for (const auto& [prefix, kind] : {std::pair{"share:", MapKind::Share}, std::pair{"cannot:", MapKind::CannotSample}}) {
+    const std::string p = prefix;
+    if (text.compare(0, p.size(), p) != 0) continue;
+    // S,T a connection, MS,T a merge (as --techniques writes them).
+    const bool merge = text.size() > p.size() && (text[p.size()] == 'M' || text[p.size()] == 'm');
+    const std::string rest = text.substr(p.size() + (merge ? 1 : 0));
+    if (std::sscanf(rest.c_str(), "%d,%d%c", &a, &b, &extra) != 2) break;
+    const Technique x{a, b, merge ? TechniqueKind::Merge : TechniqueKind::Connection};
+    if (!x.valid()) break;
+    v.kind = kind;
+    v.technique = x;
+    v.length = std::max(v.length, v.technique.length());
+    return v;
+  }
   throw std::invalid_argument("--technique-map: '" + text +
-                              "' is not dominant, dominant:K, share:S,T or cannot:S,T");
+                              "' is not dominant, dominant:K, share:S,T, share:MS,T, cannot:S,T or cannot:MS,T");
 }
 
 std::string mapViewName(const MapView& v) {
@@ -52,8 +61,8 @@ std::string mapViewName(const MapView& v) {
     case MapKind::Dominant:
       return v.dominantLength > 0 ? fmt::format("dominant technique of length {}", v.dominantLength)
                                   : fmt::format("dominant technique, lengths 1-{}", v.length);
-    case MapKind::Share: return fmt::format("share of ({},{})", v.technique.s, v.technique.t);
-    case MapKind::CannotSample: return fmt::format("where ({},{}) cannot sample", v.technique.s, v.technique.t);
+    case MapKind::Share: return "share of " + techniqueLabel(v.technique);
+    case MapKind::CannotSample: return "where " + techniqueLabel(v.technique) + " cannot sample";
   }
   return "technique map";
 }

@@ -26,7 +26,8 @@ struct MapView {
 // A chosen length or technique beyond lum.length is clamped to it.
 Image mapImage(const TechniqueLuminance& lum, const MapView& view);
 
-// `view --technique-map`: "dominant", "dominant:K", "share:S,T" or "cannot:S,T"; throws
+// `view --technique-map`: "dominant", "dominant:K", "share:S,T" or "cannot:S,T" (MS,T for a
+// merge: "share:M2,3"); throws
 // std::invalid_argument naming the text otherwise.
 MapView parseMapView(const std::string& text);
 // What the caption says of a shown map: "dominant technique, lengths 1-3", "share of (1,2)", ...

@@ -1,6 +1,7 @@
 // The technique maps section of the side panel: the chooser and the legend or colour bar.
 #include "core/maps/map_colours.h"
 #include "core/render/render_settings.h"
+#include "core/sampling/technique_label.h"
 #include "ui/panels/panels.h"
 
 #include <fmt/core.h>
@@ -13,12 +14,16 @@ namespace {
 
 ImU32 colour(const Vec3& c) { return ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.f)); }
 
-// A square of the map's colour (hatched: the cannot-sample key) and its label, on one line.
-void swatch(const Vec3& c, const std::string& label, bool hatched = false) {
+// A square of the map's colour (hatched: the cannot-sample key; striped: a merge, as the
+// dominant map draws it) and its label, on one line.
+void swatch(const Vec3& c, const std::string& label, bool hatched = false, bool striped = false) {
   const float side = ImGui::GetTextLineHeight();
   const ImVec2 p = ImGui::GetCursorScreenPos();
   ImDrawList* draw = ImGui::GetWindowDrawList();
   draw->AddRectFilled(p, ImVec2(p.x + side, p.y + side), colour(c));
+  if (striped)
+    for (float y = side / 6.f; y < side; y += side / 3.f)
+      draw->AddLine(ImVec2(p.x, p.y + y), ImVec2(p.x + side, p.y + y), colour(c * (1.f - kMergeStripeDarkening)), 1.5f);
   if (hatched)
     for (float d = 0.f; d < 2.f * side; d += side / 3.f)
       draw->AddLine(ImVec2(p.x + std::max(0.f, d - side), p.y + std::min(d, side)),
@@ -29,11 +34,17 @@ void swatch(const Vec3& c, const std::string& label, bool hatched = false) {
   ImGui::TextUnformatted(label.c_str());
 }
 
-void techniqueChooser(MapView& view) {
+void techniqueChooser(MapView& view, TechniqueFamilies families) {
   int st[2] = {view.technique.s, view.technique.t};
+  bool merge = view.technique.isMerge();
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.f);
-  if (ImGui::InputInt2("(s,t)##mapTechnique", st)) {
-    const Technique x{std::max(st[0], 0), std::max(st[1], 1)};
+  bool changed = ImGui::InputInt2("(s,t)##mapTechnique", st);
+  if (covers(families, TechniqueKind::Merge)) {
+    ImGui::SameLine();
+    changed |= ImGui::Checkbox("merge M(s,t)", &merge);
+  }
+  if (changed) {
+    const Technique x{std::max(st[0], 0), std::max(st[1], 1), merge ? TechniqueKind::Merge : TechniqueKind::Connection};
     if (x.valid() && x.length() <= view.length) view.technique = x;
   }
 }
@@ -47,7 +58,7 @@ void shareBar(const char* what) {
 
 }  // namespace
 
-void drawTechniqueMapSection(MapView& view, int maxLength, bool waiting) {
+void drawTechniqueMapSection(MapView& view, int maxLength, TechniqueFamilies families, bool waiting) {
   ImGui::PushID("maps");
   ImGui::Checkbox("show a technique map over the image", &view.show);
   if (ImGui::IsItemHovered())
@@ -77,9 +88,9 @@ void drawTechniqueMapSection(MapView& view, int maxLength, bool waiting) {
       const int first = view.dominantLength > 0 ? view.dominantLength : 1;
       const int last = view.dominantLength > 0 ? view.dominantLength : view.length;
       int column = 0;
-      for (const Technique x : TechniqueRange(first, last)) {
+      for (const Technique x : TechniqueRange(first, last, families)) {
         if (column++ % 4 != 0) ImGui::SameLine(static_cast<float>((column - 1) % 4) * ImGui::GetFontSize() * 4.5f);
-        swatch(techniqueColour(x), fmt::format("({},{})", x.s, x.t));
+        swatch(techniqueColour(x), techniqueLabel(x), false, x.isMerge());
       }
       swatch(kTieColour, "tie (within 1 %)");
       ImGui::SameLine();
@@ -87,11 +98,11 @@ void drawTechniqueMapSection(MapView& view, int maxLength, bool waiting) {
       break;
     }
     case MapKind::Share:
-      techniqueChooser(view);
+      techniqueChooser(view, families);
       shareBar("of the image");
       break;
     case MapKind::CannotSample:
-      techniqueChooser(view);
+      techniqueChooser(view, families);
       shareBar("of its length");
       swatch(viridis(0.f), "cannot sample (hatched)", true);
       swatch(viridis(0.f), "weighted away");

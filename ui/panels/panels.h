@@ -113,8 +113,9 @@ void drawErrorBar(const DisplaySettings& display);
 // The viridis colour scale as a horizontal bar of w x h pixels at `origin` (panel_reference.cpp).
 void drawViridisBar(ImDrawList* draw, ImVec2 origin, float w, float h);
 // The technique maps section (panel_maps.cpp): show them, choose the map, and its legend or colour
-// bar. `maxLength` bounds the maps' length; `waiting` while no map has arrived yet.
-void drawTechniqueMapSection(MapView& view, int maxLength, bool waiting);
+// bar. `maxLength` bounds the maps' length; `families`: whose techniques the maps hold (merges
+// with vcm and bpm); `waiting` while no map has arrived yet.
+void drawTechniqueMapSection(MapView& view, int maxLength, TechniqueFamilies families, bool waiting);
 // The same, over the image's top right corner.
 void drawErrorBarOverlay(const DisplaySettings& display, ImVec2 imageOrigin, ImVec2 imageSize, float uiScale);
 

