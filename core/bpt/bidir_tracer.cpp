@@ -479,7 +479,10 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         r.pRaster = pRaster;
         r.inImage = inImage;
         r.inPyramid = inPyramid;
-        if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge);
+        // The merged path's vertices as connection C(s, t - 1) holds them (merge_sampleable.h).
+        if (demand.sampleable)
+          r.sampleableBy = sampleableWithMerges(MisPath{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr},
+                                                TechniqueKind::Merge);
         sink.record(r);
       }
       if (!inImage || !(w > 0.f)) return;

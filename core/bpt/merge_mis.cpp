@@ -15,7 +15,7 @@ struct PathScratch {
   PathDensities d;
   std::vector<uint8_t> surface;
 };
-const PathScratch& densitiesOf(const Scene& scene, const Camera& camera, const MisPath& path) {
+PathScratch& densitiesOf(const Scene& scene, const Camera& camera, const MisPath& path) {
   thread_local PathScratch p;
   pathDensities(scene, camera, path, p.d);
   p.surface.resize(static_cast<size_t>(p.d.n));
@@ -93,7 +93,10 @@ float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& 
                        float minDistance, const MergeMis& merge) {
   if (!techniques.contains(x)) return 0.f;
   if (!x.isMerge() && path.t == 1 && camera.isOrthographic()) return 0.f;
-  const PathScratch& p = densitiesOf(scene, camera, path);
+  PathScratch& p = densitiesOf(scene, camera, path);
+  // A merge's z(t-2), the connection's camera end here, keeps its walk's delta flag: where it is a
+  // mirror the connections through it cannot sample the merged path (mergedPathDensities).
+  if (x.isMerge()) p.d.delta[static_cast<size_t>(path.s)] = cameraVertex(path, path.t - 1).isDelta;
   const double w = weightWithMerges(p.d, p.surface, x, techniques, options, lightTracingRatio, minDistance, merge);
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;
 }

@@ -6,6 +6,7 @@
 
 #include "core/bpt/merge_mis.h"
 #include "core/bpt/subpath.h"
+#include "core/sampling/technique_label.h"
 #include "core/counters/counters.h"
 #include "core/scene/gltf_loader.h"
 
@@ -62,15 +63,13 @@ TEST(MergeSampleable, OnlyTheMergeSamplesLightBetweenMirrors) {
   EXPECT_EQ(sampleableWithMerges(path, TechniqueKind::Merge), bitOf(Technique::merge(3, 3)));
 }
 
-// On the merge paths of the mirror-and-glass box (every camera vertex z(t-1), t >= 2, with every
-// light vertex y(s-1), s >= 2, both mergeable), the weights of the techniques that can really
-// sample the path (sampleableWithMerges) sum to one. DISABLED: today weightWithMerges takes a
-// merge's path as that of C(s, t - 1), whose pathDensities patch marks z(t-2) non-delta, so where
-// z(t-2) is a mirror or glass the connections C(s), C(s + 1) and the merge at z(t-2) enter the
-// denominator although they cannot sample the path: about 9 % of the merge paths here, with sums
-// down to 0.01 (a caustic seen in the mirror loses most of its merged light). Restoring
-// d.delta[s] = z(t-2).isDelta for a merge makes every sum one. For the MIS owner to enable.
-TEST(MergeSampleable, DISABLED_MergeWeightsOverTheSampleableTechniquesSumToOne) {
+// A merge is weighed on its merged path (merge_mis.h mergedPathDensities), where every vertex keeps
+// its walk's delta flag but the merged one: where z(t-2) is a mirror or glass the connections
+// through it and the merge at it cannot sample the path and get no weight, so the weights of the
+// techniques that can sample it (sampleableWithMerges) sum to one on every merge path, and
+// mergeWeight is the merge's own among them. Reading the merge's path as C(s, t - 1)'s, whose
+// patch marks z(t-2) non-delta, failed on about 9 % of these paths with sums down to 0.01.
+TEST(MergeSampleable, MergeWeightsOverTheSampleableTechniquesSumToOne) {
   const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-spheres.gltf"));
   const Camera camera(scene.cameraDesc(), 64, 64);
   Counters counters;
@@ -81,7 +80,9 @@ TEST(MergeSampleable, DISABLED_MergeWeightsOverTheSampleableTechniquesSumToOne) 
   const TechniqueSet vcm = TechniqueSet::parse("all;m=all");
   const MergeMis merge{4.0};
   Pcg32 rng(7, 11);
-  int checked = 0, off = 0;
+  PathDensities d;
+  std::vector<uint8_t> surface;
+  int checked = 0, off = 0, behindDelta = 0;
   for (int i = 0; i < 4000; ++i) {
     const Vec2 pRaster(rng.next1D() * 64.f, rng.next1D() * 64.f);
     const int nt = generateCameraSubpath(scene, camera, pRaster, Vec2(0.5f), rng, WalkOptions{7, false}, cameraPath, counters);
@@ -92,27 +93,30 @@ TEST(MergeSampleable, DISABLED_MergeWeightsOverTheSampleableTechniquesSumToOne) 
       for (int s = 2; s <= ns && s + t - 2 <= 6; ++s) {
         const PathVertex& y = lightPath[s - 1];
         if (y.type != VertexType::Surface || y.isDelta) continue;
+        const BsdfEval f = cameraPath.bsdf(t - 1).eval(z.wo, y.wo, TransportMode::Radiance);
+        const MergePdfs pdfs{f.pdfFwdW, f.pdfRevW};
+        mergedPathDensities(lightPath.data(), s, cameraPath.data(), t, pdfs, d, surface);
         const MisPath path{lightPath.data(), s, cameraPath.data(), t - 1, nullptr, nullptr};
         const uint64_t bits = sampleableWithMerges(path, TechniqueKind::Merge);
-        // The connections weigh this path from their own paths, where z(t-2) keeps its delta flag
-        // (only their joined ends are patched); the merges from the merge's MisPath, as the tracer.
-        PathDensities d = pathDensities(scene, camera, path);
-        d.delta[static_cast<size_t>(s)] = cameraPath[t - 2].isDelta;
-        std::vector<uint8_t> surface(static_cast<size_t>(d.n));
-        for (int j = 0; j < d.n; ++j)
-          surface[static_cast<size_t>(j)] = (j < s ? lightPath[j] : cameraPath[d.n - 1 - j]).type == VertexType::Surface;
         double sum = 0.0;
         for (const Technique x : techniquesOfLength(s + t - 2, TechniqueFamilies::All)) {
-          if (!(bits >> x.slot() & 1)) continue;
-          sum += x.isMerge() ? weightWithMerges(scene, camera, path, x, vcm, MisOptions{}, 1.f, 0.f, merge)
-                             : weightWithMerges(d, surface, x, vcm, MisOptions{}, 1.f, 0.f, merge);
+          const double w = weightWithMerges(d, surface, x, vcm, MisOptions{}, 1.f, 0.f, merge);
+          if (!(bits >> x.slot() & 1)) {
+            EXPECT_EQ(w, 0.0) << techniqueLabel(x) << " cannot sample this path";
+            continue;
+          }
+          sum += w;
         }
+        EXPECT_NEAR(mergeWeight(lightPath.data(), s, cameraPath.data(), t, pdfs, vcm, MisOptions{}, 1.f, 0.f, merge),
+                    weightWithMerges(d, surface, Technique::merge(s, t), vcm, MisOptions{}, 1.f, 0.f, merge), 1e-6);
         ++checked;
+        behindDelta += cameraPath[t - 2].isDelta ? 1 : 0;
         off += std::abs(sum - 1.0) > 1e-3;
       }
     }
   }
   EXPECT_GT(checked, 1000);
+  EXPECT_GT(behindDelta, 50);
   EXPECT_EQ(off, 0) << "of " << checked << " merge paths";
 }
 
