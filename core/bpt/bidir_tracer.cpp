@@ -4,6 +4,7 @@
 #include "core/bpt/connect.h"
 #include "core/bpt/mis_off.h"
 #include "core/bpt/path_techniques.h"
+#include "core/bpt/sampleable_merges.h"
 #include "core/counters/technique_tally.h"
 
 #include <algorithm>
@@ -236,7 +237,7 @@ template <bool kRecords, bool kTimed>
   tally.contributed();
 
   Spectrum L = c.L;
-  if (options_.injectBias && options_.injectBias->s == s && options_.injectBias->t == t)
+  if (options_.injectBias && options_.injectBias->technique() == Technique{s, t})
     L *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
   // The one check of a contribution: NaN, Inf and negative values are dropped one technique at a
   // time, at the door, before any output sees them.
@@ -248,7 +249,7 @@ template <bool kRecords, bool kTimed>
     r.weight = w;
     r.imageWeight = imageWeight;
     r.pRaster = pRaster;
-    if (demand.sampleable) r.sampleableBy = sampleableTechniques(path);
+    if (demand.sampleable) r.sampleableBy = sampleableTechniques(path) | (mergePass_ ? mergeableTechniques(path) : 0);
     if (demand.densityRatios) {
       walks.densityRatios.resize(static_cast<size_t>(s + t));
       techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
@@ -403,7 +404,8 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       TechniqueTally<false> tally(counters, x);
       const PathVertex& y = pass.vertices[v];
       const BsdfEval f = bsdf.eval(z.wo, y.wo, TransportMode::Radiance);
-      const Spectrum L = z.beta * f.f * y.beta * normalisation;
+      Spectrum L = z.beta * f.f * y.beta * normalisation;
+      if (options_.injectBias && options_.injectBias->technique() == x) L *= options_.injectBias->factor;
       if (isBlack(L)) return tally.zero();
       const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
       const float w = enabled ? weightWithMerges(scene_, camera_, path, x, options_.techniques, options_.mis,
@@ -423,6 +425,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         r.pRaster = pRaster;
         r.inImage = inImage;
         r.inPyramid = inPyramid;
+        if (demand.sampleable) r.sampleableBy = sampleableByMerge(path);
         sink.record(r);
       }
       if (!inImage || !(w > 0.f)) return;
