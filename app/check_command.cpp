@@ -2,15 +2,22 @@
 // a verdict (core/check/check_report.h).
 #include "app/check_command.h"
 
+#include "app/output_check.h"
 #include "app/progress.h"
 #include "app/shared_options.h"
 #include "core/camera/image_size.h"
+#include "core/check/check_json.h"
+#include "core/check/merge_bias.h"
+#include "core/io/text_file.h"
 #include "core/render/render_session.h"
 
 #include <fmt/core.h>
 
 #include <chrono>
 #include <iostream>
+#include <memory>
+#include <optional>
+#include <vector>
 
 namespace pathlab::app {
 
@@ -18,6 +25,7 @@ namespace {
 constexpr double kDefaultCheckSeconds = 10.0;
 constexpr int kDefaultCheckSide = 128;
 constexpr int kMaxCheckSide = 4096;
+constexpr int kMaxRadiusLevels = 6;
 }  // namespace
 
 void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
@@ -37,6 +45,12 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
   cmd->add_option("--min-hits", o.check.minNonzeroPasses,
                   "Compare a pair in a region only when both found paths there in at least this many passes (default 20)")
       ->check(CLI::Range(uint64_t{2}, uint64_t{1} << 40));
+  cmd->add_option("--radius-levels", o.radiusLevels,
+                  "With merging techniques: render at this many radii, --radius halved each time (alpha = 1), and "
+                  "judge each merge by its difference from the connections extrapolated to r -> 0 (default 3)")
+      ->check(CLI::Range(2, kMaxRadiusLevels));
+  cmd->add_option("--json", o.json, "Also write the verdict (and each merge's bias radius by radius) as JSON to this file");
+  addForceFlag(cmd, o.force, "the --json file");
   addThreadsOption(cmd, o.threads);
   addLoadOptions(cmd, o.scene.load, o.scene.environment);
 }
@@ -46,6 +60,15 @@ int runCheck(CheckCommandOptions o) {
   RenderSettings& settings = o.estimator.settings;
   if (settings.integrator == IntegratorKind::Pt)
     throw std::invalid_argument("check compares the bidirectional techniques: use --integrator bpt or lt");
+  const bool merges = covers(enabledTechniques(settings).families(), TechniqueKind::Merge);
+  if (merges && settings.mergeRadiusAlpha != 1.f)
+    throw std::invalid_argument(fmt::format("--radius-alpha {:g}: check renders each radius fixed, so that its bias is "
+                                            "that of one radius (alpha 1)",
+                                            settings.mergeRadiusAlpha));
+  if (!o.json.empty()) {
+    checkOutputWritable(o.json);
+    refuseExisting(o.json, o.force);
+  }
   const ThreadLimit threadLimit(o.threads);
 
   Scene scene(readScene(o.scene));
@@ -55,30 +78,62 @@ int runCheck(CheckCommandOptions o) {
   settings.height = size.y;
   printWarnings(std::cerr, scene, settings);
 
-  RenderSession session(scene, settings);
+  // One render per radius, each with its own seed so the radii's differences are independent
+  // (merge_bias.h); without merges, the one render of the connections' check.
+  const int levels = merges ? o.radiusLevels : 1;
   const bool timed = o.budget.spp == 0;
-  const double seconds = o.budget.seconds > 0.0 ? o.budget.seconds : kDefaultCheckSeconds;
+  const double seconds = (o.budget.seconds > 0.0 ? o.budget.seconds : kDefaultCheckSeconds) / levels;
   const uint64_t targetPasses = static_cast<uint64_t>(o.budget.spp);
   const uint64_t minPasses = std::max<uint64_t>(o.check.minPasses, 2);
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  {
+  std::vector<std::unique_ptr<RenderSession>> sessions;
+  std::vector<MergeBiasLevel> radii;
+  for (int level = 0; level < levels; ++level) {
+    RenderSettings s = settings;
+    s.mergeRadius = settings.mergeRadius / static_cast<float>(1 << level);
+    s.seed = settings.seed + static_cast<uint64_t>(level);
+    sessions.push_back(std::make_unique<RenderSession>(scene, s));
+    RenderSession& session = *sessions.back();
+    const auto start = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     const double pixels = static_cast<double>(session.film().pixelCount());
+    const std::string label = merges ? fmt::format("r = {:g}  ", s.mergeRadius) : "";
     ProgressBar bar([&] {
       const double passFraction = static_cast<double>(session.pixelsDoneInPass()) / pixels;
       const double done = timed ? elapsed() / seconds
                                 : (static_cast<double>(session.passes()) + passFraction) / static_cast<double>(targetPasses);
-      return std::pair{done, fmt::format("{} passes  {:.1f} s", session.passes(), elapsed())};
+      return std::pair{done, fmt::format("{}{} passes  {:.1f} s", label, session.passes(), elapsed())};
     });
     // A timed check still runs the passes a standard error needs.
     while (timed ? (session.passes() < minPasses || elapsed() < seconds) : session.passes() < targetPasses)
       session.renderPass();
+    radii.push_back(MergeBiasLevel{s.mergeRadius, session.techniqueCheck()});
   }
-  const CheckReport report = checkReport(*session.techniqueCheck(), o.check);
-  std::cout << fmt::format("{}: {}, {} x {}, seed {}\n", o.scene.path, integratorName(settings.integrator), settings.width,
-                           settings.height, settings.seed);
+  // The connections do not depend on the radius: their sums over every render are one longer check.
+  TechniqueCheck pooled = *sessions.front()->techniqueCheck();
+  for (size_t l = 1; l < sessions.size(); ++l) pooled.absorb(*sessions[l]->techniqueCheck());
+  // The connections' verdicts; a merge is judged by its bias against the radius instead.
+  const CheckReport report = checkReport(pooled, o.check);
+  std::optional<MergeBiasReport> mergeReport;
+  if (merges) mergeReport = mergeBiasReport(radii, o.check);
+
+  std::cout << fmt::format("{}: {}, {} x {}, seed {}{}\n", o.scene.path, integratorName(settings.integrator),
+                           settings.width, settings.height, settings.seed,
+                           merges ? fmt::format(", merges at {} radii from {:g} (the i-th: halved i times, seed + i)", levels,
+                                                settings.mergeRadius)
+                                  : "");
   std::cout << checkReportText(report);
-  return report.agrees() ? 0 : 1;
+  if (mergeReport) std::cout << "\n" << mergeBiasText(*mergeReport);
+  if (!o.json.empty()) {
+    nlohmann::json json = checkJson(report, mergeReport ? &*mergeReport : nullptr);
+    json["scene"] = o.scene.path;
+    json["integrator"] = integratorName(settings.integrator);
+    json["width"] = settings.width;
+    json["height"] = settings.height;
+    json["seed"] = settings.seed;
+    writeTextAtomically(o.json, json.dump(2) + "\n");
+    std::cerr << "wrote " << o.json << "\n";
+  }
+  return report.agrees() && (!mergeReport || mergeReport->agrees()) ? 0 : 1;
 }
 
 }  // namespace pathlab::app

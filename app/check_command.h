@@ -16,6 +16,8 @@ struct CheckCommandOptions {
   EstimatorOptions estimator = [] {
     EstimatorOptions e;
     e.settings.checkTechniques = true;
+    // With merges, each radius of the ladder is rendered fixed (alpha = 1; merge_bias.h).
+    e.settings.mergeRadiusAlpha = 1.f;
     return e;
   }();
   // Not given: the camera's shape with the longest side 128 (the check needs passes, not pixels).
@@ -23,6 +25,10 @@ struct CheckCommandOptions {
   SampleBudget budget;   // neither given: the default time
   int threads = 0;
   CheckOptions check;
+  // With merges: the radii r, r/2, ..., r/2^(levels-1), r from --radius (merge_bias.h).
+  int radiusLevels = 3;
+  std::string json;  // also write the verdict as JSON here
+  bool force = false;
 };
 
 void addCheckCommand(CLI::App& app, CheckCommandOptions& options);

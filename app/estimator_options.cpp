@@ -1,6 +1,8 @@
 // Registration and post-processing of the estimator options.
 #include "app/estimator_options.h"
 
+#include "core/sampling/technique_label.h"
+
 #include <fmt/core.h>
 
 #include <charconv>
@@ -67,7 +69,7 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
       ->needs(isolate);
   cmd->add_option("--inject-bias", o.injectBias,
                   "S,T,FACTOR: multiply technique (S,T)'s unweighted contribution by FACTOR, a deliberate bug that "
-                  "biases the image (for teaching and for `pathlab check`)");
+                  "biases the image (for teaching and for `pathlab check`); MS,T,FACTOR: the merge M(S,T)");
   // A callback, not a negated flag: CLI11 prints a negated flag as "--no-rr{false}".
   cmd->add_flag_callback("--no-rr", [&s] { s.russianRoulette = false; },
                          "Turn Russian roulette off (it is on by default, from the second scattering on; delta bounces always continue)");
@@ -117,17 +119,20 @@ void finishEstimatorOptions(EstimatorOptions& o) {
       throw std::invalid_argument(fmt::format("--inject-bias: '{}' is not a number", factorText));
     if (!(factor >= 0.0 && factor <= kMaxInjectedBias))
       throw std::invalid_argument(fmt::format("--inject-bias: factor {} is outside 0..{:g}", factorText, kMaxInjectedBias));
-    o.settings.injectBias = BiasInjection{parseInt(o.injectBias.substr(0, a), "--inject-bias"),
+    // "M2,2,2": the merge M(2,2) (its normalisation doubled, say).
+    const bool merge = o.injectBias[0] == 'M' || o.injectBias[0] == 'm';
+    o.settings.injectBias = BiasInjection{parseInt(o.injectBias.substr(merge ? 1 : 0, a - (merge ? 1 : 0)), "--inject-bias"),
                                           parseInt(o.injectBias.substr(a + 1, b - a - 1), "--inject-bias"),
-                                          static_cast<float>(factor)};
+                                          static_cast<float>(factor),
+                                          merge ? TechniqueKind::Merge : TechniqueKind::Connection};
   }
   validateSettings(o.settings);
 }
 
 std::string biasInjectionWarning(const RenderSettings& s) {
   if (!s.injectBias || s.integrator == IntegratorKind::Pt) return "";
-  return fmt::format("technique ({},{}) is multiplied by {:g} (--inject-bias): this image is deliberately wrong",
-                     s.injectBias->s, s.injectBias->t, s.injectBias->factor);
+  return fmt::format("technique {} is multiplied by {:g} (--inject-bias): this image is deliberately wrong",
+                     techniqueLabel(s.injectBias->technique()), s.injectBias->factor);
 }
 
 void printWarnings(std::ostream& log, const Scene& scene, const RenderSettings& settings) {

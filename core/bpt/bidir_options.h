@@ -19,10 +19,13 @@ struct Isolation {
 };
 
 // A deliberate bug for teaching and for testing the consistency check (issue 13): technique
-// (s, t)'s unweighted contribution is multiplied by `factor`, so it and the image are biased.
+// (s, t)'s unweighted contribution is multiplied by `factor`, so it and the image are biased. A
+// merge M(s, t) with kind Merge (factor 2: its density estimate's normalisation doubled).
 struct BiasInjection {
   int s = 0, t = 1;
   float factor = 1.f;
+  TechniqueKind kind = TechniqueKind::Connection;
+  Technique technique() const { return Technique{s, t, kind}; }
   bool operator==(const BiasInjection&) const = default;
 };
 

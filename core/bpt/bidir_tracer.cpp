@@ -258,7 +258,7 @@ template <bool kRecords, bool kTimed>
   tally.contributed();
 
   Spectrum L = c.L;
-  if (options_.injectBias && options_.injectBias->s == s && options_.injectBias->t == t)
+  if (options_.injectBias && options_.injectBias->technique() == Technique{s, t})
     L *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
   // The one check of a contribution: NaN, Inf and negative values are dropped one technique at a
   // time, at the door, before any output sees them.
@@ -450,7 +450,8 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       TechniqueTally<false> tally(counters, x);
       const PathVertex& y = pass.vertices[v];
       const BsdfEval f = bsdf.eval(z.wo, y.wo, TransportMode::Radiance);
-      const Spectrum L = z.beta * f.f * y.beta * normalisation;
+      Spectrum L = z.beta * f.f * y.beta * normalisation;
+      if (options_.injectBias && options_.injectBias->technique() == x) L *= options_.injectBias->factor;
       if (isBlack(L)) return tally.zero();
       // The merged path's two densities at z's BSDF (mergedPathDensities): toward y(s-2) and z(t-2).
       const MergePdfs pdfs{f.pdfFwdW, f.pdfRevW};

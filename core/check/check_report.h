@@ -55,7 +55,7 @@ struct TechniqueVerdict {
 };
 
 struct CheckReport {
-  std::vector<TechniqueVerdict> techniques;  // every enabled technique, in index order
+  std::vector<TechniqueVerdict> techniques;  // every enabled connection, in index order (merges: merge_bias.h)
   CheckOptions options;
   uint64_t passes = 0;
   int blocks = 0;

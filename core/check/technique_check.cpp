@@ -61,8 +61,9 @@ void TechniqueCheck::PassSums::add(Technique x, Vec2 pRaster, float luminance, u
     double* a = &a_[3 * (c.pairIndex(x, partner) * blocks + block)];
     a[0] += v;
     a[1] += v2;
-    // p_i / p_j = 1 / (p_j / p_i); a partner able to sample the path has p_j > 0.
-    const double ratio = densityRatios ? densityRatios[sp] : 0.0;
+    // p_i / p_j = 1 / (p_j / p_i); a partner able to sample the path has p_j > 0. The ratios are
+    // the connections' (one per connection slot): a merge's second moment is its own samples'.
+    const double ratio = densityRatios && !x.isMerge() && !partner.isMerge() ? densityRatios[sp] : 0.0;
     if (ratio > 0.0 && std::isfinite(ratio)) a[2] += v2 / ratio;
   }
 }
@@ -117,9 +118,26 @@ void TechniqueCheck::finishPass(std::vector<PassSums*> threads) {
   ++passes_;
 }
 
+void TechniqueCheck::absorb(const TechniqueCheck& other) {
+  if (other.width_ != width_ || other.height_ != height_ || other.maxLength_ != maxLength_ || other.blocks_ != blocks_ ||
+      other.families_ != families_ || other.enabled_ != enabled_)
+    throw std::invalid_argument("TechniqueCheck::absorb: the checks differ in shape");
+  for (size_t i = 0; i < sums_.size(); ++i) {
+    PairSums& p = sums_[i];
+    const PairSums& q = other.sums_[i];
+    p.sumA += q.sumA, p.sumB += q.sumB, p.sumD += q.sumD, p.sumD2 += q.sumD2;
+    p.nonzeroA += q.nonzeroA, p.nonzeroB += q.nonzeroB;
+    p.ownA2 += q.ownA2, p.crossA2 += q.crossA2, p.ownB2 += q.ownB2, p.crossB2 += q.crossB2;
+    p.samplesA = std::max(p.samplesA, q.samplesA), p.samplesB = std::max(p.samplesB, q.samplesB);
+    p.pixels = std::max(p.pixels, q.pixels);
+  }
+  passes_ += other.passes_;
+}
+
 PairSums TechniqueCheck::pair(Technique i, Technique j, int region) const {
-  // Stored once per unordered pair, under (lower s, higher s); the other order is its mirror.
-  if (i.s < j.s) return sums_[pairIndex(i, j) * static_cast<size_t>(regions()) + static_cast<size_t>(region)];
+  // Stored once per unordered pair, under (lower slot, higher slot) as finishPass writes them; the
+  // other order is its mirror. (A connection's slot is its s; a merge's follows every connection's.)
+  if (i.slot() < j.slot()) return sums_[pairIndex(i, j) * static_cast<size_t>(regions()) + static_cast<size_t>(region)];
   const PairSums& p = sums_[pairIndex(j, i) * static_cast<size_t>(regions()) + static_cast<size_t>(region)];
   return PairSums{.sumA = p.sumB,
                   .sumB = p.sumA,

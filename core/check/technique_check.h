@@ -75,6 +75,9 @@ class TechniqueCheck {
 
   // Adds one finished pass (the sum of every thread's PassSums, which are then cleared).
   void finishPass(std::vector<PassSums*> threads);
+  // Adds the passes of another check of the same shape and techniques, rendered with independent
+  // streams (another seed): its pairs' sums are sums over passes, so they add.
+  void absorb(const TechniqueCheck& other);
 
   int maxLength() const { return maxLength_; }
   TechniqueFamilies families() const { return families_; }

@@ -32,14 +32,26 @@ void sumToLeader(CheckpointExchange& run, const std::array<std::span<const doubl
 struct RunImage {
   Image mean;
   TwoBufferEstimate twoBuffer;
+  std::optional<RelMseSplit> split;  // with a reference and two passes
 };
+
+// The split needs the even and odd buffers the mean came from: taken where they are.
+std::optional<RelMseSplit> splitAgainst(const EvenOddBuffers& buffers, const Image& mean, const Image* reference) {
+  if (!reference || buffers.evenPasses() == 0 || buffers.oddPasses() == 0) return std::nullopt;
+  return splitRelMse(buffers, mean, *reference);
+}
 
 // Collective: the run's mean image and two-buffer estimate on the leader, from every process's
 // film and even/odd sums added there; nothing on the other processes. One process's own are the
 // run's: read without copies.
 std::optional<RunImage> runImageOnLeader(CheckpointExchange& run, const RenderSession& session,
-                                         const EvenOddBuffers& buffers, const RunProgress& progress) {
-  if (run.processes() == 1) return RunImage{session.image(), buffers.estimate()};
+                                         const EvenOddBuffers& buffers, const RunProgress& progress,
+                                         const Image* reference) {
+  if (run.processes() == 1) {
+    RunImage image{session.image(), buffers.estimate(), {}};
+    image.split = splitAgainst(buffers, image.mean, reference);
+    return image;
+  }
   const int width = session.film().width(), height = session.film().height();
   std::optional<Film> film;
   std::optional<EvenOddBuffers> runBuffers;
@@ -52,7 +64,9 @@ std::optional<RunImage> runImageOnLeader(CheckpointExchange& run, const RenderSe
   if (!run.leader()) return std::nullopt;
   film->finishPass(progress.passes, progress.lightSubpaths);
   runBuffers->addForeignPasses(progress.evenPasses, progress.oddPasses);
-  return RunImage{film->readout(), runBuffers->estimate()};
+  RunImage image{film->readout(), runBuffers->estimate(), {}};
+  image.split = splitAgainst(*runBuffers, image.mean, reference);
+  return image;
 }
 
 }  // namespace
@@ -119,10 +133,11 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
     c.cameraSamples = progress.cameraSamples;
     c.rays = progress.rays;
     Image mean;
-    if (std::optional<RunImage> image = runImageOnLeader(run, session, buffers, progress)) {
+    if (std::optional<RunImage> image = runImageOnLeader(run, session, buffers, progress, reference)) {
       mean = std::move(image->mean);
       if (reference) c.error = errorMetrics(mean, *reference);
       c.twoBuffer = image->twoBuffer;
+      c.split = image->split;
     }
     curve.checkpoints.push_back(c);
     if (onCheckpoint) onCheckpoint(c);

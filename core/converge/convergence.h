@@ -29,6 +29,7 @@ struct Checkpoint {
   double wallSeconds = 0.0, cpuSeconds = 0.0;  // both clocks, whichever the budget uses
   uint64_t spp = 0;
   std::optional<ErrorMetrics> error;  // against the reference, when there is one
+  std::optional<RelMseSplit> split;   // error->relMse as bias^2 + variance (splitRelMse), with a reference
   TwoBufferEstimate twoBuffer;        // zeros until two passes are done
   uint64_t cameraSamples = 0, rays = 0;  // rays: closest-hit and shadow queries
 };

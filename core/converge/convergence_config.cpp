@@ -13,8 +13,10 @@ namespace pathlab {
 
 namespace {
 
-constexpr std::array<std::string_view, 3> kIntegrators = {"bpt", "pt", "lt"};
-constexpr std::array<std::string_view, 6> kKeys = {"mis", "beta", "min-connection", "techniques", "max-length", "connect"};
+// vcm and bpm are bpt with a technique set of their own, as on the command line.
+constexpr std::array<std::string_view, 5> kIntegrators = {"bpt", "pt", "lt", "vcm", "bpm"};
+constexpr std::array<std::string_view, 8> kKeys = {"mis",        "beta",    "min-connection", "techniques",
+                                                   "max-length", "connect", "radius",         "radius-alpha"};
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -76,7 +78,9 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
   if (name == "bpt") s.integrator = IntegratorKind::Bpt;
   else if (name == "pt") s.integrator = IntegratorKind::Pt;
   else if (name == "lt") s.integrator = IntegratorKind::Lt;
-  else fail(config, fmt::format("unknown integrator '{}' (bpt, pt or lt)", name));
+  else if (name == "vcm") s.integrator = IntegratorKind::Bpt, s.techniques = TechniqueSet::parse("all;m=all");
+  else if (name == "bpm") s.integrator = IntegratorKind::Bpt, s.techniques = TechniqueSet::parse("m=all");
+  else fail(config, fmt::format("unknown integrator '{}' (bpt, pt, lt, vcm or bpm)", name));
   if (colon != std::string_view::npos) {
     const std::string_view keys = config.substr(colon + 1);
     for (std::string_view pair : splitWhere(keys, ',', startsKey)) {
@@ -84,8 +88,10 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
       const size_t eq = pair.find('=');
       if (eq == std::string_view::npos) fail(config, fmt::format("'{}' is not key=value", pair));
       const std::string_view key = trim(pair.substr(0, eq)), value = trim(pair.substr(eq + 1));
-      const bool estimatorKey =
-          key == "mis" || key == "beta" || key == "min-connection" || key == "techniques" || key == "connect";
+      const bool estimatorKey = key == "mis" || key == "beta" || key == "min-connection" || key == "techniques" ||
+                                key == "connect" || key == "radius" || key == "radius-alpha";
+      if (key == "techniques" && (name == "vcm" || name == "bpm"))
+        fail(config, fmt::format("{} sets the techniques: for another set use bpt:techniques=...", name));
       if (estimatorKey && s.integrator == IntegratorKind::Pt)
         fail(config, fmt::format("{} applies to bpt and lt, not pt", key));
       if (key == "mis") {
@@ -110,11 +116,17 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
         } catch (const std::invalid_argument& e) {
           fail(config, e.what());
         }
+      } else if (key == "radius") {
+        s.mergeRadius = parseNumber<float>(config, key, value);  // validateSettings checks the range
+      } else if (key == "radius-alpha") {
+        s.mergeRadiusAlpha = parseNumber<float>(config, key, value);
       } else if (key == "max-length") {
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");
       } else {
-        fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length, connect)", key));
+        fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length, connect, radius, "
+                                  "radius-alpha)",
+                                  key));
       }
     }
   }

@@ -1,6 +1,6 @@
 // The configurations `pathlab converge` compares: a `;`-separated list of
-// INTEGRATOR[:key=value[,key=value...]] with keys mis, beta, min-connection, techniques, max-length and
-// connect (all or endpoints).
+// INTEGRATOR[:key=value[,key=value...]] (bpt, pt, lt, vcm or bpm) with keys mis, beta, min-connection,
+// techniques, max-length, connect (all or endpoints), radius and radius-alpha (of the merges).
 #pragma once
 
 #include "core/render/render_settings.h"

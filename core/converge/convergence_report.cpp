@@ -34,7 +34,7 @@ std::string markdownCell(const std::string& s) {
 std::string convergenceCsv(const std::vector<ConvergenceCurve>& curves) {
   const bool split = std::any_of(curves.begin(), curves.end(), [](const ConvergenceCurve& c) { return c.processes > 1; });
   std::string csv = "config,spp,seconds,rmse,relmse,mape,twobuffer_mse,twobuffer_relmse,camera_samples,rays,wall_seconds,"
-                    "cpu_seconds";
+                    "cpu_seconds,relmse_bias2,relmse_variance";
   csv += split ? ",ranks\n" : "\n";
   for (const ConvergenceCurve& curve : curves)
     for (const Checkpoint& c : curve.checkpoints) {
@@ -43,6 +43,7 @@ std::string convergenceCsv(const std::vector<ConvergenceCurve>& curves) {
       csv += fmt::format("{},{},{:.6f},{},{:.6g},{:.6g},{},{},{:.6f},{:.6f}", csvQuote(curve.label), c.spp, c.seconds,
                          errors, c.twoBuffer.mse, c.twoBuffer.relMse, c.cameraSamples, c.rays, c.wallSeconds,
                          c.cpuSeconds);
+      csv += c.split ? fmt::format(",{:.6g},{:.6g}", c.split->bias2, c.split->variance) : ",,";
       csv += split ? fmt::format(",{}\n", curve.processes) : "\n";
     }
   return csv;

@@ -10,7 +10,8 @@ namespace pathlab {
 
 // One row per checkpoint: config, spp, seconds (on the budget's clock), rmse, relmse, mape (empty
 // without a reference), twobuffer_mse, twobuffer_relmse, camera_samples, rays, wall_seconds,
-// cpu_seconds, and when processes rendered the runs together (ConvergenceCurve::processes),
+// cpu_seconds, relmse_bias2, relmse_variance (relmse split as RelMseSplit: empty without a reference
+// or before two passes), and when processes rendered the runs together (ConvergenceCurve::processes),
 // ranks: how many. Labels are quoted (RFC 4180): they contain commas.
 std::string convergenceCsv(const std::vector<ConvergenceCurve>& curves);
 

@@ -83,4 +83,32 @@ TwoBufferEstimate EvenOddBuffers::estimate() const {
   return e;
 }
 
+double EvenOddBuffers::varianceOfMean(size_t i) const {
+  if (evenPasses_ == 0 || oddPasses_ == 0) return 0.0;
+  const double mA = static_cast<double>(evenPasses_), mB = static_cast<double>(oddPasses_), n = mA + mB;
+  const double d = even_[i] / mA - odd_[i] / mB;
+  return d * d * mA * mB / (n * n);
+}
+
+RelMseSplit splitRelMse(const EvenOddBuffers& buffers, const Image& mean, const Image& reference) {
+  if (mean.width != reference.width || mean.height != reference.height || mean.width != buffers.width() ||
+      mean.height != buffers.height())
+    throw std::invalid_argument(fmt::format("the split of relMSE: the image is {} x {}, the reference {} x {}, the buffers {} x {}",
+                                            mean.width, mean.height, reference.width, reference.height, buffers.width(),
+                                            buffers.height()));
+  RelMseSplit split;
+  const size_t n = mean.rgb.size();
+  if (n == 0) return split;
+  double rel = 0.0, variance = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double r = reference.rgb[i], d = static_cast<double>(mean.rgb[i]) - r, norm = r * r + kRelMseEpsilon;
+    rel += d * d / norm;
+    variance += buffers.varianceOfMean(i) / norm;
+  }
+  split.relMse = rel / static_cast<double>(n);
+  split.variance = variance / static_cast<double>(n);
+  split.bias2 = split.relMse - split.variance;
+  return split;
+}
+
 }  // namespace pathlab

@@ -30,6 +30,25 @@ struct ErrorMetrics {
 // Throws std::invalid_argument when the sizes differ.
 ErrorMetrics errorMetrics(const Image& image, const Image& reference);
 
+// The relative MSE of a progressive mean image against a reference, split into its variance and
+// its squared bias (issue 32: merging is consistent, not unbiased; its error is both).
+// Per value i (pixel and channel), with m the mean of n passes and r the reference,
+//     E[(m_i - r_i)^2] = bias_i^2 + Var(m_i),
+// and the two-buffer estimate v_i = (A_i - B_i)^2 mA mB / n^2 (EvenOddBuffers) is an unbiased
+// estimate of Var(m_i) when the passes are independent and alike. So
+//     variance = mean_i v_i / (r_i^2 + eps),   bias2 = relMse - variance,
+// with relMse = mean_i (m_i - r_i)^2 / (r_i^2 + eps) as errorMetrics computes it: the two parts
+// sum to relMse by construction, and bias2 is an unbiased estimate of the bias's share (of the
+// reference's too: a reference of finite passes contributes its own variance here). It is signed:
+// where the estimator is unbiased (bpt) it scatters around zero by about the variance part's own
+// noise, and a value of the order of the variance part says nothing yet. With a progressive radius
+// (alpha < 1) the passes are not alike (each merges within its own r_i), the even and odd halves
+// differ by the bias of neighbouring radii, and v_i slightly overstates the variance; at alpha = 1
+// the split is exact in expectation.
+struct RelMseSplit {
+  double relMse = 0.0, variance = 0.0, bias2 = 0.0;
+};
+
 // The variance part of the error of the mean image, estimated without a reference.
 struct TwoBufferEstimate {
   double mse = 0.0;     // estimate of E[(mean − truth)²] without bias; compare with ErrorMetrics::mse
@@ -66,6 +85,8 @@ class EvenOddBuffers {
   void addRunningMean(const Image& mean, uint64_t passIndex);
 
   uint64_t passes() const { return evenPasses_ + oddPasses_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
   uint64_t evenPasses() const { return evenPasses_; }
   uint64_t oddPasses() const { return oddPasses_; }
   // The sums of the even and of the odd pass images (3 doubles a pixel): buffers that took
@@ -80,6 +101,9 @@ class EvenOddBuffers {
   }
   // Needs at least one even and one odd pass; returns zeros before.
   TwoBufferEstimate estimate() const;
+  // The two-buffer variance of the mean of value i (pixel, channel), (A_i - B_i)^2 mA mB / n^2;
+  // 0 before one even and one odd pass.
+  double varianceOfMean(size_t i) const;
 
  private:
   int width_, height_;
@@ -87,5 +111,9 @@ class EvenOddBuffers {
   std::vector<double> previousMean_;
   uint64_t evenPasses_ = 0, oddPasses_ = 0;
 };
+
+// RelMseSplit of the mean of `buffers`' passes: `mean` is that image (what errorMetrics compares);
+// throws std::invalid_argument when the sizes differ.
+RelMseSplit splitRelMse(const EvenOddBuffers& buffers, const Image& mean, const Image& reference);
 
 }  // namespace pathlab

@@ -6,6 +6,7 @@
 #include "core/bpt/path_vertex.h"
 #include "core/film/technique_films.h"
 #include "core/math/types.h"
+#include "core/sampling/technique_label.h"
 
 #include <fmt/core.h>
 
@@ -110,8 +111,6 @@ void validateSettings(const RenderSettings& s) {
       throw std::invalid_argument(fmt::format("--radius-alpha {} is outside (0, 1]", s.mergeRadiusAlpha));
     if (s.connect == ConnectStrategy::Endpoints)
       throw std::invalid_argument("merging techniques need path reuse (--connect all), not naive BPT");
-    if (s.checkTechniques)
-      throw std::invalid_argument("the consistency check does not compare merging techniques yet (biased by the radius)");
     // The merge pass stores every pixel's light subpath, up to maxLength vertices each: refused
     // before allocating when its worst case passes the budget.
     const uint64_t bytes = mergeStoreBytes(s);
@@ -139,15 +138,15 @@ void validateSettings(const RenderSettings& s) {
   }
   if (s.injectBias) {
     const BiasInjection& b = *s.injectBias;
-    const std::string option = fmt::format("--inject-bias {},{},{:g}: ", b.s, b.t, b.factor);
+    const Technique x = b.technique();
+    const std::string option = fmt::format("--inject-bias {}{},{},{:g}: ", x.isMerge() ? "M" : "", b.s, b.t, b.factor);
     if (!bidirectional) throw std::invalid_argument("injecting a bias needs the bpt or lt integrator");
-    const Technique x{b.s, b.t};
     if (!x.valid())
-      throw std::invalid_argument(
-          fmt::format("{}technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", option, b.s, b.t));
+      throw std::invalid_argument(fmt::format("{}technique {} does not exist ({})", option, techniqueLabel(x),
+                                              x.isMerge() ? "a merge needs s >= 2, t >= 2" : "s >= 0, t >= 1, s + t >= 2"));
     if (x.length() > s.maxLength)
-      throw std::invalid_argument(fmt::format("{}technique ({},{}) has length {}, more than the maximum length {}",
-                                              option, b.s, b.t, x.length(), s.maxLength));
+      throw std::invalid_argument(fmt::format("{}technique {} has length {}, more than the maximum length {}", option,
+                                              techniqueLabel(x), x.length(), s.maxLength));
     checkRange("injected bias factor", b.factor, 0.f, kMaxInjectedBias);
   }
   if (s.checkTechniques) {

@@ -5,6 +5,7 @@
 // no more false alarms than its level allows, its z-scores calibrated.
 #include "core/bpt/mis.h"
 #include "core/check/check_report.h"
+#include "core/check/merge_bias.h"
 #include "core/render/render_session.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 namespace pathlab {
 namespace {
@@ -108,29 +110,45 @@ TEST(TechniqueCheck, NamesTheOneTechniqueThatDisagreesWithTheOthers) {
 }
 
 TEST(TechniqueCheck, ComparesMergesWithTheConnectionsOfTheirLength) {
-  // Length 2 with both families: C(0,3), C(1,2), C(2,1) and M(2,2) estimate the same integral
-  // with noise; the merge is 5 % high (as a biased radius would make it) and is the one named.
-  TechniqueCheck check(8, 8, 2, 2, [](Technique x) { return x.length() == 2; }, TechniqueFamilies::All);
-  TechniqueCheck::PassSums sums(check);
-  Pcg32 rng(5, 5);
-  const double ratios[4] = {1.0, 1.0, 1.0, 1.0};  // by slot
-  const TechniqueRange length2 = techniquesOfLength(2, TechniqueFamilies::All);
-  for (int pass = 0; pass < 400; ++pass) {
-    for (int y = 0; y < 8; ++y)
-      for (int x = 0; x < 8; ++x)
-        for (const Technique t : length2) {
-          const float value = (t.isMerge() ? 1.05f : 1.f) * (0.5f + rng.next1D());
-          sums.add(t, Vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f), value, 0b1111, ratios);
-        }
-    check.finishPass({&sums});
+  // Length 2 with both families at two radii: C(0,3), C(1,2), C(2,1) and M(2,2) estimate the same
+  // integral with noise. The connections' report judges the connections alone; the merge is
+  // judged by its difference extrapolated to r -> 0 (merge_bias.h): a bias that halves with the
+  // radius passes, one that stays 5 % high at both radii (a wrong merge) is named.
+  for (const bool consistent : {true, false}) {
+    std::vector<std::unique_ptr<TechniqueCheck>> checks;
+    std::vector<MergeBiasLevel> levels;
+    Pcg32 rng(5, 5);
+    const double ratios[4] = {1.0, 1.0, 1.0, 1.0};  // by slot
+    const TechniqueRange length2 = techniquesOfLength(2, TechniqueFamilies::All);
+    for (const double radius : {0.1, 0.05}) {
+      checks.push_back(std::make_unique<TechniqueCheck>(8, 8, 2, 2, [](Technique x) { return x.length() == 2; },
+                                                        TechniqueFamilies::All));
+      TechniqueCheck& check = *checks.back();
+      TechniqueCheck::PassSums sums(check);
+      const float mergeFactor = consistent ? 1.f + static_cast<float>(radius) : 1.05f;  // 10 %, 5 %, or 5 % twice
+      for (int pass = 0; pass < 400; ++pass) {
+        for (int y = 0; y < 8; ++y)
+          for (int x = 0; x < 8; ++x)
+            for (const Technique t : length2) {
+              const float value = (t.isMerge() ? mergeFactor : 1.f) * (0.5f + rng.next1D());
+              sums.add(t, Vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f), value, 0b1111, ratios);
+            }
+        check.finishPass({&sums});
+      }
+      levels.push_back(MergeBiasLevel{radius, &check});
+    }
+    const CheckReport report = checkReport(*checks.front());
+    ASSERT_EQ(report.techniques.size(), 3u) << "the merge is not among the connections' verdicts";
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(report.techniques[i].status, CheckStatus::Agrees) << i;
+    const MergeBiasReport merges = mergeBiasReport(levels);
+    ASSERT_EQ(merges.merges.size(), 1u);
+    const MergeVerdict& m = merges.merges[0];
+    EXPECT_EQ(m.technique, Technique::merge(2, 2));
+    EXPECT_EQ(m.status, consistent ? CheckStatus::Agrees : CheckStatus::Disagrees) << mergeBiasText(merges);
+    if (!consistent) EXPECT_GT(std::abs(m.z), 5.0) << mergeBiasText(merges);
+    if (consistent) EXPECT_TRUE(m.shrinking()) << mergeBiasText(merges);
+    EXPECT_NE(mergeBiasText(merges).find("M(2,2)"), std::string::npos);
   }
-  const CheckReport report = checkReport(check);
-  ASSERT_EQ(report.techniques.size(), 4u);
-  for (size_t i = 0; i < 3; ++i) EXPECT_EQ(report.techniques[i].status, CheckStatus::Agrees) << i;
-  EXPECT_EQ(report.techniques[3].technique, Technique::merge(2, 2));
-  EXPECT_EQ(report.techniques[3].status, CheckStatus::Disagrees);
-  EXPECT_GT(report.techniques[3].z, 5.0);
-  EXPECT_NE(checkReportText(report).find("M(2,2)"), std::string::npos);
 }
 
 struct CheckRun {

@@ -20,6 +20,31 @@ grep -qE '^\(1,2\) .*DISAGREES' "$TMP/out" && ok || fail "(1,2) not named: $(cat
 [ "$(grep -c DISAGREES "$TMP/out")" -eq 1 ] && ok || fail "more than the biased technique named: $(cat "$TMP/out")"
 grep -q "deliberately wrong" "$TMP/err" && ok || fail "no warning of the injected bias: $(cat "$TMP/err")"
 
+# vcm: the merge judged by its difference from the connections against the radius (r, r/2, r/4),
+# in the text and the JSON; with its normalisation doubled, named, and exit 1.
+VCM=(--integrator vcm --radius 0.08 --spp 150 --width 32 --height 32 --max-length 2 --threads 2)
+"$PATHLAB" check "$BOX" "${VCM[@]}" --json "$TMP/check.json" >"$TMP/out" 2>"$TMP/err"
+code=$?
+[ "$code" -eq 0 ] && ok || fail "vcm check of the Cornell box: exit $code: $(cat "$TMP/out" "$TMP/err")"
+grep -qE '^M\(2,2\) .*agrees' "$TMP/out" && grep -q 'r = 0.02' "$TMP/out" && ok || fail "no merge line: $(cat "$TMP/out")"
+python3 - "$TMP/check.json" <<'PY' && ok || fail "check.json: $(cat "$TMP/check.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["agrees"] is True
+assert [round(r, 4) for r in j["merges"]["radii"]] == [0.08, 0.04, 0.02], j["merges"]["radii"]
+m = j["merges"]["techniques"]
+assert [t["technique"] for t in m] == ["M(2,2)"], m
+assert len(m[0]["wholeImage"]) == 3 and "extrapolated" in m[0], m[0]
+assert len(j["techniques"]) == 5, j["techniques"]
+PY
+"$PATHLAB" check "$BOX" "${VCM[@]}" --inject-bias M2,2,2 >"$TMP/out" 2>"$TMP/err"
+code=$?
+[ "$code" -eq 1 ] && ok || fail "a merge's normalisation doubled: exit $code: $(cat "$TMP/out")"
+grep -qE '^M\(2,2\) .*DISAGREES' "$TMP/out" && ok || fail "M(2,2) not named: $(cat "$TMP/out")"
+grep -q "technique M(2,2) is multiplied by 2" "$TMP/err" && ok || fail "no warning of the injected bias: $(cat "$TMP/err")"
+expect_error "check vcm --radius-alpha 0.75" "radius-alpha 0.75" check "$BOX" --integrator vcm --radius-alpha 0.75
+expect_error "--inject-bias M1,2" "a merge needs s >= 2" render "$BOX" -o "$TMP/x.png" --inject-bias M1,2,2
+
 expect_error "check --integrator pt" "bpt or lt" check "$BOX" --integrator pt
 expect_error "check --isolate" "not with --isolate" check "$BOX" --isolate 1,2
 expect_error "check --max-length 40" "at most 30 edges" check "$BOX" --max-length 40

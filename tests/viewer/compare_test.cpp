@@ -57,7 +57,7 @@ TEST(Compare, SideBIsTheDefaultEstimatorChangedByItsConfigInSideAsView) {
   EXPECT_NO_THROW(validateSettings(b));
   // Bad CONFIGs: the parser's one line.
   EXPECT_THROW(compareEstimator("bpt:mis=nope", a), std::invalid_argument);
-  EXPECT_THROW(compareEstimator("vcm", a), std::invalid_argument);
+  EXPECT_THROW(compareEstimator("ppm", a), std::invalid_argument);  // vcm and bpm are configurations now
   EXPECT_THROW(compareEstimator("pt;bpt", a), std::invalid_argument);
 }
 

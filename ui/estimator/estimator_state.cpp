@@ -1,6 +1,8 @@
 // The viewer's estimator state and its edits (see the header).
 #include "ui/estimator/estimator_state.h"
 
+#include "core/sampling/technique_label.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -131,8 +133,8 @@ const std::string& estimatorWarning(EstimatorWarning& cache, const Scene* scene,
     cache.text = scene ? misOffWarning(*scene, settings) : std::string();
     if (settings.injectBias && settings.integrator != IntegratorKind::Pt) {
       if (!cache.text.empty()) cache.text += "\n";
-      cache.text += fmt::format("technique ({},{}) is multiplied by {:g} (inject bias): this image is deliberately wrong",
-                                settings.injectBias->s, settings.injectBias->t, settings.injectBias->factor);
+      cache.text += fmt::format("technique {} is multiplied by {:g} (inject bias): this image is deliberately wrong",
+                                techniqueLabel(settings.injectBias->technique()), settings.injectBias->factor);
     }
   }
   return cache.text;
