@@ -40,6 +40,12 @@ Pcg32 walkStream(uint64_t connectionKey, int s, int t, uint64_t salt) {
 // evaluated, so an isolated render, the pyramid and the full image see the same connections. Only
 // next-event estimation (s = 1) and light tracing (t = 1) draw from it: the others skip seeding it
 // (about 1 % of a sample's instructions).
+// The replay trace's view of the merges of a pass: none without a pass.
+std::optional<MergesOnPath> mergesOnPath(const MergePass* pass) {
+  if (!pass) return std::nullopt;
+  return MergesOnPath{MergeMis{pass->eta()}, pass->radius};
+}
+
 Pcg32 connectionStream(uint64_t connectionKey, int s, int t) {
   return s == 1 || t == 1
              ? Pcg32(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))), connectionKey)
@@ -215,7 +221,8 @@ template <bool kRecords, bool kTimed>
         // The inspector shows blocked paths too: what each technique would have made of them.
         tracePath(scene_, camera_, path, walks.traced);
         r.traced = &walks.traced;
-        walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
+        walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
+                                        mergesOnPath(mergePass_));
         r.onPath = &walks.onPath;
       }
     }
@@ -423,6 +430,14 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         r.pRaster = pRaster;
         r.inImage = inImage;
         r.inPyramid = inPyramid;
+        if (demand.onPath) {
+          r.merged = MergedVertices{y.p, z.p, z.ng, pass.radius};
+          tracePath(scene_, camera_, path, walks.traced);
+          r.traced = &walks.traced;
+          walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
+                                          mergesOnPath(&pass));
+          r.onPath = &walks.onPath;
+        }
         sink.record(r);
       }
       if (!inImage || !(w > 0.f)) return;

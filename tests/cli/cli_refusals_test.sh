@@ -56,7 +56,6 @@ expect_error "render --integrator vcm --techniques" "--integrator vcm sets the t
   render "$BOX" -o "$TMP/x.png" --integrator vcm --techniques all
 expect_error "render vcm with the maps" "technique maps do not cover merging" \
   render "$BOX" -o "$TMP/x.png" --integrator vcm --pyramid 2 --technique-maps 2
-expect_error "inspect vcm" "with merging techniques is not supported yet" inspect "$BOX" --integrator vcm --pixel 1,1
 expect_error "render --radius 0" "--radius" render "$BOX" -o "$TMP/x.png" --integrator vcm --radius 0
 "$PATHLAB" render "$BOX" -o "$TMP/vcm.exr" --integrator vcm --spp 1 --width 16 --height 16 --force >/dev/null 2>&1 &&
   [ -s "$TMP/vcm.exr" ] && ok || fail "render --integrator vcm"
