@@ -110,8 +110,13 @@ void Viewer::perform(Action action) {
         showMessage("pick a pixel first: K, then click the image");
         break;
       }
-      inspect_.inspector.sample = brightestSample(scene(), inspect_.inspector.inspectedSettings, *inspect_.inspector.pixel, 256);
-      showMessage(fmt::format("the brightest of the first 256 samples is sample {}", inspect_.inspector.sample));
+    {
+      // With merges each sample's pass is traced again (replaySample): 16 of them, not 256.
+      const RenderSettings& settings = inspect_.inspector.inspectedSettings;
+      const uint64_t n = covers(enabledTechniques(settings).families(), TechniqueKind::Merge) ? 16 : 256;
+      inspect_.inspector.sample = brightestSample(scene(), settings, *inspect_.inspector.pixel, n);
+      showMessage(fmt::format("the brightest of the first {} samples is sample {}", n, inspect_.inspector.sample));
+    }
       break;
     case Action::ToggleView3D:
       inspect_.view3d.on = !inspect_.view3d.on;

@@ -42,6 +42,12 @@ Pcg32 walkStream(uint64_t connectionKey, int s, int t, uint64_t salt) {
 // evaluated, so an isolated render, the pyramid and the full image see the same connections. Only
 // next-event estimation (s = 1) and light tracing (t = 1) draw from it: the others skip seeding it
 // (about 1 % of a sample's instructions).
+// The replay trace's view of the merges of a pass: none without a pass.
+std::optional<MergesOnPath> mergesOnPath(const MergePass* pass, MergeSite site) {
+  if (!pass) return std::nullopt;
+  return MergesOnPath{MergeMis{pass->eta(), site == MergeSite::FirstNonSpecular}, pass->radius};
+}
+
 Pcg32 connectionStream(uint64_t connectionKey, int s, int t) {
   return s == 1 || t == 1
              ? Pcg32(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))), connectionKey)
@@ -237,7 +243,8 @@ template <bool kRecords, bool kTimed>
         // The inspector shows blocked paths too: what each technique would have made of them.
         tracePath(scene_, camera_, path, walks.traced);
         r.traced = &walks.traced;
-        walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio());
+        walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
+                                        mergesOnPath(mergePass_, options_.mergeSite));
         r.onPath = &walks.onPath;
       }
     }
@@ -481,9 +488,16 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         r.inImage = inImage;
         r.inPyramid = inPyramid;
         // The merged path's vertices as connection C(s, t - 1) holds them (merge_sampleable.h).
-        if (demand.sampleable)
-          r.sampleableBy = sampleableWithMerges(MisPath{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr},
-                                                TechniqueKind::Merge);
+        const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
+        if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge);
+        if (demand.onPath) {
+          r.merged = MergedVertices{y.p, z.p, z.ng, pass.radius};
+          tracePath(scene_, camera_, path, walks.traced);
+          r.traced = &walks.traced;
+          walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
+                                          mergesOnPath(&pass, options_.mergeSite));
+          r.onPath = &walks.onPath;
+        }
         sink.record(r);
       }
       if (!inImage || !(w > 0.f)) return;

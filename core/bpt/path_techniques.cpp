@@ -5,7 +5,7 @@ namespace pathlab {
 
 std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& camera, const MisPath& path,
                                               const TechniqueSet& techniques, const MisOptions& options,
-                                              float lightTracingRatio) {
+                                              float lightTracingRatio, const std::optional<MergesOnPath>& merges) {
   const PathDensities d = pathDensities(scene, camera, path);
   const uint64_t sampleable = d.n <= kSampleableBits ? sampleableTechniques(path) : 0;
   const float minDistance = minConnectionDistance(scene, options);
@@ -14,6 +14,30 @@ std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& 
   power.heuristic = MisHeuristic::Power;
   uniform.heuristic = MisHeuristic::Uniform;
   const UsableTechniques usable(d, techniques, minDistance);
+  // Which vertices lie on surfaces: a merge needs one (mergeableVertex).
+  std::vector<uint8_t> surface(static_cast<size_t>(d.n));
+  for (int i = 0; i < d.n; ++i) {
+    const PathVertex& v = i < path.s ? lightVertex(path, i) : cameraVertex(path, d.n - 1 - i);
+    surface[static_cast<size_t>(i)] = v.type == VertexType::Surface;
+  }
+  // p_C(s'): the light-side densities before s', the camera-side ones from s' on.
+  auto connectionDensity = [&](int sp) {
+    double p = 1.0;
+    for (int i = 0; i < d.n; ++i) p *= remap0(i < sp ? lightSideDensity(d, i, sp) : d.pFromCamera[static_cast<size_t>(i)]);
+    return p;
+  };
+  auto weigh = [&](TechniqueOnPath& x) {
+    if (merges) {
+      const Technique y = x.technique();
+      x.balance = weightWithMerges(d, surface, y, techniques, balance, lightTracingRatio, minDistance, merges->mis);
+      x.power = weightWithMerges(d, surface, y, techniques, power, lightTracingRatio, minDistance, merges->mis);
+      x.uniform = weightWithMerges(d, surface, y, techniques, uniform, lightTracingRatio, minDistance, merges->mis);
+    } else {
+      x.balance = weightFromDensities(d, x.s, techniques, balance, lightTracingRatio, minDistance);
+      x.power = weightFromDensities(d, x.s, techniques, power, lightTracingRatio, minDistance);
+      x.uniform = weightFromDensities(d, x.s, techniques, uniform, lightTracingRatio, minDistance);
+    }
+  };
   std::vector<TechniqueOnPath> out;
   for (int sp = 0; sp < d.n; ++sp) {
     TechniqueOnPath x;
@@ -24,13 +48,28 @@ std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& 
     x.connectionEdge = sp >= 1 ? sp - 1 : -1;
     x.counted = usable(sp);
     if (x.possible) {
-      double p = 1.0;
-      for (int i = 0; i < d.n; ++i)
-        p *= remap0(i < sp ? lightSideDensity(d, i, sp) : d.pFromCamera[static_cast<size_t>(i)]);
-      x.pdfA = p;
-      x.balance = weightFromDensities(d, sp, techniques, balance, lightTracingRatio, minDistance);
-      x.power = weightFromDensities(d, sp, techniques, power, lightTracingRatio, minDistance);
-      x.uniform = weightFromDensities(d, sp, techniques, uniform, lightTracingRatio, minDistance);
+      x.pdfA = connectionDensity(sp);
+      weigh(x);
+    }
+    out.push_back(x);
+  }
+  if (!merges) return out;
+  // M(s', n + 1 - s'), s' = 2 .. n - 1: the connection C(s')'s density times the acceptance
+  // probability pi r^2 pFromCamera(x_{s'-1}) (Georgiev et al. 2012 eq. 10; a zero camera-side
+  // density there, a delta lobe beside it, counts one as in the weights).
+  const double area = 3.14159265358979323846 * static_cast<double>(merges->radius) * static_cast<double>(merges->radius);
+  for (int sp = 2; sp <= d.n - 1; ++sp) {
+    TechniqueOnPath x;
+    x.s = sp;
+    x.t = d.n + 1 - sp;
+    x.kind = TechniqueKind::Merge;
+    x.mergedVertex = sp - 1;
+    x.possible = mergeableVertex(d, surface, sp - 1);
+    x.enabled = techniques.contains(x.technique());
+    x.counted = x.possible && x.enabled;
+    if (x.possible) {
+      x.pdfA = connectionDensity(sp) * area * remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]);
+      weigh(x);
     }
     out.push_back(x);
   }

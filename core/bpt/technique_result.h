@@ -26,8 +26,12 @@ struct TechniqueOnPath {
   double pdfA = 0.0;
   // The edge the technique connects deterministically, x_{s'-1} -- x_{s'} (none for s' = 0: the
   // camera subpath hits the emitter): its geometry term and the BSDFs at its ends are the factors
-  // of f this technique does not importance-sample.
+  // of f this technique does not importance-sample. A merge connects no edge (-1).
   int connectionEdge = -1;
+  // A merge M(s', t'): the vertex x_{s'-1} it takes from both subpaths (-1 for a connection). Its
+  // pdfA is the connection C(s')'s times the acceptance probability pi r^2 pFromCamera(x_{s'-1}),
+  // and its sample count is the pass's light subpaths N (merge_mis.h: n p = eta pFromCamera p_C).
+  int mergedVertex = -1;
   // In the weights' denominators: enabled, possible, and not left out by the near-coincident
   // connection rule (MisOptions::minConnection). Under balance w_s = p_s / sum of the counted p
   // (times the light-tracing sample ratio for t' = 1), power with p^beta, uniform 1 / count.
@@ -59,6 +63,15 @@ enum class TechniqueOutcome : uint8_t {
   Contributed,  // unoccluded, non-zero (possibly invalid: NaN, Inf, negative)
 };
 
+// A merge M(s, t)'s two vertices: the light subpath's y(s-1) and the camera subpath's z(t-1),
+// closer than the pass's radius, taken as one (the path runs through y(s-1) then z(t-2)); the
+// density estimate's disk of radius r is centred on z(t-1), in its surface's plane (normal: its
+// geometric normal).
+struct MergedVertices {
+  Vec3 light{0.f}, camera{0.f}, cameraNormal{0.f};
+  float radius = 0.f;
+};
+
 struct TechniqueResult {
   int s = 0, t = 1;
   TechniqueKind kind = TechniqueKind::Connection;
@@ -72,6 +85,7 @@ struct TechniqueResult {
   Vec2 pRaster{0.f};       // where it lands: the sample's own pixel, or the splat position (t = 1)
   bool inImage = false;    // reaches the image (enabled, or the isolated technique)
   bool inPyramid = false;  // goes to the technique pyramid
+  MergedVertices merged;   // a merge's (kind Merge), for the replay trace; zero for a connection
   // Contributed results, when an output asks (SampleOutputs::wantsSampleable): bit r set when the
   // technique at slot r of this length (Technique::slot(); r = s' for the connection (s', k + 1 - s'))
   // could have sampled this same path (sampleableTechniques, mis.h).

@@ -26,6 +26,11 @@ const char* kindName(VertexType t) {
 }
 
 nlohmann::json vec(Vec3 v) { return {v.x, v.y, v.z}; }
+
+// C(s,t) is printed (s,t), as ever; a merge M(s,t).
+std::string techniqueName(TechniqueKind kind, int s, int t) {
+  return fmt::format("{}({},{})", kind == TechniqueKind::Merge ? "M" : "", s, t);
+}
 nlohmann::json rgb(Spectrum s) { return {s.r, s.g, s.b}; }
 
 // The path a technique formed, under every technique of its length (the seed's "one path, every
@@ -35,22 +40,33 @@ void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>
   out << fmt::format("{:>12}  this path under every technique: {:>11} {:>9} {:>9} {:>9}  {}\n", "", "p_A(x)",
                      "balance", "power", "uniform", "connects");
   for (const TechniqueOnPath& x : every) {
-    const std::string name = fmt::format("({},{})", x.s, x.t);
-    const std::string edge = x.connectionEdge < 0 ? std::string("nothing: hits the emitter")
-                                                  : fmt::format("x{}-x{}", x.connectionEdge, x.connectionEdge + 1);
+    const std::string name = techniqueName(x.kind, x.s, x.t);
+    const bool merge = x.kind == TechniqueKind::Merge;
+    const std::string edge = merge                   ? fmt::format("merges at x{}", x.mergedVertex)
+                             : x.connectionEdge < 0 ? std::string("nothing: hits the emitter")
+                                                    : fmt::format("x{}-x{}", x.connectionEdge, x.connectionEdge + 1);
     if (!x.possible) {
-      const std::string why = x.connectionEdge < 0
-                                  ? std::string("its emitter cannot be hit by a ray (point, spot, directional light)")
-                                  : x.t == 1 ? fmt::format("x{} scatters by a delta lobe, or the camera is orthographic "
-                                                           "(a delta direction)", x.connectionEdge)
-                                             : fmt::format("x{} or x{} scatters by a delta lobe", x.connectionEdge,
-                                                           x.connectionEdge + 1);
+      const std::string why =
+          merge ? fmt::format("x{} is no surface vertex a merge can take (a delta lobe, or in a medium)", x.mergedVertex)
+          : x.connectionEdge < 0
+              ? std::string("its emitter cannot be hit by a ray (point, spot, directional light)")
+          : x.t == 1 ? fmt::format("x{} scatters by a delta lobe, or the camera is orthographic "
+                                   "(a delta direction)", x.connectionEdge)
+                     : fmt::format("x{} or x{} scatters by a delta lobe", x.connectionEdge, x.connectionEdge + 1);
       out << fmt::format("{:>12}  {:>32} {:>11}  cannot: {}\n", "", name, "0", why);
       continue;
     }
     out << fmt::format("{:>12}  {:>32} {:>11.4e} {:>9.4f} {:>9.4f} {:>9.4f}  {}{}\n", "", name, x.pdfA, x.balance,
                        x.power, x.uniform, edge, x.enabled ? "" : "  (disabled)");
   }
+}
+
+// A merge's two vertices, how far apart, and the pass's radius.
+void printMerged(std::ostream& out, const MergedVertices& m) {
+  out << fmt::format("{:>12}  merges light vertex ({:.4g}, {:.4g}, {:.4g}) and camera vertex ({:.4g}, {:.4g}, {:.4g}): "
+                     "{:.4g} apart, radius {:.4g}\n",
+                     "", m.light.x, m.light.y, m.light.z, m.camera.x, m.camera.y, m.camera.z,
+                     glm::length(m.light - m.camera), m.radius);
 }
 
 void printPath(std::ostream& out, const TracedPath& path) {
@@ -93,11 +109,12 @@ void printInspection(std::ostream& out, const RenderSettings& settings, const Sa
   for (size_t i = 0; i < trace.records.size(); ++i) {
     const TechniqueResult& t = trace.records[i];
     const Spectrum w = t.unweighted * t.weight;
-    out << fmt::format("{:>8} {:>36} {:>10.4g} {:>36} {:>16} {}\n", fmt::format("({},{})", t.s, t.t),
+    out << fmt::format("{:>8} {:>36} {:>10.4g} {:>36} {:>16} {}\n", techniqueName(t.kind, t.s, t.t),
                        fmt::format("({:.4g}, {:.4g}, {:.4g})", t.unweighted.r, t.unweighted.g, t.unweighted.b), t.weight,
                        fmt::format("({:.4g}, {:.4g}, {:.4g})", w.r, w.g, w.b),
                        fmt::format("{:.1f},{:.1f}", t.pRaster.x, t.pRaster.y),
                        t.blocked() ? "blocked" : isBlack(t.unweighted) ? "zero" : t.inImage ? "" : "not in the image");
+    if (t.kind == TechniqueKind::Merge) printMerged(out, t.merged);
     if (paths && i < trace.paths.size()) printPath(out, trace.paths[i]);
     if (i < trace.onPath.size() && (paths || !t.blocked())) printTechniquesOnPath(out, trace.onPath[i]);
   }
@@ -118,6 +135,11 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
   // samples of technique s per camera sample): light subpaths per camera sample for the t = 1
   // techniques. With 1 it drops out of every weight.
   j["lightTracingSampleRatio"] = lightTracingRatio();
+  // The merges' sample count (Georgiev et al. 2012 eq. 11): every light subpath of the pass serves
+  // every camera sample, so a merge's p is multiplied by N, the pass's light subpaths, in every
+  // weight (eta = pi r^2 N, merge_mis.h).
+  if (covers(enabledTechniques(settings).families(), TechniqueKind::Merge))
+    j["mergeSampleCount"] = lightSubpathsPerPass(static_cast<uint64_t>(settings.width) * static_cast<uint64_t>(settings.height));
   j["cameraEstimate"] = rgb(in.cameraEstimate);
   j["cameraSubpath"] = subpathJson(trace.cameraSubpath);
   j["lightSubpath"] = subpathJson(trace.lightSubpath);
@@ -135,6 +157,15 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
     t["weight"] = r.weight;
     t["inImage"] = r.inImage;
     t["raster"] = {r.pRaster.x, r.pRaster.y};
+    if (r.kind == TechniqueKind::Merge) {
+      // y(s-1) and z(t-1), taken as one vertex within the pass's radius; the path runs through
+      // y(s-1) (merge_mis.h).
+      t["lightVertex"] = vec(r.merged.light);
+      t["cameraVertex"] = vec(r.merged.camera);
+      t["cameraNormal"] = vec(r.merged.cameraNormal);
+      t["distance"] = glm::length(r.merged.light - r.merged.camera);
+      t["radius"] = r.merged.radius;
+    }
     nlohmann::json path = nlohmann::json::array(), vertices = nlohmann::json::array();
     if (i < trace.paths.size())
       for (size_t v = 0; v < trace.paths[i].size(); ++v) {
@@ -162,6 +193,7 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
                              {"enabled", x.enabled},
                              {"counted", x.counted},
                              {"connectionEdge", x.connectionEdge},
+                             {"mergedVertex", x.mergedVertex},
                              {"weights", {{"balance", x.balance}, {"power", x.power}, {"uniform", x.uniform}}}});
     t["densities"] = densities;
     // This technique's own weights under each heuristic (its entry of `densities`).

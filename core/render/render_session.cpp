@@ -8,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <mutex>
 #include <stdexcept>
 
 namespace pathlab {
@@ -40,6 +41,12 @@ struct RenderSession::ThreadChecks {
   explicit ThreadChecks(const TechniqueCheck& check) : sums(TechniqueCheck::PassSums(check)) {}
 };
 
+struct RenderSession::ReplayStore {
+  std::mutex mutex;
+  std::shared_ptr<const MergePass> store;
+  uint64_t pass = 0;
+};
+
 RenderSession::~RenderSession() = default;
 
 RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings, PassSchedule schedule)
@@ -51,6 +58,7 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
       cameraMedium_(scene.mediumAt(camera_.position())),
       film_(settings.width, settings.height),
       tiles_(passTiles(settings.width, settings.height)) {
+  replayStore_ = std::make_unique<ReplayStore>();
   if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
   if (bidirTracer_ && SplatSums::bytesFor(settings.width, settings.height) <= kMaxSplatSumBytes)
     splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);
@@ -67,10 +75,29 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
 
 Spectrum RenderSession::replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats,
                                      SampleTrace* trace) const {
-  // A merge needs its pass's every light subpath: not kept per sample.
-  if (bidirTracer_ && bidirTracer_->merges())
-    throw std::invalid_argument("replaying a sample (--replay, inspect) with merging techniques is not supported yet");
-  return sampleAt(x, y, pass, SampleTargets{splats, nullptr, trace, SampleId{x, y, pass}}, counters);
+  const SampleTargets targets{splats, nullptr, trace, SampleId{x, y, pass}};
+  if (!bidirTracer_ || !bidirTracer_->merges()) return sampleAt(x, y, pass, targets, counters);
+  // A merge needs its pass's every light subpath, which no sample keeps: the pass's store is built
+  // again from the same per-pixel streams, in the same order (buildMergePass), so the sample finds
+  // the same light vertices within the same radius in the same order as the render did, and its
+  // merges are the render's bit for bit. The walks' rays are the pass's, not the sample's: they are
+  // not counted.
+  std::shared_ptr<const MergePass> store;
+  {
+    std::lock_guard<std::mutex> lock(replayStore_->mutex);
+    if (!replayStore_->store || replayStore_->pass != pass) {
+      auto built = std::make_shared<MergePass>();
+      Counters walks;
+      buildMergePass(pass, walks, *built);
+      replayStore_->store = std::move(built);
+      replayStore_->pass = pass;
+    }
+    store = replayStore_->store;
+  }
+  // A tracer of its own: the session's points at the store of the pass being rendered.
+  BidirTracer tracer = *bidirTracer_;
+  tracer.setMergePass(store.get());
+  return sampleAt(&tracer, x, y, pass, targets, counters);
 }
 
 Pcg32 sampleStream(const RenderSettings& settings, int x, int y, uint64_t pass, RngStream stream) {
@@ -102,15 +129,20 @@ void RenderSession::addForeignPasses(uint64_t passes, const Counters& counters) 
 }
 
 Spectrum RenderSession::sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const {
+  return sampleAt(bidirTracer_.get(), x, y, pass, targets, counters);
+}
+
+Spectrum RenderSession::sampleAt(const BidirTracer* tracer, int x, int y, uint64_t pass, const SampleTargets& targets,
+                                 Counters& counters) const {
   Pcg32 rng = sampleStream(settings_, x, y, pass, RngStream::Camera);
   const Vec2 uFilm = rng.next2D();  // box filter: uniform over the pixel
   const Vec2 uLens = rng.next2D();
   const Vec2 pRaster = Vec2(static_cast<float>(x), static_cast<float>(y)) + uFilm;
   ++counters.cameraSamples;
-  if (bidirTracer_) {
+  if (tracer) {
     Pcg32 lightRng = sampleStream(settings_, x, y, pass, RngStream::Light);
     SampleOutputs outputs(targets);
-    bidirTracer_->sample(pRaster, uLens, rng, lightRng, outputs, counters);
+    tracer->sample(pRaster, uLens, rng, lightRng, outputs, counters);
     return outputs.cameraEstimate();
   }
   const Ray ray = camera_.generateRay(pRaster, uLens);
@@ -135,7 +167,11 @@ void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer*
 
 void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
   if (!mergePass_) mergePass_ = std::make_unique<MergePass>();
-  MergePass& m = *mergePass_;
+  buildMergePass(pass, counters, *mergePass_);
+  bidirTracer_->setMergePass(mergePass_.get());
+}
+
+void RenderSession::buildMergePass(uint64_t pass, Counters& counters, MergePass& m) const {
   // Each work item walks its pixels' light subpaths into a list of its own; the lists are then
   // joined in item order, so the store (and the order of every merge) is the same at any thread
   // count. Serial work: one offset per item.
@@ -196,7 +232,6 @@ void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
       bidirTracer_->lightSubpathSums(m, &m.vertices[start], static_cast<int>(count), &m.misSum[start],
                                      &m.misShortestEdge2[start]);
   });
-  bidirTracer_->setMergePass(&m);
 }
 
 bool RenderSession::renderPass(const std::atomic<bool>* cancel) {

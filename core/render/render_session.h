@@ -52,7 +52,9 @@ class RenderSession {
   bool renderPass(const std::atomic<bool>* cancel = nullptr);
   // The estimate of one camera sample, exactly as renderPass computes it (for replay and tests):
   // the camera-side part is returned; for Bpt and Lt the sample's t = 1 splats go to `splats`
-  // if given (a film of the same size, normalised by the caller).
+  // if given (a film of the same size, normalised by the caller). With merging techniques the
+  // sample's pass is traced again first (every pixel's light subpath, the merge store: costly,
+  // as a pass's light walks), once per pass for successive replays of the same pass.
   Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats = nullptr,
                         SampleTrace* trace = nullptr) const;
 
@@ -100,12 +102,20 @@ class RenderSession {
   std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt and Lt
 
   Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;
+  Spectrum sampleAt(const BidirTracer* tracer, int x, int y, uint64_t pass, const SampleTargets& targets,
+                    Counters& counters) const;
   // Renders one work item's samples: camera estimates into film_, splats into `splats` (Bpt, Lt).
   void renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats, Counters& counters);
   // Vertex merging: every pixel's light subpath of `pass` (the very one its camera sample walks:
   // same stream, same length), stored and indexed for the merges, before the pass's camera samples.
   void traceMergePass(uint64_t pass, Counters& counters);
+  // The store of `pass` into `m` (traceMergePass's, and a replay's).
+  void buildMergePass(uint64_t pass, Counters& counters, MergePass& m) const;
   std::unique_ptr<MergePass> mergePass_;
+  // A replay's merge store, kept for the next replay of the same pass (the inspector steps through
+  // one pixel's samples, a test through one pass's pixels); replays may come from any thread.
+  struct ReplayStore;
+  std::unique_ptr<ReplayStore> replayStore_;
   Film film_;
   std::vector<PassTile> tiles_;  // a pass's work items, in the order their splats are summed
   // The t = 1 splats of the work items in flight (SplatBuffer), then of the current pass in float

@@ -54,7 +54,6 @@ expect_error "view --error-csv missing parent" "errors.csv: the directory .*/mis
 # Vertex merging: vcm and bpm set their own techniques; what merging cannot do yet is refused.
 expect_error "render --integrator vcm --techniques" "--integrator vcm sets the techniques" \
   render "$BOX" -o "$TMP/x.png" --integrator vcm --techniques all
-expect_error "inspect vcm" "with merging techniques is not supported yet" inspect "$BOX" --integrator vcm --pixel 1,1
 expect_error "render --radius 0" "--radius" render "$BOX" -o "$TMP/x.png" --integrator vcm --radius 0
 "$PATHLAB" render "$BOX" -o "$TMP/vcm.exr" --integrator vcm --spp 1 --width 16 --height 16 --force >/dev/null 2>&1 &&
   [ -s "$TMP/vcm.exr" ] && ok || fail "render --integrator vcm"

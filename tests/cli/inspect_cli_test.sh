@@ -61,6 +61,37 @@ for h in balance power; do
      grep -q "this path under every technique" "$TMP/out" && check_json "$TMP/$h.json" "$h" 2>"$TMP/py"; then ok
   else fail "inspect --mis $h: $(cat "$TMP/err" "$TMP/py" 2>/dev/null | tail -5)"; fi
 done
+# Vertex merging (--integrator vcm): a merge names its two vertices within the radius, and the
+# weights of every technique of a path's length, connections and merges, sum to one.
+SPHERES="$SRC/assets/cornell-spheres.gltf"
+check_merge_json() {
+  python3 - "$1" <<'PY'
+import json, math, sys
+j = json.load(open(sys.argv[1]))
+merges = 0
+for t in j["techniques"]:
+    if not t["densities"] or not t["weight"] > 0:
+        continue
+    # A length k has k + 1 connections and k - 1 merges.
+    k = len(t["densities"]) // 2
+    assert [x["kind"] for x in t["densities"]] == ["connection"] * (k + 1) + ["merge"] * (k - 1), t["densities"]
+    assert math.isclose(sum(x["weights"][j["heuristic"]] for x in t["densities"]), 1.0, rel_tol=1e-4), t
+    if t["kind"] != "merge":
+        continue
+    for key in ["lightVertex", "cameraVertex", "distance", "radius", "contribution", "weight", "weights"]:
+        assert key in t, key
+    assert 0 <= t["distance"] <= t["radius"] * (1 + 1e-5), (t["distance"], t["radius"])
+    merges += 1
+assert merges >= 1, merges
+PY
+}
+if "$PATHLAB" inspect "$SPHERES" --integrator vcm --radius 0.05 --width 64 --height 64 --max-length 4 --pixel 32,40 \
+     --json "$TMP/vcm.json" >"$TMP/out" 2>"$TMP/err" </dev/null &&
+   grep -q "merges light vertex" "$TMP/out" && check_merge_json "$TMP/vcm.json" 2>"$TMP/py"; then ok
+else fail "inspect --integrator vcm: $(cat "$TMP/err" "$TMP/py" 2>/dev/null | tail -5)"; fi
+"$PATHLAB" render "$SPHERES" --integrator bpm --radius 0.05 --width 64 --height 64 --max-length 4 --replay 32,40,2 \
+  >"$TMP/out" 2>"$TMP/err" && grep -q "^ *M(2,2)" "$TMP/out" && ok || fail "render --replay with merges: $(tail -3 "$TMP/err")"
+
 # Not overwritten without --force; with it, it is.
 expect_error "existing JSON" "exists" inspect "$BOX" --pixel 1,1 --json "$TMP/balance.json"
 "$PATHLAB" inspect "$VEACH" --pixel 100,100 --json "$TMP/balance.json" --force >/dev/null 2>&1 && ok || fail "--force"

@@ -85,5 +85,43 @@ TEST(PathInspector, OverlayProjectsThePathsThroughTheRenderCamera) {
   EXPECT_GT(withConnections, 6);
 }
 
+// A selected merge draws its disk: the rim at the pass's radius about the camera vertex, in the
+// plane its normal sets, with the light vertex inside, projected like the paths.
+TEST(PathInspector, ASelectedMergeDrawsItsDiskAtTheMergedVertex) {
+  const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-spheres.gltf"));
+  RenderSettings s = boxSettings();
+  s.width = s.height = 64;
+  s.techniques = TechniqueSet::parse("all;m=all");  // --integrator vcm
+  s.mergeRadius = 0.05f;
+  const Camera camera(scene.cameraDesc(), s.width, s.height);
+  int disks = 0;
+  for (int i = 0; i < 8 && disks < 3; ++i) {
+    PathInspectorState state;
+    state.on = true;
+    state.pick = Vec2((8.5f + 6.f * static_cast<float>(i)) / 64.f, 40.5f / 64.f);
+    ASSERT_TRUE(refreshInspection(state, scene, s));
+    const std::vector<TechniqueResult>& records = state.result->trace.records;
+    for (size_t r = 0; r < records.size(); ++r) {
+      if (records[r].kind != TechniqueKind::Merge) continue;
+      const MergedVertices& m = records[r].merged;
+      ASSERT_GT(m.radius, 0.f);
+      EXPECT_LE(glm::length(m.light - m.camera), m.radius * 1.0001f);
+      const std::vector<Vec3> rim = mergeDiskPoints(m);
+      for (const Vec3& p : rim) {
+        EXPECT_NEAR(glm::length(p - m.camera), m.radius, 1e-4f * m.radius);
+        EXPECT_NEAR(glm::dot(p - m.camera, glm::normalize(m.cameraNormal)), 0.f, 1e-4f * m.radius);
+      }
+      state.selected = static_cast<int>(r);
+      int diskSegments = 0;
+      for (const InspectorSegment& seg : inspectorOverlay(state, camera).segments)
+        diskSegments += seg.role == SegmentRole::MergeDisk;
+      EXPECT_EQ(diskSegments, static_cast<int>(rim.size()) + 1);  // the rim and the step to the light vertex
+      ++disks;
+      break;
+    }
+  }
+  EXPECT_GE(disks, 3);
+}
+
 }  // namespace
 }  // namespace pathlab::ui

@@ -27,7 +27,10 @@ void InspectorController::drawWindow(PanelRequests& requests) {
 void InspectorController::update(const std::shared_ptr<const Scene>& scene, const RenderSettings& shown,
                                  const RenderSnapshot& snapshot, const CameraDesc& camera) {
   // The inspected image is the one shown: its settings (size, camera, estimator) once one arrived.
-  if (refreshInspection(inspector, *scene, shown)) {
+  // The selected technique's path (and a merge's disk) is part of the overlay: a new selection
+  // redraws it without replaying.
+  if (refreshInspection(inspector, *scene, shown) || inspector.selected != overlaySelected_) {
+    overlaySelected_ = inspector.selected;
     overlay_ = InspectorOverlay{};
     if (inspector.result) {
       const RenderSettings& s = inspector.inspectedSettings;

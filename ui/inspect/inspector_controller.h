@@ -41,7 +41,8 @@ class InspectorController {
   void exportInspection(MessageLine& message) const;
 
  private:
-  InspectorOverlay overlay_;  // of inspector's result, recomputed when it replays
+  InspectorOverlay overlay_;  // of inspector's result, recomputed when it replays or the selection changes
+  int overlaySelected_ = -1;   // the selected technique overlay_ was drawn for
   std::unique_ptr<SceneRaster> raster_;  // while the 3D view is shown
   bool textureInUse_ = false;            // this frame's draw lists show the raster's texture
   PanelRect window_;                     // the inspector's window, ImGui coordinates (empty: none)

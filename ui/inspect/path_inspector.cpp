@@ -1,7 +1,10 @@
 // The picked sample replayed (and the brightest of the first n found), and the overlay of its selected path.
 #include "ui/inspect/path_inspector.h"
 
+#include "core/math/frame.h"
+
 #include <algorithm>
+#include <cmath>
 
 namespace pathlab::ui {
 
@@ -28,6 +31,16 @@ std::optional<Vec2> overlayPoint(const Camera& camera, const Vec3& p) {
   const Vec3 c = camera.toCameraSpace(p);
   if (!(-c.z > kNearDepth)) return std::nullopt;
   return camera.rasterOfCameraPoint(c);
+}
+
+std::vector<Vec3> mergeDiskPoints(const MergedVertices& m, int n) {
+  const Frame frame(glm::normalize(m.cameraNormal != Vec3(0.f) ? m.cameraNormal : Vec3(0.f, 0.f, 1.f)));
+  std::vector<Vec3> rim;
+  for (int i = 0; i < n; ++i) {
+    const float phi = 2.f * kPi * static_cast<float>(i) / static_cast<float>(n);
+    rim.push_back(m.camera + m.radius * frame.toWorld(Vec3(std::cos(phi), std::sin(phi), 0.f)));
+  }
+  return rim;
 }
 
 namespace {
@@ -106,6 +119,13 @@ InspectorOverlay inspectorOverlay(const PathInspectorState& state, const Camera&
   if (state.selected >= 0 && static_cast<size_t>(state.selected) < trace.paths.size()) {
     const TracedPath& path = trace.paths[static_cast<size_t>(state.selected)];
     for (size_t v = 0; v + 1 < path.size(); ++v) addOverlaySegment(overlay, camera, path.p[v], path.p[v + 1], SegmentRole::Selected);
+    const TechniqueResult& r = trace.records[static_cast<size_t>(state.selected)];
+    if (r.kind == TechniqueKind::Merge) {
+      const std::vector<Vec3> rim = mergeDiskPoints(r.merged);
+      for (size_t i = 0; i < rim.size(); ++i)
+        addOverlaySegment(overlay, camera, rim[i], rim[(i + 1) % rim.size()], SegmentRole::MergeDisk);
+      addOverlaySegment(overlay, camera, r.merged.camera, r.merged.light, SegmentRole::MergeDisk);
+    }
   }
   return overlay;
 }

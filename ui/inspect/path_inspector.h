@@ -43,8 +43,9 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
 // estimate plus its weighted t = 1 splats, wherever they land): a firefly hunt.
 uint64_t brightestSample(const Scene& scene, const RenderSettings& settings, Vec2i pixel, uint64_t n);
 
-// Frustum and Particle: the 3D view's (ui/inspect/view3d.h).
-enum class SegmentRole { CameraSubpath, LightSubpath, Connection, BlockedConnection, Selected, Frustum, Particle };
+// Frustum and Particle: the 3D view's (ui/inspect/view3d.h). MergeDisk: the selected merge's disk
+// of radius r about its camera vertex, in the surface's plane, and the step to its light vertex.
+enum class SegmentRole { CameraSubpath, LightSubpath, Connection, BlockedConnection, Selected, Frustum, Particle, MergeDisk };
 struct InspectorSegment {
   Vec2 a{0.f}, b{0.f};  // raster positions
   SegmentRole role = SegmentRole::Connection;
@@ -63,12 +64,16 @@ struct InspectorOverlay {
 
 // The overlay of `state.result` in raster coordinates of `camera` (the render camera of the
 // inspected settings): each segment clipped to the part in front of the lens (film-plane
-// projection, so it may reach beyond the image; the drawing clips to the image).
+// projection, so it may reach beyond the image; the drawing clips to the image). A selected merge
+// adds its disk (mergeDiskPoints) and the step from its camera vertex to its light vertex.
 InspectorOverlay inspectorOverlay(const PathInspectorState& state, const Camera& camera);
 // Appends segment a -- b seen through `camera` (the part in front of the lens) to `overlay`.
 void addOverlaySegment(InspectorOverlay& overlay, const Camera& camera, const Vec3& a, const Vec3& b, SegmentRole role,
                        float shade = 1.f);
 // Where `camera` sees p (none behind the lens).
 std::optional<Vec2> overlayPoint(const Camera& camera, const Vec3& p);
+// The rim of a merge's disk: `n` points on the circle of radius r about the camera vertex, in the
+// plane its normal sets (the density estimate's disk; the light vertex lies within r of its centre).
+std::vector<Vec3> mergeDiskPoints(const MergedVertices& m, int n = 48);
 
 }  // namespace pathlab::ui

@@ -21,6 +21,7 @@ ImU32 roleColour(SegmentRole role) {
     case SegmentRole::Selected: return IM_COL32(255, 240, 70, 255);
     case SegmentRole::Frustum: return IM_COL32(200, 200, 210, 150);
     case SegmentRole::Particle: return IM_COL32(255, 220, 120, 255);
+    case SegmentRole::MergeDisk: return IM_COL32(255, 80, 230, 255);
   }
   return IM_COL32_WHITE;
 }
@@ -51,7 +52,7 @@ void drawOverlayShapes(ImDrawList* draw, const InspectorOverlay& overlay, ImVec2
                    static_cast<int>(90.f + 110.f * k));
     }
     if (seg.role == SegmentRole::BlockedConnection) dashed(draw, screen(seg.a), screen(seg.b), c, 6.f * s, 1.5f * s);
-    else draw->AddLine(screen(seg.a), screen(seg.b), c, (seg.role == SegmentRole::Selected ? 3.f : seg.role == SegmentRole::Particle || seg.role == SegmentRole::Frustum ? 1.f : 1.8f) * s);
+    else draw->AddLine(screen(seg.a), screen(seg.b), c, (seg.role == SegmentRole::Selected || seg.role == SegmentRole::MergeDisk ? 3.f : seg.role == SegmentRole::Particle || seg.role == SegmentRole::Frustum ? 1.f : 1.8f) * s);
   }
   for (const InspectorMarker& m : overlay.markers) {
     const ImVec2 p = screen(m.p);
@@ -124,7 +125,7 @@ void drawTechniqueRows(PathInspectorState& state) {
     const TechniqueResult& r = in.trace.records[i];
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    const std::string name = fmt::format("({},{})", r.s, r.t);
+    const std::string name = fmt::format("{}({},{})", r.kind == TechniqueKind::Merge ? "M" : "", r.s, r.t);
     if (ImGui::Selectable(name.c_str(), state.selected == static_cast<int>(i), ImGuiSelectableFlags_SpanAllColumns))
       state.selected = static_cast<int>(i);
     ImGui::TableNextColumn();
@@ -151,14 +152,20 @@ void drawEveryTechnique(PathInspectorState& state) {
     const std::vector<TechniqueOnPath>& every = in.trace.onPath[static_cast<size_t>(state.selected)];
     if (!every.empty()) {
       ImGui::TextWrapped("this path (length %d) under every technique of its length: its density p_A, the edge it "
-                         "joins (the factors of f it does not sample) and its weights", r.s + r.t - 1);
+                         "joins (the factors of f it does not sample) and its weights", r.technique().length());
+      if (r.kind == TechniqueKind::Merge)
+        ImGui::TextWrapped("merges light vertex x%d with the camera vertex %.3g away, within radius %.3g (the disk)",
+                           r.s - 1, static_cast<double>(glm::length(r.merged.light - r.merged.camera)),
+                           static_cast<double>(r.merged.radius));
       const float barWidth = ImGui::GetContentRegionAvail().x * 0.3f;
       for (const TechniqueOnPath& x : every) {
-        const std::string name = fmt::format("({},{})", x.s, x.t);
+        const bool merge = x.kind == TechniqueKind::Merge;
+        const std::string name = fmt::format("{}({},{})", merge ? "M" : "", x.s, x.t);
         ImGui::TextUnformatted(name.c_str());
-        ImGui::SameLine(ImGui::GetFontSize() * 3.5f);
+        ImGui::SameLine(ImGui::GetFontSize() * 4.5f);
         if (!x.possible) {
-          ImGui::TextDisabled(x.connectionEdge < 0 ? "cannot: its light cannot be hit"
+          ImGui::TextDisabled(merge                    ? "cannot: no surface a merge can take there"
+                              : x.connectionEdge < 0 ? "cannot: its light cannot be hit"
                               : x.t == 1           ? "cannot: a delta vertex or an orthographic camera"
                                                    : "cannot: a delta vertex");
           continue;
@@ -179,12 +186,17 @@ void drawEveryTechnique(PathInspectorState& state) {
         ImGui::SameLine();
         // What f's factors this technique leaves to chance: its connection edge (the geometry term
         // and the BSDFs at its ends are evaluated, not sampled).
-        const std::string edge = x.connectionEdge < 0 ? std::string("hits the light")
-                                                      : fmt::format("joins x{}-x{}", x.connectionEdge, x.connectionEdge + 1);
-        ImGui::Text("p_A %.3g  %s%s%s", x.pdfA, edge.c_str(), x.enabled ? "" : "  (off)", x.s == r.s ? "  <" : "");
+        const std::string edge = merge                   ? fmt::format("merges at x{}", x.mergedVertex)
+                                 : x.connectionEdge < 0 ? std::string("hits the light")
+                                                        : fmt::format("joins x{}-x{}", x.connectionEdge, x.connectionEdge + 1);
+        ImGui::Text("p_A %.3g  %s%s%s", x.pdfA, edge.c_str(), x.enabled ? "" : "  (off)",
+                    x.technique() == r.technique() ? "  <" : "");
         if (ImGui::IsItemHovered())
-          ImGui::SetTooltip("(%d,%d): p_A %.4g, balance %.4f, power %.4f, uniform %.4f%s", x.s, x.t, x.pdfA, x.balance,
-                            x.power, x.uniform, x.connectionEdge < 0 ? ", hits the emitter" : "");
+          ImGui::SetTooltip("%s: p_A %.4g, balance %.4f, power %.4f, uniform %.4f%s", name.c_str(), x.pdfA, x.balance,
+                            x.power, x.uniform,
+                            merge ? ", merged within the radius (p_A: pi r^2 times its density from the camera side times "
+                                    "the connection's)"
+                            : x.connectionEdge < 0 ? ", hits the emitter" : "");
       }
       ImGui::TextWrapped("bars: balance (blue), power (orange), uniform (grey); < the technique that sampled it; x0 "
                          "on the light");
