@@ -219,9 +219,10 @@ template <bool kMerges>
     // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
     // infinity (the path environment -> camera, s = 0, t = 2).
     // s = 0, t >= 3: the term is technique s' = 1's, which needs x0's next-event density.
-    // A merge's pt is a camera vertex no connection formed: it may be delta.
+    // A merge's pt is a camera vertex no connection formed: it may be delta (a connection's pt
+    // counts as non-delta, s = 0's too, as in pathDensities).
     const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite) && !(s == 0 && t >= 3 && neeRefused) &&
-                        !(kMerges && pt.isDelta);
+                        !(kMerges && isMerge && pt.isDelta);
     // s = 0: technique s' = 1 samples x0 = pt by next-event estimation (x0FromLight); s = 1:
     // every technique on this side has s' >= 2, where x0 is a light subpath's origin.
     const double r = s == 0 ? ratio(x0FromLight, pt.pdfFwdA)
@@ -239,7 +240,7 @@ template <bool kMerges>
   if constexpr (kMerges) {
     const double connection = own;
     // The connection is usable here unless its camera end is a delta vertex (a merge's pt).
-    const double connectionTerm = pt.isDelta ? 0.0 : connection * m.connections;
+    const double connectionTerm = isMerge && pt.isDelta ? 0.0 : connection * m.connections;
     const double mergeAtQs = e.qs ? merge(s, *e.qs, c.qsFromCamera) : 0.0;
     own = isMerge ? mergeAtQs : connection;
     sum = connectionTerm + mergeAtQs + left + right;
