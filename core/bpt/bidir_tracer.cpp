@@ -37,17 +37,17 @@ Pcg32 walkStream(uint64_t connectionKey, int s, int t, uint64_t salt) {
   return Pcg32(mixBits(connectionKey ^ st ^ salt), mixBits(connectionKey + salt));
 }
 
-// Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
-// sample and (s, t): a technique's estimate does not depend on which other techniques are
-// evaluated, so an isolated render, the pyramid and the full image see the same connections. Only
-// next-event estimation (s = 1) and light tracing (t = 1) draw from it: the others skip seeding it
-// (about 1 % of a sample's instructions).
 // The replay trace's view of the merges of a pass: none without a pass.
 std::optional<MergesOnPath> mergesOnPath(const MergePass* pass, MergeSite site) {
   if (!pass) return std::nullopt;
   return MergesOnPath{MergeMis{pass->eta(), site == MergeSite::FirstNonSpecular}, pass->radius};
 }
 
+// Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
+// sample and (s, t): a technique's estimate does not depend on which other techniques are
+// evaluated, so an isolated render, the pyramid and the full image see the same connections. Only
+// next-event estimation (s = 1) and light tracing (t = 1) draw from it: the others skip seeding it
+// (about 1 % of a sample's instructions).
 Pcg32 connectionStream(uint64_t connectionKey, int s, int t) {
   return s == 1 || t == 1
              ? Pcg32(mixBits(connectionKey ^ (static_cast<uint64_t>(s) << 32 | static_cast<uint64_t>(t))), connectionKey)
