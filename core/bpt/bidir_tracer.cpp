@@ -420,8 +420,17 @@ int BidirTracer::storedLightSubpath(const SampleId& id, Walks& walks) const {
     if (v.type == VertexType::Surface)
       path.bsdfs[static_cast<size_t>(i)] = scene_.bsdf(v.material, ShadingInputs{v.uv, v.uv1, v.color}, v.ns, v.ng);
   }
-  if (n > 0 && misEvaluation_ == MisEvaluation::PartialSums)
-    accumulateLightSums(path, misPower_, walks.lightSums, mergeTerms(pass.eta()));
+  if (n > 0 && misEvaluation_ == MisEvaluation::PartialSums) {
+    // The pass accumulated this path's sums (MergePass::misSum): sum[0 .. n-1] and the shortest
+    // edges; sum[n], the whole path's, no connection reads.
+    const size_t start = pass.pixelPathStart[pixel], count = static_cast<size_t>(n);
+    SubpathMisSums& sums = walks.lightSums;
+    sums.sum.assign(pass.misSum.begin() + static_cast<std::ptrdiff_t>(start),
+                    pass.misSum.begin() + static_cast<std::ptrdiff_t>(start + count));
+    sums.sum.push_back(0.0);
+    sums.shortestEdge2.assign(pass.misShortestEdge2.begin() + static_cast<std::ptrdiff_t>(start),
+                              pass.misShortestEdge2.begin() + static_cast<std::ptrdiff_t>(start + count));
+  }
   return n;
 }
 
