@@ -3,6 +3,8 @@
 // pacing, frame-time statistics, screenshots, recording), its report and what it writes at the end.
 #include "ui/run_viewer.h"
 
+#include "core/film/image_io.h"
+
 #include "ui/gl/gl.h"
 #include "ui/gl/screenshot.h"
 #include "ui/input/input_script.h"
@@ -333,6 +335,8 @@ int runViewer(const ViewerOptions& o) {
   std::vector<InputEvent> script = parseInputScript(o.script);
   if (!o.recordDir.empty()) prepareRecordDirectory(o.recordDir, o.force);  // refused before the scene loads
   const std::shared_ptr<const Scene> scene = loadStartScene(o);
+  // A bad reference is refused before the window opens.
+  if (!options.reference.empty()) options.referenceImage = std::make_shared<const Image>(readImage(options.reference));
 
   ImGuiContextScope imgui;
   const std::unique_ptr<Surface> surface = openSurface(o);

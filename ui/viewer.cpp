@@ -53,8 +53,8 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
   initial.width = initial.height = 64;
   if (!options.reference.empty()) {
     // From the command line a bad reference is an error of the command, not a message.
-    reference_.errors->setReference(readImage(options.reference), viewOf(renderSettings(estimator_), &this->scene()),
-                                    options.reference);
+    reference_.errors->setReference(options.referenceImage ? *options.referenceImage : readImage(options.reference),
+                                    viewOf(renderSettings(estimator_), &this->scene()), options.reference);
     convergence_.show = true;
   }
   convergence_.show = convergence_.show || options.convergencePanel;

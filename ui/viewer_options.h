@@ -5,7 +5,10 @@
 #include "core/render/render_settings.h"
 #include "core/scene/gltf_loader.h"
 
+#include "core/image/image.h"
+
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -45,6 +48,9 @@ struct ViewerOptions {
   // A reference image (.exr or .pfm) for the live error plot and the error view; rendered at its
   // resolution. errorCsv: write the error series there on exit.
   std::string reference;
+  // The reference read by runViewer before any window or GL context opens (a bad file is refused
+  // first, and no driver state is left half made); the Viewer reads `reference` itself without it.
+  std::shared_ptr<const Image> referenceImage;
   std::string errorCsv;
   bool convergencePanel = false;  // open the convergence panel (plot and technique table)
   bool errorView = false;         // start in the false-colour error view
