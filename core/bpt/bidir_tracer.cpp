@@ -7,6 +7,8 @@
 #include "core/bpt/path_techniques.h"
 #include "core/counters/technique_tally.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <type_traits>
 
@@ -323,22 +325,35 @@ int BidirTracer::walkLight(int vertices, Pcg32& rng, Walks& walks, Counters& cou
 
 int BidirTracer::traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out, Counters& counters) const {
   // The walk alone: a merge pass accumulates its paths' sums once the pass's radius is known
-  // (lightSubpathSums).
+  // (prepareMergePass).
   thread_local LightSubpath path;
   const int ns = lightVerticesNeeded_ > 0 ? generateLightSubpath(scene_, lightRng,
                                                                  WalkOptions{lightVerticesNeeded_, options_.russianRoulette},
                                                                  path, counters)
                                           : 0;
-  out.assign(path.data(), path.data() + ns);
+  out.insert(out.end(), path.data(), path.data() + ns);
   return ns;
 }
 
 MergeTerms BidirTracer::mergeTerms(double eta) const { return MergeTerms{connectionsInSums_, true, eta}; }
 
-void BidirTracer::lightSubpathSums(const MergePass& pass, const PathVertex* path, int count, double* sum,
-                                   float* shortestEdge2) const {
+void BidirTracer::prepareMergePass(MergePass& pass) const {
+  pass.misSum.resize(pass.vertices.size());
+  pass.misShortestEdge2.resize(pass.vertices.size());
   if (misEvaluation_ != MisEvaluation::PartialSums) return;
-  accumulateLightSums(path, count, misPower_, sum, shortestEdge2, mergeTerms(pass.eta()));
+  const MergeTerms terms = mergeTerms(pass.eta());
+  tbb::parallel_for(size_t{0}, pass.pixelPathStart.size(), [&](size_t p) {
+    const uint32_t start = pass.pixelPathStart[p], count = pass.pixelPathCount[p];
+    if (count > 0)
+      accumulateLightSums(&pass.vertices[start], static_cast<int>(count), misPower_, &pass.misSum[start],
+                          &pass.misShortestEdge2[start], terms);
+  });
+  tbb::parallel_for(size_t{0}, pass.records.size(), [&](size_t j) {
+    MergeRecord& record = pass.records[j];
+    const uint32_t start = record.vertex - static_cast<uint32_t>(record.s - 1);
+    record.mis = mergeLightTerms(scene_, &pass.vertices[start], record.s, &pass.misSum[start],
+                                 &pass.misShortestEdge2[start], misPower_, terms);
+  });
 }
 
 void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, SampleSink& sink,
@@ -454,30 +469,31 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
     const PathVertex& z = walks.camera[t - 1];
     if (z.type != VertexType::Surface || z.isDelta) continue;
     const Bsdf& bsdf = walks.camera.bsdf(t - 1);
-    pass.grid.query(z.p, [&](uint32_t i) {
-      const uint32_t v = pass.mergeable[i];
-      const uint32_t start = pass.pathStart[v];
-      const int s = static_cast<int>(v - start) + 1;
+    // z's half of every merge weight at z, once for all the light vertices it finds.
+    const bool partialSums = misEvaluation_ == MisEvaluation::PartialSums;
+    const MergeCameraTerms cameraTerms =
+        partialSums ? mergeCameraTerms(walks.camera, t, walks.cameraSums, misPower_, lightTracingRatio(), terms)
+                    : MergeCameraTerms{};
+    pass.grid.querySlots(z.p, [&](uint32_t slot) {
+      const MergeRecord& record = pass.records[slot];
+      const int s = record.s;
       const Technique x = Technique::merge(s, t);
       if (x.length() > options_.maxLength) return;
       const bool enabled = options_.techniques.contains(x);
       const bool inImage = enabled && imageHasMerges, inPyramid = x.length() <= pyramidLength;
       if (!inImage && !inPyramid) return;
       TechniqueTally<false> tally(counters, x);
-      const PathVertex& y = pass.vertices[v];
-      const BsdfEval f = bsdf.eval(z.wo, y.wo, TransportMode::Radiance);
-      Spectrum L = z.beta * f.f * y.beta * normalisation;
+      const BsdfEval f = bsdf.eval(z.wo, record.wo, TransportMode::Radiance);
+      Spectrum L = z.beta * f.f * record.beta * normalisation;
       if (options_.injectBias && options_.injectBias->technique() == x) L *= options_.injectBias->factor;
       if (isBlack(L)) return tally.zero();
       // The merged path's two densities at z's BSDF (mergedPathDensities): toward y(s-2) and z(t-2).
       const MergePdfs pdfs{f.pdfFwdW, f.pdfRevW};
+      const uint32_t start = record.vertex - static_cast<uint32_t>(s - 1);
       float w = 0.f;
       if (enabled) {
         std::optional<float> fast;
-        if (misEvaluation_ == MisEvaluation::PartialSums)
-          fast = mergeWeightFromSums(scene_, &pass.vertices[start], s, &pass.misSum[start], &pass.misShortestEdge2[start],
-                                     walks.camera, t, walks.cameraSums, pdfs, misPower_, lightTracingRatio(),
-                                     minConnectionDistance_, terms);
+        if (partialSums) fast = mergeWeightFromTerms(record.mis, cameraTerms, pdfs, misPower_, terms, minConnectionDistance_);
         w = fast ? *fast
                  : mergeWeight(&pass.vertices[start], s, walks.camera.data(), t, pdfs, options_.techniques,
                                options_.mis, lightTracingRatio(), minConnectionDistance_, mis);
@@ -500,7 +516,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
         if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge);
         if (demand.onPath) {
-          r.merged = MergedVertices{y.p, z.p, z.ng, pass.radius};
+          r.merged = MergedVertices{pass.vertices[record.vertex].p, z.p, z.ng, pass.radius};
           tracePath(scene_, camera_, path, walks.traced);
           r.traced = &walks.traced;
           walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
@@ -511,7 +527,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       }
       if (!inImage || !(w > 0.f)) return;
       if (!sink.toImage(t, pRaster, L * w)) tally.discard(L * w, sink.id());
-    });
+    }, [&](uint32_t slot) { __builtin_prefetch(&pass.records[slot]); });
   }
 }
 

@@ -46,8 +46,9 @@ class BidirTracer {
 
   // The light subpath this tracer walks for a sample whose light stream is `lightRng` (path reuse:
   // the one every technique of the sample shares; ConnectStrategy::Endpoints draws one per technique
-  // from other streams, so this is one of the same distribution), into `out`: the viewer's light
-  // particles. Returns its vertex count (0 when no technique needs a light walk).
+  // from other streams, so this is one of the same distribution), appended to `out`: the viewer's
+  // light particles, a merge pass's store. Returns its vertex count (0 when no technique needs a
+  // light walk).
   int traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out, Counters& counters) const;
 
   const TechniqueSet& techniques() const { return options_.techniques; }
@@ -58,11 +59,11 @@ class BidirTracer {
   // connections' included, is then the explicit one over connections and merges (merge_mis.h).
   bool merges() const { return merges_; }
   void setMergePass(const MergePass* pass) { mergePass_ = pass; }
-  // The MIS partial sums of one of `pass`'s light subpaths (count vertices from `path`) into
-  // sum[i] / shortestEdge2[i] (accumulateLightSums' pointer form) with the pass's eta: what a
-  // merge with its vertices reads (MergePass::misSum). Nothing when the weights are explicit.
-  void lightSubpathSums(const MergePass& pass, const PathVertex* path, int count, double* sum,
-                        float* shortestEdge2) const;
+  // The MIS partial sums of `pass`'s light subpaths (MergePass::misSum, accumulateLightSums'
+  // pointer form, with the pass's eta: what a camera sample's connections to its own light subpath
+  // read) and each record's light terms (MergeRecord::mis, what a merge reads), in parallel, after
+  // MergePass::index. Nothing when the weights are explicit.
+  void prepareMergePass(MergePass& pass) const;
   MisEvaluation misEvaluation() const { return misEvaluation_; }
 
   // Time the walks and every technique's connection and weight into the counters, on one camera

@@ -3,6 +3,7 @@
 // radius. Built between passes by the render session, read by every camera sample of the pass.
 #pragma once
 
+#include "core/bpt/mis_partial_sums.h"
 #include "core/bpt/path_vertex.h"
 #include "core/merge/hash_grid.h"
 
@@ -19,6 +20,19 @@ inline float mergeRadius(float firstRadius, float alpha, uint64_t pass) {
   return firstRadius * static_cast<float>(std::pow(static_cast<double>(pass) + 1.0, (static_cast<double>(alpha) - 1.0) / 2.0));
 }
 
+// A mergeable light vertex as a merge reads it: its direction and throughput for the
+// contribution, its MIS terms for the O(1) weight (mergeLightTerms), where it lies in `vertices`
+// for everything else (the explicit weights, the inspector). Kept in the grid's slot order, so a
+// query reads the records of a bucket one after another rather than a vertex, its path's start and
+// its sums scattered over a store of a million vertices.
+struct MergeRecord {
+  Vec3 wo{0.f};
+  Spectrum beta{0.f};
+  uint32_t vertex = 0;  // index in MergePass::vertices
+  int s = 0;            // the light vertex is y(s-1): vertex - (s - 1) is its path's x0
+  MergeLightTerms mis;  // filled when the weights come from the partial sums
+};
+
 struct MergePass {
   std::vector<PathVertex> vertices;   // every light subpath of the pass, path after path
   std::vector<uint32_t> pathStart;    // per vertex: the index of its path's vertex 0
@@ -33,6 +47,7 @@ struct MergePass {
   std::vector<double> misSum;
   std::vector<float> misShortestEdge2;
   HashGrid grid;
+  std::vector<MergeRecord> records;  // per grid slot (HashGrid::querySlots)
   float radius = 0.f;
   uint64_t lightSubpaths = 0;  // N
   // eta = pi r^2 N, the merges' factor in every MIS weight (merge_mis.h), and 1 / (pi r^2 N), the
@@ -40,8 +55,20 @@ struct MergePass {
   double eta() const { return 3.14159265358979323846 * static_cast<double>(radius) * radius * static_cast<double>(lightSubpaths); }
   double normalisation() const { return 1.0 / eta(); }
 
+  // The walks' scratch, kept from pass to pass so that a pass does not allocate (and fault in) a
+  // fresh store's worth of memory: per work item of RenderSession::buildMergePass, its pixels'
+  // light subpaths before they are joined into `vertices` in item order.
+  struct WalkItem {
+    std::vector<PathVertex> vertices;
+    std::vector<uint32_t> pixels;                  // y * width + x, their paths in order
+    std::vector<uint32_t> pixelStart, pixelCount;  // within the item
+  };
+  std::vector<WalkItem> walkItems;
+  std::vector<Vec3> mergeablePoints;  // index's scratch: the grid's points
+
   // Keeps, of `vertices`, those that can be merged: on a surface, not the light origin (index 0 in
-  // its path), not scattered by a delta lobe; then builds the grid over them with `radius`.
+  // its path), not scattered by a delta lobe; then builds the grid over them with `radius` and
+  // their records in its slot order (without `mis`: BidirTracer::prepareMergePass).
   void index(float radius);
 };
 

@@ -134,14 +134,13 @@ namespace {
 // The weight from the sums once the connection's densities are known: every entry point below.
 // Inline into each, so that the interior one (s, t >= 2 known) loses the branches of s <= 1.
 // lightSum / cameraSum: SubpathMisSums::sum of each side. kMerges: the sums and the weight count
-// the merges (MergeTerms); `isMerge`: the technique weighed is the merge at qs, M(s, t + 1), on
-// the path of connection C(s, t) (the merged path, merge_mis.h), rather than C(s, t) itself.
+// the merges (MergeTerms). A merge's weight has its own entry point (mergeWeightFromTerms).
 template <bool kMerges>
 [[gnu::always_inline]] inline std::optional<float> weightFromSums(const Scene& scene, const MisPath& path,
                                                                   const ConnectionEnds& e, const ConnectionDensities& c,
                                                                   const double* lightSum, const double* cameraSum,
                                                                   const MisPower& power, float lightTracingRatio,
-                                                                  const MergeTerms& m, bool isMerge) {
+                                                                  const MergeTerms& m) {
   const int s = path.s, t = path.t;
   const PathVertex& pt = *e.pt;
   // x0's density under technique s' = 1 over its density as a light subpath's origin, for paths
@@ -219,10 +218,7 @@ template <bool kMerges>
     // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
     // infinity (the path environment -> camera, s = 0, t = 2).
     // s = 0, t >= 3: the term is technique s' = 1's, which needs x0's next-event density.
-    // A merge's pt is a camera vertex no connection formed: it may be delta (a connection's pt
-    // counts as non-delta, s = 0's too, as in pathDensities).
-    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite) && !(s == 0 && t >= 3 && neeRefused) &&
-                        !(kMerges && isMerge && pt.isDelta);
+    const bool usable = !e.ptMinus->isDelta && !(t == 2 && pt.isInfinite) && !(s == 0 && t >= 3 && neeRefused);
     // s = 0: technique s' = 1 samples x0 = pt by next-event estimation (x0FromLight); s = 1:
     // every technique on this side has s' >= 2, where x0 is a light subpath's origin.
     const double r = s == 0 ? ratio(x0FromLight, pt.pdfFwdA)
@@ -235,16 +231,9 @@ template <bool kMerges>
   }
   // Veach eq. 10.9 relative to C(s, t)'s own (n_s p_s)^beta, and with merges the merge at qs
   // (M(s, t + 1), whose density is C(s, t)'s times eta pFromCamera(qs)).
-  double own = t == 1 ? lightTracingCount : 1.0;
+  const double own = t == 1 ? lightTracingCount : 1.0;
   double sum = own + left + right;
-  if constexpr (kMerges) {
-    const double connection = own;
-    // The connection is usable here unless its camera end is a delta vertex (a merge's pt).
-    const double connectionTerm = isMerge && pt.isDelta ? 0.0 : connection * m.connections;
-    const double mergeAtQs = e.qs ? merge(s, *e.qs, c.qsFromCamera) : 0.0;
-    own = isMerge ? mergeAtQs : connection;
-    sum = connectionTerm + mergeAtQs + left + right;
-  }
+  if constexpr (kMerges) sum = own * m.connections + (e.qs ? merge(s, *e.qs, c.qsFromCamera) : 0.0) + left + right;
   const double w = own / sum;
   if (!std::isfinite(left + right) || !std::isfinite(w)) return std::nullopt;
   return static_cast<float>(w);
@@ -260,7 +249,7 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
                    cameraSums.shortestEdge2.data(), minConnectionDistance))
     return std::nullopt;
   return weightFromSums<false>(scene, path, e, connectionDensities(scene, camera, path, e), lightSums.sum.data(),
-                               cameraSums.sum.data(), power, lightTracingRatio, MergeTerms{}, false);
+                               cameraSums.sum.data(), power, lightTracingRatio, MergeTerms{});
 }
 
 std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
@@ -272,7 +261,7 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
                    cameraSums.shortestEdge2.data(), minConnectionDistance))
     return std::nullopt;
   return weightFromSums<true>(scene, path, e, connectionDensities(scene, camera, path, e), lightSums.sum.data(),
-                              cameraSums.sum.data(), power, lightTracingRatio, merges, false);
+                              cameraSums.sum.data(), power, lightTracingRatio, merges);
 }
 
 namespace {
@@ -294,7 +283,7 @@ template <bool kMerges>
   e.pt = &cameraPath[t - 1];
   e.ptMinus = &cameraPath[t - 2];
   return weightFromSums<kMerges>(scene, path, e, evaluatedConnectionDensities(*e.qs, *e.pt, pdfs, true, t),
-                                 lightSums.sum.data(), cameraSums.sum.data(), power, lightTracingRatio, merges, false);
+                                 lightSums.sum.data(), cameraSums.sum.data(), power, lightTracingRatio, merges);
 }
 
 }  // namespace
@@ -316,36 +305,104 @@ std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightP
                               power, lightTracingRatio, minConnectionDistance, merges);
 }
 
+MergeLightTerms mergeLightTerms(const Scene& scene, const PathVertex* lightPath, int s, const double* lightSum,
+                                const float* lightShortestEdge2, const MisPower& power, const MergeTerms& m) {
+  // weightFromSums' light side for the merged path C(s, t - 1) (qs = y, qsMinus = y(s-2); the path
+  // has three or more vertices), with the two densities the merge fixes, X = pFromCamera(y(s-2))
+  // and pFromCamera(y) = pFwd(z), left as factors.
+  assert(s >= 2);
+  const PathVertex& y = lightPath[s - 1];
+  const PathVertex& q = lightPath[s - 2];
+  const double neeOverOrigin =
+      scene.lights().neeByContext() ? ratio(lightPath[0].pdfNeeA, lightPath[0].pdfFwdA) : 1.0;
+  MergeLightTerms r;
+  // Technique s - 2 (s = 2: q is x0, hit as an origin; s = 3: technique 1 needs x0's next-event
+  // density) and its merge at y(s-3).
+  const bool beyondUsable = s == 2 ? canBeHitAsOrigin(q) && !q.isDelta
+                                   : !lightPath[s - 3].isDelta && !q.isDelta && (s != 3 || lightPath[0].pdfNeeA != 0.f);
+  double w = beyondUsable ? m.connections : 0.0;
+  if (s >= 4 && m.merges && mergeableVertex(lightPath[s - 3])) w += mergeTerm(power, m, lightPath[s - 3].pdfRevA);
+  r.beyond = w + lightSum[s - 2];
+  r.beyondScale = (s == 3 ? neeOverOrigin : 1.0) / remap0(s == 2 ? q.pdfNeeA : q.pdfFwdA);
+  // Technique s - 1 (s = 2: technique 1) and its merge at y(s-2).
+  r.connection = !q.isDelta && (s != 2 || q.pdfNeeA != 0.f) ? m.connections : 0.0;
+  r.predecessorMergeable = s >= 3 && m.merges && mergeableVertex(q);
+  r.ownScale = (s == 2 ? neeOverOrigin : 1.0) / remap0(y.pdfFwdA);
+  r.areaToPrev = y.areaToPrev;
+  r.shortestEdge2 = lightShortestEdge2[s - 1];
+  return r;
+}
+
+MergeCameraTerms mergeCameraTerms(const Subpath& cameraPath, int t, const SubpathMisSums& cameraSums,
+                                  const MisPower& power, float lightTracingRatio, const MergeTerms& m) {
+  // weightFromSums' camera side for the merged path C(s, t - 1) (s >= 2: pt = z(t-2), ptMinus =
+  // z(t-3)), with pFromLight(z(t-2)) = Y left as a factor.
+  assert(t >= 2);
+  const PathVertex& z = cameraPath[t - 1];
+  const int tc = t - 1;
+  const PathVertex& pt = cameraPath[tc - 1];
+  const double lightTracingCount = power(lightTracingRatio);
+  auto count = [&](int tPrime) { return tPrime == 1 ? lightTracingCount : 1.0; };
+  MergeCameraTerms r;
+  r.pFwd = remap0(z.pdfFwdA);
+  // The merge weighed, at y (always mergeable: the pass stores no other), and the connection
+  // C(s, t - 1) of the same path, unless z(t-2) is a delta vertex no connection can end at.
+  r.mergeAtZ = m.merges ? mergeTerm(power, m, z.pdfFwdA) : 0.0;
+  r.connection = pt.isDelta ? 0.0 : count(tc) * m.connections;
+  r.hasCameraSide = tc >= 2;
+  if (r.hasCameraSide) {
+    const PathVertex& ptMinus = cameraPath[tc - 2];
+    double beyond = 0.0;
+    if (tc >= 3) {
+      const bool usable = !ptMinus.isDelta && !cameraPath[tc - 3].isDelta;
+      double w = usable ? count(tc - 2) * m.connections : 0.0;
+      if (m.merges && mergeableVertex(ptMinus)) w += mergeTerm(power, m, ptMinus.pdfFwdA);
+      beyond = power(ratio(ptMinus.pdfRevA, ptMinus.pdfFwdA)) * (w + cameraSums.sum[static_cast<size_t>(tc - 2)]);
+    }
+    // Technique t - 2 connects z(t-2) and z(t-3): not through a delta vertex, not from the lens to
+    // a light at infinity; its merge at z(t-2).
+    const bool usable = !ptMinus.isDelta && !(tc == 2 && pt.isInfinite) && !pt.isDelta;
+    double w = usable ? count(tc - 1) * m.connections : 0.0;
+    if (m.merges && mergeableVertex(pt)) w += mergeTerm(power, m, pt.pdfFwdA);
+    r.beyond = w + beyond;
+    r.scale = 1.0 / remap0(pt.pdfFwdA);
+  }
+  r.areaToPrev = z.areaToPrev;
+  r.shortestEdge2 = edgeLength2(z, pt);
+  if (tc >= 2) r.shortestEdge2 = std::min(r.shortestEdge2, cameraSums.shortestEdge2[static_cast<size_t>(tc - 1)]);
+  return r;
+}
+
+std::optional<float> mergeWeightFromTerms(const MergeLightTerms& light, const MergeCameraTerms& camera,
+                                          const MergePdfs& pdfs, const MisPower& power, const MergeTerms& m,
+                                          float minConnectionDistance) {
+  const float minDistance2 = minConnectionDistance * minConnectionDistance;
+  if (minDistance2 > 0.f && std::min(light.shortestEdge2, camera.shortestEdge2) < minDistance2) return std::nullopt;
+  // The merged vertex's BSDF fixes the densities of its neighbours (mergedPathDensities).
+  const double x = remap0(static_cast<double>(pdfs.towardLightW * light.areaToPrev));
+  const double beyond = power(x * light.beyondScale) * light.beyond;
+  double w = light.connection;
+  if (light.predecessorMergeable) w += power(m.eta * x);
+  const double left = power(camera.pFwd * light.ownScale) * (w + beyond);
+  double right = 0.0;
+  if (camera.hasCameraSide) {
+    const double y = remap0(static_cast<double>(pdfs.towardCameraW * camera.areaToPrev));
+    right = power(y * camera.scale) * camera.beyond;
+  }
+  const double weight = camera.mergeAtZ / (camera.connection + camera.mergeAtZ + left + right);
+  if (!std::isfinite(left + right) || !std::isfinite(weight)) return std::nullopt;
+  return static_cast<float>(weight);
+}
+
 std::optional<float> mergeWeightFromSums(const Scene& scene, const PathVertex* lightPath, int s,
                                          const double* lightSum, const float* lightShortestEdge2,
                                          const Subpath& cameraPath, int t, const SubpathMisSums& cameraSums,
                                          const MergePdfs& pdfs, const MisPower& power, float lightTracingRatio,
                                          float minConnectionDistance, const MergeTerms& merges) {
-  // The merged path (merge_mis.h mergedPathDensities) is connection C(s, t - 1)'s: the light prefix
-  // through the merged vertex, then z(t-2) .. z0. Its edge into the camera prefix is the camera
-  // walk's z(t-1) -> z(t-2).
   assert(s >= 2 && t >= 2);
-  const PathVertex& y = lightPath[s - 1];
-  const PathVertex& z = cameraPath[t - 1];
-  const int tc = t - 1;
-  if (hasShortEdge(s, tc, edgeLength2(z, cameraPath[tc - 1]), lightShortestEdge2, cameraSums.shortestEdge2.data(),
-                   minConnectionDistance))
-    return std::nullopt;
-  const MisPath path{lightPath, s, cameraPath.data(), tc, nullptr, nullptr};
-  ConnectionEnds e;
-  e.qsMinus = &lightPath[s - 2];
-  e.qs = &y;
-  e.pt = &cameraPath[tc - 1];
-  e.ptMinus = tc >= 2 ? &cameraPath[tc - 2] : nullptr;
-  // The merged vertex keeps both walks' densities of it (y's from the light, z's from the camera);
-  // the vertices beside it see z's BSDF (mergedPathDensities).
-  ConnectionDensities c;
-  c.qsFromCamera = z.pdfFwdA;
-  c.qsMinusFromCamera = pdfs.towardLightW * y.areaToPrev;
-  c.ptFromLight = pdfs.towardCameraW * z.areaToPrev;
-  if (tc >= 3) c.ptMinusFromLight = e.ptMinus->pdfRevA;
-  return weightFromSums<true>(scene, path, e, c, lightSum, cameraSums.sum.data(), power, lightTracingRatio, merges,
-                              true);
+  return mergeWeightFromTerms(mergeLightTerms(scene, lightPath, s, lightSum, lightShortestEdge2, power, merges),
+                              mergeCameraTerms(cameraPath, t, cameraSums, power, lightTracingRatio, merges), pdfs,
+                              power, merges, minConnectionDistance);
 }
 
 }  // namespace pathlab

@@ -109,10 +109,52 @@ struct MergePdfs {
   float towardCameraW = 0.f;
 };
 
+// A merge's weight split into what its light vertex fixes and what its camera vertex fixes, so
+// that a pass stores the first once per light vertex and a camera vertex computes the second once
+// for all the light vertices it finds (SmallVCM's dVCM / dVC / dVM per vertex, here in this file's
+// partial-sum form). With X = pFromCamera(y(s-2)) = towardLightW areaToPrev(y) and
+// Y = pFromLight(z(t-2)) = towardCameraW areaToPrev(z), the two densities the merged vertex's BSDF
+// fixes, the weight of M(s, t) on its merged path C(s, t - 1) (mergedPathDensities) is
+//   left  = T(r_y) (c_y + m_y T(eta X) + T(X K_b) B),   r_y = pFwd(z) K_y,
+//   right = T(Y K_z) B_z,
+//   w = T(eta pFwd(z)) / (c_z + T(eta pFwd(z)) + left + right),
+// every other factor fixed by one walk alone (the members below).
+struct MergeLightTerms {
+  double beyond = 0.0;         // B: w(s-2) + left(s-2), the terms beyond y(s-2)
+  double beyondScale = 0.0;    // K_b: X K_b is r_{s-2}
+  double ownScale = 0.0;       // K_y: pFwd(z) K_y is r_{s-1}
+  float connection = 0.f;      // c_y: the connection C(s-1, .) counted (connections, or 0 if unusable)
+  float areaToPrev = 0.f;      // y's: X = towardLightW areaToPrev
+  float shortestEdge2 = 0.f;   // the light prefix's shortest edge (hasShortEdge)
+  bool predecessorMergeable = false;  // m_y: the merge at y(s-2) counted
+};
+struct MergeCameraTerms {
+  double mergeAtZ = 0.0;       // T(eta pFwd(z)): the weighed merge's own term
+  double pFwd = 0.0;           // pFwd(z), remapped
+  double connection = 0.0;     // c_z: C(s, t - 1), unless z(t-2) is a delta vertex
+  double beyond = 0.0;         // B_z: the camera side's terms from z(t-2) on
+  double scale = 0.0;          // K_z: Y K_z is the ratio at z(t-2)
+  float areaToPrev = 0.f;      // z's: Y = towardCameraW areaToPrev
+  float shortestEdge2 = 0.f;   // the camera prefix's and the edge z(t-1) -> z(t-2), shortest
+  bool hasCameraSide = false;  // t >= 3: a technique t' < t - 1 exists (right > 0 possible)
+};
+
+// lightPath[s - 1] (s >= 2, mergeable) with its stored sums (accumulateLightSums' pointer form).
+MergeLightTerms mergeLightTerms(const Scene& scene, const PathVertex* lightPath, int s, const double* lightSum,
+                                const float* lightShortestEdge2, const MisPower& power, const MergeTerms& merges);
+// cameraPath[t - 1] (t >= 2, mergeable) with its subpath's sums.
+MergeCameraTerms mergeCameraTerms(const Subpath& cameraPath, int t, const SubpathMisSums& cameraSums,
+                                  const MisPower& power, float lightTracingRatio, const MergeTerms& merges);
+// The weight from the two; nullopt as misWeightFromSums' (a short edge, a sum that overflowed).
+std::optional<float> mergeWeightFromTerms(const MergeLightTerms& light, const MergeCameraTerms& camera,
+                                          const MergePdfs& pdfs, const MisPower& power, const MergeTerms& merges,
+                                          float minConnectionDistance);
+
 // The weight of merge M(s, t) of light vertex lightPath[s - 1] (a stored light subpath, its sums
 // lightSum / lightShortestEdge2 per vertex as accumulateLightSums' pointer form wrote them) and
 // camera vertex cameraPath[t - 1] among the techniques `merges` enables: the path and densities
-// of mergedPathDensities, in O(1). nullopt as misWeightFromSums'.
+// of mergedPathDensities, in O(1) (the two terms above, formed and combined). nullopt as
+// misWeightFromSums'.
 std::optional<float> mergeWeightFromSums(const Scene& scene, const PathVertex* lightPath, int s,
                                          const double* lightSum, const float* lightShortestEdge2,
                                          const Subpath& cameraPath, int t, const SubpathMisSums& cameraSums,

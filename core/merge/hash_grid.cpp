@@ -17,7 +17,8 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
   invCellSize_ = 1.f / (2.f * radius);
   const size_t n = points.size();
   buckets_ = std::max<uint64_t>(n, 1);
-  std::vector<uint64_t> keys(n);  // bucket << 32 | index: sorting them sorts by (bucket, index)
+  std::vector<uint64_t>& keys = keys_;  // bucket << 32 | index: sorting them sorts by (bucket, index)
+  keys.resize(n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const Vec3 c = points[i] * invCellSize_;
@@ -28,8 +29,7 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
   tbb::parallel_sort(keys.begin(), keys.end());
   index_.resize(n);
   position_.resize(n);
-  begin_.assign(buckets_, 0);
-  end_.assign(buckets_, 0);
+  range_.assign(buckets_, {0u, 0u});
   // A bucket's range starts where its key first appears and ends after its last: each boundary is
   // written by the one thread that sees it, so the ranges need no atomics.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
@@ -38,8 +38,8 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
       const uint64_t b = keys[j] >> 32;
       index_[j] = i;
       position_[j] = points[i];
-      if (j == 0 || keys[j - 1] >> 32 != b) begin_[b] = static_cast<uint32_t>(j);
-      if (j + 1 == n || keys[j + 1] >> 32 != b) end_[b] = static_cast<uint32_t>(j + 1);
+      if (j == 0 || keys[j - 1] >> 32 != b) range_[b][0] = static_cast<uint32_t>(j);
+      if (j + 1 == n || keys[j + 1] >> 32 != b) range_[b][1] = static_cast<uint32_t>(j + 1);
     }
   });
 }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace pathlab {
@@ -32,10 +33,48 @@ class HashGrid {
   // once, in ascending order of (bucket, i).
   template <class Fn>
   void query(const Vec3& x, Fn&& fn) const {
+    querySlots(x, [&](uint32_t slot) { fn(index_[slot]); });
+  }
+
+  // The same by slot: the grid keeps its points sorted by (bucket, index), and slot j holds point
+  // pointOfSlot(j). Data a caller lays out in slot order is read contiguously by a query, one
+  // bucket after another (MergePass::records); prefetch(j) is called with the first slot of each
+  // non-empty bucket before any fn, so the caller can prefetch its own data there.
+  template <class Fn>
+  void querySlots(const Vec3& x, Fn&& fn) const {
+    querySlots(x, std::forward<Fn>(fn), [](uint32_t) {});
+  }
+  template <class Fn, class Prefetch>
+  void querySlots(const Vec3& x, Fn&& fn, Prefetch&& prefetch) const {
     if (index_.empty()) return;
+    std::array<uint32_t, 8> buckets;
+    const size_t count = bucketsNear(x, buckets);
+    // The buckets lie far apart in a store of a million points, so each visit misses the caches
+    // twice (its range, then its points): the misses are issued together first, so that they
+    // overlap instead of following one another (the query's cost is memory latency, not work).
+    for (size_t n = 0; n < count; ++n) __builtin_prefetch(&range_[buckets[n]]);
+    std::array<std::array<uint32_t, 2>, 8> ranges;
+    for (size_t n = 0; n < count; ++n) {
+      ranges[n] = range_[buckets[n]];
+      if (ranges[n][0] < ranges[n][1]) {
+        __builtin_prefetch(&position_[ranges[n][0]]);
+        prefetch(ranges[n][0]);
+      }
+    }
+    for (size_t n = 0; n < count; ++n) {
+      for (uint32_t j = ranges[n][0]; j < ranges[n][1]; ++j) {
+        const Vec3 d = position_[j] - x;
+        if (d.x * d.x + d.y * d.y + d.z * d.z <= radius2_) fn(j);
+      }
+    }
+  }
+  uint32_t pointOfSlot(uint32_t slot) const { return index_[slot]; }
+
+ private:
+  // The distinct buckets of the 2 x 2 x 2 cells nearest x, ascending; returns their count.
+  size_t bucketsNear(const Vec3& x, std::array<uint32_t, 8>& buckets) const {
     const Vec3 c = x * invCellSize_;
     // Per axis, the cell holding x and the neighbour on the side x is closer to.
-    std::array<uint32_t, 8> buckets;
     const int64_t base[3] = {cellCoordinate(c.x), cellCoordinate(c.y), cellCoordinate(c.z)};
     const int64_t step[3] = {c.x - std::floor(c.x) < 0.5f ? -1 : 1, c.y - std::floor(c.y) < 0.5f ? -1 : 1,
                              c.z - std::floor(c.z) < 0.5f ? -1 : 1};
@@ -43,16 +82,8 @@ class HashGrid {
       buckets[static_cast<size_t>(n)] =
           bucketOf(base[0] + (n & 1 ? step[0] : 0), base[1] + (n & 2 ? step[1] : 0), base[2] + (n & 4 ? step[2] : 0));
     std::sort(buckets.begin(), buckets.end());
-    const auto last = std::unique(buckets.begin(), buckets.end());
-    for (auto b = buckets.begin(); b != last; ++b) {
-      for (uint32_t j = begin_[*b], end = end_[*b]; j < end; ++j) {
-        const Vec3 d = position_[j] - x;
-        if (d.x * d.x + d.y * d.y + d.z * d.z <= radius2_) fn(index_[j]);
-      }
-    }
+    return static_cast<size_t>(std::unique(buckets.begin(), buckets.end()) - buckets.begin());
   }
-
- private:
   // Cell coordinates clamped far beyond any scene (2^40 cells of side 2r), so huge or infinite
   // coordinates still hash and a query never overflows.
   static int64_t cellCoordinate(float c) {
@@ -68,9 +99,12 @@ class HashGrid {
 
   float radius_ = 0.f, radius2_ = 0.f, invCellSize_ = 0.f;
   uint64_t buckets_ = 1;
-  std::vector<uint32_t> begin_, end_;  // per bucket: its points' range in index_ and position_
+  // Per bucket: its points' range [begin, end) in index_ and position_ (one array: a query's
+  // visit to a bucket reads one cache line for it).
+  std::vector<std::array<uint32_t, 2>> range_;
   std::vector<uint32_t> index_;        // point indices sorted by (bucket, index)
   std::vector<Vec3> position_;         // their positions, in the same order
+  std::vector<uint64_t> keys_;         // build's scratch, kept between builds
 };
 
 }  // namespace pathlab

@@ -174,35 +174,31 @@ void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
 void RenderSession::buildMergePass(uint64_t pass, Counters& counters, MergePass& m) const {
   // Each work item walks its pixels' light subpaths into a list of its own; the lists are then
   // joined in item order, so the store (and the order of every merge) is the same at any thread
-  // count. Serial work: one offset per item.
-  struct ItemPaths {
-    std::vector<PathVertex> vertices;
-    std::vector<uint32_t> pathStart;  // within the item
-    std::vector<uint32_t> pixels;     // the item's pixels (y * width + x), their paths in order
-    std::vector<uint32_t> pixelStart, pixelCount;  // within the item
-  };
-  std::vector<ItemPaths> items(tiles_.size());
+  // count. Serial work: one offset per item. The lists and the store keep their memory from pass
+  // to pass (MergePass::walkItems).
+  m.walkItems.resize(tiles_.size());
   tbb::enumerable_thread_specific<Counters> local;
   tbb::parallel_for(size_t{0}, tiles_.size(), [&](size_t i) {
     const PassTile& tile = tiles_[i];
-    ItemPaths& out = items[i];
+    MergePass::WalkItem& out = m.walkItems[i];
+    out.vertices.clear();
+    out.pixels.clear();
+    out.pixelStart.clear();
+    out.pixelCount.clear();
     Counters& c = local.local();
-    std::vector<PathVertex> path;
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         Pcg32 lightRng = sampleStream(settings_, x, y, pass, RngStream::Light);
         const uint64_t raysBefore = c.rays;
-        const int n = bidirTracer_->traceLightSubpath(lightRng, path, c);
-        c.lightWalk.rays += c.rays - raysBefore;
-        const uint32_t start = static_cast<uint32_t>(out.vertices.size());
-        out.vertices.insert(out.vertices.end(), path.begin(), path.begin() + n);
-        out.pathStart.insert(out.pathStart.end(), static_cast<size_t>(n), start);
         out.pixels.push_back(static_cast<uint32_t>(y) * static_cast<uint32_t>(settings_.width) + static_cast<uint32_t>(x));
-        out.pixelStart.push_back(start);
+        out.pixelStart.push_back(static_cast<uint32_t>(out.vertices.size()));
+        const int n = bidirTracer_->traceLightSubpath(lightRng, out.vertices, c);
+        c.lightWalk.rays += c.rays - raysBefore;
         out.pixelCount.push_back(static_cast<uint32_t>(n));
       }
   });
   for (const Counters& c : local) counters += c;
+  const std::vector<MergePass::WalkItem>& items = m.walkItems;
   std::vector<size_t> offset(items.size() + 1, 0);
   for (size_t i = 0; i < items.size(); ++i) offset[i + 1] = offset[i] + items[i].vertices.size();
   if (offset.back() >= UINT32_MAX) throw std::runtime_error("vertex merging: too many light vertices in one pass");
@@ -212,26 +208,20 @@ void RenderSession::buildMergePass(uint64_t pass, Counters& counters, MergePass&
   m.pixelPathStart.assign(film_.pixelCount(), 0);
   m.pixelPathCount.assign(film_.pixelCount(), 0);
   tbb::parallel_for(size_t{0}, items.size(), [&](size_t i) {
-    const ItemPaths& item = items[i];
+    const MergePass::WalkItem& item = items[i];
     const uint32_t base = static_cast<uint32_t>(offset[i]);
     std::copy(item.vertices.begin(), item.vertices.end(), m.vertices.begin() + static_cast<std::ptrdiff_t>(base));
-    for (size_t j = 0; j < item.pathStart.size(); ++j) m.pathStart[base + j] = base + item.pathStart[j];
     for (size_t j = 0; j < item.pixels.size(); ++j) {
-      m.pixelPathStart[item.pixels[j]] = base + item.pixelStart[j];
+      const uint32_t start = base + item.pixelStart[j];
+      m.pixelPathStart[item.pixels[j]] = start;
       m.pixelPathCount[item.pixels[j]] = item.pixelCount[j];
+      std::fill_n(m.pathStart.begin() + static_cast<std::ptrdiff_t>(start), item.pixelCount[j], start);
     }
   });
   m.lightSubpaths = lightSubpathsPerPass(film_.pixelCount());
   m.index(mergeRadius(settings_.mergeRadius * scene_.bounds().radius, settings_.mergeRadiusAlpha, pass));
-  // Each stored path's MIS partial sums, now that eta is known (a merge reads them in O(1)).
-  m.misSum.resize(m.vertices.size());
-  m.misShortestEdge2.resize(m.vertices.size());
-  tbb::parallel_for(size_t{0}, m.pixelPathStart.size(), [&](size_t p) {
-    const uint32_t start = m.pixelPathStart[p], count = m.pixelPathCount[p];
-    if (count > 0)
-      bidirTracer_->lightSubpathSums(m, &m.vertices[start], static_cast<int>(count), &m.misSum[start],
-                                     &m.misShortestEdge2[start]);
-  });
+  // Each stored path's MIS partial sums and each mergeable vertex's terms, now that eta is known.
+  bidirTracer_->prepareMergePass(m);
 }
 
 bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
