@@ -6,6 +6,7 @@
 #include "core/bpt/mis_off.h"
 #include "core/bpt/path_techniques.h"
 #include "core/counters/technique_tally.h"
+#include "core/merge/room.h"
 
 #include <tbb/parallel_for.h>
 
@@ -338,8 +339,8 @@ int BidirTracer::traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out
 MergeTerms BidirTracer::mergeTerms(double eta) const { return MergeTerms{connectionsInSums_, true, eta}; }
 
 void BidirTracer::prepareMergePass(MergePass& pass) const {
-  pass.misSum.resize(pass.vertices.size());
-  pass.misShortestEdge2.resize(pass.vertices.size());
+  resizeWithRoom(pass.misSum, pass.vertices.size());
+  resizeWithRoom(pass.misShortestEdge2, pass.vertices.size());
   if (misEvaluation_ != MisEvaluation::PartialSums) return;
   const MergeTerms terms = mergeTerms(pass.eta());
   tbb::parallel_for(size_t{0}, pass.pixelPathStart.size(), [&](size_t p) {
@@ -417,7 +418,7 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& ligh
         evaluate<false>(timed, s, t, use, pRaster, connectionKey, walks, sink, counters);
       }
     }
-  if (mergePass_) evaluateMerges(nt, pRaster, pyramidLength, walks, sink, counters);
+  if (mergePass_) evaluateMerges(timed, nt, pRaster, pyramidLength, walks, sink, counters);
 }
 
 int BidirTracer::storedLightSubpath(const SampleId& id, Walks& walks) const {
@@ -449,6 +450,23 @@ int BidirTracer::storedLightSubpath(const SampleId& id, Walks& walks) const {
   return n;
 }
 
+void BidirTracer::evaluateMerges(bool timed, int nt, Vec2 pRaster, int pyramidLength, Walks& walks,
+                                 SampleSink& sink, Counters& counters) const {
+  if (!timed) return evaluateMerges<false>(nt, pRaster, pyramidLength, walks, sink, counters);
+  // The merges' own time goes to their techniques (TechniqueTally); what is left of the whole is
+  // the range searches'.
+  auto techniqueTime = [&] {
+    uint64_t ns = 0;
+    for (const TechniqueCounters& t : counters.techniques) ns += t.nanoseconds;
+    return ns;
+  };
+  const uint64_t mergesBefore = techniqueTime(), start = ticks();
+  evaluateMerges<true>(nt, pRaster, pyramidLength, walks, sink, counters);
+  const uint64_t total = elapsedNanoseconds(start, ticks()), merges = techniqueTime() - mergesBefore;
+  counters.mergeSearch.nanoseconds += total > merges ? total - merges : 0;
+}
+
+template <bool kTimed>
 void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink,
                                  Counters& counters) const {
   // Vertex merging (Georgiev et al. 2012 eq. 11): camera vertex z(t-1) and light vertex y(s-1)
@@ -482,7 +500,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       const bool enabled = options_.techniques.contains(x);
       const bool inImage = enabled && imageHasMerges, inPyramid = x.length() <= pyramidLength;
       if (!inImage && !inPyramid) return;
-      TechniqueTally<false> tally(counters, x);
+      TechniqueTally<kTimed> tally(counters, x);
       const BsdfEval f = bsdf.eval(z.wo, record.wo, TransportMode::Radiance);
       Spectrum L = z.beta * f.f * record.beta * normalisation;
       if (options_.injectBias && options_.injectBias->technique() == x) L *= options_.injectBias->factor;

@@ -116,6 +116,11 @@ class BidirTracer {
   // The sample's light subpath from the merge pass into walks.light; its vertex count.
   int storedLightSubpath(const SampleId& id, Walks& walks) const;
   // The merges of the sample's camera subpath (nt vertices) with the pass's light vertices.
+  // Every merge at the camera vertices; timed: the search's time to Counters::mergeSearch, each
+  // merge's own to its technique.
+  void evaluateMerges(bool timed, int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink,
+                      Counters& counters) const;
+  template <bool kTimed>
   void evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink, Counters& counters) const;
   // The merges' part of the partial sums for a pass of this eta.
   MergeTerms mergeTerms(double eta) const;

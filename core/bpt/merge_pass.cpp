@@ -1,6 +1,8 @@
 // MergePass::index: the mergeable light vertices and their grid.
 #include "core/bpt/merge_pass.h"
 
+#include "core/merge/room.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -25,8 +27,8 @@ void MergePass::index(float r) {
     blockStart[b + 1] = n;
   });
   for (size_t b = 0; b < blocks; ++b) blockStart[b + 1] += blockStart[b];
-  mergeable.resize(blockStart[blocks]);
-  mergeablePoints.resize(mergeable.size());
+  resizeWithRoom(mergeable, blockStart[blocks]);
+  resizeWithRoom(mergeablePoints, mergeable.size());
   tbb::parallel_for(size_t{0}, blocks, [&](size_t b) {
     uint32_t out = blockStart[b];
     for (size_t i = b * kBlock, end = std::min(vertices.size(), i + kBlock); i < end; ++i)
@@ -36,7 +38,7 @@ void MergePass::index(float r) {
       }
   });
   grid.build(mergeablePoints, r);
-  records.resize(mergeable.size());
+  resizeWithRoom(records, mergeable.size());
   tbb::parallel_for(size_t{0}, records.size(), [&](size_t j) {
     MergeRecord& record = records[j];
     record.vertex = mergeable[grid.pointOfSlot(static_cast<uint32_t>(j))];

@@ -90,6 +90,11 @@ struct Counters {
   DiscardCounts discardedSamples;  // refused at the film's door (whole samples or splats)
   std::array<TechniqueCounters, kCountedTechniques + 1> techniques{};
   WalkCounters cameraWalk, lightWalk;  // bidirectional tracer only
+  // Vertex merging (bidirectional tracer with merges): the pass's store of light subpaths (its
+  // walks' rays; its time, wall time times threads, scaled to the pass's timed samples so that it
+  // adds to theirs) and, on timed samples, the range searches at the camera vertices (their time
+  // less the merges' own, which their techniques keep).
+  WalkCounters mergePass, mergeSearch;
   uint64_t timedSamples = 0;           // camera samples timed (a fraction of them while timing is on)
   // Paths whose enabled techniques' MIS weights did not sum to one (RenderSettings::checkMis).
   uint64_t misPartitionFailures = 0;
@@ -112,7 +117,7 @@ struct Counters {
   uint64_t totalRays() const { return rays + shadowRays; }
   // Time of the walks and of every technique's connections, while timing was on.
   uint64_t timedNanoseconds() const {
-    uint64_t ns = cameraWalk.nanoseconds + lightWalk.nanoseconds;
+    uint64_t ns = cameraWalk.nanoseconds + lightWalk.nanoseconds + mergePass.nanoseconds + mergeSearch.nanoseconds;
     for (const TechniqueCounters& t : techniques) ns += t.nanoseconds;
     return ns;
   }
@@ -129,6 +134,8 @@ struct Counters {
     for (size_t i = 0; i < techniques.size(); ++i) techniques[i] += o.techniques[i];
     cameraWalk += o.cameraWalk;
     lightWalk += o.lightWalk;
+    mergePass += o.mergePass;
+    mergeSearch += o.mergeSearch;
     timedSamples += o.timedSamples;
     misPartitionFailures += o.misPartitionFailures;
     misPartitionChecks += o.misPartitionChecks;

@@ -2,6 +2,8 @@
 // in parallel.
 #include "core/merge/hash_grid.h"
 
+#include "core/merge/room.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -18,7 +20,7 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
   const size_t n = points.size();
   buckets_ = std::max<uint64_t>(n, 1);
   std::vector<uint64_t>& keys = keys_;  // bucket << 32 | index: sorting them sorts by (bucket, index)
-  keys.resize(n);
+  resizeWithRoom(keys, n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const Vec3 c = points[i] * invCellSize_;
@@ -27,9 +29,9 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
     }
   });
   tbb::parallel_sort(keys.begin(), keys.end());
-  index_.resize(n);
-  position_.resize(n);
-  range_.assign(buckets_, {0u, 0u});
+  resizeWithRoom(index_, n);
+  resizeWithRoom(position_, n);
+  assignWithRoom(range_, static_cast<size_t>(buckets_), std::array<uint32_t, 2>{0u, 0u});
   // A bucket's range starts where its key first appears and ends after its last: each boundary is
   // written by the one thread that sees it, so the ranges need no atomics.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {

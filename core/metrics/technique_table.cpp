@@ -81,6 +81,15 @@ std::vector<TechniqueRow> techniqueRows(const Counters& c, int maxLength, double
       r.rays = walk.rays;
       finish(r, walk.nanoseconds);
     }
+  // Vertex merging's shared work, per camera sample like the walks: the pass's store (its light
+  // walks, grid and MIS terms) and the range searches (the merges' own work is in their rows).
+  if (c.mergePass.rays + c.mergePass.nanoseconds + c.mergeSearch.nanoseconds > 0)
+    for (const auto& [name, work] : {std::pair{"merge pass", c.mergePass}, std::pair{"merge searches", c.mergeSearch}}) {
+      TechniqueRow r{name, true};
+      r.tried = c.cameraSamples;
+      r.rays = work.rays;
+      finish(r, work.nanoseconds);
+    }
   // A family that never ran (merges without a merging integrator) has no tried row and no line.
   auto add = [&](std::string name, Technique x, const TechniqueCounters& tc) {
     if (tc.tried == 0) return;

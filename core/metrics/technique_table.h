@@ -13,7 +13,7 @@
 namespace pathlab {
 
 struct TechniqueRow {
-  std::string name;    // "camera walks", "light walks", "(s,t)", "M(s,t)", "k>12"
+  std::string name;    // "camera walks", "light walks", "merge pass", "merge searches", "(s,t)", "M(s,t)", "k>12"
   bool walk = false;   // a walk: tried counts subpaths, and it has no connection outcomes
   int s = -1, t = -1;  // -1 for the walks and the shared row
   TechniqueKind kind = TechniqueKind::Connection;

@@ -2,6 +2,11 @@
 // splats added in the items' order; per-thread counters merged after each pass.
 #include "core/render/render_session.h"
 
+#include "core/counters/technique_timer.h"
+#include "core/merge/room.h"
+
+#include <tbb/global_control.h>
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
@@ -23,6 +28,13 @@ constexpr size_t kMaxSplatSumBytes = size_t{512} << 20;
 // 64 KiB an item of 1,024 samples on the Cornell box, 340 KiB with a pyramid and technique maps).
 constexpr size_t kItemsInFlightPerThread = 4;
 constexpr size_t kMinItemsInFlight = 32;
+
+// The threads a pass runs on: the arena's, or fewer when a tbb::global_control limits them
+// (`--threads`), which the arena's max_concurrency does not report.
+int activeThreads() {
+  const size_t limit = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), static_cast<int>(std::min<size_t>(limit, 1 << 20))));
+}
 
 const RenderSettings& validated(const RenderSettings& settings, const Scene& scene) {
   validateSettings(settings);
@@ -193,7 +205,7 @@ void RenderSession::buildMergePass(uint64_t pass, Counters& counters, MergePass&
         out.pixels.push_back(static_cast<uint32_t>(y) * static_cast<uint32_t>(settings_.width) + static_cast<uint32_t>(x));
         out.pixelStart.push_back(static_cast<uint32_t>(out.vertices.size()));
         const int n = bidirTracer_->traceLightSubpath(lightRng, out.vertices, c);
-        c.lightWalk.rays += c.rays - raysBefore;
+        c.mergePass.rays += c.rays - raysBefore;
         out.pixelCount.push_back(static_cast<uint32_t>(n));
       }
   });
@@ -202,8 +214,8 @@ void RenderSession::buildMergePass(uint64_t pass, Counters& counters, MergePass&
   std::vector<size_t> offset(items.size() + 1, 0);
   for (size_t i = 0; i < items.size(); ++i) offset[i + 1] = offset[i] + items[i].vertices.size();
   if (offset.back() >= UINT32_MAX) throw std::runtime_error("vertex merging: too many light vertices in one pass");
-  m.vertices.resize(offset.back());
-  m.pathStart.resize(offset.back());
+  resizeWithRoom(m.vertices, offset.back());
+  resizeWithRoom(m.pathStart, offset.back());
   m.width = settings_.width;
   m.pixelPathStart.assign(film_.pixelCount(), 0);
   m.pixelPathCount.assign(film_.pixelCount(), 0);
@@ -228,7 +240,15 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   tbb::enumerable_thread_specific<Counters> local;
   pixelsDone_.store(0, std::memory_order_relaxed);
   const uint64_t pass = schedule_.pass(passes_.load(std::memory_order_relaxed));
-  if (bidirTracer_ && bidirTracer_->merges()) traceMergePass(pass, local.local());
+  // The merge pass's cost, for the counters' table: wall time times the threads (the workers
+  // that wait between its parallel phases have nothing else to do), counted once the pass's
+  // timed share is known.
+  const bool merging = bidirTracer_ && bidirTracer_->merges();
+  const bool timeMergePass = merging && bidirTracer_->timing();
+  const uint64_t mergeStart = timeMergePass ? ticks() : 0;
+  if (merging) traceMergePass(pass, local.local());
+  const uint64_t mergeNanoseconds =
+      timeMergePass ? elapsedNanoseconds(mergeStart, ticks()) * static_cast<uint64_t>(activeThreads()) : 0;
   // Item i records its splats in buffer i % inFlight: the items in flight are consecutive (they
   // enter and leave the pipeline in order), so no two share a buffer.
   const size_t threads = static_cast<size_t>(std::max(tbb::this_task_arena::max_concurrency(), 1));
@@ -260,7 +280,13 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
                                          [&](size_t i) {
                                            if (bidirTracer_) tileSplats_[i % inFlight].addTo(splatSums_.get(), film_, pyramid_.get());
                                          }));
-  for (const Counters& c : local) counters_ += c;
+  Counters passCounters;
+  for (const Counters& c : local) passCounters += c;
+  if (passCounters.cameraSamples > 0)
+    passCounters.mergePass.nanoseconds += static_cast<uint64_t>(
+        static_cast<double>(mergeNanoseconds) * static_cast<double>(passCounters.timedSamples) /
+        static_cast<double>(passCounters.cameraSamples));
+  counters_ += passCounters;
   if (splatSums_) {
     if (cancelled) splatSums_->clear();
     else splatSums_->mergeInto(film_);

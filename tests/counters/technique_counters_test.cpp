@@ -32,12 +32,16 @@ TEST(TechniqueCounters, MergeEveryField) {
   a.technique(1, 2).nanoseconds = 100;
   a.cameraWalk = {10, 1000};
   a.lightWalk = {20, 2000};
+  a.mergePass = {30, 300};
+  a.mergeSearch = {0, 40};
   a.timedSamples = 5;
   b.technique(1, 2).shadowRays = 4;
   b.technique(1, 2).nanoseconds = 50;
   b.technique(2, 1).nanoseconds = 7;
   b.cameraWalk = {1, 1};
   b.lightWalk = {2, 2};
+  b.mergePass = {3, 3};
+  b.mergeSearch = {0, 4};
   b.timedSamples = 1;
   a += b;
   EXPECT_EQ(a.technique(1, 2).shadowRays, 7u);
@@ -47,8 +51,11 @@ TEST(TechniqueCounters, MergeEveryField) {
   EXPECT_EQ(a.cameraWalk.nanoseconds, 1001u);
   EXPECT_EQ(a.lightWalk.rays, 22u);
   EXPECT_EQ(a.lightWalk.nanoseconds, 2002u);
+  EXPECT_EQ(a.mergePass.rays, 33u);
+  EXPECT_EQ(a.mergePass.nanoseconds, 303u);
+  EXPECT_EQ(a.mergeSearch.nanoseconds, 44u);
   EXPECT_EQ(a.timedSamples, 6u);
-  EXPECT_EQ(a.timedNanoseconds(), 1001u + 2002u + 150u + 7u);
+  EXPECT_EQ(a.timedNanoseconds(), 1001u + 2002u + 303u + 44u + 150u + 7u);
 }
 
 TEST(TechniqueCounters, RaysOfEachTechniqueAndWalk) {
@@ -122,6 +129,36 @@ TEST(TechniqueCounters, TimingWhenAskedChangesNoCount) {
     EXPECT_EQ(c.techniques[i].shadowRays, untimed.counters().techniques[i].shadowRays);
   }
   EXPECT_EQ(c.rays, untimed.counters().rays);
+}
+
+// Vertex merging's shared work has rows of its own: the merge pass's walks' rays (every ray is a
+// walk's or the pass's), and, while timing, the pass's time, the range searches' and each merge's.
+// Without merges there is none of it.
+TEST(TechniqueCounters, MergingHasItsRaysAndTime) {
+  RenderSettings vcm = bpt();
+  vcm.techniques = TechniqueSet::parse("all;m=all");
+  vcm.mergeRadius = 0.05f;  // 384 light subpaths: a radius that finds some of them
+  for (const bool merges : {true, false}) {
+    RenderSession session(countersCornellBox(), merges ? vcm : bpt());
+    session.setTiming(true);
+    for (int i = 0; i < 3; ++i) session.renderPass();
+    const Counters& c = session.counters();
+    EXPECT_EQ(c.cameraWalk.rays + c.lightWalk.rays + c.mergePass.rays, c.rays);
+    uint64_t mergeTime = 0, mergeTries = 0;
+    for (const Technique x : techniquesUpTo(vcm.maxLength, TechniqueFamilies::Merges)) {
+      mergeTime += c.technique(x).nanoseconds;
+      mergeTries += c.technique(x).tried;
+    }
+    if (merges) {
+      EXPECT_GT(c.mergePass.rays, 0u);
+      EXPECT_GT(c.mergePass.nanoseconds, 0u);
+      EXPECT_GT(c.mergeSearch.nanoseconds, 0u);
+      EXPECT_GT(mergeTries, 100u);
+      EXPECT_GT(mergeTime, 0u);
+    } else {
+      EXPECT_EQ(c.mergePass.rays + c.mergePass.nanoseconds + c.mergeSearch.nanoseconds + mergeTime + mergeTries, 0u);
+    }
+  }
 }
 
 TEST(TechniqueCounters, TimingIsNoNewGeneration) {

@@ -61,6 +61,26 @@ TEST(TechniqueTable, SharesOfRaysAndTime) {
   EXPECT_EQ(rows[3].name, "(2,1)");
 }
 
+// With merges, the merge pass and the searches are rows beside the walks, per camera sample, and
+// their time counts in the shares.
+TEST(TechniqueTable, MergePassAndSearchesAreRows) {
+  Counters c = sampleCounters();
+  c.mergePass = {100, 6000};
+  c.mergeSearch = {0, 4000};
+  c.rays += 100;
+  const std::vector<TechniqueRow> rows = techniqueRows(c, 3, 2.0);
+  ASSERT_EQ(rows.size(), 6u);
+  EXPECT_EQ(rows[2].name, "merge pass");
+  EXPECT_EQ(rows[3].name, "merge searches");
+  EXPECT_TRUE(rows[2].walk);
+  EXPECT_EQ(rows[2].tried, 100u);
+  EXPECT_DOUBLE_EQ(rows[2].timeShare, 6000.0 / 20000.0);
+  EXPECT_DOUBLE_EQ(rows[3].timeShare, 4000.0 / 20000.0);
+  EXPECT_DOUBLE_EQ(rows[2].rayShare, 100.0 / 500.0);
+  // 50 timed samples: 80 ns of search per sample.
+  EXPECT_DOUBLE_EQ(rows[3].nanosecondsPerTry, 80.0);
+}
+
 TEST(TechniqueTable, NoTimingNoShares) {
   Counters c = sampleCounters();
   c.timedSamples = 0;
