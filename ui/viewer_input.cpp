@@ -111,9 +111,8 @@ void Viewer::perform(Action action) {
         break;
       }
     {
-      // With merges each sample's pass is traced again (replaySample): 16 of them, not 256.
       const RenderSettings& settings = inspect_.inspector.inspectedSettings;
-      const uint64_t n = covers(enabledTechniques(settings).families(), TechniqueKind::Merge) ? 16 : 256;
+      const uint64_t n = brightestSearchCount(settings);
       inspect_.inspector.sample = brightestSample(scene(), settings, *inspect_.inspector.pixel, n);
       showMessage(fmt::format("the brightest of the first {} samples is sample {}", n, inspect_.inspector.sample));
     }

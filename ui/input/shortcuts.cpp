@@ -49,7 +49,7 @@ constexpr Shortcut kShortcuts[] = {
     {GLFW_KEY_K, false, "K", Action::ToggleInspector, "path inspector on / off (then click a pixel: its sample's paths)"},
     {GLFW_KEY_N, false, "N", Action::NextSample, "path inspector: the pixel's next sample"},
     {GLFW_KEY_B, false, "B", Action::PreviousSample, "path inspector: the pixel's previous sample"},
-    {GLFW_KEY_H, false, "H", Action::BrightestSample, "path inspector: the brightest of the pixel's first 256 samples"},
+    {GLFW_KEY_H, false, "H", Action::BrightestSample, "path inspector: the brightest of the pixel's first 256 samples (16 with merges)"},
     {GLFW_KEY_O, false, "O", Action::ToggleView3D, "3D view beside the image on / off (its own orbit camera: drag, Shift+drag, wheel)"},
     {GLFW_KEY_L, false, "L", Action::ToggleParticles, "light particles in the 3D view: the last pass's light subpaths"},
     {GLFW_KEY_J, true, "Ctrl+J", Action::ExportInspection, "path inspector: write the sample as JSON in out/"},

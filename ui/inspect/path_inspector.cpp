@@ -87,6 +87,10 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
   return true;
 }
 
+uint64_t brightestSearchCount(const RenderSettings& settings) {
+  return covers(enabledTechniques(settings).families(), TechniqueKind::Merge) ? 16 : 256;
+}
+
 uint64_t brightestSample(const Scene& scene, const RenderSettings& settings, Vec2i pixel, uint64_t n) {
   const RenderSession session(scene, settings);
   uint64_t best = 0;

@@ -42,6 +42,9 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
 // The sample of `pixel` among 0 .. n-1 that gave the most light (the luminance of its camera-side
 // estimate plus its weighted t = 1 splats, wherever they land): a firefly hunt.
 uint64_t brightestSample(const Scene& scene, const RenderSettings& settings, Vec2i pixel, uint64_t n);
+// How many samples the brightest-sample search replays: 256, or 16 with merges (each of their
+// samples traces its pass's every light subpath again, RenderSession::replaySample).
+uint64_t brightestSearchCount(const RenderSettings& settings);
 
 // Frustum and Particle: the 3D view's (ui/inspect/view3d.h). MergeDisk: the selected merge's disk
 // of radius r about its camera vertex, in the surface's plane, and the step to its light vertex.

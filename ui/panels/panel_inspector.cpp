@@ -224,7 +224,8 @@ void drawInspectorWindow(PathInspectorState& state, PanelRect rect, PanelRequest
     ImGui::SameLine();
     if (ImGui::SmallButton("sample > (N)")) requests.actions.push_back(Action::NextSample);
     ImGui::SameLine();
-    if (ImGui::SmallButton("brightest of 256 (H)")) requests.actions.push_back(Action::BrightestSample);
+    const std::string brightest = fmt::format("brightest of {} (H)", brightestSearchCount(state.inspectedSettings));
+    if (ImGui::SmallButton(brightest.c_str())) requests.actions.push_back(Action::BrightestSample);
     ImGui::SameLine();
     if (ImGui::SmallButton("export JSON (Ctrl+J)")) requests.actions.push_back(Action::ExportInspection);
     ImGui::TextDisabled("camera subpath %d, light subpath %d vertices", in.trace.cameraVertices, in.trace.lightVertices);
