@@ -63,7 +63,7 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "Progressive radius: pass i merges within r_1 i^((alpha - 1) / 2) (1: fixed radius)")
       ->check(CLI::Range(0.f, 1.f));
   auto* isolate = cmd->add_option("--isolate", o.isolate,
-                                  "Show technique S,T alone: its MIS-weighted share (or with --unweighted its own estimate)");
+                                  "Show technique S,T (or merge MS,T) alone: its MIS-weighted share (or with --unweighted its own estimate)");
   cmd->add_flag("--unweighted", o.unweighted,
                 "With --isolate: the technique's unweighted estimate of every path of its length it can sample")
       ->needs(isolate);
@@ -105,9 +105,13 @@ void finishEstimatorOptions(EstimatorOptions& o) {
   if (!o.isolate.empty()) {
     const size_t comma = o.isolate.find(',');
     if (comma == std::string::npos)
-      throw std::invalid_argument(fmt::format("--isolate: '{}' is not S,T", o.isolate));
-    o.settings.isolate = Isolation{parseInt(o.isolate.substr(0, comma), "--isolate"),
-                                   parseInt(o.isolate.substr(comma + 1), "--isolate"), o.unweighted};
+      throw std::invalid_argument(fmt::format("--isolate: '{}' is not S,T or MS,T", o.isolate));
+    // "M2,3": the merge M(2,3).
+    const bool merge = o.isolate[0] == 'M' || o.isolate[0] == 'm';
+    const size_t from = merge ? 1 : 0;
+    o.settings.isolate = Isolation{parseInt(o.isolate.substr(from, comma - from), "--isolate"),
+                                   parseInt(o.isolate.substr(comma + 1), "--isolate"), o.unweighted,
+                                   merge ? TechniqueKind::Merge : TechniqueKind::Connection};
   }
   if (!o.injectBias.empty()) {
     const size_t a = o.injectBias.find(','), b = a == std::string::npos ? a : o.injectBias.find(',', a + 1);

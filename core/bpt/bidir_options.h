@@ -15,6 +15,8 @@ namespace pathlab {
 struct Isolation {
   int s = 0, t = 1;
   bool unweighted = false;
+  TechniqueKind kind = TechniqueKind::Connection;  // Merge: M(s, t)
+  Technique technique() const { return Technique{s, t, kind}; }
   bool operator==(const Isolation&) const = default;
 };
 

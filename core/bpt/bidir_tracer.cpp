@@ -74,7 +74,9 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
   // With merges the partial sums count them too (mis_partial_sums.h MergeTerms) when each family
   // is enabled whole or not at all; otherwise every weight is the explicit one over both families
   // (merge_mis.h), MIS off included (its 1 / n_k counts the merges of the length).
-  merges_ = covers(options_.techniques.families(), TechniqueKind::Merge);
+  // An isolated merge needs the pass's store even when no merge is enabled (--unweighted).
+  merges_ = covers(options_.techniques.families(), TechniqueKind::Merge) ||
+            (options_.isolate && options_.isolate->kind == TechniqueKind::Merge);
   if (merges_) {
     const bool anyConnection = covers(options_.techniques.families(), TechniqueKind::Connection);
     const bool allConnections = options_.techniques.containsAllUpTo(options_.maxLength);
@@ -106,7 +108,12 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
         cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, x.t);
         lightVerticesNeeded_ = std::max(lightVerticesNeeded_, x.s);
       }
-  if (options_.isolate) need(options_.isolate->s, options_.isolate->t);
+  if (options_.isolate && options_.isolate->kind == TechniqueKind::Merge) {
+    cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, options_.isolate->t);
+    lightVerticesNeeded_ = std::max(lightVerticesNeeded_, options_.isolate->s);
+  } else if (options_.isolate) {
+    need(options_.isolate->s, options_.isolate->t);
+  }
 }
 
 // Inlined (twice) into evaluate: the image-only route's preconditions (the partial sums, no MIS
@@ -167,7 +174,7 @@ template <bool kRecords>
                                                                                  int pyramidLength) const {
   const bool enabled = options_.techniques.contains(s, t);
   const std::optional<Isolation>& isolate = options_.isolate;
-  const bool isolated = isolate && isolate->s == s && isolate->t == t;
+  const bool isolated = isolate && isolate->technique() == Technique{s, t};
   return TechniqueUse{enabled, isolate ? isolated && (enabled || isolate->unweighted) : enabled,
                       isolated && isolate->unweighted, s + t - 1 <= pyramidLength};
 }
@@ -479,7 +486,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
   const MergeTerms terms = mergeTerms(pass.eta());
   const float normalisation = static_cast<float>(pass.normalisation());
   const SinkDemand& demand = sink.demand();
-  const bool imageHasMerges = !options_.isolate;  // an isolated connection shows alone
+  const std::optional<Isolation>& isolate = options_.isolate;
   const bool firstNonSpecularOnly = options_.mergeSite == MergeSite::FirstNonSpecular;
   for (int t = 2; t <= nt; ++t) {
     // Progressive photon mapping: nothing beyond the first vertex that is not a delta scatter.
@@ -498,7 +505,12 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       const Technique x = Technique::merge(s, t);
       if (x.length() > options_.maxLength) return;
       const bool enabled = options_.techniques.contains(x);
-      const bool inImage = enabled && imageHasMerges, inPyramid = x.length() <= pyramidLength;
+      // As techniqueUse: with an isolation only the isolated technique reaches the image, weighted
+      // (if enabled) or unweighted.
+      const bool isolated = isolate && isolate->technique() == x;
+      const bool inImage = isolate ? isolated && (enabled || isolate->unweighted) : enabled;
+      const bool shownUnweighted = isolated && isolate->unweighted;
+      const bool inPyramid = x.length() <= pyramidLength;
       if (!inImage && !inPyramid) return;
       TechniqueTally<kTimed> tally(counters, x);
       const BsdfEval f = bsdf.eval(z.wo, record.wo, TransportMode::Radiance);
@@ -526,7 +538,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         r.outcome = TechniqueOutcome::Contributed;
         r.unweighted = L;
         r.weight = w;
-        r.imageWeight = inImage ? w : 0.f;
+        r.imageWeight = !inImage ? 0.f : shownUnweighted ? 1.f : w;
         r.pRaster = pRaster;
         r.inImage = inImage;
         r.inPyramid = inPyramid;
@@ -543,8 +555,9 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         }
         sink.record(r);
       }
-      if (!inImage || !(w > 0.f)) return;
-      if (!sink.toImage(t, pRaster, L * w)) tally.discard(L * w, sink.id());
+      const float imageWeight = shownUnweighted ? 1.f : w;
+      if (!inImage || !(imageWeight > 0.f)) return;
+      if (!sink.toImage(t, pRaster, L * imageWeight)) tally.discard(L * imageWeight, sink.id());
     }, [&](uint32_t slot) { __builtin_prefetch(&pass.records[slot]); });
   }
 }

@@ -1,6 +1,8 @@
 // Live error series against a reference (see the header).
 #include "core/converge/error_tracker.h"
 
+#include "core/sampling/technique_label.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -46,7 +48,7 @@ std::string seriesLabel(const RenderSettings& s) {
     if (s.connect != ConnectStrategy::All) out += std::string(" connect=") + connectStrategyName(s.connect);
     if (s.techniques != TechniqueSet::all()) out += " [" + s.techniques.toString() + "]";
     if (s.isolate)
-      out += fmt::format(" only ({},{}){}", s.isolate->s, s.isolate->t, s.isolate->unweighted ? " unweighted" : "");
+      out += fmt::format(" only {}{}", techniqueLabel(s.isolate->technique()), s.isolate->unweighted ? " unweighted" : "");
   }
   out += fmt::format(" L{}", s.maxLength);
   if (!s.russianRoulette) out += " no-RR";

@@ -124,17 +124,32 @@ void validateSettings(const RenderSettings& s) {
   // same line, naming neither).
   if (s.isolate) {
     const Isolation& i = *s.isolate;
-    const std::string option = fmt::format("--isolate {},{}: ", i.s, i.t);
+    const bool merge = i.kind == TechniqueKind::Merge;
+    const std::string option = fmt::format("--isolate {}{},{}: ", merge ? "M" : "", i.s, i.t);
     if (!bidirectional) throw std::invalid_argument("isolating a technique needs the bpt or lt integrator");
-    const int k = i.s + i.t - 1;
-    if (i.s < 0 || i.t < 1 || k < 1)
-      throw std::invalid_argument(
-          fmt::format("{}technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", option, i.s, i.t));
-    if (k > s.maxLength)
-      throw std::invalid_argument(fmt::format("{}technique ({},{}) has length {}, more than the maximum length {}",
-                                              option, i.s, i.t, k, s.maxLength));
-    if (s.integrator == IntegratorKind::Lt && i.t != 1)
-      throw std::invalid_argument(fmt::format("{}light tracing has only the t = 1 techniques, not ({},{})", option, i.s, i.t));
+    if (merge) {
+      const Technique x = i.technique();
+      if (!x.valid())
+        throw std::invalid_argument(fmt::format("{}merge {} does not exist (a merge needs s >= 2, t >= 2)", option,
+                                                techniqueLabel(x)));
+      if (x.length() > s.maxLength)
+        throw std::invalid_argument(fmt::format("{}merge {} has length {}, more than the maximum length {}", option,
+                                                techniqueLabel(x), x.length(), s.maxLength));
+      if (s.integrator == IntegratorKind::Lt)
+        throw std::invalid_argument(fmt::format("{}light tracing has only the t = 1 techniques, not {}", option,
+                                                techniqueLabel(x)));
+    } else {
+      const int k = i.s + i.t - 1;
+      if (i.s < 0 || i.t < 1 || k < 1)
+        throw std::invalid_argument(
+            fmt::format("{}technique ({},{}) does not exist (s >= 0, t >= 1, s + t >= 2)", option, i.s, i.t));
+      if (k > s.maxLength)
+        throw std::invalid_argument(fmt::format("{}technique ({},{}) has length {}, more than the maximum length {}",
+                                                option, i.s, i.t, k, s.maxLength));
+      if (s.integrator == IntegratorKind::Lt && i.t != 1)
+        throw std::invalid_argument(
+            fmt::format("{}light tracing has only the t = 1 techniques, not ({},{})", option, i.s, i.t));
+    }
   }
   if (s.injectBias) {
     const BiasInjection& b = *s.injectBias;

@@ -3,6 +3,7 @@
 // of one length estimate the same image (z-test over seeds), and the per-technique counters
 // account for every connection.
 #include "core/render/render_session.h"
+#include "core/sampling/technique_label.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/statistics.h"
 
@@ -88,6 +89,33 @@ TEST(TechniquePyramid, IsolatedRenderEqualsItsPyramidBuffer) {
     }
 }
 
+// The same for merges: an isolated merge renders its pyramid buffer, weighted (among connections
+// and merges) and unweighted; the unweighted one also when no merge is enabled (the pass's store
+// is built for it alone). The merges of a pass find the same light vertices whatever else runs.
+TEST(TechniquePyramid, IsolatedMergeEqualsItsPyramidBuffer) {
+  RenderSettings base = pyramidSettings(4, 4, 12);
+  base.techniques = TechniqueSet::parse("all;m=all");
+  base.mergeRadius = 0.05f;  // 320 light subpaths a pass: a radius that finds some
+  RenderSession pyramid(cornellBox(), base);
+  for (int i = 0; i < 2; ++i) pyramid.renderPass();
+  for (const Technique x : {Technique::merge(2, 2), Technique::merge(2, 3), Technique::merge(3, 2)})
+    for (const bool connectionsOnly : {false, true})
+      for (const bool unweighted : {false, true}) {
+        if (connectionsOnly && !unweighted) continue;  // a disabled technique has no weighted share
+        RenderSettings iso = base;
+        iso.pyramidLength = 0;
+        if (connectionsOnly) iso.techniques = TechniqueSet::all();
+        iso.isolate = Isolation{x.s, x.t, unweighted, TechniqueKind::Merge};
+        RenderSession session(cornellBox(), iso);
+        for (int i = 0; i < 2; ++i) session.renderPass();
+        SCOPED_TRACE(testing::Message() << techniqueLabel(x) << (unweighted ? " unweighted" : " weighted")
+                                        << (connectionsOnly ? ", no merge enabled" : ""));
+        const Image expected = pyramid.techniqueImage(x, unweighted);
+        EXPECT_GT(imageSum(expected), 0.0);
+        expectImagesNear(session.image(), expected, 1e-5, "isolated merge vs pyramid buffer");
+      }
+}
+
 // Without delta components every technique of length k samples every path of length k, so all
 // unweighted buffers of that length estimate the same image (Veach 1997 sec. 10.2). Compare the
 // image sums of each unweighted technique with the sum of the weighted shares of its length, over
@@ -160,8 +188,16 @@ TEST(RenderSettingsValidation, RefusesWhatCannotBeRendered) {
   refused([](RenderSettings& s) { s.techniques = TechniqueSet::withS(5); });  // no technique of length <= 4
   refused([](RenderSettings& s) { s.techniques = TechniqueSet(); });
   refused([](RenderSettings& s) { s.maxLength = kMaxBidirectionalLength + 1; });
+  refused([](RenderSettings& s) { s.isolate = Isolation{1, 3, false, TechniqueKind::Merge}; });  // s < 2
+  refused([](RenderSettings& s) { s.isolate = Isolation{3, 4, false, TechniqueKind::Merge}; });  // length 5 > 4
+  refused([](RenderSettings& s) {
+    s.isolate = Isolation{2, 2, true, TechniqueKind::Merge};
+    s.integrator = IntegratorKind::Lt;
+  });
   RenderSettings ok = pyramidSettings(4, 4, 0);
   ok.isolate = Isolation{2, 3, true};
+  EXPECT_NO_THROW(validateSettings(ok));
+  ok.isolate = Isolation{3, 3, true, TechniqueKind::Merge};  // length 4
   EXPECT_NO_THROW(validateSettings(ok));
   EXPECT_THROW(RenderSession(cornellBox(), [] {
                  RenderSettings s = pyramidSettings(4, 0, 0);

@@ -15,7 +15,7 @@ namespace {
 void takeIsolation(EstimatorState& state, RenderSettings settings) {
   if (settings.isolate) {
     state.mode = settings.isolate->unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
-    state.isolated = Technique{settings.isolate->s, settings.isolate->t};
+    state.isolated = settings.isolate->technique();
   } else {
     state.mode = EstimatorMode::Combine;
   }
@@ -53,7 +53,8 @@ RenderSettings renderSettings(const EstimatorState& state) {
     s.checkTechniques = false;
     s.injectBias.reset();
   } else if (state.mode != EstimatorMode::Combine) {
-    s.isolate = Isolation{state.isolated.s, state.isolated.t, state.mode == EstimatorMode::IsolateUnweighted};
+    s.isolate = Isolation{state.isolated.s, state.isolated.t, state.mode == EstimatorMode::IsolateUnweighted,
+                          state.isolated.kind};
     s.checkTechniques = false;  // it compares the enabled techniques, which isolation does not run
   }
   return s;
@@ -63,9 +64,12 @@ void setMaxLength(EstimatorState& state, int maxLength) {
   maxLength = std::max(maxLength, 1);
   state.settings.maxLength = maxLength;
   state.settings.techniques = state.settings.techniques.fittedTo(maxLength);
-  if (state.isolated.length() > maxLength) {
-    state.isolated.s = std::min(state.isolated.s, maxLength);
-    state.isolated.t = maxLength + 1 - state.isolated.s;
+  if (state.isolated.length() > maxLength && state.isolated.isMerge() && maxLength >= 2) {
+    // A merge of the longest length left: M(s, k + 2 - s), s >= 2.
+    state.isolated.s = std::clamp(state.isolated.s, 2, maxLength);
+    state.isolated.t = maxLength + 2 - state.isolated.s;
+  } else if (state.isolated.length() > maxLength) {
+    state.isolated = Technique{std::min(state.isolated.s, maxLength), maxLength + 1 - std::min(state.isolated.s, maxLength)};
   }
   state.oneLength = std::min(state.oneLength, maxLength);
 }
@@ -101,7 +105,7 @@ void applyPreset(EstimatorState& state, const NamedPreset& preset) {
 
 bool isolatedTechniqueDisabled(const RenderSettings& s) {
   if (s.integrator == IntegratorKind::Pt || !s.isolate || s.isolate->unweighted) return false;
-  return !s.techniques.contains(s.isolate->s, s.isolate->t);
+  return !s.techniques.contains(s.isolate->technique());
 }
 
 std::string describe(const RenderSettings& s) {
@@ -114,7 +118,7 @@ std::string describe(const RenderSettings& s) {
   if (s.integrator == IntegratorKind::Lt && !s.isolate) {
     out += ", one technique a length (weight 1)";
   } else if (s.isolate)
-    out += fmt::format(", isolate ({},{}) {}", s.isolate->s, s.isolate->t, s.isolate->unweighted ? "unweighted" : "weighted");
+    out += fmt::format(", isolate {} {}", techniqueLabel(s.isolate->technique()), s.isolate->unweighted ? "unweighted" : "weighted");
   else if (s.mis.heuristic == MisHeuristic::Power)
     out += fmt::format(", MIS power (beta {:g})", s.mis.beta);
   else
