@@ -150,8 +150,9 @@ TEST(ViewerHeadless, ScreenshotsLeaveOutTheNoticeOfTheLastOne) {
   if (shots[0].find("-2.png") != std::string::npos) std::swap(shots[0], shots[1]);
   const Png first = readPng(shots[0]), second = readPng(shots[1]);
   // The panel's top: the title and Help button, then the Status header (or a notice pushing it
-  // down, from y = 45 at this size).
-  EXPECT_LT(first.meanDifference(second, 0, 0, 200, 70), 1.0);
+  // down, from y = 45 at this size). Only the panel (x < 170): the image starts at x = 180 and may
+  // have rendered another pass between the two shots on a loaded machine.
+  EXPECT_LT(first.meanDifference(second, 0, 0, 170, 70), 1.0);
 }
 
 TEST(ViewerHeadless, KeepsAnExistingScreenshotWithoutForce) {
