@@ -103,15 +103,12 @@ void finishEstimatorOptions(EstimatorOptions& o) {
   o.settings.mergeSite = o.integrator == "ppm" ? MergeSite::FirstNonSpecular : MergeSite::Every;
   o.settings.techniques = TechniqueSet::parse(o.techniques.empty() ? ownTechniques : o.techniques);
   if (!o.isolate.empty()) {
-    const size_t comma = o.isolate.find(',');
-    if (comma == std::string::npos)
-      throw std::invalid_argument(fmt::format("--isolate: '{}' is not S,T or MS,T", o.isolate));
-    // "M2,3": the merge M(2,3).
-    const bool merge = o.isolate[0] == 'M' || o.isolate[0] == 'm';
-    const size_t from = merge ? 1 : 0;
-    o.settings.isolate = Isolation{parseInt(o.isolate.substr(from, comma - from), "--isolate"),
-                                   parseInt(o.isolate.substr(comma + 1), "--isolate"), o.unweighted,
-                                   merge ? TechniqueKind::Merge : TechniqueKind::Connection};
+    try {
+      o.settings.isolate = parseIsolation(o.isolate);  // "M2,3": the merge M(2,3)
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--isolate: ") + e.what());
+    }
+    o.settings.isolate->unweighted = o.unweighted;
   }
   if (!o.injectBias.empty()) {
     const size_t a = o.injectBias.find(','), b = a == std::string::npos ? a : o.injectBias.find(',', a + 1);

@@ -130,7 +130,8 @@ Viewer::FrameLayout Viewer::layOut(Vec2i framebufferSize, float framebufferScale
   // At most 45 % of the width: the image is what the audience looks at.
   l.panelWidth = ui_.showUi ? std::min(380.f * scale, io.DisplaySize.x * 0.45f) : 0.f;
   l.pyramidWidth = ui_.showUi && pyramid_.show ? pyramidPanelWidth(pyramid_, estimator_.settings.maxLength,
-                                                                   io.DisplaySize.x - l.panelWidth, l.upper, scale, l.aspect)
+                                                                   io.DisplaySize.x - l.panelWidth, l.upper, scale, l.aspect,
+                                                                   techniqueImages_.pyramid.hasMerges())
                                                : 0.f;
   // The room the panels leave; the image is the largest rectangle of its aspect in it, centred
   // (never cropped: the camera's vertical and horizontal field of view both stay whole).

@@ -29,7 +29,10 @@ void Viewer::perform(Action action) {
     if (e.settings.integrator == IntegratorKind::Pt) e.settings.integrator = IntegratorKind::Bpt;
     e.settings.techniques = presetTechniques(preset, std::min(grid_.oneLength, e.settings.maxLength));
   };
-  auto moveIsolated = [&](int ds, int dt) { setIsolated(e, {e.isolated.s + ds, e.isolated.t + dt}); };
+  // A merge moves among the merges (its kind stays): M(s + 1, t - 1) is the next merge of its length.
+  auto moveIsolated = [&](int ds, int dt) {
+    setIsolated(e, {e.isolated.s + ds, e.isolated.t + dt, e.isolated.kind});
+  };
   switch (action) {
     case Action::TogglePause: run_.userPaused = !run_.userPaused; break;
     case Action::ToggleUi: ui_.showUi = !ui_.showUi; break;

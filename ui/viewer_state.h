@@ -116,8 +116,10 @@ struct PyramidImages {
   DisplaySettings toned;
   bool tonedOwnExposure = true;
   std::chrono::steady_clock::time_point lastPoll{};
-  // The texture of technique (s, t), or null when it has not arrived yet.
+  // The texture of technique x (a connection or a merge), or null when it has not arrived yet.
   const Texture* texture(Technique x, bool unweighted) const;
+  // The renderer publishes merges' thumbnails too (its technique set has merges).
+  bool hasMerges() const;
 };
 
 // The technique maps' luminances as the renderer published them, and the texture of the map

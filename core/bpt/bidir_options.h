@@ -6,6 +6,7 @@
 #include "core/bpt/technique_set.h"
 
 #include <optional>
+#include <string>
 
 namespace pathlab {
 
@@ -19,6 +20,9 @@ struct Isolation {
   Technique technique() const { return Technique{s, t, kind}; }
   bool operator==(const Isolation&) const = default;
 };
+// "S,T" or "MS,T" (a merge), weighted; throws std::invalid_argument naming the text otherwise. The
+// technique's range is the caller's to check (it depends on the maximum length).
+Isolation parseIsolation(const std::string& text);
 
 // A deliberate bug for teaching and for testing the consistency check (issue 13): technique
 // (s, t)'s unweighted contribution is multiplied by `factor`, so it and the image are biased. A

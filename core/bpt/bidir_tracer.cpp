@@ -546,11 +546,15 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
         if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge);
         if (demand.onPath) {
+          // Listed on the path the weight w was computed on (mergedPathDensities), so that the
+          // inspector's densities and weights are the render's.
           r.merged = MergedVertices{pass.vertices[record.vertex].p, z.p, z.ng, pass.radius};
-          tracePath(scene_, camera_, path, walks.traced);
+          MergedPath merged;
+          mergedPathDensities(&pass.vertices[start], s, walks.camera.data(), t, pdfs, merged.densities, merged.surface);
+          tracePath(scene_, camera_, path, walks.traced, &merged.densities);
           r.traced = &walks.traced;
-          walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
-                                          mergesOnPath(&pass, options_.mergeSite));
+          walks.onPath = techniquesOnMergedPath(scene_, path, merged, options_.techniques, options_.mis,
+                                                lightTracingRatio(), *mergesOnPath(&pass, options_.mergeSite));
           r.onPath = &walks.onPath;
         }
         sink.record(r);

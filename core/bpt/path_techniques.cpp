@@ -3,23 +3,19 @@
 
 namespace pathlab {
 
-std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& camera, const MisPath& path,
-                                              const TechniqueSet& techniques, const MisOptions& options,
-                                              float lightTracingRatio, const std::optional<MergesOnPath>& merges) {
-  const PathDensities d = pathDensities(scene, camera, path);
-  const uint64_t sampleable = d.n <= kSampleableBits ? sampleableTechniques(path) : 0;
-  const float minDistance = minConnectionDistance(scene, options);
+namespace {
+
+// Every technique of the path whose densities are d (`surface[i]`: x_i lies on a surface;
+// `sampleable`: bit s' when connection s' can sample it at all).
+std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const std::vector<uint8_t>& surface,
+                                                   uint64_t sampleable, const TechniqueSet& techniques,
+                                                   const MisOptions& options, float minDistance, float lightTracingRatio,
+                                                   const std::optional<MergesOnPath>& merges) {
   MisOptions balance = options, power = options, uniform = options;
   balance.heuristic = MisHeuristic::Balance;
   power.heuristic = MisHeuristic::Power;
   uniform.heuristic = MisHeuristic::Uniform;
   const UsableTechniques usable(d, techniques, minDistance);
-  // Which vertices lie on surfaces: a merge needs one (mergeableVertex).
-  std::vector<uint8_t> surface(static_cast<size_t>(d.n));
-  for (int i = 0; i < d.n; ++i) {
-    const PathVertex& v = i < path.s ? lightVertex(path, i) : cameraVertex(path, d.n - 1 - i);
-    surface[static_cast<size_t>(i)] = v.type == VertexType::Surface;
-  }
   // p_C(s'): the light-side densities before s', the camera-side ones from s' on.
   auto connectionDensity = [&](int sp) {
     double p = 1.0;
@@ -76,8 +72,40 @@ std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& 
   return out;
 }
 
-void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, TracedPath& out) {
+// Which vertices of `path` lie on surfaces: a merge needs one (mergeableVertex).
+std::vector<uint8_t> surfaceVertices(const MisPath& path, int n) {
+  std::vector<uint8_t> surface(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const PathVertex& v = i < path.s ? lightVertex(path, i) : cameraVertex(path, n - 1 - i);
+    surface[static_cast<size_t>(i)] = v.type == VertexType::Surface;
+  }
+  return surface;
+}
+
+}  // namespace
+
+std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& camera, const MisPath& path,
+                                              const TechniqueSet& techniques, const MisOptions& options,
+                                              float lightTracingRatio, const std::optional<MergesOnPath>& merges) {
   const PathDensities d = pathDensities(scene, camera, path);
+  const uint64_t sampleable = d.n <= kSampleableBits ? sampleableTechniques(path) : 0;
+  return techniquesOnDensities(d, surfaceVertices(path, d.n), sampleable, techniques, options,
+                               minConnectionDistance(scene, options), lightTracingRatio, merges);
+}
+
+std::vector<TechniqueOnPath> techniquesOnMergedPath(const Scene& scene, const MisPath& path, const MergedPath& merged,
+                                                    const TechniqueSet& techniques, const MisOptions& options,
+                                                    float lightTracingRatio, const MergesOnPath& merges) {
+  // Which techniques can sample it at all is a property of its vertices' kinds (delta lobes,
+  // surfaces), the same on the merged path as on the connection C(s, t - 1) through y(s-1).
+  const uint64_t sampleable = path.s + path.t <= kSampleableBits ? sampleableTechniques(path) : 0;
+  return techniquesOnDensities(merged.densities, merged.surface, sampleable, techniques, options,
+                               minConnectionDistance(scene, options), lightTracingRatio, merges);
+}
+
+void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, TracedPath& out,
+               const PathDensities* densities) {
+  const PathDensities d = densities ? *densities : pathDensities(scene, camera, path);
   out = TracedPath{};
   for (int i = 0; i < d.n; ++i) {
     // x_i: the light prefix first, then the camera prefix from its far end back to the lens.

@@ -23,15 +23,29 @@ struct MergesOnPath {
 // Every technique of the path's length for the path `path` forms, in slot order (Technique::slot:
 // the connections by s', then, with `merges`, the merges M(s', n + 1 - s') by s'); `options` gives
 // beta for the power heuristic and the minimum connection. With `merges` every weight is the one
-// over connections and merges together (weightWithMerges); for a merge M(s, t) `path` is the
-// MisPath of the connection C(s, t - 1) that joins the same vertices (merge_mis.h).
+// over connections and merges together (weightWithMerges) on the path `path` forms.
 std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& camera, const MisPath& path,
                                               const TechniqueSet& techniques, const MisOptions& options,
                                               float lightTracingRatio = 1.f,
                                               const std::optional<MergesOnPath>& merges = std::nullopt);
 
+// A merge's path as its weight sees it (mergedPathDensities): the densities, and which vertices
+// lie on surfaces.
+struct MergedPath {
+  PathDensities densities;
+  std::vector<uint8_t> surface;
+};
+
+// The same for merge M(s, t) on its merged path `merged` (the render's weights: the merged vertex
+// keeps both walks' densities and scatters by z(t-1)'s BSDF), `path` being the connection
+// C(s, t - 1) through the same vertices (for which techniques can sample it at all).
+std::vector<TechniqueOnPath> techniquesOnMergedPath(const Scene& scene, const MisPath& path, const MergedPath& merged,
+                                                    const TechniqueSet& techniques, const MisOptions& options,
+                                                    float lightTracingRatio, const MergesOnPath& merges);
+
 // The full path `path` forms, light end first, with both densities of every vertex (TracedPath),
-// into `out` (its storage reused).
-void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, TracedPath& out);
+// into `out` (its storage reused); `densities`: those instead of the path's own (a merged path).
+void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, TracedPath& out,
+               const PathDensities* densities = nullptr);
 
 }  // namespace pathlab

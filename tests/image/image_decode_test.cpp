@@ -44,7 +44,9 @@ std::string decodeRefusal(const std::string& path) {
   }
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(3)) << path;
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  if (!message.empty()) EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << "names the file first: " << message;
+  if (!message.empty()) {
+    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << "names the file first: " << message;
+  }
   return message;
 }
 

@@ -24,7 +24,9 @@ if [ "$which" = address ] || [ "$which" = all ]; then
   configure build-asan address
   cmake --build build-asan -j "$jobs" --target pathlab pathlab_tests pathlab_viewer_tests pathlab_cli_tests
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  # The long statistical renders (their arithmetic is the release suite's; each is 10-85 s here).
   slow='bench_smoke|converge_cli|TechniqueCheckRender|BundledAgreement|TechniqueAgreement|DeltaAgreement|Extremes|ScaleInvariance|ChiSquare'
+  slow+='|RelMseSplit|MergeBiasRender|NaiveBptAgreement|EnvironmentAgreement|VertexMerging[.].*Agree'
   # tinyexr's own leak on corrupt pixel data (tests/fuzz/lsan.supp says why) is suppressed here as
   # in the fuzz stage: the image decoder tests feed it such files.
   ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp \

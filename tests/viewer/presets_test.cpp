@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <future>
@@ -34,12 +35,45 @@ TEST(Presets, ShippedFileParsesAndEveryPresetIsRenderable) {
   // each alone and unweighted (issue 14).
   int direct = 0, bounce = 0;
   for (const NamedPreset& p : presets) {
-    if (!p.isolate || !p.isolate->unweighted || p.compare) continue;
+    if (!p.isolate || !p.isolate->unweighted || p.compare || p.isolate->technique().isMerge()) continue;
     direct += p.isolate->s + p.isolate->t - 1 == 2 ? 1 : 0;
     bounce += p.isolate->s + p.isolate->t - 1 == 3 ? 1 : 0;
   }
   EXPECT_EQ(direct, 3);
   EXPECT_EQ(bounce, 4);
+  // Vertex merging has presets of its own (issue 32): VCM, and a merge isolated.
+  EXPECT_TRUE(std::any_of(presets.begin(), presets.end(), [](const NamedPreset& p) {
+    return !p.compare && p.techniques == TechniqueSet::parse("all;m=all");
+  }));
+  EXPECT_TRUE(std::any_of(presets.begin(), presets.end(),
+                          [](const NamedPreset& p) { return p.isolate && p.isolate->technique().isMerge(); }));
+}
+
+// vcm, bpm and ppm as on the command line (their technique sets, ppm's merge site), and a merge
+// isolated by its --isolate text; a preset's merge site replaces the current one.
+TEST(Presets, MergingIntegratorsAndIsolatedMerges) {
+  const auto presets = parsePresets(R"({"presets": [
+      {"name": "vcm", "integrator": "vcm"},
+      {"name": "bpm", "integrator": "bpm"},
+      {"name": "ppm", "integrator": "ppm"},
+      {"name": "merge", "integrator": "vcm", "isolate": "M2,3", "unweighted": true, "maxLength": 5},
+      {"name": "connection", "isolate": "1,2"}]})",
+                                    "p.json");
+  ASSERT_EQ(presets.size(), 5u);
+  EXPECT_EQ(presets[0].integrator, IntegratorKind::Bpt);
+  EXPECT_EQ(presets[0].techniques, TechniqueSet::parse("all;m=all"));
+  EXPECT_EQ(presets[0].mergeSite, MergeSite::Every);
+  EXPECT_EQ(presets[1].techniques, TechniqueSet::parse("m=all"));
+  EXPECT_EQ(presets[2].techniques, TechniqueSet::parse("s=0;m=all"));
+  EXPECT_EQ(presets[2].mergeSite, MergeSite::FirstNonSpecular);
+  EXPECT_EQ(*presets[3].isolate, (Isolation{2, 3, true, TechniqueKind::Merge}));
+  EXPECT_EQ(*presets[4].isolate, (Isolation{1, 2, false}));
+  RenderSettings current;
+  const RenderSettings ppm = presets[2].applyTo(current);
+  EXPECT_EQ(ppm.mergeSite, MergeSite::FirstNonSpecular);
+  EXPECT_NO_THROW(validateSettings(presets[3].applyTo(current)));
+  // Leaving ppm by a preset that does not name it merges everywhere again.
+  EXPECT_EQ(presets[0].applyTo(ppm).mergeSite, MergeSite::Every);
 }
 
 TEST(Presets, FieldsAndDefaults) {
@@ -110,6 +144,11 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{R"({"presets": [{"name": "x", "maxLength": "5"}]})", "an integer"},
                     BadCase{R"({"presets": [{"name": "x", "maxLength": 3, "isolate": [3, 3]}]})", "(3,3)"},
                     BadCase{R"({"presets": [{"name": "x", "isolate": [1]}]})", "[s, t]"},
+                    BadCase{R"({"presets": [{"name": "x", "isolate": "M1,2"}]})", "M(1,2) is not a technique"},
+                    BadCase{R"({"presets": [{"name": "x", "isolate": "M2"}]})", "'M2' is not S,T or MS,T"},
+                    BadCase{R"({"presets": [{"name": "x", "isolate": "Mx,2"}]})", "'x' is not an integer"},
+                    BadCase{R"({"presets": [{"name": "x", "integrator": "vcm", "techniques": "all"}]})",
+                            "integrator \"vcm\" sets the techniques"},
                     BadCase{R"({"presets": [{"name": "x", "unweighted": true}]})", "needs \"isolate\""},
                     BadCase{R"({"presets": [{"name": "x", "integrator": "pt", "isolate": [1, 2]}]})", "bpt or lt"},
                     BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [0, 0, 0], "target": [0, 0, 0]}}]})",

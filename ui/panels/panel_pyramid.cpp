@@ -1,9 +1,11 @@
 // The live technique pyramid (Veach 1997, fig. 10.3 as it converges): a thumbnail of every (s,t) up
-// to the chosen length, laid out like the technique grid, each with its own exposure. A click
+// to the chosen length, laid out like the technique grid, each with its own exposure; with merges
+// enabled, each length k >= 2 has a second row, its merges M(s, k + 2 - s) under column s. A click
 // isolates the technique in the main image.
 #include "ui/panels/panels.h"
 
-#include <fmt/core.h>
+#include "core/sampling/technique_label.h"
+
 #include <algorithm>
 #include <imgui.h>
 #include <optional>
@@ -19,15 +21,20 @@ const Texture* PyramidImages::texture(Technique x, bool unweighted) const {
   return nullptr;
 }
 
+bool PyramidImages::hasMerges() const {
+  return std::any_of(thumbnails.begin(), thumbnails.end(), [](const TechniqueThumbnail& x) { return x.kind == TechniqueKind::Merge; });
+}
+
 // The pyramid's largest share of the width beside the side panel: 45 %, so that at 1280 x 720 in
 // lecture mode the thumbnails of a 1.5:1 scene stay large enough for their (s,t) labels.
 constexpr float kMaxShare = 0.45f;
 
 float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale,
-                        std::optional<float> imageAspect) {
+                        std::optional<float> imageAspect, bool merges) {
   const ImGuiStyle& style = ImGui::GetStyle();
-  const int rows = std::max(1, std::min(view.length, maxLength));
-  const float n = static_cast<float>(rows + 1);  // thumbnails in the longest row
+  const int lengths = std::max(1, std::min(view.length, maxLength));
+  const int rows = merges ? 2 * lengths - 1 : lengths;  // a row of merges under each length >= 2
+  const float n = static_cast<float>(lengths + 1);  // thumbnails in the longest row
   // Rows of thumbnails fill the height below the header, at most 100 pixels (x UI scale) tall.
   const float frame = 2.f * 2.f;  // image button padding
   // Both pyramids, weighted above unweighted, when each row can still be 48 pixels tall; else one
@@ -70,46 +77,69 @@ float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, 
 
 namespace {
 
-// One pyramid, weighted or unweighted, laid out like the technique grid.
+// One thumbnail: its texture (or a button until it arrives) with its label on it, framed when the
+// main image shows it; a click isolates it.
+void drawThumbnail(Technique x, const PyramidImages& images, EstimatorState& estimator, bool unweighted, ImVec2 size,
+                   float uiScale) {
+  const EstimatorMode shownMode = unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
+  ImGui::PushID(static_cast<int>(x.index()));
+  const Texture* texture = images.texture(x, unweighted);
+  const bool isolated = estimator.mode == shownMode && estimator.isolated == x;
+  const std::string label = techniqueLabel(x);
+  bool clicked = false;
+  if (texture) {
+    clicked = ImGui::ImageButton(texture->imguiId(), size, ImVec2(0, 0), ImVec2(1, 1), 2,
+                                 isolated ? ImVec4(0.9f, 0.6f, 0.15f, 1.f) : ImVec4(0, 0, 0, 0));
+  } else {
+    clicked = ImGui::Button(label.c_str(), ImVec2(size.x + 4.f, size.y + 4.f));
+  }
+  const ImVec2 extent = ImGui::CalcTextSize(label.c_str());
+  // Its (s,t) on the thumbnail itself, readable on a projector without hovering; not on
+  // thumbnails too small to hold it (the tooltip still names it).
+  if (texture && extent.x + 8.f * uiScale <= size.x && extent.y + 6.f * uiScale <= size.y) {
+    const ImVec2 at(ImGui::GetItemRectMin().x + 4.f * uiScale, ImGui::GetItemRectMin().y + 3.f * uiScale);
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(ImVec2(at.x - 2.f, at.y - 1.f), ImVec2(at.x + extent.x + 2.f, at.y + extent.y + 1.f),
+                        IM_COL32(0, 0, 0, 150), 3.f);
+    draw->AddText(at, x.isMerge() ? IM_COL32(150, 220, 255, 240) : IM_COL32(255, 255, 255, 235), label.c_str());
+  }
+  if (isolated)  // the technique the main image shows, framed so the back row sees it too
+    ImGui::GetWindowDrawList()->AddRect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax(), IM_COL32(240, 160, 40, 255),
+                                        0.f, 0, 3.f * uiScale);
+  if (ImGui::IsItemHovered()) {
+    const char* shown = unweighted ? "unweighted" : "weighted";
+    if (x.isMerge())
+      ImGui::SetTooltip("M(%d,%d), length %d, %s: light subpath vertex %d merged with camera subpath vertex %d\n"
+                        "within the pass's radius; click to isolate it",
+                        x.s, x.t, x.length(), shown, x.s - 1, x.t - 1);
+    else
+      ImGui::SetTooltip("(s,t) = (%d,%d), length %d, %s: click to isolate it", x.s, x.t, x.length(), shown);
+  }
+  if (clicked) isolate(estimator, x, unweighted);
+  ImGui::PopID();
+}
+
+// One pyramid, weighted or unweighted, laid out like the technique grid: length k's connections
+// (s = 0..k) in a row, then, when merges are shown, its merges M(s, k + 2 - s) under columns 2..k.
 void drawPyramid(const PyramidView& view, const PyramidImages& images, EstimatorState& estimator, bool unweighted,
                  float uiScale) {
   ImGui::PushID(unweighted ? "unweighted" : "weighted");
   const int rows = std::min(view.length, estimator.settings.maxLength);
   const ImVec2 size(view.thumbnail.x, view.thumbnail.y);
-  const EstimatorMode shownMode = unweighted ? EstimatorMode::IsolateUnweighted : EstimatorMode::IsolateWeighted;
+  const bool merges = images.hasMerges();
   for (int k = 1; k <= rows; ++k) {
     for (const Technique x : techniquesOfLength(k)) {
-      const int s = x.s, t = x.t;
-      if (s > 0) ImGui::SameLine();
-      ImGui::PushID(k * 100 + s);
-      const Texture* texture = images.texture({s, t}, unweighted);
-      const bool isolated = estimator.mode == shownMode && estimator.isolated == Technique{s, t};
-      bool clicked = false;
-      if (texture) {
-        clicked = ImGui::ImageButton(texture->imguiId(), size, ImVec2(0, 0), ImVec2(1, 1), 2,
-                                     isolated ? ImVec4(0.9f, 0.6f, 0.15f, 1.f) : ImVec4(0, 0, 0, 0));
-      } else {
-        clicked = ImGui::Button(fmt::format("{},{}", s, t).c_str(), ImVec2(size.x + 4.f, size.y + 4.f));
-      }
-      const std::string label = fmt::format("({},{})", s, t);
-      const ImVec2 extent = ImGui::CalcTextSize(label.c_str());
-      // Its (s,t) on the thumbnail itself, readable on a projector without hovering; not on
-      // thumbnails too small to hold it (the tooltip still names it).
-      if (texture && extent.x + 8.f * uiScale <= size.x && extent.y + 6.f * uiScale <= size.y) {
-        const ImVec2 at(ImGui::GetItemRectMin().x + 4.f * uiScale, ImGui::GetItemRectMin().y + 3.f * uiScale);
-        ImDrawList* draw = ImGui::GetWindowDrawList();
-        draw->AddRectFilled(ImVec2(at.x - 2.f, at.y - 1.f), ImVec2(at.x + extent.x + 2.f, at.y + extent.y + 1.f),
-                            IM_COL32(0, 0, 0, 150), 3.f);
-        draw->AddText(at, IM_COL32(255, 255, 255, 235), label.c_str());
-      }
-      if (isolated)  // the technique the main image shows, framed so the back row sees it too
-        ImGui::GetWindowDrawList()->AddRect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax(),
-                                            IM_COL32(240, 160, 40, 255), 0.f, 0, 3.f * uiScale);
-      if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("(s,t) = (%d,%d), length %d, %s: click to isolate it", s, t, k,
-                          unweighted ? "unweighted" : "weighted");
-      if (clicked) isolate(estimator, {s, t}, unweighted);
-      ImGui::PopID();
+      if (x.s > 0) ImGui::SameLine();
+      drawThumbnail(x, images, estimator, unweighted, size, uiScale);
+    }
+    if (!merges || k < 2) continue;
+    // Columns s = 0 and 1 hold no merge: keep them empty so M(s, .) sits under (s, .).
+    ImGui::Dummy(ImVec2(size.x + 4.f, size.y + 4.f));
+    ImGui::SameLine();
+    ImGui::Dummy(ImVec2(size.x + 4.f, size.y + 4.f));
+    for (const Technique x : techniquesOfLength(k, TechniqueFamilies::Merges)) {
+      ImGui::SameLine();
+      drawThumbnail(x, images, estimator, unweighted, size, uiScale);
     }
   }
   ImGui::PopID();
@@ -139,7 +169,8 @@ void drawPyramidWindow(PyramidView& view, const PyramidImages& images, Estimator
                       "off: all at the image's exposure (the weighted shares compare directly)");
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
   ImGui::TextWrapped("%s", images.thumbnails.empty() ? "waiting for the first full pass ..."
-                                                : "rows: length k; columns: s; click to isolate");
+                                                : images.hasMerges() ? "rows: length k, then its merges M; columns: s; click to isolate"
+                                                                     : "rows: length k; columns: s; click to isolate");
   ImGui::PopStyleColor();
   if (view.both) {
     ImGui::TextWrapped("weighted: MIS shares, they sum to the image");

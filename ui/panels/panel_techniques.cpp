@@ -3,6 +3,7 @@
 // columns: s, the number of light subpath vertices).
 #include "ui/panels/panels.h"
 
+#include "core/sampling/technique_label.h"
 #include "ui/estimator/technique_grid.h"
 
 #include <fmt/core.h>
@@ -160,15 +161,26 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
       for (const Technique x : techniquesOfLength(k, TechniqueFamilies::Merges)) {
         ImGui::TableSetColumnIndex(x.s + 1);
         ImGui::PushID(k * 100 + 50 + x.s);
-        ImGui::BeginDisabled(lightTracing || isolating);
+        if (isolating && estimator.isolated == x) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(230, 160, 40, 200));
+        const TechniqueVerdict* verdict = verdictOf(check, x);
+        if (verdict && verdict->status == CheckStatus::Disagrees)
+          ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(220, 40, 40, 230));
+        ImGui::BeginDisabled(lightTracing);
         bool on = techniqueShownEnabled(edited, x);
-        if (ImGui::Checkbox("##m", &on) && edited.integrator == IntegratorKind::Bpt)
-          edited.techniques = toggleTechnique(set, edited.maxLength, x);
+        if (ImGui::Checkbox("##m", &on) && edited.integrator == IntegratorKind::Bpt) {
+          // As for a connection: isolating, a click picks the merge shown; Ctrl+click switches it.
+          if (isolating && !ImGui::GetIO().KeyCtrl) {
+            setIsolated(estimator, x);
+          } else {
+            edited.techniques = toggleTechnique(set, edited.maxLength, x);
+          }
+        }
         ImGui::EndDisabled();
         if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
           const TechniqueCounters& c = counters.technique(x);
-          ImGui::SetTooltip("%s\nthis generation: %llu merges tried, %llu contributed", mergeTooltip(x).c_str(),
-                            static_cast<unsigned long long>(c.tried), static_cast<unsigned long long>(c.contributed));
+          ImGui::SetTooltip("%s\nthis generation: %llu merges tried, %llu contributed%s", mergeTooltip(x).c_str(),
+                            static_cast<unsigned long long>(c.tried), static_cast<unsigned long long>(c.contributed),
+                            verdict ? ("\n" + verdictText(*verdict, check->blocks)).c_str() : "");
         }
         ImGui::PopID();
       }
@@ -339,12 +351,13 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   estimator.mode = static_cast<EstimatorMode>(mode);
   if (estimator.mode != EstimatorMode::Combine) {
     const Technique x = estimator.isolated;
-    ImGui::Text("isolated technique (s,t) = (%d,%d), length %d", x.s, x.t, x.length());
+    ImGui::Text("isolated technique %s%s, length %d", x.isMerge() ? "" : "(s,t) = ", techniqueLabel(x).c_str(),
+                x.length());
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("click a cell of the grid or a pyramid thumbnail; arrow keys move it");
     if (isolatedTechniqueDisabled(renderSettings(estimator))) {
       ImGui::PushStyleColor(ImGuiCol_Text, kTechniqueWarning);
-      ImGui::TextWrapped("(%d,%d) is not enabled: its weighted share is zero (Ctrl+click enables it)", x.s, x.t);
+      ImGui::TextWrapped("%s is not enabled: its weighted share is zero (Ctrl+click enables it)", techniqueLabel(x).c_str());
       ImGui::PopStyleColor();
     }
   }

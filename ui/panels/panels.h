@@ -86,9 +86,9 @@ void drawTechniqueTable(const RenderSnapshot& snapshot);
 // The technique pyramid on the right (panel_pyramid.cpp). pyramidPanelWidth sets view.thumbnail
 // and view.both for the space left of the window; a click on a thumbnail isolates its technique.
 // imageAspect: the image's width / height when it has one of its own (the camera's); none: the
-// image takes the room the panel leaves.
+// image takes the room the panel leaves. merges: a row of merges below each length k >= 2.
 float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale,
-                        std::optional<float> imageAspect);
+                        std::optional<float> imageAspect, bool merges);
 void drawPyramidWindow(PyramidView& view, const PyramidImages& images, EstimatorState& estimator, PanelRect rect,
                        float uiScale);
 

@@ -2,6 +2,7 @@
 #include "ui/presets/presets.h"
 
 #include "core/bpt/technique_set.h"
+#include "core/sampling/technique_label.h"
 #include "core/io/guarded_file.h"
 #include "ui/lane/compare.h"
 
@@ -79,10 +80,23 @@ NamedPreset parseOne(const Json& p) {
   if (out.name.empty()) throw std::invalid_argument("\"name\" is empty");
   if (p.contains("integrator")) {
     const std::string v = typed(p, "integrator", &Json::is_string, "a string").get<std::string>();
+    // vcm, bpm and ppm are bpt with a technique set of their own, as on the command line.
+    const char* own = nullptr;
     if (v == "bpt") out.integrator = IntegratorKind::Bpt;
     else if (v == "pt") out.integrator = IntegratorKind::Pt;
     else if (v == "lt") out.integrator = IntegratorKind::Lt;
-    else throw std::invalid_argument(fmt::format("integrator \"{}\" is not bpt, pt or lt", v));
+    else if (v == "vcm") own = "all;m=all";
+    else if (v == "bpm") own = "m=all";
+    else if (v == "ppm") own = "s=0;m=all";
+    else throw std::invalid_argument(fmt::format("integrator \"{}\" is not bpt, pt, lt, vcm, bpm or ppm", v));
+    if (own) {
+      if (p.contains("techniques"))
+        throw std::invalid_argument(fmt::format("integrator \"{}\" sets the techniques ({}): for another set use "
+                                                "\"bpt\" with \"techniques\"", v, own));
+      out.integrator = IntegratorKind::Bpt;
+      out.techniques = TechniqueSet::parse(own);
+      if (v == "ppm") out.mergeSite = MergeSite::FirstNonSpecular;
+    }
   }
   if (p.contains("techniques"))
     out.techniques = TechniqueSet::parse(typed(p, "techniques", &Json::is_string, "a string").get<std::string>());
@@ -109,13 +123,19 @@ NamedPreset parseOne(const Json& p) {
   out.techniques.checkFits(out.maxLength);  // throws "techniques: ..." on a set that does not fit
   if (p.contains("isolate")) {
     const Json& v = p.at("isolate");
-    if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
-      throw std::invalid_argument("\"isolate\" must be [s, t]");
-    Isolation iso{integerIn(v[0], "\"isolate\" s", 0, out.maxLength), integerIn(v[1], "\"isolate\" t", 1, out.maxLength + 1),
-                  false};
-    if (iso.s < 0 || iso.t < 1 || iso.s + iso.t - 1 > out.maxLength || iso.s + iso.t - 1 < 1)
-      throw std::invalid_argument(fmt::format("isolated technique ({},{}) is not a technique of length 1..{}", iso.s,
-                                              iso.t, out.maxLength));
+    Isolation iso;
+    if (v.is_string()) {
+      iso = parseIsolation(v.get<std::string>());
+    } else {
+      if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer())
+        throw std::invalid_argument("\"isolate\" must be [s, t] or \"S,T\" or \"MS,T\" (a merge)");
+      iso = Isolation{integerIn(v[0], "\"isolate\" s", 0, out.maxLength),
+                      integerIn(v[1], "\"isolate\" t", 1, out.maxLength + 1), false};
+    }
+    const Technique x = iso.technique();
+    if (!x.valid() || x.length() > out.maxLength)
+      throw std::invalid_argument(fmt::format("isolated technique {} is not a technique of length {}..{}",
+                                              techniqueLabel(x), x.isMerge() ? 2 : 1, out.maxLength));
     if (out.integrator == IntegratorKind::Pt) throw std::invalid_argument("\"isolate\" needs integrator bpt or lt");
     out.isolate = iso;
   }
@@ -177,6 +197,7 @@ RenderSettings NamedPreset::applyTo(const RenderSettings& current) const {
   s.mis = mis;
   s.maxLength = maxLength;
   s.isolate = isolate;
+  s.mergeSite = mergeSite;
   if (camera) s.camera = camera;
   return s;
 }

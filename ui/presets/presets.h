@@ -7,6 +7,9 @@
 //                 "camera": {"eye": [0, 1, 3.9], "target": [0, 1, 0], "yfovDegrees": 39.6},
 //                 "compare": "bpt:mis=power"}]}
 //
+// "integrator" is also "vcm", "bpm" or "ppm" (bpt with their own technique set, as on the command
+// line); "isolate" is also a string "S,T" or "MS,T" (the merge M(s,t)), as --isolate takes it.
+//
 // Only "name" is required. A field left out takes the default of `pathlab view` (bpt, all,
 // balance, beta 2, min connection 0.001, max length 10, no isolation), so a preset always means
 // the same thing; the camera is kept as it is when the preset has none.
@@ -33,6 +36,7 @@ struct NamedPreset {
   MisOptions mis;
   int maxLength = 10;
   std::optional<Isolation> isolate;
+  MergeSite mergeSite = MergeSite::Every;  // ppm: FirstNonSpecular
   std::optional<CameraDesc> camera;
   // Side B of the A/B comparison (a converge CONFIG, ui/lane/compare.h): the preset sets both sides and
   // turns the comparison on. None: the comparison is left as it is.
