@@ -17,6 +17,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -58,7 +59,8 @@ void checkOutputDir(const ConvergeOptions& o) {
 
 // Runs one configuration on every rank of the job, with a progress bar on the leader's stderr.
 ConvergenceCurve runWithProgress(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
-                                 const ConvergenceBudget& budget, Job& job, CheckpointExchange& exchange) {
+                                 const ConvergenceBudget& budget, Job& job, CheckpointExchange& exchange,
+                                 const PixelMask& mask = {}) {
   std::atomic<uint64_t> passes{0};
   const auto start = std::chrono::steady_clock::now();
   std::optional<ProgressBar> bar;
@@ -72,7 +74,7 @@ ConvergenceCurve runWithProgress(const Scene& scene, const ConvergenceConfig& co
       return std::pair{done, fmt::format("{}: {} spp{}", config.label, n,
                                          job.size() > 1 ? fmt::format(" on rank 0 of {}", job.size()) : "")};
     });
-  return runConvergence(scene, config, reference, budget, {}, &passes, &exchange);
+  return runConvergence(scene, config, reference, budget, {}, &passes, &exchange, mask);
 }
 
 // Under MPI: every rank's samples and rays over the slowest rank's time.
@@ -111,6 +113,13 @@ void addConvergeCommand(CLI::App& app, ConvergeOptions& o) {
                       ->check(CLI::Range(0.001, 30.0 * 24 * 3600))
                       ->excludes(refSpp);
   reference->excludes(refSpp)->excludes(refTime);
+  cmd->add_option("--mask", o.mask,
+                  "Measure the error only where this image (.exr or .pfm, of the images' size) is at least "
+                  "--mask-threshold in some channel: a region such as a caustic (e.g. the merges' share map of "
+                  "render --technique-maps)");
+  cmd->add_option("--mask-threshold", o.maskThreshold, "The value from which a --mask pixel counts")
+      ->check(CLI::Range(1e-6, 1e6))
+      ->capture_default_str();
   cmd->add_option("--checkpoint-factor", o.checkpointFactor,
                   "Checkpoints are spaced geometrically in time (or spp) by this factor")
       ->check(CLI::Range(1.01, 100.0))
@@ -173,7 +182,25 @@ struct PreparedConverge {
   ConvergenceBudget budget;
   std::unique_ptr<Scene> scene;
   Image reference;  // given, or cached (the leader's)
+  PixelMask mask;   // --mask (the leader's; empty: every pixel)
 };
+
+// --mask: the pixels whose largest channel is at least `threshold`, in an image of the render's size.
+PixelMask readMask(const std::string& path, double threshold, int width, int height) {
+  const Image image = readImage(path);
+  if (image.width != width || image.height != height)
+    throw std::runtime_error(fmt::format("{}: the mask is {} x {}, the images {} x {}", path, image.width, image.height,
+                                         width, height));
+  PixelMask mask(static_cast<size_t>(width) * static_cast<size_t>(height));
+  size_t count = 0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    const float v = std::max({image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2]});
+    mask[i] = v >= threshold ? 1 : 0;  // NaN counts as outside
+    count += mask[i];
+  }
+  if (count == 0) throw std::runtime_error(fmt::format("{}: the mask selects no pixel (none at {:g} or more)", path, threshold));
+  return mask;
+}
 
 void setImageSize(PreparedConverge& p, int width, int height) {
   p.base.width = width;
@@ -240,6 +267,7 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
     const fs::path cached = cachedReferencePath(o, referenceRun(o, p.base, p.budget));
     if (fs::exists(cached)) p.reference = readImage(cached.string());
   }
+  if (job.leader() && !o.mask.empty()) p.mask = readMask(o.mask, o.maskThreshold, p.base.width, p.base.height);
   return p;
 }
 
@@ -293,7 +321,7 @@ int runConverge(ConvergeOptions o, Job& job) {
   const Image* reference = job.leader() ? &p.reference : nullptr;
   std::vector<ConvergenceCurve> curves;
   for (const ConvergenceConfig& c : p.configs) {
-    curves.push_back(runWithProgress(scene, c, reference, budget, job, *exchange));
+    curves.push_back(runWithProgress(scene, c, reference, budget, job, *exchange, p.mask));
     if (job.leader()) printSummary(curves.back());
   }
   if (!job.leader()) return 0;
@@ -315,7 +343,10 @@ int runConverge(ConvergeOptions o, Job& job) {
                      : "";
   const std::string table =
       efficiencyMarkdown(efficiencyRows(curves), cpu ? "CPU time (s)" : "time (s)") + "\n" + referenceNote +
-      fmt::format(" Images of {} x {} pixels.{}\n", p.base.width, p.base.height, ranksNote);
+      fmt::format(" Images of {} x {} pixels.{}{}\n", p.base.width, p.base.height, ranksNote,
+                  p.mask.empty() ? std::string()
+                                 : fmt::format(" Errors measured inside the mask `{}` (values from {:g}) only: {} of the {} pixels.", o.mask, o.maskThreshold,
+                                               std::count(p.mask.begin(), p.mask.end(), uint8_t{1}), p.mask.size()));
   writeTextAtomically((dir / "convergence.csv").string(), convergenceCsv(curves));
   writeTextAtomically((dir / "convergence.svg").string(), renderSvg(plot));
   writeTextAtomically((dir / "efficiency.md").string(), table);

@@ -15,6 +15,8 @@ struct ConvergeOptions {
   SceneOptions scene;
   std::string outputDir;
   std::string reference;  // empty: render one (bpt, balance) and cache it in outputDir by hash
+  std::string mask;       // an image: the error is measured where it is at least maskThreshold (empty: everywhere)
+  double maskThreshold = 0.5;
   std::string configs = "bpt;pt;lt;bpt:mis=power;bpt:mis=uniform";
   SampleBudget budget;    // per configuration; neither given: 10 seconds
   double referenceSeconds = 0.0;  // default 10 x seconds

@@ -288,7 +288,8 @@ template <bool kRecords, bool kTimed>
     r.imageWeight = imageWeight;
     r.pRaster = pRaster;
     if (demand.sampleable)
-      r.sampleableBy = merges_ ? sampleableWithMerges(path, TechniqueKind::Connection) : sampleableTechniques(path);
+      r.sampleableBy = merges_ ? sampleableWithMerges(path, TechniqueKind::Connection, options_.mergeSite)
+                                : sampleableTechniques(path);
     if (demand.densityRatios) {
       walks.densityRatios.resize(static_cast<size_t>(s + t));
       techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
@@ -544,7 +545,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         r.inPyramid = inPyramid;
         // The merged path's vertices as connection C(s, t - 1) holds them (merge_sampleable.h).
         const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
-        if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge);
+        if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge, options_.mergeSite);
         if (demand.onPath) {
           // Listed on the path the weight w was computed on (mergedPathDensities), so that the
           // inspector's densities and weights are the render's.

@@ -3,7 +3,7 @@
 
 namespace pathlab {
 
-uint64_t sampleableWithMerges(const MisPath& path, TechniqueKind formedBy) {
+uint64_t sampleableWithMerges(const MisPath& path, TechniqueKind formedBy, MergeSite site) {
   const int s = path.s, n = path.s + path.t, k = n - 1;
   uint64_t bits = sampleableTechniques(path);
   if (n > kSampleableBits) return bits;
@@ -19,8 +19,14 @@ uint64_t sampleableWithMerges(const MisPath& path, TechniqueKind formedBy) {
   }
   // A connection's joined ends scattered through the connection, not by a delta lobe.
   auto delta = [&](int i) { return vertex(i).isDelta && (merged || (i != s - 1 && i != s)); };
+  // Progressive photon mapping merges only at the camera subpath's first vertex that is not a
+  // delta scatter: x(firstSite - 1), every vertex after it (x(firstSite) .. x(n-2)) delta.
+  int firstSite = n - 1;
+  if (site == MergeSite::FirstNonSpecular)
+    while (firstSite >= 2 && delta(firstSite - 1)) --firstSite;
   for (int sp = 2; sp <= k && k - 1 + sp < 64; ++sp) {
     const int i = sp - 1;  // the merged vertex
+    if (site == MergeSite::FirstNonSpecular && sp != firstSite) continue;
     if (vertex(i).type == VertexType::Surface && !delta(i)) bits |= uint64_t{1} << (k - 1 + sp);
   }
   return bits;

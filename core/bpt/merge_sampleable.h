@@ -2,6 +2,7 @@
 // technique maps' "cannot sample" (core/maps/) once vertex merging is in the technique set.
 #pragma once
 
+#include "core/bpt/bidir_options.h"
 #include "core/bpt/mis.h"
 
 #include <cstdint>
@@ -22,6 +23,8 @@ namespace pathlab {
 // connected, so z(t-2) keeps its own delta flag: a merge seen in a mirror is not sampleable by the
 // two connections at the mirror. Slots past 63 (merges of paths longer than 32 edges) are left
 // out, as the pyramid's sampleable films skip them; 0 past kSampleableBits vertices.
-uint64_t sampleableWithMerges(const MisPath& path, TechniqueKind formedBy);
+// `site` FirstNonSpecular (ppm): a merge only where the camera subpath merges, at its first vertex
+// that is not a delta scatter (every vertex between it and the camera delta), as the weights.
+uint64_t sampleableWithMerges(const MisPath& path, TechniqueKind formedBy, MergeSite site = MergeSite::Every);
 
 }  // namespace pathlab

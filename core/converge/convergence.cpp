@@ -36,9 +36,10 @@ struct RunImage {
 };
 
 // The split needs the even and odd buffers the mean came from: taken where they are.
-std::optional<RelMseSplit> splitAgainst(const EvenOddBuffers& buffers, const Image& mean, const Image* reference) {
+std::optional<RelMseSplit> splitAgainst(const EvenOddBuffers& buffers, const Image& mean, const Image* reference,
+                                        const PixelMask& mask) {
   if (!reference || buffers.evenPasses() == 0 || buffers.oddPasses() == 0) return std::nullopt;
-  return splitRelMse(buffers, mean, *reference);
+  return splitRelMse(buffers, mean, *reference, mask);
 }
 
 // Collective: the run's mean image and two-buffer estimate on the leader, from every process's
@@ -46,10 +47,10 @@ std::optional<RelMseSplit> splitAgainst(const EvenOddBuffers& buffers, const Ima
 // run's: read without copies.
 std::optional<RunImage> runImageOnLeader(CheckpointExchange& run, const RenderSession& session,
                                          const EvenOddBuffers& buffers, const RunProgress& progress,
-                                         const Image* reference) {
+                                         const Image* reference, const PixelMask& mask) {
   if (run.processes() == 1) {
     RunImage image{session.image(), buffers.estimate(), {}};
-    image.split = splitAgainst(buffers, image.mean, reference);
+    image.split = splitAgainst(buffers, image.mean, reference, mask);
     return image;
   }
   const int width = session.film().width(), height = session.film().height();
@@ -65,7 +66,7 @@ std::optional<RunImage> runImageOnLeader(CheckpointExchange& run, const RenderSe
   film->finishPass(progress.passes, progress.lightSubpaths);
   runBuffers->addForeignPasses(progress.evenPasses, progress.oddPasses);
   RunImage image{film->readout(), runBuffers->estimate(), {}};
-  image.split = splitAgainst(*runBuffers, image.mean, reference);
+  image.split = splitAgainst(*runBuffers, image.mean, reference, mask);
   return image;
 }
 
@@ -73,7 +74,7 @@ std::optional<RunImage> runImageOnLeader(CheckpointExchange& run, const RenderSe
 
 ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
                                 const ConvergenceBudget& budget, const CheckpointCallback& onCheckpoint,
-                                std::atomic<uint64_t>* passesDone, CheckpointExchange* exchange) {
+                                std::atomic<uint64_t>* passesDone, CheckpointExchange* exchange, const PixelMask& mask) {
   if ((budget.seconds > 0.0) == (budget.spp > 0))
     throw std::invalid_argument("a convergence run needs either a time or a sample count");
   if (!(budget.factor > 1.0)) throw std::invalid_argument("the checkpoint factor must exceed 1");
@@ -133,9 +134,9 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
     c.cameraSamples = progress.cameraSamples;
     c.rays = progress.rays;
     Image mean;
-    if (std::optional<RunImage> image = runImageOnLeader(run, session, buffers, progress, reference)) {
+    if (std::optional<RunImage> image = runImageOnLeader(run, session, buffers, progress, reference, mask)) {
       mean = std::move(image->mean);
-      if (reference) c.error = errorMetrics(mean, *reference);
+      if (reference) c.error = errorMetrics(mean, *reference, mask);
       c.twoBuffer = image->twoBuffer;
       c.split = image->split;
     }

@@ -59,8 +59,10 @@ using CheckpointCallback = std::function<void(const Checkpoint&)>;
 // Blocking; uses the caller's TBB arena. `reference` may be null (then only the two-buffer
 // estimate is recorded). `passesDone`, if given, is updated after each pass (progress display).
 // `exchange`: the processes rendering the run together, each calling this (null: this one alone).
+// `mask`: the pixels the error against the reference is measured over (empty: all).
 ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
                                 const ConvergenceBudget& budget, const CheckpointCallback& onCheckpoint = {},
-                                std::atomic<uint64_t>* passesDone = nullptr, CheckpointExchange* exchange = nullptr);
+                                std::atomic<uint64_t>* passesDone = nullptr, CheckpointExchange* exchange = nullptr,
+                                const PixelMask& mask = {});
 
 }  // namespace pathlab

@@ -8,22 +8,37 @@
 
 namespace pathlab {
 
-ErrorMetrics errorMetrics(const Image& image, const Image& reference) {
+namespace {
+
+void checkMask(const PixelMask& mask, size_t values) {
+  if (!mask.empty() && 3 * mask.size() != values)
+    throw std::invalid_argument(fmt::format("a mask of {} pixels for an image of {}", mask.size(), values / 3));
+}
+
+bool masked(const PixelMask& mask, size_t value) { return mask.empty() || mask[value / 3] != 0; }
+
+}  // namespace
+
+ErrorMetrics errorMetrics(const Image& image, const Image& reference, const PixelMask& mask) {
   if (image.width != reference.width || image.height != reference.height)
     throw std::invalid_argument(fmt::format("the image is {} x {} but the reference is {} x {}", image.width,
                                             image.height, reference.width, reference.height));
+  checkMask(mask, image.rgb.size());
   ErrorMetrics m;
   const size_t n = image.rgb.size();
-  if (n == 0) return m;
   double se = 0.0, rel = 0.0, ape = 0.0;
+  size_t counted = 0;
   for (size_t i = 0; i < n; ++i) {
+    if (!masked(mask, i)) continue;
+    ++counted;
     const double x = image.rgb[i], r = reference.rgb[i];
     const double d = x - r;
     se += d * d;
     rel += d * d / (r * r + kRelMseEpsilon);
     ape += std::abs(d) / (std::abs(r) + kMapeEpsilon);
   }
-  const double count = static_cast<double>(n);
+  if (counted == 0) return m;
+  const double count = static_cast<double>(counted);
   m.mse = se / count;
   m.rmse = std::sqrt(m.mse);
   m.relMse = rel / count;
@@ -90,23 +105,28 @@ double EvenOddBuffers::varianceOfMean(size_t i) const {
   return d * d * mA * mB / (n * n);
 }
 
-RelMseSplit splitRelMse(const EvenOddBuffers& buffers, const Image& mean, const Image& reference) {
+RelMseSplit splitRelMse(const EvenOddBuffers& buffers, const Image& mean, const Image& reference,
+                        const PixelMask& mask) {
   if (mean.width != reference.width || mean.height != reference.height || mean.width != buffers.width() ||
       mean.height != buffers.height())
     throw std::invalid_argument(fmt::format("the split of relMSE: the image is {} x {}, the reference {} x {}, the buffers {} x {}",
                                             mean.width, mean.height, reference.width, reference.height, buffers.width(),
                                             buffers.height()));
+  checkMask(mask, mean.rgb.size());
   RelMseSplit split;
   const size_t n = mean.rgb.size();
-  if (n == 0) return split;
   double rel = 0.0, variance = 0.0;
+  size_t counted = 0;
   for (size_t i = 0; i < n; ++i) {
+    if (!masked(mask, i)) continue;
+    ++counted;
     const double r = reference.rgb[i], d = static_cast<double>(mean.rgb[i]) - r, norm = r * r + kRelMseEpsilon;
     rel += d * d / norm;
     variance += buffers.varianceOfMean(i) / norm;
   }
-  split.relMse = rel / static_cast<double>(n);
-  split.variance = variance / static_cast<double>(n);
+  if (counted == 0) return split;
+  split.relMse = rel / static_cast<double>(counted);
+  split.variance = variance / static_cast<double>(counted);
   split.bias2 = split.relMse - split.variance;
   return split;
 }

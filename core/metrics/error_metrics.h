@@ -27,8 +27,13 @@ struct ErrorMetrics {
   double mape = 0.0;    // mean |x − r| / (|r| + kMapeEpsilon)
 };
 
-// Throws std::invalid_argument when the sizes differ.
-ErrorMetrics errorMetrics(const Image& image, const Image& reference);
+// Which pixels an error is measured over (a region of interest: the caustic, a reflection), one
+// value per pixel, row by row; empty: every pixel.
+using PixelMask = std::vector<uint8_t>;
+
+// Throws std::invalid_argument when the sizes differ. With a mask, the means are over the masked
+// pixels' channels only.
+ErrorMetrics errorMetrics(const Image& image, const Image& reference, const PixelMask& mask = {});
 
 // The relative MSE of a progressive mean image against a reference, split into its variance and
 // its squared bias (issue 32: merging is consistent, not unbiased; its error is both).
@@ -114,6 +119,7 @@ class EvenOddBuffers {
 
 // RelMseSplit of the mean of `buffers`' passes: `mean` is that image (what errorMetrics compares);
 // throws std::invalid_argument when the sizes differ.
-RelMseSplit splitRelMse(const EvenOddBuffers& buffers, const Image& mean, const Image& reference);
+RelMseSplit splitRelMse(const EvenOddBuffers& buffers, const Image& mean, const Image& reference,
+                        const PixelMask& mask = {});
 
 }  // namespace pathlab

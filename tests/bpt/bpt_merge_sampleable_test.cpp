@@ -45,6 +45,10 @@ TEST(MergeSampleable, ConnectionPathGetsTheMergesAtItsDiffuseVertices) {
   EXPECT_EQ(sampleableWithMerges(path, TechniqueKind::Connection), expected);
   // The connections' bits are sampleableTechniques' (which BPT alone uses).
   EXPECT_EQ(sampleableWithMerges(path, TechniqueKind::Connection) & 0x1f, sampleableTechniques(path));
+  // Progressive photon mapping merges only at the camera subpath's first non-delta vertex: x2,
+  // seen in the mirror x3. M(2,4) at x1 is no technique of ppm's.
+  EXPECT_EQ(sampleableWithMerges(path, TechniqueKind::Connection, MergeSite::FirstNonSpecular),
+            expected & ~bitOf(Technique::merge(2, 4)));
 }
 
 // x0 a point light, x1 a mirror, x2 diffuse, x3 a mirror, x4 the camera, formed by the merge
@@ -78,46 +82,55 @@ TEST(MergeSampleable, MergeWeightsOverTheSampleableTechniquesSumToOne) {
   cameraPath.setCapacity(8);
   lightPath.setCapacity(8);
   const TechniqueSet vcm = TechniqueSet::parse("all;m=all");
-  const MergeMis merge{4.0};
-  Pcg32 rng(7, 11);
   PathDensities d;
   std::vector<uint8_t> surface;
-  int checked = 0, off = 0, behindDelta = 0;
-  for (int i = 0; i < 4000; ++i) {
-    const Vec2 pRaster(rng.next1D() * 64.f, rng.next1D() * 64.f);
-    const int nt = generateCameraSubpath(scene, camera, pRaster, Vec2(0.5f), rng, WalkOptions{7, false}, cameraPath, counters);
-    const int ns = generateLightSubpath(scene, rng, WalkOptions{6, false}, lightPath, counters);
-    for (int t = 2; t <= nt; ++t) {
-      const PathVertex& z = cameraPath[t - 1];
-      if (z.type != VertexType::Surface || z.isDelta) continue;
-      for (int s = 2; s <= ns && s + t - 2 <= 6; ++s) {
-        const PathVertex& y = lightPath[s - 1];
-        if (y.type != VertexType::Surface || y.isDelta) continue;
-        const BsdfEval f = cameraPath.bsdf(t - 1).eval(z.wo, y.wo, TransportMode::Radiance);
-        const MergePdfs pdfs{f.pdfFwdW, f.pdfRevW};
-        mergedPathDensities(lightPath.data(), s, cameraPath.data(), t, pdfs, d, surface);
-        const MisPath path{lightPath.data(), s, cameraPath.data(), t - 1, nullptr, nullptr};
-        const uint64_t bits = sampleableWithMerges(path, TechniqueKind::Merge);
-        double sum = 0.0;
-        for (const Technique x : techniquesOfLength(s + t - 2, TechniqueFamilies::All)) {
-          const double w = weightWithMerges(d, surface, x, vcm, MisOptions{}, 1.f, 0.f, merge);
-          if (!(bits >> x.slot() & 1)) {
-            EXPECT_EQ(w, 0.0) << techniqueLabel(x) << " cannot sample this path";
-            continue;
+  // Every merge (vcm), and progressive photon mapping's merges at the first non-delta camera
+  // vertex only, whose weights and sampleable bits both count the one merge there.
+  for (const MergeSite site : {MergeSite::Every, MergeSite::FirstNonSpecular}) {
+    const bool ppm = site == MergeSite::FirstNonSpecular;
+    const MergeMis merge{4.0, ppm};
+    Pcg32 rng(7, 11);
+    int checked = 0, off = 0, behindDelta = 0;
+    for (int i = 0; i < 4000; ++i) {
+      const Vec2 pRaster(rng.next1D() * 64.f, rng.next1D() * 64.f);
+      const int nt = generateCameraSubpath(scene, camera, pRaster, Vec2(0.5f), rng, WalkOptions{7, false}, cameraPath, counters);
+      const int ns = generateLightSubpath(scene, rng, WalkOptions{6, false}, lightPath, counters);
+      for (int t = 2; t <= nt; ++t) {
+        const PathVertex& z = cameraPath[t - 1];
+        if (ppm && t >= 3 && !cameraPath[t - 2].isDelta) break;  // where the render stops merging
+        if (z.type != VertexType::Surface || z.isDelta) continue;
+        for (int s = 2; s <= ns && s + t - 2 <= 6; ++s) {
+          const PathVertex& y = lightPath[s - 1];
+          if (y.type != VertexType::Surface || y.isDelta) continue;
+          const BsdfEval f = cameraPath.bsdf(t - 1).eval(z.wo, y.wo, TransportMode::Radiance);
+          const MergePdfs pdfs{f.pdfFwdW, f.pdfRevW};
+          mergedPathDensities(lightPath.data(), s, cameraPath.data(), t, pdfs, d, surface);
+          const MisPath path{lightPath.data(), s, cameraPath.data(), t - 1, nullptr, nullptr};
+          const uint64_t bits = sampleableWithMerges(path, TechniqueKind::Merge, site);
+          EXPECT_TRUE(bits >> Technique::merge(s, t).slot() & 1) << "the merge that formed the path";
+          double sum = 0.0;
+          for (const Technique x : techniquesOfLength(s + t - 2, TechniqueFamilies::All)) {
+            const double w = weightWithMerges(d, surface, x, vcm, MisOptions{}, 1.f, 0.f, merge);
+            if (!(bits >> x.slot() & 1)) {
+              EXPECT_EQ(w, 0.0) << techniqueLabel(x) << " cannot sample this path";
+              continue;
+            }
+            // A merge marked sampleable is one the weights count (none optimistic under ppm).
+            if (x.isMerge()) EXPECT_GT(w, 0.0) << techniqueLabel(x) << " is marked sampleable";
+            sum += w;
           }
-          sum += w;
+          EXPECT_NEAR(mergeWeight(lightPath.data(), s, cameraPath.data(), t, pdfs, vcm, MisOptions{}, 1.f, 0.f, merge),
+                      weightWithMerges(d, surface, Technique::merge(s, t), vcm, MisOptions{}, 1.f, 0.f, merge), 1e-6);
+          ++checked;
+          behindDelta += cameraPath[t - 2].isDelta ? 1 : 0;
+          off += std::abs(sum - 1.0) > 1e-3;
         }
-        EXPECT_NEAR(mergeWeight(lightPath.data(), s, cameraPath.data(), t, pdfs, vcm, MisOptions{}, 1.f, 0.f, merge),
-                    weightWithMerges(d, surface, Technique::merge(s, t), vcm, MisOptions{}, 1.f, 0.f, merge), 1e-6);
-        ++checked;
-        behindDelta += cameraPath[t - 2].isDelta ? 1 : 0;
-        off += std::abs(sum - 1.0) > 1e-3;
       }
     }
+    EXPECT_GT(checked, ppm ? 300 : 1000);
+    EXPECT_GT(behindDelta, 50);
+    EXPECT_EQ(off, 0) << "of " << checked << " merge paths";
   }
-  EXPECT_GT(checked, 1000);
-  EXPECT_GT(behindDelta, 50);
-  EXPECT_EQ(off, 0) << "of " << checked << " merge paths";
 }
 
 }  // namespace

@@ -56,6 +56,25 @@ if "$PATHLAB" converge "$BOX" -o "$TMP/explicit" --reference "$REF" --configs lt
     --clock cpu --threads 1 >/dev/null 2>"$TMP/log" </dev/null && grep -q "CPU time" "$TMP/explicit/efficiency.md"
 then ok; else fail "explicit reference, CPU clock: $(cat "$TMP/log")"; fi
 
+# --mask: the errors over the masked pixels only (here where the reference is bright), said in the
+# table; a mask of another size, or one selecting nothing, is one line before any work.
+python3 - "$TMP" <<'PY'
+import struct, sys
+def pfm(path, w, h, v):
+    open(path, "wb").write(b"PF\n%d %d\n-1.0\n" % (w, h) + struct.pack("<%df" % (3 * w * h), *([v] * (3 * w * h))))
+pfm(sys.argv[1] + "/mask-8.pfm", 8, 8, 1.0)
+pfm(sys.argv[1] + "/mask-black.pfm", 16, 16, 0.0)
+PY
+if "$PATHLAB" converge "$BOX" -o "$TMP/masked" --reference "$REF" --mask "$REF" --configs bpt --time 0.2 --max-length 4 \
+    >/dev/null 2>"$TMP/log" </dev/null && grep -q "inside the mask .* of the 256 pixels" "$TMP/masked/efficiency.md"
+then ok; else fail "masked run: $(cat "$TMP/log") $(cat "$TMP/masked/efficiency.md" 2>/dev/null)"; fi
+expect_error "mask of another size" "mask-8.pfm: the mask is 8 x 8, the images 16 x 16" converge "$BOX" -o "$TMP/m2" \
+  --reference "$REF" --mask "$TMP/mask-8.pfm" --configs bpt --time 0.1
+expect_error "mask selecting nothing" "mask-black.pfm: the mask selects no pixel" converge "$BOX" -o "$TMP/m3" \
+  --reference "$REF" --mask "$TMP/mask-black.pfm" --configs bpt --time 0.1
+expect_error "missing mask" "nothing.exr" converge "$BOX" -o "$TMP/m4" --reference "$REF" --mask "$TMP/nothing.exr" \
+  --configs bpt --time 0.1
+
 # Bad input: one line, before any work.
 C=(converge "$BOX" -o "$TMP/bad" --time 0.1 --width 8 --height 8)
 expect_error "unknown integrator" "magic" "${C[@]}" --configs "bpt;magic"

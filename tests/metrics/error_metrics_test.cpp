@@ -36,6 +36,26 @@ TEST(ErrorMetrics, BlackReferencePixelsUseEpsilon) {
   EXPECT_NEAR(m.mape, 10.0, 1e-5);
 }
 
+// A mask keeps only its pixels: the means are over their channels, the rest ignored however wrong.
+TEST(ErrorMetrics, AMaskAveragesOverItsPixelsOnly) {
+  const Image image{3, 1, {1.f, 2.f, 0.f, 100.f, 100.f, 100.f, 0.5f, 0.5f, 0.5f}};
+  const Image reference{3, 1, {1.f, 1.f, 0.5f, 0.f, 0.f, 0.f, 0.5f, 0.5f, 0.5f}};
+  const ErrorMetrics m = errorMetrics(image, reference, PixelMask{1, 0, 1});
+  EXPECT_DOUBLE_EQ(m.mse, (0.0 + 1.0 + 0.25 + 0.0 + 0.0 + 0.0) / 6.0);
+  EXPECT_NEAR(m.relMse, (1.0 / 1.01 + 0.25 / 0.26) / 6.0, 1e-12);
+  // The whole image's error is the masked-out pixel's.
+  EXPECT_GT(errorMetrics(image, reference).relMse, 1000.0);
+  EXPECT_EQ(errorMetrics(image, reference, PixelMask{0, 0, 1}).relMse, 0.0);
+  EXPECT_THROW(errorMetrics(image, reference, PixelMask{1, 1}), std::invalid_argument);
+  // The bias and variance split over the same pixels: here the two passes agree (no variance).
+  EvenOddBuffers buffers(3, 1);
+  buffers.addRunningMean(image);
+  buffers.addRunningMean(image);
+  const RelMseSplit split = splitRelMse(buffers, image, reference, PixelMask{1, 0, 1});
+  EXPECT_NEAR(split.relMse, m.relMse, 1e-12);
+  EXPECT_NEAR(split.variance, 0.0, 1e-12);
+}
+
 TEST(ErrorMetrics, SizeMismatchThrows) {
   EXPECT_THROW(errorMetrics(onePixel(0.f, 0.f, 0.f), Image{2, 1, std::vector<float>(6, 0.f)}), std::invalid_argument);
 }
