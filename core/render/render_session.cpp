@@ -13,6 +13,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 
@@ -33,7 +34,9 @@ constexpr size_t kMinItemsInFlight = 32;
 // (`--threads`), which the arena's max_concurrency does not report.
 int activeThreads() {
   const size_t limit = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), static_cast<int>(std::min<size_t>(limit, 1 << 20))));
+  // No limit set reads as SIZE_MAX: clamped to an int before the comparison.
+  const int limited = static_cast<int>(std::min<size_t>(limit, static_cast<size_t>(std::numeric_limits<int>::max())));
+  return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), limited));
 }
 
 const RenderSettings& validated(const RenderSettings& settings, const Scene& scene) {
