@@ -546,18 +546,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         // The merged path's vertices as connection C(s, t - 1) holds them (merge_sampleable.h).
         const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
         if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge, options_.mergeSite);
-        if (demand.onPath) {
-          // Listed on the path the weight w was computed on (mergedPathDensities), so that the
-          // inspector's densities and weights are the render's.
-          r.merged = MergedVertices{pass.vertices[record.vertex].p, z.p, z.ng, pass.radius};
-          MergedPath merged;
-          mergedPathDensities(&pass.vertices[start], s, walks.camera.data(), t, pdfs, merged.densities, merged.surface);
-          tracePath(scene_, camera_, path, walks.traced, &merged.densities);
-          r.traced = &walks.traced;
-          walks.onPath = techniquesOnMergedPath(scene_, path, merged, options_.techniques, options_.mis,
-                                                lightTracingRatio(), *mergesOnPath(&pass, options_.mergeSite));
-          r.onPath = &walks.onPath;
-        }
+        if (demand.onPath) inspectMerge(pass, record.vertex, s, t, pdfs, walks, r);
         sink.record(r);
       }
       const float imageWeight = shownUnweighted ? 1.f : w;
@@ -565,6 +554,23 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       if (!sink.toImage(t, pRaster, L * imageWeight)) tally.discard(L * imageWeight, sink.id());
     }, [&](uint32_t slot) { __builtin_prefetch(&pass.records[slot]); });
   }
+}
+
+void BidirTracer::inspectMerge(const MergePass& pass, uint32_t lightVertex, int s, int t, const MergePdfs& pdfs,
+                               Walks& walks, TechniqueResult& r) const {
+  // Listed on the path the weight was computed on (mergedPathDensities), so that the inspector's
+  // densities and weights are the render's.
+  const uint32_t start = lightVertex - static_cast<uint32_t>(s - 1);
+  const PathVertex& z = walks.camera[t - 1];
+  const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
+  r.merged = MergedVertices{pass.vertices[lightVertex].p, z.p, z.ng, pass.radius};
+  MergedPath merged;
+  mergedPathDensities(&pass.vertices[start], s, walks.camera.data(), t, pdfs, merged.densities, merged.surface);
+  tracePath(scene_, camera_, path, walks.traced, &merged.densities);
+  r.traced = &walks.traced;
+  walks.onPath = techniquesOnMergedPath(scene_, path, merged, options_.techniques, options_.mis, lightTracingRatio(),
+                                        *mergesOnPath(&pass, options_.mergeSite));
+  r.onPath = &walks.onPath;
 }
 
 void BidirTracer::sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionKey, bool timed, int pyramidLength,

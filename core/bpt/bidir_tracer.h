@@ -122,6 +122,11 @@ class BidirTracer {
                       Counters& counters) const;
   template <bool kTimed>
   void evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks& walks, SampleSink& sink, Counters& counters) const;
+  // The inspector's view of a merge M(s, t) (its vertices, traced path and every technique's
+  // density and weight on its merged path) into `r`: out of evaluateMerges' loop, which a render
+  // runs without it.
+  [[gnu::cold]] void inspectMerge(const MergePass& pass, uint32_t lightVertex, int s, int t, const MergePdfs& pdfs,
+                                  Walks& walks, TechniqueResult& r) const;
   // The merges' part of the partial sums for a pass of this eta.
   MergeTerms mergeTerms(double eta) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own

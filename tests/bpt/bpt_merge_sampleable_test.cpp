@@ -116,7 +116,9 @@ TEST(MergeSampleable, MergeWeightsOverTheSampleableTechniquesSumToOne) {
               continue;
             }
             // A merge marked sampleable is one the weights count (none optimistic under ppm).
-            if (x.isMerge()) EXPECT_GT(w, 0.0) << techniqueLabel(x) << " is marked sampleable";
+            if (x.isMerge()) {
+              EXPECT_GT(w, 0.0) << techniqueLabel(x) << " is marked sampleable";
+            }
             sum += w;
           }
           EXPECT_NEAR(mergeWeight(lightPath.data(), s, cameraPath.data(), t, pdfs, vcm, MisOptions{}, 1.f, 0.f, merge),
