@@ -198,7 +198,8 @@ PixelMask readMask(const std::string& path, double threshold, int width, int hei
     mask[i] = v >= threshold ? 1 : 0;  // NaN counts as outside
     count += mask[i];
   }
-  if (count == 0) throw std::runtime_error(fmt::format("{}: the mask selects no pixel (none at {:g} or more)", path, threshold));
+  if (count == 0)
+    throw std::runtime_error(fmt::format("{}: the mask selects no pixel (none at {:g} or more)", path, threshold));
   return mask;
 }
 
@@ -341,12 +342,14 @@ int runConverge(ConvergeOptions o, Job& job) {
       job.size() > 1 ? fmt::format(" Each configuration rendered by {} MPI ranks together; times are the slowest rank's.",
                                    job.size())
                      : "";
+  const std::string maskNote =
+      p.mask.empty() ? std::string()
+                     : fmt::format(" Errors measured inside the mask `{}` (values from {:g}) only: {} of the {} pixels.",
+                                   o.mask, o.maskThreshold, std::count(p.mask.begin(), p.mask.end(), uint8_t{1}),
+                                   p.mask.size());
   const std::string table =
       efficiencyMarkdown(efficiencyRows(curves), cpu ? "CPU time (s)" : "time (s)") + "\n" + referenceNote +
-      fmt::format(" Images of {} x {} pixels.{}{}\n", p.base.width, p.base.height, ranksNote,
-                  p.mask.empty() ? std::string()
-                                 : fmt::format(" Errors measured inside the mask `{}` (values from {:g}) only: {} of the {} pixels.", o.mask, o.maskThreshold,
-                                               std::count(p.mask.begin(), p.mask.end(), uint8_t{1}), p.mask.size()));
+      fmt::format(" Images of {} x {} pixels.{}{}\n", p.base.width, p.base.height, ranksNote, maskNote);
   writeTextAtomically((dir / "convergence.csv").string(), convergenceCsv(curves));
   writeTextAtomically((dir / "convergence.svg").string(), renderSvg(plot));
   writeTextAtomically((dir / "efficiency.md").string(), table);

@@ -161,7 +161,8 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
       for (const Technique x : techniquesOfLength(k, TechniqueFamilies::Merges)) {
         ImGui::TableSetColumnIndex(x.s + 1);
         ImGui::PushID(k * 100 + 50 + x.s);
-        if (isolating && estimator.isolated == x) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(230, 160, 40, 200));
+        if (isolating && estimator.isolated == x)
+          ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(230, 160, 40, 200));
         const TechniqueVerdict* verdict = verdictOf(check, x);
         if (verdict && verdict->status == CheckStatus::Disagrees)
           ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(220, 40, 40, 230));
@@ -357,7 +358,8 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
       ImGui::SetTooltip("click a cell of the grid or a pyramid thumbnail; arrow keys move it");
     if (isolatedTechniqueDisabled(renderSettings(estimator))) {
       ImGui::PushStyleColor(ImGuiCol_Text, kTechniqueWarning);
-      ImGui::TextWrapped("%s is not enabled: its weighted share is zero (Ctrl+click enables it)", techniqueLabel(x).c_str());
+      ImGui::TextWrapped("%s is not enabled: its weighted share is zero (Ctrl+click enables it)",
+                         techniqueLabel(x).c_str());
       ImGui::PopStyleColor();
     }
   }
