@@ -33,14 +33,10 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
                         float minDistance, const MergeMis& merge) {
   const int n = d.n;
   const int length = n - 1;
-  // With merges at the first non-specular camera vertex only, the one merge that can sample the
-  // path is at x(firstSite - 1): every camera-side vertex after it is delta.
-  int firstSite = n - 1;
-  if (merge.firstNonSpecularOnly)
-    while (firstSite >= 2 && d.delta[static_cast<size_t>(firstSite - 1)]) --firstSite;
+  const int onlySite = onlyMergeSite(d, merge);
   auto mergeUsable = [&](int sp) {
     return sp >= 2 && sp <= n - 1 && techniques.contains(Technique::merge(sp, n + 1 - sp)) &&
-           mergeableVertex(d, surface, sp - 1) && (!merge.firstNonSpecularOnly || sp == firstSite);
+           mergeableVertex(d, surface, sp - 1) && (onlySite == 0 || sp == onlySite);
   };
   const UsableTechniques usable(d, techniques, minDistance);
   if (x.length() != length) return 0.0;

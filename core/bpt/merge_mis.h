@@ -31,6 +31,16 @@ inline bool mergeableVertex(const PathDensities& d, std::span<const uint8_t> sur
   return i >= 1 && i <= d.n - 2 && surface[static_cast<size_t>(i)] && !d.delta[static_cast<size_t>(i)];
 }
 
+// The one s' whose merge M(s', n + 1 - s') may sample the path when merges happen at the first
+// non-specular camera vertex only (ppm): x(s'-1) is that vertex, every vertex after it, x(s') ..
+// x(n-2), scattered by a delta lobe. 0 when merges happen at every vertex (any s' may).
+inline int onlyMergeSite(const PathDensities& d, const MergeMis& merge) {
+  if (!merge.firstNonSpecularOnly) return 0;
+  int first = d.n - 1;
+  while (first >= 2 && d.delta[static_cast<size_t>(first - 1)]) --first;
+  return first;
+}
+
 // The weight of technique x of the n-vertex path whose densities are d (a connection C(s, n - s) or
 // a merge M(s, n + 1 - s)) among the enabled connections able to produce it (UsableTechniques, as
 // misWeight) and the enabled merges at mergeable vertices; `surface[i]`: x_i lies on a surface.

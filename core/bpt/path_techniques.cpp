@@ -54,18 +54,15 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
   // probability pi r^2 pFromCamera(x_{s'-1}) (Georgiev et al. 2012 eq. 10; a zero camera-side
   // density there, a delta lobe beside it, counts one as in the weights).
   const double area = 3.14159265358979323846 * static_cast<double>(merges->radius) * static_cast<double>(merges->radius);
-  // Progressive photon mapping: only the merge at the camera's first non-delta vertex can sample
-  // the path (as weightWithMerges counts it).
-  int firstSite = d.n - 1;
-  if (merges->mis.firstNonSpecularOnly)
-    while (firstSite >= 2 && d.delta[static_cast<size_t>(firstSite - 1)]) --firstSite;
+  const int onlySite = onlyMergeSite(d, merges->mis);
   for (int sp = 2; sp <= d.n - 1; ++sp) {
     TechniqueOnPath x;
     x.s = sp;
     x.t = d.n + 1 - sp;
     x.kind = TechniqueKind::Merge;
     x.mergedVertex = sp - 1;
-    x.possible = mergeableVertex(d, surface, sp - 1) && (!merges->mis.firstNonSpecularOnly || sp == firstSite);
+    // Under ppm only the merge at the camera's first non-delta vertex (as weightWithMerges counts).
+    x.possible = mergeableVertex(d, surface, sp - 1) && (onlySite == 0 || sp == onlySite);
     x.enabled = techniques.contains(x.technique());
     x.counted = x.possible && x.enabled;
     if (x.possible) {
