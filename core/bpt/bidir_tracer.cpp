@@ -347,20 +347,21 @@ int BidirTracer::traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out
 MergeTerms BidirTracer::mergeTerms(double eta) const { return MergeTerms{connectionsInSums_, true, eta}; }
 
 void BidirTracer::prepareMergePass(MergePass& pass) const {
-  resizeWithRoom(pass.misSum, pass.vertices.size());
-  resizeWithRoom(pass.misShortestEdge2, pass.vertices.size());
+  resizeWithRoom(pass.misSum, pass.vertexCount());
+  resizeWithRoom(pass.misShortestEdge2, pass.vertexCount());
   if (misEvaluation_ != MisEvaluation::PartialSums) return;
   const MergeTerms terms = mergeTerms(pass.eta());
   tbb::parallel_for(size_t{0}, pass.pixelPathStart.size(), [&](size_t p) {
     const uint32_t start = pass.pixelPathStart[p], count = pass.pixelPathCount[p];
     if (count > 0)
-      accumulateLightSums(&pass.vertices[start], static_cast<int>(count), misPower_, &pass.misSum[start],
+      accumulateLightSums(pass.pixelPath[p], static_cast<int>(count), misPower_, &pass.misSum[start],
                           &pass.misShortestEdge2[start], terms);
   });
   tbb::parallel_for(size_t{0}, pass.records.size(), [&](size_t j) {
     MergeRecord& record = pass.records[j];
     const uint32_t start = record.vertex - static_cast<uint32_t>(record.s - 1);
-    record.mis = mergeLightTerms(scene_, &pass.vertices[start], record.s, &pass.misSum[start],
+    const PathVertex* path = pass.mergeableVertex[pass.grid.pointOfSlot(static_cast<uint32_t>(j))] - (record.s - 1);
+    record.mis = mergeLightTerms(scene_, path, record.s, &pass.misSum[start],
                                  &pass.misShortestEdge2[start], misPower_, terms);
   });
 }
@@ -437,7 +438,7 @@ int BidirTracer::storedLightSubpath(const SampleId& id, Walks& walks) const {
   LightSubpath& path = walks.light;
   path.setCapacity(std::max(n, 1));
   path.count = n;
-  const PathVertex* stored = &pass.vertices[pass.pixelPathStart[pixel]];
+  const PathVertex* stored = pass.pixelPath[pixel];
   for (int i = 0; i < n; ++i) {
     const PathVertex& v = path[i] = stored[i];
     // The BSDF the walk built beside each surface vertex, built again from the same inputs.
@@ -526,7 +527,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         std::optional<float> fast;
         if (partialSums) fast = mergeWeightFromTerms(record.mis, cameraTerms, pdfs, misPower_, terms, minConnectionDistance_);
         w = fast ? *fast
-                 : mergeWeight(&pass.vertices[start], s, walks.camera.data(), t, pdfs, options_.techniques,
+                 : mergeWeight(&pass.vertex(start), s, walks.camera.data(), t, pdfs, options_.techniques,
                                options_.mis, lightTracingRatio(), minConnectionDistance_, mis);
       }
       tally.contributed();
@@ -544,8 +545,10 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
         r.inImage = inImage;
         r.inPyramid = inPyramid;
         // The merged path's vertices as connection C(s, t - 1) holds them (merge_sampleable.h).
-        const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
-        if (demand.sampleable) r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge, options_.mergeSite);
+        if (demand.sampleable) {
+          const MisPath path{&pass.vertex(start), s, walks.camera.data(), t - 1, nullptr, nullptr};
+          r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge, options_.mergeSite);
+        }
         if (demand.onPath) inspectMerge(pass, record.vertex, s, t, pdfs, walks, r);
         sink.record(r);
       }
@@ -562,10 +565,11 @@ void BidirTracer::inspectMerge(const MergePass& pass, uint32_t lightVertex, int 
   // densities and weights are the render's.
   const uint32_t start = lightVertex - static_cast<uint32_t>(s - 1);
   const PathVertex& z = walks.camera[t - 1];
-  const MisPath path{&pass.vertices[start], s, walks.camera.data(), t - 1, nullptr, nullptr};
-  r.merged = MergedVertices{pass.vertices[lightVertex].p, z.p, z.ng, pass.radius};
+  const PathVertex* light = &pass.vertex(start);
+  const MisPath path{light, s, walks.camera.data(), t - 1, nullptr, nullptr};
+  r.merged = MergedVertices{light[s - 1].p, z.p, z.ng, pass.radius};
   MergedPath merged;
-  mergedPathDensities(&pass.vertices[start], s, walks.camera.data(), t, pdfs, merged.densities, merged.surface);
+  mergedPathDensities(light, s, walks.camera.data(), t, pdfs, merged.densities, merged.surface);
   tracePath(scene_, camera_, path, walks.traced, &merged.densities);
   r.traced = &walks.traced;
   walks.onPath = techniquesOnMergedPath(scene_, path, merged, options_.techniques, options_.mis, lightTracingRatio(),

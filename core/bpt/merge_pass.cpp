@@ -6,34 +6,45 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cassert>
 
 namespace pathlab {
 
+const PathVertex& MergePass::vertex(uint32_t v) const {
+  assert(v < vertexCount());
+  // The last item starting at or before v (empty items share their start with the next one).
+  const size_t item = static_cast<size_t>(std::upper_bound(itemStart.begin(), itemStart.end() - 1, v) - itemStart.begin()) - 1;
+  return walkItems[item].vertices[v - itemStart[item]];
+}
+
 void MergePass::index(float r) {
   radius = r;
-  // The filter in parallel, its output in vertex order: each block counts its mergeable
-  // vertices, the blocks' offsets follow, then each block writes its own.
-  constexpr size_t kBlock = 16384;
-  const size_t blocks = (vertices.size() + kBlock - 1) / kBlock;
-  auto isMergeable = [&](uint32_t i) {
-    const PathVertex& v = vertices[i];
-    return i != pathStart[i] && v.type == VertexType::Surface && !v.isDelta;
+  // The filter in parallel, its output in vertex order: each work item counts its mergeable
+  // vertices, the items' offsets follow, then each item writes its own.
+  const size_t items = walkItems.size();
+  auto isMergeable = [&](size_t item, uint32_t i) {
+    const PathVertex& v = walkItems[item].vertices[i];
+    const uint32_t global = itemStart[item] + i;
+    return global != pathStart[global] && v.type == VertexType::Surface && !v.isDelta;
   };
-  std::vector<uint32_t> blockStart(blocks + 1, 0);
-  tbb::parallel_for(size_t{0}, blocks, [&](size_t b) {
+  std::vector<uint32_t> outStart(items + 1, 0);
+  tbb::parallel_for(size_t{0}, items, [&](size_t item) {
     uint32_t n = 0;
-    for (size_t i = b * kBlock, end = std::min(vertices.size(), i + kBlock); i < end; ++i)
-      n += isMergeable(static_cast<uint32_t>(i)) ? 1u : 0u;
-    blockStart[b + 1] = n;
+    for (uint32_t i = 0, end = static_cast<uint32_t>(walkItems[item].vertices.size()); i < end; ++i)
+      n += isMergeable(item, i) ? 1u : 0u;
+    outStart[item + 1] = n;
   });
-  for (size_t b = 0; b < blocks; ++b) blockStart[b + 1] += blockStart[b];
-  resizeWithRoom(mergeable, blockStart[blocks]);
+  for (size_t item = 0; item < items; ++item) outStart[item + 1] += outStart[item];
+  resizeWithRoom(mergeable, outStart[items]);
   resizeWithRoom(mergeablePoints, mergeable.size());
-  tbb::parallel_for(size_t{0}, blocks, [&](size_t b) {
-    uint32_t out = blockStart[b];
-    for (size_t i = b * kBlock, end = std::min(vertices.size(), i + kBlock); i < end; ++i)
-      if (isMergeable(static_cast<uint32_t>(i))) {
-        mergeable[out] = static_cast<uint32_t>(i);
+  resizeWithRoom(mergeableVertex, mergeable.size());
+  tbb::parallel_for(size_t{0}, items, [&](size_t item) {
+    uint32_t out = outStart[item];
+    const std::vector<PathVertex>& vertices = walkItems[item].vertices;
+    for (uint32_t i = 0, end = static_cast<uint32_t>(vertices.size()); i < end; ++i)
+      if (isMergeable(item, i)) {
+        mergeable[out] = itemStart[item] + i;
+        mergeableVertex[out] = &vertices[i];
         mergeablePoints[out++] = vertices[i].p;
       }
   });
@@ -41,8 +52,9 @@ void MergePass::index(float r) {
   resizeWithRoom(records, mergeable.size());
   tbb::parallel_for(size_t{0}, records.size(), [&](size_t j) {
     MergeRecord& record = records[j];
-    record.vertex = mergeable[grid.pointOfSlot(static_cast<uint32_t>(j))];
-    const PathVertex& v = vertices[record.vertex];
+    const uint32_t point = grid.pointOfSlot(static_cast<uint32_t>(j));
+    record.vertex = mergeable[point];
+    const PathVertex& v = *mergeableVertex[point];
     record.wo = v.wo;
     record.beta = v.beta;
     record.s = static_cast<int>(record.vertex - pathStart[record.vertex]) + 1;

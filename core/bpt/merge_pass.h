@@ -34,13 +34,25 @@ struct MergeRecord {
 };
 
 struct MergePass {
-  std::vector<PathVertex> vertices;   // every light subpath of the pass, path after path
-  std::vector<uint32_t> pathStart;    // per vertex: the index of its path's vertex 0
-  std::vector<uint32_t> mergeable;    // the vertices a camera vertex may merge with (HashGrid point i)
-  // Pixel (x, y)'s light subpath: vertices[pixelPathStart[p] ..] for pixelPathCount[p] vertices,
-  // p = y * width + x; its camera sample connects to it instead of walking it again.
+  // Every light subpath of the pass, where the walks wrote them: work item i's paths, one after
+  // another, in walkItems[i].vertices. A vertex's index in the pass (MergeRecord::vertex,
+  // pixelPathStart) counts through the items in order, itemStart[i] being item i's first; a path
+  // never spans two items. The store is not joined into one array: that kept every vertex twice
+  // (150 bytes each, about 1.5 KB a pixel, 3 GB at 1920 x 1080).
+  struct WalkItem {
+    std::vector<PathVertex> vertices;
+    std::vector<uint32_t> pixels;                  // y * width + x, their paths in order
+    std::vector<uint32_t> pixelStart, pixelCount;  // within the item
+  };
+  std::vector<WalkItem> walkItems;  // kept from pass to pass: a pass does not allocate them again
+  std::vector<uint32_t> itemStart;  // walkItems.size() + 1 entries, the last the pass's vertex count
+  std::vector<uint32_t> pathStart;  // per vertex: the index of its path's vertex 0
+  std::vector<uint32_t> mergeable;  // the vertices a camera vertex may merge with (HashGrid point i)
+  // Pixel (x, y)'s light subpath: pixelPathCount[p] vertices from index pixelPathStart[p], at
+  // pixelPath[p], p = y * width + x; its camera sample connects to it instead of walking it again.
   int width = 0;
   std::vector<uint32_t> pixelPathStart, pixelPathCount;
+  std::vector<const PathVertex*> pixelPath;
   // The MIS partial sums of every stored vertex (BidirTracer::lightSubpathSums): misSum[v] for
   // vertex v, i-th of its path, is SubpathMisSums::sum[i] (its prefix before it), misShortestEdge2[v]
   // the shortest edge up to it. Empty when the weights are explicit.
@@ -55,20 +67,17 @@ struct MergePass {
   double eta() const { return 3.14159265358979323846 * static_cast<double>(radius) * radius * static_cast<double>(lightSubpaths); }
   double normalisation() const { return 1.0 / eta(); }
 
-  // The walks' scratch, kept from pass to pass so that a pass does not allocate (and fault in) a
-  // fresh store's worth of memory: per work item of RenderSession::buildMergePass, its pixels'
-  // light subpaths before they are joined into `vertices` in item order.
-  struct WalkItem {
-    std::vector<PathVertex> vertices;
-    std::vector<uint32_t> pixels;                  // y * width + x, their paths in order
-    std::vector<uint32_t> pixelStart, pixelCount;  // within the item
-  };
-  std::vector<WalkItem> walkItems;
-  std::vector<Vec3> mergeablePoints;  // index's scratch: the grid's points
+  size_t vertexCount() const { return itemStart.empty() ? 0 : itemStart.back(); }
+  // Vertex v of the pass; the vertices of its path follow it in memory. A search over the items:
+  // for the explicit weights and the inspector, not for the O(1) merge loop.
+  const PathVertex& vertex(uint32_t v) const;
+  // Index's scratch: the grid's points, and where each mergeable vertex lies.
+  std::vector<Vec3> mergeablePoints;
+  std::vector<const PathVertex*> mergeableVertex;
 
-  // Keeps, of `vertices`, those that can be merged: on a surface, not the light origin (index 0 in
-  // its path), not scattered by a delta lobe; then builds the grid over them with `radius` and
-  // their records in its slot order (without `mis`: BidirTracer::prepareMergePass).
+  // Keeps, of the stored vertices, those that can be merged: on a surface, not the light origin
+  // (index 0 in its path), not scattered by a delta lobe; then builds the grid over them with
+  // `radius` and their records in its slot order (without `mis`: BidirTracer::prepareMergePass).
   void index(float radius);
 };
 

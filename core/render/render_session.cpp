@@ -187,16 +187,19 @@ void RenderSession::traceMergePass(uint64_t pass, Counters& counters) {
 }
 
 void RenderSession::buildMergePass(uint64_t pass, Counters& counters, MergePass& m) const {
-  // Each work item walks its pixels' light subpaths into a list of its own; the lists are then
-  // joined in item order, so the store (and the order of every merge) is the same at any thread
-  // count. Serial work: one offset per item. The lists and the store keep their memory from pass
-  // to pass (MergePass::walkItems).
+  // Each work item walks its pixels' light subpaths into a list of its own; the lists are indexed
+  // in item order, so the store (and the order of every merge) is the same at any thread count.
+  // Serial work: one offset per item. The lists keep their memory from pass to pass
+  // (MergePass::walkItems).
   m.walkItems.resize(tiles_.size());
   tbb::enumerable_thread_specific<Counters> local;
   tbb::parallel_for(size_t{0}, tiles_.size(), [&](size_t i) {
     const PassTile& tile = tiles_[i];
     MergePass::WalkItem& out = m.walkItems[i];
-    out.vertices.clear();
+    // Walked into a scratch list of the thread's, then copied into the item's with a quarter of
+    // headroom: a list grown by doubling would keep up to twice its vertices' memory.
+    thread_local std::vector<PathVertex> walked;
+    walked.clear();
     out.pixels.clear();
     out.pixelStart.clear();
     out.pixelCount.clear();
@@ -206,30 +209,35 @@ void RenderSession::buildMergePass(uint64_t pass, Counters& counters, MergePass&
         Pcg32 lightRng = sampleStream(settings_, x, y, pass, RngStream::Light);
         const uint64_t raysBefore = c.rays;
         out.pixels.push_back(static_cast<uint32_t>(y) * static_cast<uint32_t>(settings_.width) + static_cast<uint32_t>(x));
-        out.pixelStart.push_back(static_cast<uint32_t>(out.vertices.size()));
-        const int n = bidirTracer_->traceLightSubpath(lightRng, out.vertices, c);
+        out.pixelStart.push_back(static_cast<uint32_t>(walked.size()));
+        const int n = bidirTracer_->traceLightSubpath(lightRng, walked, c);
         c.mergePass.rays += c.rays - raysBefore;
         out.pixelCount.push_back(static_cast<uint32_t>(n));
       }
+    resizeWithRoom(out.vertices, walked.size());
+    std::copy(walked.begin(), walked.end(), out.vertices.begin());
   });
   for (const Counters& c : local) counters += c;
+  // The paths stay where the walks wrote them (MergePass::walkItems); the pass's indices count
+  // through the items in order.
   const std::vector<MergePass::WalkItem>& items = m.walkItems;
   std::vector<size_t> offset(items.size() + 1, 0);
   for (size_t i = 0; i < items.size(); ++i) offset[i + 1] = offset[i] + items[i].vertices.size();
   if (offset.back() >= UINT32_MAX) throw std::runtime_error("vertex merging: too many light vertices in one pass");
-  resizeWithRoom(m.vertices, offset.back());
+  m.itemStart.assign(offset.begin(), offset.end());
   resizeWithRoom(m.pathStart, offset.back());
   m.width = settings_.width;
   m.pixelPathStart.assign(film_.pixelCount(), 0);
   m.pixelPathCount.assign(film_.pixelCount(), 0);
+  m.pixelPath.assign(film_.pixelCount(), nullptr);
   tbb::parallel_for(size_t{0}, items.size(), [&](size_t i) {
     const MergePass::WalkItem& item = items[i];
     const uint32_t base = static_cast<uint32_t>(offset[i]);
-    std::copy(item.vertices.begin(), item.vertices.end(), m.vertices.begin() + static_cast<std::ptrdiff_t>(base));
     for (size_t j = 0; j < item.pixels.size(); ++j) {
       const uint32_t start = base + item.pixelStart[j];
       m.pixelPathStart[item.pixels[j]] = start;
       m.pixelPathCount[item.pixels[j]] = item.pixelCount[j];
+      m.pixelPath[item.pixels[j]] = item.vertices.data() + item.pixelStart[j];
       std::fill_n(m.pathStart.begin() + static_cast<std::ptrdiff_t>(start), item.pixelCount[j], start);
     }
   });

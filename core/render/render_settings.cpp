@@ -2,6 +2,7 @@
 // every front end runs before any work.
 #include "core/render/render_settings.h"
 
+#include "core/bpt/merge_pass.h"
 #include "core/bpt/mis_off.h"
 #include "core/bpt/path_vertex.h"
 #include "core/film/technique_films.h"
@@ -55,8 +56,12 @@ TechniqueSet enabledTechniques(const RenderSettings& settings) {
 }
 
 uint64_t mergeStoreBytes(const RenderSettings& s) {
-  // A stored vertex, its path index, and in the grid its key, index and position.
-  constexpr uint64_t kPerVertex = sizeof(PathVertex) + sizeof(uint32_t) + 2 * sizeof(uint64_t) + sizeof(Vec3);
+  // A stored vertex (MergePass), its path index and MIS sums, and at most as many mergeable ones:
+  // the index's point, position and pointer, the grid's index, position and sort key, and the
+  // merge record.
+  constexpr uint64_t kPerVertex = sizeof(PathVertex) + sizeof(uint32_t) + sizeof(double) + sizeof(float) +
+                                  sizeof(uint32_t) + sizeof(Vec3) + sizeof(const PathVertex*) + sizeof(uint32_t) +
+                                  sizeof(Vec3) + sizeof(uint64_t) + sizeof(MergeRecord);
   return static_cast<uint64_t>(s.width) * static_cast<uint64_t>(s.height) * static_cast<uint64_t>(std::max(s.maxLength, 0)) *
          kPerVertex;
 }
