@@ -260,7 +260,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
     drawStatusSection(a().snapshot(), estimatorWarning(warning_, &scene(), a().snapshot().settings), run_,
                       ui_.frameMs, requests);
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
-    drawEstimatorSection(estimator_, grid_, a().refused(), a().snapshot().counters, a().snapshot().check.get());
+    drawEstimatorSection(estimator_, grid_, a().refused(), a().snapshot().counters, a().snapshot().check.get(),
+                         MergeRadiusNow{&a().snapshot().settings, a().snapshot().samplesPerPixel, scene().bounds().radius});
   if (ImGui::CollapsingHeader("Path inspector and 3D view",
                               inspect_.inspector.on || inspect_.view3d.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawInspectorSection(inspect_.inspector, inspect_.view3d, requests);

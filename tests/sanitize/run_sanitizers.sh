@@ -53,7 +53,8 @@ if [ "$which" = thread ] || [ "$which" = all ]; then
   # The aspect tests (geometry of the letterboxed image, no thread of their own) are the release
   # and ASan stages'. So are the environment's variants of one restart (a map dropped through the
   # scene loader thread stays here) and the error view's picture (its two series stay): the same
-  # threads meeting the same way, 10-20 s each under TSan.
-  tsanSame='ViewerAspect|ViewerEnvironment[.](NextEvent|AUniform|StrengthZero|TurningAOneSided)|ViewerError[.]ErrorView'
+  # threads meeting the same way, 10-20 s each under TSan; so is the ppm box of the merge controls
+  # (a settings edit like any other).
+  tsanSame='ViewerAspect|ViewerMergeControls|ViewerEnvironment[.](NextEvent|AUniform|StrengthZero|TurningAOneSided)|ViewerError[.]ErrorView'
   ctest --test-dir build-tsan --output-on-failure -j 1 -R '^viewer[.]' -E "^viewer[.](window\$|.*($tsanSame))"
 fi

@@ -135,6 +135,24 @@ TEST(EstimatorState, DescriptionNamesTheEstimator) {
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques s=0;k=2, MIS power (beta 2), BIAS INJECTED: (1,2) x 1.05");
 }
 
+// With merges the line names the radius, its schedule and where the camera subpath merges, so a
+// screenshot of a ppm render says it is one (the integrator's radio says bpt).
+TEST(EstimatorState, DescriptionNamesTheMergeRadiusAndSite) {
+  RenderSettings s;
+  s.integrator = IntegratorKind::Bpt;
+  s.maxLength = 4;
+  s.techniques = TechniqueSet::parse("all;m=all");
+  s.mergeRadius = 0.01f;
+  s.mergeRadiusAlpha = 0.5f;
+  EXPECT_EQ(describe(s), "bpt, max length 4, techniques all;m=all, MIS balance, merging radius 0.01 alpha 0.5");
+  s.techniques = TechniqueSet::parse("s=0;m=all");
+  s.mergeSite = MergeSite::FirstNonSpecular;
+  EXPECT_EQ(describe(s), "bpt, max length 4, techniques s=0;m=all, MIS balance, merging radius 0.01 alpha 0.5 at the "
+                         "first non-specular camera vertex (ppm)");
+  s.techniques = TechniqueSet::all();  // no merge: nothing about merging
+  EXPECT_EQ(describe(s), "bpt, max length 4, techniques all, MIS balance");
+}
+
 // Ctrl+digit S isolates (S, k + 1 - S) of the grid's chosen length: the seed's comparison of one
 // length's techniques a key each; the isolate mode is kept, combining becomes the weighted share.
 TEST(EstimatorState, DigitKeysIsolateTheTechniquesOfTheChosenLength) {

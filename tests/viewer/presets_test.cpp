@@ -151,6 +151,8 @@ INSTANTIATE_TEST_SUITE_P(
                             "integrator \"vcm\" sets the techniques"},
                     BadCase{R"({"presets": [{"name": "x", "unweighted": true}]})", "needs \"isolate\""},
                     BadCase{R"({"presets": [{"name": "x", "integrator": "pt", "isolate": [1, 2]}]})", "bpt or lt"},
+                    BadCase{R"({"presets": [{"name": "x", "integrator": "lt", "isolate": "M2,2"}]})",
+                            "M(2,2): light tracing has only the t = 1 techniques"},
                     BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [0, 0, 0], "target": [0, 0, 0]}}]})",
                             "coincide"},
                     BadCase{R"({"presets": [{"name": "x", "camera": {"eye": [0, 0], "target": [0, 0, 1]}}]})",

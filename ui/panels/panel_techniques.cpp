@@ -3,6 +3,7 @@
 // columns: s, the number of light subpath vertices).
 #include "ui/panels/panels.h"
 
+#include "core/bpt/merge_pass.h"
 #include "core/sampling/technique_label.h"
 #include "ui/estimator/technique_grid.h"
 
@@ -284,8 +285,41 @@ void drawCheckControls(EstimatorState& estimator, TechniqueGridState& grid, cons
   }
 }
 
+namespace {
+
+// Vertex merging's parameters, shown while the set has merges: the first pass's radius and its
+// schedule (--radius, --radius-alpha), where the camera subpath merges (ppm), and the radius the
+// shown image's last pass used.
+void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
+  if (!covers(enabledTechniques(edited).families(), TechniqueKind::Merge)) return;
+  ImGui::Separator();
+  ImGui::TextUnformatted("vertex merging");
+  ImGui::SliderFloat("radius", &edited.mergeRadius, 1e-4f, kMaxMergeRadius, "%.4g", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("r1, the first pass's merge radius, as a fraction of the scene's bounding radius (--radius):\n"
+                      "larger merges more light vertices (less noise) over a wider disk (more blur, more bias)");
+  ImGui::SliderFloat("radius alpha", &edited.mergeRadiusAlpha, 0.05f, 1.f, "%.2f");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("pass i merges within r_i = r1 i^((alpha - 1) / 2) (--radius-alpha): the bias vanishes as passes\n"
+                      "add up; 1 keeps r1 (biased for ever), smaller shrinks faster (noisier)");
+  bool firstOnly = edited.mergeSite == MergeSite::FirstNonSpecular;
+  ImGui::Checkbox("ppm: merge at the first non-specular vertex", &firstOnly);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("progressive photon mapping's estimator: the camera subpath merges once, where it first meets\n"
+                      "a surface that is not a mirror or glass; off, it merges at every such vertex (VCM, BPM)");
+  edited.mergeSite = firstOnly ? MergeSite::FirstNonSpecular : MergeSite::Every;
+  const RenderSettings* shown = now.shown;
+  if (shown && now.passes > 0 && covers(enabledTechniques(*shown).families(), TechniqueKind::Merge))
+    ImGui::TextDisabled("pass %llu: r = %.3g (scene radius %.3g)", static_cast<unsigned long long>(now.passes),
+                        static_cast<double>(mergeRadius(shown->mergeRadius * now.sceneRadius, shown->mergeRadiusAlpha,
+                                                        now.passes - 1)),
+                        static_cast<double>(now.sceneRadius));
+}
+
+}  // namespace
+
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
-                          const Counters& counters, const CheckReport* check) {
+                          const Counters& counters, const CheckReport* check, const MergeRadiusNow& radiusNow) {
   RenderSettings& edited = estimator.settings;
   ImGui::PushID("estimator");
   // Integrator
@@ -363,6 +397,8 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
       ImGui::PopStyleColor();
     }
   }
+
+  drawMergeControls(edited, radiusNow);
 
   ImGui::Separator();
   drawTechniqueGrid(estimator, grid, counters, check);

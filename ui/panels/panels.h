@@ -44,8 +44,15 @@ void drawStatusSection(const RenderSnapshot& snapshot, const std::string& warnin
 // (of the shown image) for the cells' tooltips.
 // `check`: the consistency check of the shown image (null when off): cells of techniques that
 // disagree turn red, with the z-score in their tooltip.
+// `shown`: the settings and passes of the shown image and the scene's bounding radius, for the
+// radius its last merge pass used.
+struct MergeRadiusNow {
+  const RenderSettings* shown = nullptr;
+  uint64_t passes = 0;
+  float sceneRadius = 0.f;
+};
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
-                          const Counters& counters, const CheckReport* check);
+                          const Counters& counters, const CheckReport* check, const MergeRadiusNow& radiusNow);
 void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
 void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
 void drawPresetSection(const PresetState& presets, PanelRequests& requests);

@@ -137,6 +137,9 @@ NamedPreset parseOne(const Json& p) {
       throw std::invalid_argument(fmt::format("isolated technique {} is not a technique of length {}..{}",
                                               techniqueLabel(x), x.isMerge() ? 2 : 1, out.maxLength));
     if (out.integrator == IntegratorKind::Pt) throw std::invalid_argument("\"isolate\" needs integrator bpt or lt");
+    if (out.integrator == IntegratorKind::Lt && x.isMerge())
+      throw std::invalid_argument(
+          fmt::format("\"isolate\" {}: light tracing has only the t = 1 techniques (a merge needs bpt)", techniqueLabel(x)));
     out.isolate = iso;
   }
   if (p.contains("unweighted")) {
