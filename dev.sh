@@ -14,7 +14,8 @@ PACKAGES=(g++ make cmake pkg-config python3
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libimgui-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri fonts-dejavu-core xvfb xauth
   clang libclang-rt-14-dev
-  libopenmpi-dev openmpi-bin)
+  libopenmpi-dev openmpi-bin
+  pybind11-dev python3-dev python3-numpy python3-pytest)
 BUILD_DIR=${PATHLAB_BUILD_DIR:-build}
 
 install_packages() {

@@ -60,6 +60,12 @@ struct ReplayRequest {
   uint64_t sample = 0;
 };
 
+void checkPixels(const RenderSettings& settings) {
+  if (static_cast<long long>(settings.width) * settings.height > kMaxPixels)
+    throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", settings.width,
+                                         settings.height, kMaxPixels));
+}
+
 ReplayRequest parseReplay(const std::string& text, const RenderSettings& settings) {
   ReplayRequest r;
   long long x = -1, y = -1, sample = -1;
@@ -83,17 +89,7 @@ int runReplay(const RenderSession& session, const ReplayRequest& r) {
 
 }  // namespace
 
-void addRenderCommand(CLI::App& app, RenderOptions& o) {
-  CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene headless to an image file");
-  addSceneArgument(cmd, o.scene.path);
-  auto* output =
-      cmd->add_option("-o,--output", o.output, "Output image: .exr and .pfm store float radiance, .png is tone mapped (sRGB)");
-  cmd->add_option("--replay", o.replay,
-                  "Replay sample SAMPLE of pixel X,Y with the same options and print every technique's part")
-      ->excludes(output);
-  addSampleBudgetOptions(cmd, o.budget,
-                         {1, "Samples per pixel (default 64 when --time is not given)",
-                          "Render for this many seconds of wall time instead of a sample count"});
+void addRenderEstimateOptions(CLI::App* cmd, RenderOptions& o) {
   addImageSizeOptions(cmd, o.size, {kMaxImageSide, kDefaultLongestSide});
   addEstimatorOptions(cmd, o.estimator);
   cmd->add_option("--pyramid", o.estimator.settings.pyramidLength,
@@ -105,10 +101,55 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
                   "each technique's share of the image and where each cannot sample (EXR and PNG)")
       ->check(CLI::Range(1, kMaxPyramidLength));
   addThreadsOption(cmd, o.threads);
-  addLoadOptions(cmd, o.scene.load, o.scene.environment);
-  cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
+}
+
+void finishRenderEstimate(RenderOptions& o) {
+  finishEstimatorOptions(o.estimator);
+  // The maps read the pyramid's films (and their sampleable parts); --pyramid still decides which
+  // pyramid images are written.
+  if (o.techniqueMaps > 0) {
+    RenderSettings& s = o.estimator.settings;
+    if (s.integrator == IntegratorKind::Pt)
+      throw std::runtime_error("--technique-maps needs the bidirectional tracer (--integrator bpt or lt)");
+    if (o.techniqueMaps > s.maxLength)
+      throw std::runtime_error(
+          fmt::format("--technique-maps {} is longer than the maximum path length {}", o.techniqueMaps, s.maxLength));
+    s.pyramidLength = std::max(s.pyramidLength, o.techniqueMaps);
+    s.techniqueMaps = true;
+  }
+  // Until the camera's aspect is known, a side not given may be as large as allowed: a too large
+  // --width x --height is still refused before any work.
+  RenderSettings& settings = o.estimator.settings;
+  settings.width = o.size.width > 0 ? o.size.width : kMaxImageSide;
+  settings.height = o.size.height > 0 ? o.size.height : kMaxImageSide;
+  if (o.size.width > 0 && o.size.height > 0) checkPixels(settings);
+}
+
+void sizeRenderForScene(RenderOptions& o, const CameraDesc& camera) {
+  RenderSettings& settings = o.estimator.settings;
+  // The image has the camera's shape, so nothing the camera frames is cropped (image_size.h).
+  const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, camera), kDefaultLongestSide);
+  settings.width = size.x;
+  settings.height = size.y;
+  checkPixels(settings);
+}
+
+void addRenderCommand(CLI::App& app, RenderOptions& o) {
+  CLI::App* cmd = app.add_subcommand("render", "Render a glTF scene headless to an image file");
+  addSceneArgument(cmd, o.scene.path);
+  auto* output =
+      cmd->add_option("-o,--output", o.output, "Output image: .exr and .pfm store float radiance, .png is tone mapped (sRGB)");
+  cmd->add_option("--replay", o.replay,
+                  "Replay sample SAMPLE of pixel X,Y with the same options and print every technique's part")
+      ->excludes(output);
+  addSampleBudgetOptions(cmd, o.budget,
+                         {1, "Samples per pixel (default 64 when --time is not given)",
+                          "Render for this many seconds of wall time instead of a sample count"});
+  addRenderEstimateOptions(cmd, o);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
+  cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
   cmd->add_flag("--stats", o.stats, "Print per-technique counters: connections tried, zero, blocked, contributing, discarded, shadow rays "
                 "and share of all rays, share of the timed work (connect + MIS weight; the walks too)");
   addForceFlag(cmd, o.force, "the output file if it exists");
@@ -129,35 +170,14 @@ struct PreparedRender {
 PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   std::ostream& log = job.log();
   PreparedRender p;
-  finishEstimatorOptions(o.estimator);
-  // The maps read the pyramid's films (and their sampleable parts); --pyramid still decides which
-  // pyramid images are written.
+  // --pyramid decides which pyramid images are written; the technique maps may keep a longer one.
   p.pyramidOutput = o.estimator.settings.pyramidLength;
-  if (o.techniqueMaps > 0) {
-    RenderSettings& s = o.estimator.settings;
-    if (s.integrator == IntegratorKind::Pt)
-      throw std::runtime_error("--technique-maps needs the bidirectional tracer (--integrator bpt or lt)");
-    if (o.techniqueMaps > s.maxLength)
-      throw std::runtime_error(
-          fmt::format("--technique-maps {} is longer than the maximum path length {}", o.techniqueMaps, s.maxLength));
-    s.pyramidLength = std::max(s.pyramidLength, o.techniqueMaps);
-    s.techniqueMaps = true;
-  }
+  finishRenderEstimate(o);
   RenderSettings& settings = o.estimator.settings;
   if (o.output.empty() && o.replay.empty())
     throw std::runtime_error("render needs an output image (-o OUT) or --replay X,Y,SAMPLE");
   if (!o.replay.empty() && job.size() > 1)
     throw std::runtime_error("--replay recomputes one sample: run it as one process, without mpirun");
-  // Until the camera's aspect is known, a side not given may be as large as allowed: the syntax of
-  // --replay and a too large --width x --height are still refused before any work.
-  settings.width = o.size.width > 0 ? o.size.width : kMaxImageSide;
-  settings.height = o.size.height > 0 ? o.size.height : kMaxImageSide;
-  auto checkPixels = [&] {
-    if (static_cast<long long>(settings.width) * settings.height > kMaxPixels)
-      throw std::runtime_error(fmt::format("--width x --height = {} x {} is more than {} pixels", settings.width,
-                                           settings.height, kMaxPixels));
-  };
-  if (o.size.width > 0 && o.size.height > 0) checkPixels();
   if (settings.integrator != IntegratorKind::Pt) {
     const TechniqueSet techniques = enabledTechniques(settings);
     for (int k : techniques.uncoveredLengths(settings.maxLength))
@@ -179,11 +199,7 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   const auto loadStart = std::chrono::steady_clock::now();
   p.scene = std::make_unique<Scene>(readScene(o.scene));
   const Scene& scene = *p.scene;
-  // The image has the camera's shape, so nothing the camera frames is cropped (image_size.h).
-  const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultLongestSide);
-  settings.width = size.x;
-  settings.height = size.y;
-  checkPixels();
+  sizeRenderForScene(o, scene.cameraDesc());
   if (p.replay) p.replay = parseReplay(o.replay, settings);
   printWarnings(log, scene, settings);
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();

@@ -28,6 +28,16 @@ struct RenderOptions {
 };
 
 void addRenderCommand(CLI::App& app, RenderOptions& options);
+// The options of render that decide the estimate, registered on `cmd` (render's, and the Python
+// module's Settings, which parses its keyword arguments with them): the image size, the estimator
+// options, --pyramid, --technique-maps, --threads and --check-mis.
+void addRenderEstimateOptions(CLI::App* cmd, RenderOptions& options);
+// After parsing, before the scene: the estimator options into settings (finishEstimatorOptions)
+// and the technique maps' pyramid; throws the one-line messages render prints.
+void finishRenderEstimate(RenderOptions& options);
+// The image's size on `scene`'s camera (--width / --height, else the camera's shape), into the
+// settings; throws when it has too many pixels.
+void sizeRenderForScene(RenderOptions& options, const CameraDesc& camera);
 // Returns the process exit code. Errors are exceptions, reported by main. As one rank of `job`
 // (app/job.h; one process: a plain Job): its share of the passes; the leader writes the outputs.
 int runRender(RenderOptions options, Job& job);

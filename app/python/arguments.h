@@ -1,0 +1,36 @@
+// Keyword arguments as the command line's options: pathlab.Settings(...) and pathlab.load(...)
+// turn each argument into the option `render` takes (max_length=5 -> --max-length 5) and parse
+// them with render's own registrations (app/render_command.h, app/shared_options.h), so every
+// option means, checks and refuses exactly what it does on the command line. The messages then
+// name the Python argument instead of the option.
+#pragma once
+
+#include "app/render_command.h"
+
+#include <pybind11/pybind11.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace pathlab::python {
+
+// pathlab.Error: a refused argument or a failed call, with the one line the CLI prints.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Settings(**kwargs): render's estimate options (addRenderEstimateOptions), checked as render
+// checks them before loading the scene (finishRenderEstimate).
+app::RenderOptions settingsFromArguments(const pybind11::kwargs& kwargs);
+// The keyword arguments Settings accepts, in the stub's order.
+std::string settingsArgumentNames();
+
+// load(path, **kwargs): how the scene loads (--environment ..., --light-sampler, --max-triangles).
+app::SceneOptions loadOptionsFromArguments(const std::string& path, const pybind11::kwargs& kwargs);
+
+// A message of the command line's with its options named as the Python arguments:
+// "--radius-alpha 1.5 is outside" -> "radius_alpha 1.5 is outside", "--no-rr" -> "rr=False".
+std::string withArgumentNames(const std::string& message);
+
+}  // namespace pathlab::python

@@ -1,0 +1,139 @@
+// The pathlab Python module (issue 36): scenes, settings, progressive renders as NumPy arrays,
+// the technique pyramid and the counters, with the command line's options and messages.
+#include "app/python/arguments.h"
+#include "app/python/renderer.h"
+#include "core/bpt/technique_set.h"
+#include "core/render/render_settings.h"
+#include "core/sampling/technique_label.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fmt/core.h>
+
+namespace py = pybind11;
+using namespace pathlab;
+using namespace pathlab::python;
+
+namespace {
+
+py::tuple vec3(const Vec3& v) { return py::make_tuple(v.x, v.y, v.z); }
+
+py::dict cameraOf(const CameraDesc& c) {
+  py::dict d;
+  py::list toWorld;
+  for (int row = 0; row < 4; ++row)
+    toWorld.append(py::make_tuple(c.cameraToWorld[0][row], c.cameraToWorld[1][row], c.cameraToWorld[2][row],
+                                  c.cameraToWorld[3][row]));
+  d["camera_to_world"] = toWorld;
+  d["name"] = c.name;
+  if (c.orthographic) d["orthographic"] = py::make_tuple(c.orthographic->x, c.orthographic->y);
+  else d["yfov"] = c.yfov;
+  d["aspect_ratio"] = c.aspectRatio ? py::cast(*c.aspectRatio) : py::none();
+  return d;
+}
+
+std::string settingsRepr(const PySettings& s) {
+  const RenderSettings& r = s.options.estimator.settings;
+  return fmt::format("pathlab.Settings(integrator={}, techniques='{}', max_length={}, mis={}, seed={}, size={})",
+                     s.options.estimator.integrator, enabledTechniques(r).toString(), r.maxLength,
+                     misHeuristicName(r.mis.heuristic), r.seed,
+                     s.options.size.width > 0 || s.options.size.height > 0
+                         ? fmt::format("{}x{}", s.options.size.width, s.options.size.height)
+                         : std::string("the camera's"));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(pathlab, m) {
+  m.doc() = "pathlab: the path integral's techniques (s,t), their densities and weights, from Python";
+  static py::exception<Error> error(m, "Error");
+  error.doc() = "A refused argument or a failed call, with the one-line message the command line prints";
+  // Every exception from the core becomes pathlab.Error with its message, argument names as Python's.
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      error(e.what());
+    } catch (const std::invalid_argument& e) {
+      error(withArgumentNames(e.what()).c_str());
+    } catch (const std::runtime_error& e) {
+      error(withArgumentNames(e.what()).c_str());
+    }
+  });
+
+  py::class_<TechniqueSet>(m, "TechniqueSet",
+                           "A set of sampling techniques: connections (s,t) and merges M(s,t), as --techniques SPEC")
+      .def(py::init([](const std::string& spec) { return TechniqueSet::parse(spec); }), py::arg("spec") = "all",
+           "Parses SPEC: ';'-separated S,T | s=S | t=T | k=K | all | MS,T | m=K | m=all")
+      .def(
+          "__contains__",
+          [](const TechniqueSet& set, const py::tuple& key) {
+            if (py::len(key) == 3 && py::str(key[0]).cast<std::string>() == "M")
+              return set.contains(Technique::merge(key[1].cast<int>(), key[2].cast<int>()));
+            if (py::len(key) == 2) return set.contains(key[0].cast<int>(), key[1].cast<int>());
+            throw Error("TechniqueSet: a technique is (s, t) or (\"M\", s, t)");
+          },
+          py::arg("technique"))
+      .def("__str__", &TechniqueSet::toString)
+      .def("__repr__", [](const TechniqueSet& s) { return fmt::format("pathlab.TechniqueSet('{}')", s.toString()); })
+      .def("__eq__", [](const TechniqueSet& a, const TechniqueSet& b) { return a == b; })
+      .def("__or__", [](const TechniqueSet& a, const TechniqueSet& b) { return a | b; });
+
+  py::class_<LoadedScene>(m, "Scene", "A loaded glTF scene (pathlab.load)")
+      .def_readonly("path", &LoadedScene::path)
+      .def_property_readonly(
+          "bounds", [](const LoadedScene& s) { return py::make_tuple(vec3(s.scene->bounds().center), s.scene->bounds().radius); },
+          "(centre, radius) of the scene's bounding sphere")
+      .def_property_readonly("lights", [](const LoadedScene& s) { return s.scene->lights().size(); }, "The number of lights")
+      .def_property_readonly("triangle_count", [](const LoadedScene& s) { return s.scene->triangleCount(); })
+      .def_property_readonly("camera", [](const LoadedScene& s) { return cameraOf(s.scene->cameraDesc()); },
+                             "The scene's camera: camera_to_world (4 rows), yfov or orthographic, aspect_ratio, name")
+      .def_property_readonly("warnings", [](const LoadedScene& s) { return s.scene->warnings(); })
+      .def("__repr__", [](const LoadedScene& s) {
+        return fmt::format("pathlab.Scene('{}', {} triangles, {} lights)", s.path, s.scene->triangleCount(),
+                           s.scene->lights().size());
+      });
+
+  m.def(
+      "load",
+      [](const std::string& path, const py::kwargs& kwargs) { return loadScene(loadOptionsFromArguments(path, kwargs)); },
+      py::arg("path"),
+      "Loads a glTF 2.0 scene. Keyword arguments as `pathlab render`'s options: environment (a .exr/.hdr file or "
+      "three numbers), environment_strength, environment_rotation, default_light, light_sampler "
+      "('auto', 'power', 'bvh'), max_triangles");
+
+  py::class_<PySettings>(m, "Settings", "The options of `pathlab render` that decide the estimate")
+      .def(py::init([](const py::kwargs& kwargs) { return PySettings{settingsFromArguments(kwargs)}; }),
+           ("Keyword arguments as render's options (max_length=5 is --max-length 5): " + settingsArgumentNames())
+               .c_str())
+      .def_property_readonly("integrator", [](const PySettings& s) { return s.options.estimator.integrator; })
+      .def_property_readonly("techniques",
+                             [](const PySettings& s) { return enabledTechniques(s.options.estimator.settings); })
+      .def_property_readonly("max_length", [](const PySettings& s) { return s.options.estimator.settings.maxLength; })
+      .def_property_readonly("seed", [](const PySettings& s) { return s.options.estimator.settings.seed; })
+      .def_property_readonly("pyramid", [](const PySettings& s) { return s.options.estimator.settings.pyramidLength; })
+      .def("__repr__", &settingsRepr);
+
+  py::class_<Renderer>(m, "Renderer", "A progressive render of a scene with one Settings")
+      .def(py::init<const LoadedScene&, const PySettings&>(), py::arg("scene"), py::arg("settings"),
+           py::keep_alive<1, 2>())
+      .def("render", &Renderer::render, py::arg("spp") = py::none(), py::arg("time") = py::none(),
+           py::arg("progress") = py::none(),
+           "Renders spp more passes (or for `time` seconds; neither: 64) and returns the image of every pass so "
+           "far as a float32 array (height, width, 3). progress(spp, seconds) is called after each pass. Ctrl+C "
+           "raises KeyboardInterrupt at once (a pass it interrupts midway is lost, and the renderer starts again "
+           "from zero passes); cancel() from another thread returns after the pass in progress, keeping every pass.")
+      .def("cancel", &Renderer::cancel, "Stops render() after the pass in progress (any thread)")
+      .def("image", &Renderer::image, "The image of every pass so far, float32 (height, width, 3)")
+      .def("pyramid", &pyramidOf, py::arg("max_length") = py::none(),
+           "{(s, t): (weighted, unweighted)} and {('M', s, t): ...} for every technique up to max_length (the "
+           "settings' pyramid=K): its MIS-weighted share of the image and its own estimate")
+      .def("counters", &countersOf, "Samples, rays, discarded samples, and per technique and walk the counters of "
+                                    "`render --stats`")
+      .def_property_readonly("spp", &Renderer::samplesPerPixel, "Passes (samples per pixel) rendered so far")
+      .def_property_readonly("seconds", &Renderer::seconds, "Time spent in those passes")
+      .def_property_readonly("width", &Renderer::width)
+      .def_property_readonly("height", &Renderer::height);
+}

@@ -1,0 +1,131 @@
+"""pathlab: the path integral's sampling techniques (s,t), their densities and weights, from Python.
+
+Set-up: build pathlab (./dev.sh check), then ``PYTHONPATH=build/python /usr/bin/python3``.
+"""
+from typing import Callable, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+Image = npt.NDArray[np.float32]  # (height, width, 3), linear radiance
+Technique = Union[Tuple[int, int], Tuple[str, int, int]]  # (s, t) or ("M", s, t)
+
+class Error(Exception):
+    """A refused argument or a failed call, with the one-line message the command line prints."""
+
+class TechniqueSet:
+    """A set of sampling techniques, as ``--techniques SPEC``: connections (s,t) and merges M(s,t)."""
+    def __init__(self, spec: str = "all") -> None:
+        """Parses SPEC: ';'-separated ``S,T | s=S | t=T | k=K | all | MS,T | m=K | m=all``."""
+    def __contains__(self, technique: Technique) -> bool: ...
+    def __or__(self, other: TechniqueSet) -> TechniqueSet: ...
+    def __eq__(self, other: object) -> bool: ...
+
+class Scene:
+    """A loaded glTF 2.0 scene."""
+    path: str
+    @property
+    def bounds(self) -> Tuple[Tuple[float, float, float], float]:
+        """(centre, radius) of the scene's bounding sphere."""
+    @property
+    def lights(self) -> int:
+        """The number of lights (emissive triangles count one each)."""
+    @property
+    def triangle_count(self) -> int: ...
+    @property
+    def camera(self) -> dict:
+        """camera_to_world (4 rows), yfov or orthographic, aspect_ratio, name."""
+    @property
+    def warnings(self) -> list[str]: ...
+
+def load(
+    path: str,
+    *,
+    environment: Optional[Union[str, Sequence[float]]] = None,
+    environment_strength: Optional[float] = None,
+    environment_rotation: Optional[float] = None,
+    default_light: bool = True,
+    light_sampler: Optional[str] = None,
+    max_triangles: Optional[int] = None,
+) -> Scene:
+    """Loads a glTF 2.0 scene; the arguments are ``pathlab render``'s loading options.
+
+    environment: an equirectangular .exr/.hdr map or a constant radiance (r, g, b);
+    light_sampler: 'auto', 'power' or 'bvh' (how next-event estimation chooses a light).
+    Raises pathlab.Error naming the file and the problem.
+    """
+
+class Settings:
+    """The options of ``pathlab render`` that decide the estimate (max_length=5 is --max-length 5)."""
+    def __init__(
+        self,
+        *,
+        width: Optional[int] = None,
+        height: Optional[int] = None,
+        integrator: Optional[str] = None,
+        max_length: Optional[int] = None,
+        mis: Optional[str] = None,
+        beta: Optional[float] = None,
+        connect: Optional[str] = None,
+        min_connection: Optional[float] = None,
+        techniques: Optional[Union[str, TechniqueSet]] = None,
+        isolate: Optional[Union[str, Tuple[int, int]]] = None,
+        unweighted: bool = False,
+        radius: Optional[float] = None,
+        radius_alpha: Optional[float] = None,
+        rr: bool = True,
+        seed: Optional[int] = None,
+        aperture: Optional[float] = None,
+        focus_distance: Optional[float] = None,
+        inject_bias: Optional[str] = None,
+        pyramid: Optional[int] = None,
+        technique_maps: Optional[int] = None,
+        check_mis: bool = False,
+        threads: Optional[int] = None,
+    ) -> None:
+        """integrator: 'bpt' (default), 'pt', 'lt', 'vcm', 'bpm', 'ppm'; mis: 'balance', 'power',
+        'uniform', 'off'; connect: 'all' or 'endpoints' (naive BPT); isolate: "S,T" or "MS,T";
+        width/height: neither given, the camera's shape with the longest side 512.
+        Raises pathlab.Error naming the argument."""
+    @property
+    def integrator(self) -> str: ...
+    @property
+    def techniques(self) -> TechniqueSet:
+        """The techniques the integrator uses (vcm: 'all;m=all')."""
+    @property
+    def max_length(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def pyramid(self) -> int: ...
+
+class Renderer:
+    """A progressive render of a scene with one Settings, pass after pass (one sample a pixel each)."""
+    def __init__(self, scene: Scene, settings: Settings) -> None: ...
+    def render(
+        self,
+        spp: Optional[int] = None,
+        time: Optional[float] = None,
+        progress: Optional[Callable[[int, float], None]] = None,
+    ) -> Image:
+        """Renders spp more passes (or for `time` seconds of wall time; neither: 64) and returns the
+        image of every pass so far. The GIL is released meanwhile; progress(spp, seconds) is called
+        after each pass. Ctrl+C raises KeyboardInterrupt at once (a pass it interrupts midway is
+        lost, and the renderer starts again from zero passes); cancel() from another thread
+        returns after the pass in progress, keeping every pass."""
+    def cancel(self) -> None:
+        """Stops render() after the pass in progress (safe from any thread)."""
+    def image(self) -> Image: ...
+    def pyramid(self, max_length: Optional[int] = None) -> dict[Technique, Tuple[Image, Image]]:
+        """Every technique up to max_length (Settings(pyramid=K)): (MIS-weighted share, own estimate)."""
+    def counters(self) -> dict:
+        """spp, seconds, camera_samples, rays, shadow_rays, discarded {nan, inf, negative}, and per
+        technique (key (s, t) or ("M", s, t)) and walk: tried, zero, blocked, contributed, discarded, rays."""
+    @property
+    def spp(self) -> int: ...
+    @property
+    def seconds(self) -> float: ...
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...

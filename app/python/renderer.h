@@ -1,0 +1,72 @@
+// pathlab.Scene and pathlab.Renderer: a loaded scene, and a progressive render of it with one
+// Settings (a RenderSession, as `pathlab render` runs it, pass after pass).
+#pragma once
+
+#include "app/render_command.h"
+#include "core/render/render_session.h"
+#include "core/scene/scene.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <atomic>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace pathlab::python {
+
+struct LoadedScene {
+  std::string path;
+  std::shared_ptr<const Scene> scene;
+};
+LoadedScene loadScene(const app::SceneOptions& options);
+
+// The render's settings: render's options (app::RenderOptions), as Settings(**kwargs) parsed them.
+struct PySettings {
+  app::RenderOptions options;
+};
+
+// An image as a float32 H x W x 3 array that owns its pixels: the film's readout is moved into
+// it, not copied.
+pybind11::array_t<float> toArray(Image image);
+
+class Renderer {
+ public:
+  Renderer(const LoadedScene& scene, const PySettings& settings);
+
+  // Renders `spp` more passes, or passes for `seconds` of wall time (at least one); neither: 64
+  // passes, as `pathlab render`. Returns the image of every pass so far. The GIL is released
+  // while the passes run; `progress(spp, seconds)` is called after each pass. Ctrl+C (a signal
+  // Python sees on its main thread) raises KeyboardInterrupt at once: between passes every pass
+  // is kept; within one the partial pass cannot be (its sums are added in place), so the
+  // renderer starts again from zero passes. cancel(), from any thread, stops after the pass in
+  // progress and keeps every pass.
+  pybind11::array_t<float> render(std::optional<int> spp, std::optional<double> seconds, const pybind11::object& progress);
+  void cancel() { stop_.store(true); }
+
+  pybind11::array_t<float> image() const { return toArray(session_->image()); }
+  uint64_t samplesPerPixel() const { return session_->passes(); }
+  double seconds() const { return seconds_; }
+  const RenderSettings& settings() const { return session_->settings(); }
+  const RenderSession& session() const { return *session_; }
+  int width() const { return settings().width; }
+  int height() const { return settings().height; }
+
+ private:
+  void restart();
+
+  LoadedScene scene_;
+  app::RenderOptions options_;
+  std::unique_ptr<RenderSession> session_;
+  std::atomic<bool> stop_{false};
+  double seconds_ = 0.0;  // rendering time of the passes held
+};
+
+// {(s, t): (weighted, unweighted)} and {("M", s, t): ...} up to `maxLength` (the settings'
+// pyramid length when not given).
+pybind11::dict pyramidOf(const Renderer& r, std::optional<int> maxLength);
+// The counters of every pass so far: samples, rays, discarded samples, per technique and walk.
+pybind11::dict countersOf(const Renderer& r);
+
+}  // namespace pathlab::python
