@@ -39,6 +39,42 @@ py::object techniqueKey(Technique x) {
 
 }  // namespace
 
+PassThread::PassThread() : thread_([this] {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    changed_.wait(lock, [this] { return quit_ || (busy_ && job_); });
+    if (quit_) return;
+    std::function<void()> job = std::move(job_);
+    job_ = nullptr;
+    lock.unlock();
+    job();
+    lock.lock();
+    busy_ = false;
+    changed_.notify_all();
+  }
+}) {}
+
+PassThread::~PassThread() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    quit_ = true;
+  }
+  changed_.notify_all();
+  thread_.join();
+}
+
+void PassThread::start(std::function<void()> job) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  job_ = std::move(job);
+  busy_ = true;
+  changed_.notify_all();
+}
+
+bool PassThread::waitFor(std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return changed_.wait_for(lock, timeout, [this] { return !busy_; });
+}
+
 LoadedScene loadScene(const app::SceneOptions& options) {
   app::SceneOptions o = options;
   try {
@@ -82,42 +118,31 @@ py::array_t<float> Renderer::render(std::optional<int> spp, std::optional<double
     if (stop_.load()) break;
     // Ctrl+C between passes: every pass so far is kept.
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    // The pass on a thread of its own, while this one (the caller's, with the GIL now and then)
-    // looks for a signal every 20 ms: Python runs its Ctrl+C handler only on the main thread,
-    // between bytecodes, which never come while C++ renders.
+    // The pass on the renderer's pass thread, while this one (the caller's, with the GIL now and
+    // then) looks for a signal every 20 ms: Python runs its Ctrl+C handler only on the main
+    // thread, between bytecodes, which never come while C++ renders.
     std::atomic<bool> cancel{false};
-    std::mutex m;
-    std::condition_variable cv;
-    bool finished = false, interrupted = false;
+    bool interrupted = false;
     std::exception_ptr failure;
     const auto passStart = std::chrono::steady_clock::now();
+    if (!passThread_) passThread_ = std::make_unique<PassThread>();
     {
       py::gil_scoped_release release;
-      std::thread worker([&] {
+      passThread_->start([&] {
         try {
           session_->renderPass(&cancel);
         } catch (...) {
           failure = std::current_exception();
         }
-        std::lock_guard<std::mutex> lock(m);
-        finished = true;
-        cv.notify_one();
       });
-      std::unique_lock<std::mutex> lock(m);
-      while (!cv.wait_for(lock, std::chrono::milliseconds(20), [&] { return finished; })) {
-        lock.unlock();
-        {
-          py::gil_scoped_acquire gil;
-          if (PyErr_CheckSignals() != 0) interrupted = true;  // the exception stays set until thrown below
-        }
-        lock.lock();
-        if (interrupted) {
+      while (!passThread_->waitFor(std::chrono::milliseconds(20))) {
+        if (interrupted) continue;  // cancelled: waiting for the pass to stop
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) {  // the exception stays set until thrown below
+          interrupted = true;
           cancel.store(true);
-          break;
         }
       }
-      lock.unlock();
-      worker.join();
     }
     if (interrupted) {
       restart();  // the film holds part of a pass

@@ -10,9 +10,14 @@
 #include <pybind11/pybind11.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 
 namespace pathlab::python {
 
@@ -30,6 +35,26 @@ struct PySettings {
 // An image as a float32 H x W x 3 array that owns its pixels: the film's readout is moved into
 // it, not copied.
 pybind11::array_t<float> toArray(Image image);
+
+// One thread that runs a renderer's passes, kept from pass to pass: a thread started for every
+// pass, and its first TBB work, cost a 64 x 64 pass several per cent (docs/benchmarks.md).
+class PassThread {
+ public:
+  PassThread();
+  ~PassThread();
+  PassThread(const PassThread&) = delete;
+  PassThread& operator=(const PassThread&) = delete;
+  // Runs `job` on the thread; waitFor then returns true once it has finished.
+  void start(std::function<void()> job);
+  bool waitFor(std::chrono::milliseconds timeout);
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::function<void()> job_;
+  bool busy_ = false, quit_ = false;
+  std::thread thread_;  // last: started once the members it reads exist
+};
 
 class Renderer {
  public:
@@ -61,6 +86,7 @@ class Renderer {
   std::unique_ptr<RenderSession> session_;
   std::atomic<bool> stop_{false};
   double seconds_ = 0.0;  // rendering time of the passes held
+  std::unique_ptr<PassThread> passThread_;  // made by the first render
 };
 
 // {(s, t): (weighted, unweighted)} and {("M", s, t): ...} up to `maxLength` (the settings'

@@ -27,8 +27,9 @@ def test_the_gil_is_released_while_rendering(box):
     finally:
         done.set()
         counter.join()
-    # Held, the counter would run only between passes (a few ticks); released, about once a ms.
-    assert len(ticks) > 100 * elapsed, (len(ticks), elapsed)
+    # Held, the counter would hardly run (a tick or two); released, up to once a millisecond (20
+    # a second leaves room for a loaded machine).
+    assert len(ticks) > 20 * elapsed, (len(ticks), elapsed)
 
 
 def test_cancel_from_another_thread_returns_after_the_pass(box):
