@@ -33,6 +33,13 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
       "check", "Check that every enabled (s,t) technique agrees with the others on the paths both can sample; exit 1 "
                "when one disagrees");
   addSceneArgument(cmd, o.scene.path);
+  addCheckOptions(cmd, o);
+  cmd->add_option("--json", o.json, "Also write the verdict (and each merge's bias radius by radius) as JSON to this file");
+  addForceFlag(cmd, o.force, "the --json file");
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
+}
+
+void addCheckOptions(CLI::App* cmd, CheckCommandOptions& o) {
   addSampleBudgetOptions(cmd, o.budget,
                          {2, "Passes (samples per pixel) to compare over", "Render for this many seconds (default 10)"});
   addImageSizeOptions(cmd, o.size, {kMaxCheckSide, kDefaultCheckSide});
@@ -49,13 +56,10 @@ void addCheckCommand(CLI::App& app, CheckCommandOptions& o) {
                   "With merging techniques: render at this many radii, --radius halved each time (alpha = 1), and "
                   "judge each merge by its difference from the connections extrapolated to r -> 0 (default 3)")
       ->check(CLI::Range(2, kMaxRadiusLevels));
-  cmd->add_option("--json", o.json, "Also write the verdict (and each merge's bias radius by radius) as JSON to this file");
-  addForceFlag(cmd, o.force, "the --json file");
   addThreadsOption(cmd, o.threads);
-  addLoadOptions(cmd, o.scene.load, o.scene.environment);
 }
 
-int runCheck(CheckCommandOptions o) {
+void finishCheckOptions(CheckCommandOptions& o) {
   finishEstimatorOptions(o.estimator);
   RenderSettings& settings = o.estimator.settings;
   if (settings.integrator == IntegratorKind::Pt)
@@ -65,18 +69,15 @@ int runCheck(CheckCommandOptions o) {
     throw std::invalid_argument(fmt::format("--radius-alpha {:g}: check renders each radius fixed, so that its bias is "
                                             "that of one radius (alpha 1)",
                                             settings.mergeRadiusAlpha));
-  if (!o.json.empty()) {
-    checkOutputWritable(o.json);
-    refuseExisting(o.json, o.force);
-  }
-  const ThreadLimit threadLimit(o.threads);
+}
 
-  Scene scene(readScene(o.scene));
+CheckOutcome checkScene(CheckCommandOptions& o, const Scene& scene, bool progress) {
+  RenderSettings& settings = o.estimator.settings;
+  const bool merges = covers(enabledTechniques(settings).families(), TechniqueKind::Merge);
   // The camera's shape, as `render` (core/camera/image_size.h).
   const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultCheckSide);
   settings.width = size.x;
   settings.height = size.y;
-  printWarnings(std::cerr, scene, settings);
 
   // One render per radius, each with its own seed so the radii's differences are independent
   // (merge_bias.h); without merges, the one render of the connections' check.
@@ -97,12 +98,14 @@ int runCheck(CheckCommandOptions o) {
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     const double pixels = static_cast<double>(session.film().pixelCount());
     const std::string label = merges ? fmt::format("r = {:g}  ", s.mergeRadius) : "";
-    ProgressBar bar([&] {
-      const double passFraction = static_cast<double>(session.pixelsDoneInPass()) / pixels;
-      const double done = timed ? elapsed() / seconds
-                                : (static_cast<double>(session.passes()) + passFraction) / static_cast<double>(targetPasses);
-      return std::pair{done, fmt::format("{}{} passes  {:.1f} s", label, session.passes(), elapsed())};
-    });
+    std::optional<ProgressBar> bar;
+    if (progress)
+      bar.emplace([&] {
+        const double passFraction = static_cast<double>(session.pixelsDoneInPass()) / pixels;
+        const double done = timed ? elapsed() / seconds
+                                  : (static_cast<double>(session.passes()) + passFraction) / static_cast<double>(targetPasses);
+        return std::pair{done, fmt::format("{}{} passes  {:.1f} s", label, session.passes(), elapsed())};
+      });
     // A timed check still runs the passes a standard error needs.
     while (timed ? (session.passes() < minPasses || elapsed() < seconds) : session.passes() < targetPasses)
       session.renderPass();
@@ -112,28 +115,44 @@ int runCheck(CheckCommandOptions o) {
   TechniqueCheck pooled = *sessions.front()->techniqueCheck();
   for (size_t l = 1; l < sessions.size(); ++l) pooled.absorb(*sessions[l]->techniqueCheck());
   // The connections' verdicts; a merge is judged by its bias against the radius instead.
-  const CheckReport report = checkReport(pooled, o.check);
-  std::optional<MergeBiasReport> mergeReport;
-  if (merges) mergeReport = mergeBiasReport(radii, o.check);
+  CheckOutcome outcome{settings, levels, checkReport(pooled, o.check), std::nullopt};
+  if (merges) outcome.merges = mergeBiasReport(radii, o.check);
+  return outcome;
+}
 
+nlohmann::json checkOutcomeJson(const CheckOutcome& outcome, const std::string& scenePath) {
+  nlohmann::json json = checkJson(outcome.report, outcome.merges ? &*outcome.merges : nullptr);
+  json["scene"] = scenePath;
+  json["integrator"] = integratorName(outcome.settings.integrator);
+  json["width"] = outcome.settings.width;
+  json["height"] = outcome.settings.height;
+  json["seed"] = outcome.settings.seed;
+  return json;
+}
+
+int runCheck(CheckCommandOptions o) {
+  finishCheckOptions(o);
+  if (!o.json.empty()) {
+    checkOutputWritable(o.json);
+    refuseExisting(o.json, o.force);
+  }
+  const ThreadLimit threadLimit(o.threads);
+  Scene scene(readScene(o.scene));
+  printWarnings(std::cerr, scene, o.estimator.settings);
+  const CheckOutcome outcome = checkScene(o, scene, true);
+  const RenderSettings& settings = outcome.settings;
   std::cout << fmt::format("{}: {}, {} x {}, seed {}{}\n", o.scene.path, integratorName(settings.integrator),
                            settings.width, settings.height, settings.seed,
-                           merges ? fmt::format(", merges at {} radii from {:g} (the i-th: halved i times, seed + i)", levels,
-                                                settings.mergeRadius)
-                                  : "");
-  std::cout << checkReportText(report);
-  if (mergeReport) std::cout << "\n" << mergeBiasText(*mergeReport);
+                           outcome.merges ? fmt::format(", merges at {} radii from {:g} (the i-th: halved i times, seed + i)",
+                                                        outcome.radiusLevels, settings.mergeRadius)
+                                          : "");
+  std::cout << checkReportText(outcome.report);
+  if (outcome.merges) std::cout << "\n" << mergeBiasText(*outcome.merges);
   if (!o.json.empty()) {
-    nlohmann::json json = checkJson(report, mergeReport ? &*mergeReport : nullptr);
-    json["scene"] = o.scene.path;
-    json["integrator"] = integratorName(settings.integrator);
-    json["width"] = settings.width;
-    json["height"] = settings.height;
-    json["seed"] = settings.seed;
-    writeTextAtomically(o.json, json.dump(2) + "\n");
+    writeTextAtomically(o.json, checkOutcomeJson(outcome, o.scene.path).dump(2) + "\n");
     std::cerr << "wrote " << o.json << "\n";
   }
-  return report.agrees() && (!mergeReport || mergeReport->agrees()) ? 0 : 1;
+  return outcome.agrees() ? 0 : 1;
 }
 
 }  // namespace pathlab::app

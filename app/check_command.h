@@ -4,6 +4,12 @@
 #include "app/estimator_options.h"
 #include "app/shared_options.h"
 #include "core/check/check_report.h"
+#include "core/check/merge_bias.h"
+#include "core/scene/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
@@ -32,7 +38,27 @@ struct CheckCommandOptions {
 };
 
 void addCheckCommand(CLI::App& app, CheckCommandOptions& options);
+// The options of check but the scene, --json and --force, registered on `cmd` (check's, and the
+// Python module's pathlab.check).
+void addCheckOptions(CLI::App* cmd, CheckCommandOptions& options);
 // Exit code 0 when every compared technique agrees, 1 when one disagrees (errors: exceptions).
 int runCheck(CheckCommandOptions options);
+
+// What a check found: the verdicts of the connections and, with merges, of each merge's bias.
+struct CheckOutcome {
+  RenderSettings settings;  // as rendered (the first radius's, with the image size)
+  int radiusLevels = 1;
+  CheckReport report;
+  std::optional<MergeBiasReport> merges;
+  bool agrees() const { return report.agrees() && (!merges || merges->agrees()); }
+};
+// The estimator options checked (finishEstimatorOptions and check's own refusals); throws the
+// command line's one-line messages.
+void finishCheckOptions(CheckCommandOptions& options);
+// The check's renders of `scene` (one, or one per radius) and their verdicts; `progress`: a
+// progress bar on stderr.
+CheckOutcome checkScene(CheckCommandOptions& options, const Scene& scene, bool progress);
+// The JSON of check --json.
+nlohmann::json checkOutcomeJson(const CheckOutcome& outcome, const std::string& scenePath);
 
 }  // namespace pathlab::app

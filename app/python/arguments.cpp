@@ -59,6 +59,15 @@ constexpr Argument kSettingsArguments[] = {
     {"threads", "--threads", Kind::Int},
 };
 
+constexpr Argument kCheckArguments[] = {
+    {"spp", "--spp", Kind::Int},
+    {"time", "--time", Kind::Float},
+    {"blocks", "--blocks", Kind::Int},
+    {"alpha", "--alpha", Kind::Float},
+    {"min_hits", "--min-hits", Kind::Int},
+    {"radius_levels", "--radius-levels", Kind::Int},
+};
+
 constexpr Argument kLoadArguments[] = {
     {"environment", "--environment", Kind::Colour},
     {"environment_strength", "--environment-strength", Kind::Float},
@@ -128,8 +137,8 @@ std::vector<std::string> words(const Argument& a, const py::handle& v) {
   return {};
 }
 
-// Parses `kwargs` with the options `cmd` registers; refuses an argument not in `table`.
-void parse(CLI::App& cmd, std::span<const Argument> table, const py::kwargs& kwargs, const char* what) {
+// The command-line words of `kwargs`; refuses an argument not in `table`.
+std::vector<std::string> wordsOf(std::span<const Argument> table, const py::kwargs& kwargs, const char* what) {
   std::vector<std::string> args;
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::str(key).cast<std::string>();
@@ -142,6 +151,11 @@ void parse(CLI::App& cmd, std::span<const Argument> table, const py::kwargs& kwa
     if (value.is_none()) continue;  // None: the default
     for (std::string& w : words(*a, value)) args.push_back(std::move(w));
   }
+  return args;
+}
+
+// Parses command-line words with the options `cmd` registers.
+void parse(CLI::App& cmd, std::vector<std::string> args) {
   std::reverse(args.begin(), args.end());  // CLI11 takes its arguments from the back
   try {
     cmd.parse(args);
@@ -155,6 +169,7 @@ void parse(CLI::App& cmd, std::span<const Argument> table, const py::kwargs& kwa
 std::string withArgumentNames(const std::string& message) {
   std::vector<Argument> all(std::begin(kSettingsArguments), std::end(kSettingsArguments));
   all.insert(all.end(), std::begin(kLoadArguments), std::end(kLoadArguments));
+  all.insert(all.end(), std::begin(kCheckArguments), std::end(kCheckArguments));
   // The longest options first: --radius-alpha before --radius.
   std::sort(all.begin(), all.end(), [](const Argument& a, const Argument& b) {
     return std::string_view(a.option).size() > std::string_view(b.option).size();
@@ -189,11 +204,12 @@ std::string settingsArgumentNames() {
   return names;
 }
 
-app::RenderOptions settingsFromArguments(const py::kwargs& kwargs) {
+app::RenderOptions settingsFromArguments(const py::kwargs& kwargs, std::vector<std::string>& settingsWords) {
   app::RenderOptions o;
   CLI::App cmd("pathlab.Settings");
   app::addRenderEstimateOptions(&cmd, o);
-  parse(cmd, kSettingsArguments, kwargs, "Settings");
+  settingsWords = wordsOf(kSettingsArguments, kwargs, "Settings");
+  parse(cmd, settingsWords);
   try {
     app::finishRenderEstimate(o);
   } catch (const std::exception& e) {
@@ -207,7 +223,22 @@ app::SceneOptions loadOptionsFromArguments(const std::string& path, const py::kw
   o.path = path;
   CLI::App cmd("pathlab.load");
   app::addLoadOptions(&cmd, o.load, o.environment);
-  parse(cmd, kLoadArguments, kwargs, "load");
+  parse(cmd, wordsOf(kLoadArguments, kwargs, "load"));
+  return o;
+}
+
+app::CheckCommandOptions checkFromArguments(const std::vector<std::string>& settingsWords, const py::kwargs& kwargs) {
+  app::CheckCommandOptions o;
+  CLI::App cmd("pathlab.check");
+  app::addCheckOptions(&cmd, o);
+  std::vector<std::string> args = settingsWords;
+  for (std::string& w : wordsOf(kCheckArguments, kwargs, "check")) args.push_back(std::move(w));
+  parse(cmd, args);
+  try {
+    app::finishCheckOptions(o);
+  } catch (const std::exception& e) {
+    throw Error(withArgumentNames(e.what()));
+  }
   return o;
 }
 

@@ -5,12 +5,14 @@
 // name the Python argument instead of the option.
 #pragma once
 
+#include "app/check_command.h"
 #include "app/render_command.h"
 
 #include <pybind11/pybind11.h>
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace pathlab::python {
 
@@ -22,9 +24,16 @@ class Error : public std::runtime_error {
 
 // Settings(**kwargs): render's estimate options (addRenderEstimateOptions), checked as render
 // checks them before loading the scene (finishRenderEstimate).
-app::RenderOptions settingsFromArguments(const pybind11::kwargs& kwargs);
+// `words`: the command-line words they became, for commands that take the same options
+// (checkFromArguments).
+app::RenderOptions settingsFromArguments(const pybind11::kwargs& kwargs, std::vector<std::string>& words);
 // The keyword arguments Settings accepts, in the stub's order.
 std::string settingsArgumentNames();
+
+// pathlab.check's options: the Settings' words (an option of render that check does not take is
+// refused, named) and check's own keyword arguments (spp, time, blocks, alpha, min_hits,
+// radius_levels), parsed by check's registrations and checked as `pathlab check` does.
+app::CheckCommandOptions checkFromArguments(const std::vector<std::string>& settingsWords, const pybind11::kwargs& kwargs);
 
 // load(path, **kwargs): how the scene loads (--environment ..., --light-sampler, --max-triangles).
 app::SceneOptions loadOptionsFromArguments(const std::string& path, const pybind11::kwargs& kwargs);

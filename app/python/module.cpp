@@ -1,5 +1,6 @@
 // The pathlab Python module (issue 36): scenes, settings, progressive renders as NumPy arrays,
 // the technique pyramid and the counters, with the command line's options and messages.
+#include "app/python/analysis.h"
 #include "app/python/arguments.h"
 #include "app/python/renderer.h"
 #include "core/bpt/technique_set.h"
@@ -104,8 +105,25 @@ PYBIND11_MODULE(pathlab, m) {
       "three numbers), environment_strength, environment_rotation, default_light, light_sampler "
       "('auto', 'power', 'bvh'), max_triangles");
 
+  m.def("inspect", &inspect, py::arg("scene"), py::arg("settings"), py::arg("pixel"), py::arg("sample") = 0,
+        "One sample of one pixel replayed: what `pathlab inspect --json` writes for the same options, as dicts and "
+        "lists (every technique, its path, and the path's density and MIS weight under every technique of its "
+        "length)");
+
+  m.def("check", &check, py::arg("scene"), py::arg("settings"),
+        "`pathlab check`: renders with the check's sums (spp=N passes, or for time=SECONDS, default 10 s; the image "
+        "128 pixels on its longest side unless the settings give a size) and returns what `check --json` writes: "
+        "'verdict', 'techniques' (a row per technique: its worst z-score against the others, where, and its status), "
+        "and with merges each merge's bias radius by radius. Keyword arguments as check's options: spp, time, blocks, "
+        "alpha, min_hits, radius_levels. Options of render that check does not take (pyramid, technique_maps, "
+        "check_mis) are refused.");
+
   py::class_<PySettings>(m, "Settings", "The options of `pathlab render` that decide the estimate")
-      .def(py::init([](const py::kwargs& kwargs) { return PySettings{settingsFromArguments(kwargs)}; }),
+      .def(py::init([](const py::kwargs& kwargs) {
+             PySettings s;
+             s.options = settingsFromArguments(kwargs, s.words);
+             return s;
+           }),
            ("Keyword arguments as render's options (max_length=5 is --max-length 5): " + settingsArgumentNames())
                .c_str())
       .def_property_readonly("integrator", [](const PySettings& s) { return s.options.estimator.integrator; })
@@ -130,6 +148,11 @@ PYBIND11_MODULE(pathlab, m) {
       .def("pyramid", &pyramidOf, py::arg("max_length") = py::none(),
            "{(s, t): (weighted, unweighted)} and {('M', s, t): ...} for every technique up to max_length (the "
            "settings' pyramid=K): its MIS-weighted share of the image and its own estimate")
+      .def("technique_maps", &techniqueMapsOf,
+           "With Settings(technique_maps=L): 'techniques' (the keys in index order), 'dominant' {None or k: int32 "
+           "(height, width) index into 'techniques', -1 no light, -2 a tie}, 'dominant_share', 'share' {key: the "
+           "technique's share of the image, -1 where it is black}, 'cannot_sample' {key: the fraction of its "
+           "length's image it cannot sample, -1 where black}, and with merges 'merges_share'")
       .def("counters", &countersOf, "Samples, rays, discarded samples, and per technique and walk the counters of "
                                     "`render --stats`")
       .def_property_readonly("spp", &Renderer::samplesPerPixel, "Passes (samples per pixel) rendered so far")

@@ -99,6 +99,28 @@ class Settings:
     @property
     def pyramid(self) -> int: ...
 
+def inspect(scene: Scene, settings: Settings, pixel: Tuple[int, int], sample: int = 0) -> dict:
+    """One sample of one pixel replayed exactly as a render computes it: what ``pathlab inspect
+    --json`` writes for the same options (every technique tried, its contribution, weight and path,
+    and the path's density and MIS weight under every technique of its length), as dicts and lists."""
+
+def check(
+    scene: Scene,
+    settings: Settings,
+    *,
+    spp: Optional[int] = None,
+    time: Optional[float] = None,
+    blocks: Optional[int] = None,
+    alpha: Optional[float] = None,
+    min_hits: Optional[int] = None,
+    radius_levels: Optional[int] = None,
+) -> dict:
+    """``pathlab check``: does every enabled technique agree with the others on the paths both can
+    sample? Returns what ``check --json`` writes: 'agrees', 'techniques' (a row each: its status,
+    worst z-score, partner and region), and with merges each merge's bias radius by radius. The
+    image is 128 pixels on its longest side unless the settings give a size; render-only options
+    (pyramid, technique_maps, check_mis) are refused."""
+
 class Renderer:
     """A progressive render of a scene with one Settings, pass after pass (one sample a pixel each)."""
     def __init__(self, scene: Scene, settings: Settings) -> None: ...
@@ -118,6 +140,12 @@ class Renderer:
     def image(self) -> Image: ...
     def pyramid(self, max_length: Optional[int] = None) -> dict[Technique, Tuple[Image, Image]]:
         """Every technique up to max_length (Settings(pyramid=K)): (MIS-weighted share, own estimate)."""
+    def technique_maps(self) -> dict:
+        """With Settings(technique_maps=L): 'techniques' (keys in index order), 'dominant' {None (every
+        length) or k: int32 (height, width) index into 'techniques', -1 no light, -2 a tie},
+        'dominant_share', 'share' {key: the technique's share of the image, -1 where black},
+        'cannot_sample' {key: the fraction of its length's image it cannot sample, -1 where black},
+        and with merges 'merges_share'."""
     def counters(self) -> dict:
         """spp, seconds, camera_samples, rays, shadow_rays, discarded {nan, inf, negative}, and per
         technique (key (s, t) or ("M", s, t)) and walk: tried, zero, blocked, contributed, discarded, rays."""

@@ -1,6 +1,7 @@
 // pathlab.Renderer's passes with the GIL released, Ctrl+C and cancel(); the images as NumPy arrays.
 #include "app/python/renderer.h"
 
+#include "app/python/analysis.h"
 #include "app/python/arguments.h"
 #include "core/metrics/technique_table.h"
 #include "core/sampling/technique_label.h"
@@ -30,11 +31,6 @@ py::array_t<float> imageArray(std::vector<float>&& rgb, int width, int height) {
   return py::array_t<float>({h, w, py::ssize_t{3}},
                             {w * 3 * py::ssize_t{sizeof(float)}, 3 * py::ssize_t{sizeof(float)}, py::ssize_t{sizeof(float)}},
                             owned->data(), free);
-}
-
-py::object techniqueKey(Technique x) {
-  if (x.isMerge()) return py::make_tuple("M", x.s, x.t);
-  return py::make_tuple(x.s, x.t);
 }
 
 }  // namespace

@@ -30,6 +30,7 @@ LoadedScene loadScene(const app::SceneOptions& options);
 // The render's settings: render's options (app::RenderOptions), as Settings(**kwargs) parsed them.
 struct PySettings {
   app::RenderOptions options;
+  std::vector<std::string> words;  // the options as command-line words (pathlab.check parses them again)
 };
 
 // An image as a float32 H x W x 3 array that owns its pixels: the film's readout is moved into
@@ -76,6 +77,7 @@ class Renderer {
   const RenderSettings& settings() const { return session_->settings(); }
   const RenderSession& session() const { return *session_; }
   int width() const { return settings().width; }
+  int techniqueMapLength() const { return options_.techniqueMaps; }
   int height() const { return settings().height; }
 
  private:

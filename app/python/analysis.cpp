@@ -1,0 +1,108 @@
+// pathlab.inspect and Renderer.technique_maps.
+#include "app/python/analysis.h"
+
+#include "app/python/arguments.h"
+#include "core/maps/technique_maps.h"
+#include "core/render/inspection_report.h"
+#include "core/render/sample_inspection.h"
+#include "core/render/technique_luminance.h"
+
+#include <pybind11/numpy.h>
+
+#include <fmt/core.h>
+
+namespace py = pybind11;
+
+namespace pathlab::python {
+
+namespace {
+
+// A per-pixel vector as an H x W array that owns it.
+template <class T>
+py::array_t<T> mapArray(std::vector<T>&& values, int width, int height) {
+  auto* owned = new std::vector<T>(std::move(values));
+  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>({static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width)}, owned->data(), free);
+}
+
+}  // namespace
+
+py::object techniqueKey(Technique x) {
+  if (x.isMerge()) return py::make_tuple("M", x.s, x.t);
+  return py::make_tuple(x.s, x.t);
+}
+
+py::object inspect(const LoadedScene& scene, const PySettings& settings, std::pair<int, int> pixel, uint64_t sample) {
+  app::RenderOptions o = settings.options;
+  RenderSettings& s = o.estimator.settings;
+  if (s.integrator == IntegratorKind::Pt)
+    throw Error("inspect shows the bidirectional techniques: use integrator bpt or lt");
+  if (sample > static_cast<uint64_t>(app::kMaxSpp - 1))
+    throw Error(fmt::format("inspect: sample {} is past the last sample index {}", sample, app::kMaxSpp - 1));
+  nlohmann::json json;
+  try {
+    app::sizeRenderForScene(o, scene.scene->cameraDesc());
+    const auto [x, y] = pixel;
+    if (x < 0 || y < 0 || x >= s.width || y >= s.height)
+      throw Error(fmt::format("inspect: pixel ({}, {}) is outside the {} x {} image", x, y, s.width, s.height));
+    // As `pathlab inspect`: a session of its own, the sample replayed in it.
+    RenderSession session(*scene.scene, s);
+    json = inspectionJson(s, inspectSample(session, x, y, sample));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(withArgumentNames(e.what()));
+  }
+  return py::module_::import("json").attr("loads")(json.dump());
+}
+
+py::object check(const LoadedScene& scene, const PySettings& settings, const py::kwargs& kwargs) {
+  app::CheckCommandOptions o = checkFromArguments(settings.words, kwargs);
+  nlohmann::json json;
+  {
+    py::gil_scoped_release release;  // seconds of rendering; nothing here touches Python
+    try {
+      const app::ThreadLimit threads(o.threads);
+      json = app::checkOutcomeJson(app::checkScene(o, *scene.scene, false), scene.path);
+    } catch (const std::exception& e) {
+      throw Error(withArgumentNames(e.what()));
+    }
+  }
+  return py::module_::import("json").attr("loads")(json.dump());
+}
+
+py::dict techniqueMapsOf(const Renderer& r) {
+  const RenderSettings& s = r.settings();
+  if (!s.techniqueMaps)
+    throw Error("technique_maps: the renderer keeps no maps (Settings(technique_maps=L) keeps those up to length L)");
+  const int length = r.techniqueMapLength();
+  const TechniqueLuminance lum = techniqueLuminance(r.session(), length);
+  py::dict out;
+  py::list techniques;
+  for (size_t i = 0; i < Technique::countUpTo(length); ++i) techniques.append(techniqueKey(Technique::fromIndex(i)));
+  out["techniques"] = techniques;
+  // The dominant technique of every length together (key None) and of each length k.
+  py::dict dominant, dominantShare;
+  for (int k = 0; k <= length; ++k) {
+    DominantMap m = dominantMap(lum, k);
+    const py::object key = k == 0 ? py::object(py::none()) : py::object(py::int_(k));
+    std::vector<int32_t> index(m.technique.begin(), m.technique.end());
+    dominant[key] = mapArray(std::move(index), m.width, m.height);
+    dominantShare[key] = mapArray(std::move(m.share), m.width, m.height);
+  }
+  out["dominant"] = dominant;
+  out["dominant_share"] = dominantShare;
+  py::dict share, cannot;
+  for (const Technique x : techniquesUpTo(length, lum.families)) {
+    share[techniqueKey(x)] = mapArray(shareMap(lum, x), lum.width, lum.height);
+    CannotSampleMap c = cannotSampleMap(lum, x);
+    cannot[techniqueKey(x)] = mapArray(std::move(c.unreachable), c.width, c.height);
+  }
+  out["share"] = share;
+  out["cannot_sample"] = cannot;
+  if (covers(lum.families, TechniqueKind::Merge))
+    out["merges_share"] = mapArray(familyShareMap(lum, TechniqueKind::Merge), lum.width, lum.height);
+  return out;
+}
+
+}  // namespace pathlab::python

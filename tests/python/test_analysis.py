@@ -1,0 +1,91 @@
+"""pathlab.inspect against `pathlab inspect --json`, and Renderer.technique_maps against what the
+maps must satisfy (the shares of every technique add up to one; the dominant technique is the one
+with the largest share)."""
+import json
+
+import numpy as np
+import pytest
+
+import pathlab
+from conftest import run_cli, scene_path
+
+
+@pytest.mark.parametrize("integrator", ["bpt", "vcm"])
+def test_inspect_equals_the_command_lines_json(tmp_path, integrator):
+    scene = scene_path("cornell-spheres.gltf")
+    out = tmp_path / "sample.json"
+    done = run_cli("inspect", scene, "--pixel", "20,27", "--sample", "3", "--width", "40", "--height", "40",
+                   "--max-length", "5", "--integrator", integrator, "--json", str(out), "--force")
+    assert done.returncode == 0, done.stderr
+    expected = json.loads(out.read_text())
+    got = pathlab.inspect(pathlab.load(scene),
+                          pathlab.Settings(width=40, height=40, max_length=5, integrator=integrator),
+                          pixel=(20, 27), sample=3)
+    assert got == expected
+
+
+def test_inspect_refuses_what_the_command_line_refuses(box):
+    with pytest.raises(pathlab.Error) as e:
+        pathlab.inspect(box, pathlab.Settings(width=8, height=8), pixel=(8, 0))
+    assert "pixel (8, 0) is outside the 8 x 8 image" in str(e.value)
+    with pytest.raises(pathlab.Error) as e:
+        pathlab.inspect(box, pathlab.Settings(integrator="pt"), pixel=(0, 0))
+    assert "bidirectional" in str(e.value)
+
+
+def test_technique_maps_shares_add_up_and_the_dominant_technique_wins(box):
+    r = pathlab.Renderer(box, pathlab.Settings(width=24, height=24, max_length=3, technique_maps=3))
+    image = r.render(spp=4)
+    maps = r.technique_maps()
+    keys = maps["techniques"]
+    # The index order: each length's connections by s, then its merges.
+    assert keys[:6] == [(0, 2), (1, 1), (0, 3), (1, 2), (2, 1), ("M", 2, 2)]
+    shares = np.stack([maps["share"][k] for k in maps["share"]])
+    lit = shares[0] >= 0  # -1 where the image is black
+    assert lit.sum() > 0.5 * lit.size
+    np.testing.assert_allclose(shares[:, lit].sum(axis=0), 1.0, atol=1e-4)
+    dominant, winner = maps["dominant"][None], maps["dominant_share"][None]
+    assert dominant.dtype == np.int32 and dominant.shape == image.shape[:2]
+    won = dominant >= 0
+    best = shares.max(axis=0)
+    np.testing.assert_allclose(winner[won], best[won], atol=1e-5)
+    for y, x in zip(*np.nonzero(won)):
+        assert maps["share"][keys[dominant[y, x]]][y, x] == pytest.approx(best[y, x], abs=1e-5)
+    # The part of its length's image a technique cannot sample is a fraction (-1 where black).
+    for fraction in maps["cannot_sample"].values():
+        assert ((fraction == -1) | ((fraction >= 0) & (fraction <= 1))).all()
+
+
+def test_technique_maps_need_the_settings():
+    r = pathlab.Renderer(pathlab.load(scene_path("cornell-box.gltf")), pathlab.Settings(width=8, height=8))
+    with pytest.raises(pathlab.Error) as e:
+        r.technique_maps()
+    assert "technique_maps=L" in str(e.value)
+
+
+@pytest.mark.parametrize("integrator", ["bpt", "vcm"])
+def test_check_equals_the_command_lines_json(tmp_path, integrator):
+    scene = scene_path("cornell-spheres.gltf")
+    out = tmp_path / "check.json"
+    done = run_cli("check", scene, "--spp", "24", "--width", "24", "--height", "24", "--max-length", "3",
+                   "--integrator", integrator, "--radius-levels", "2", "--json", str(out), "--force")
+    assert done.returncode in (0, 1), done.stderr
+    got = pathlab.check(pathlab.load(scene), pathlab.Settings(width=24, height=24, max_length=3, integrator=integrator),
+                        spp=24, radius_levels=2)
+    assert got == json.loads(out.read_text())
+    assert "agrees" in got and any(row["status"] == "agrees" for row in got["techniques"])
+
+
+def test_check_refuses_what_check_does_not_take(box):
+    with pytest.raises(pathlab.Error) as e:
+        pathlab.check(box, pathlab.Settings(pyramid=2), spp=2)
+    assert "pyramid" in str(e.value)
+    with pytest.raises(pathlab.Error) as e:
+        pathlab.check(box, pathlab.Settings(integrator="vcm", radius_alpha=0.5), spp=2)
+    assert "radius_alpha 0.5: check renders each radius fixed" in str(e.value)
+    with pytest.raises(pathlab.Error) as e:
+        pathlab.check(box, pathlab.Settings(), spp=1)
+    assert "spp" in str(e.value)
+    with pytest.raises(pathlab.Error) as e:
+        pathlab.check(box, pathlab.Settings(), blocks="4")
+    assert "blocks: expected an int, got str" in str(e.value)
