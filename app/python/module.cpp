@@ -2,6 +2,7 @@
 // the technique pyramid and the counters, with the command line's options and messages.
 #include "app/python/analysis.h"
 #include "app/python/arguments.h"
+#include "app/python/converge.h"
 #include "app/python/renderer.h"
 #include "core/bpt/technique_set.h"
 #include "core/render/render_settings.h"
@@ -117,6 +118,16 @@ PYBIND11_MODULE(pathlab, m) {
         "and with merges each merge's bias radius by radius. Keyword arguments as check's options: spp, time, blocks, "
         "alpha, min_hits, radius_levels. Options of render that check does not take (pyramid, technique_maps, "
         "check_mis) are refused.");
+
+  m.def("converge", &converge, py::arg("scene"), py::arg("configs"), py::arg("time") = py::none(),
+        py::arg("spp") = py::none(), py::arg("reference") = py::none(), py::arg("factor") = 1.5,
+        py::arg("clock") = "wall", py::arg("mask") = py::none(),
+        "`pathlab converge`: each configuration (a Settings, a list of them, or a dict {label: Settings}) rendered "
+        "for `time` seconds (default 10) or `spp` passes, its error recorded at checkpoints `factor` apart. Returns "
+        "{label: {'seconds', 'wall_seconds', 'cpu_seconds', 'spp', 'camera_samples', 'rays', 'two_buffer_mse', "
+        "'two_buffer_relmse', and with a reference (an image array or an .exr/.pfm path) 'mse', 'rmse', 'relmse', "
+        "'mape', 'bias2', 'variance': arrays, one value per checkpoint; 'image': the final image}}. clock: 'wall' or "
+        "'cpu' (process CPU time); mask: an array (height, width), the error over its non-zero pixels.");
 
   py::class_<PySettings>(m, "Settings", "The options of `pathlab render` that decide the estimate")
       .def(py::init([](const py::kwargs& kwargs) {

@@ -121,6 +121,27 @@ def check(
     image is 128 pixels on its longest side unless the settings give a size; render-only options
     (pyramid, technique_maps, check_mis) are refused."""
 
+def converge(
+    scene: Scene,
+    configs: Union[Settings, Sequence[Settings], dict[str, Settings]],
+    time: Optional[float] = None,
+    spp: Optional[int] = None,
+    reference: Optional[Union[str, npt.ArrayLike]] = None,
+    factor: float = 1.5,
+    clock: str = "wall",
+    mask: Optional[npt.ArrayLike] = None,
+) -> dict[str, dict[str, np.ndarray]]:
+    """``pathlab converge``: each configuration rendered for `time` seconds (default 10) or `spp`
+    passes, its error recorded at checkpoints `factor` apart in time or passes.
+
+    Returns {label: curve}; a list of Settings is labelled by their options ("integrator=pt
+    max_length=5"). A curve holds one value per checkpoint: 'seconds' (on `clock`, 'wall' or 'cpu'),
+    'wall_seconds', 'cpu_seconds', 'spp', 'camera_samples', 'rays', 'two_buffer_mse',
+    'two_buffer_relmse', and with a reference (an array (height, width, 3) or an .exr/.pfm path)
+    'mse', 'rmse', 'relmse', 'mape', 'bias2', 'variance'; and 'image', the final image. mask: an
+    array (height, width), the error measured over its non-zero pixels. Ctrl+C raises
+    KeyboardInterrupt after the pass in progress."""
+
 class Renderer:
     """A progressive render of a scene with one Settings, pass after pass (one sample a pixel each)."""
     def __init__(self, scene: Scene, settings: Settings) -> None: ...

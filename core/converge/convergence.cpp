@@ -74,7 +74,8 @@ std::optional<RunImage> runImageOnLeader(CheckpointExchange& run, const RenderSe
 
 ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
                                 const ConvergenceBudget& budget, const CheckpointCallback& onCheckpoint,
-                                std::atomic<uint64_t>* passesDone, CheckpointExchange* exchange, const PixelMask& mask) {
+                                std::atomic<uint64_t>* passesDone, CheckpointExchange* exchange, const PixelMask& mask,
+                                const std::atomic<bool>* stop) {
   if ((budget.seconds > 0.0) == (budget.spp > 0))
     throw std::invalid_argument("a convergence run needs either a time or a sample count");
   if (!(budget.factor > 1.0)) throw std::invalid_argument("the checkpoint factor must exceed 1");
@@ -109,6 +110,7 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
     cpuSeconds += processCpuSeconds() - cpuStart;
     if (passesDone) passesDone->store(session.passes(), std::memory_order_relaxed);
     buffers.addRunningMean(session.image(), passIndex);
+    if (stop && stop->load(std::memory_order_relaxed)) throw ConvergenceStopped();
   };
 
   for (;;) {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -56,13 +57,21 @@ struct ConvergenceCurve {
 
 using CheckpointCallback = std::function<void(const Checkpoint&)>;
 
+// Thrown by runConvergence when its `stop` flag is set: the run ends after the pass in progress.
+class ConvergenceStopped : public std::runtime_error {
+ public:
+  ConvergenceStopped() : std::runtime_error("the convergence run was stopped") {}
+};
+
 // Blocking; uses the caller's TBB arena. `reference` may be null (then only the two-buffer
 // estimate is recorded). `passesDone`, if given, is updated after each pass (progress display).
 // `exchange`: the processes rendering the run together, each calling this (null: this one alone).
-// `mask`: the pixels the error against the reference is measured over (empty: all).
+// `mask`: the pixels the error against the reference is measured over (empty: all). `stop`, when
+// set (from any thread), ends the run after the pass in progress by throwing ConvergenceStopped
+// (one process only: the Python module's Ctrl+C).
 ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& config, const Image* reference,
                                 const ConvergenceBudget& budget, const CheckpointCallback& onCheckpoint = {},
                                 std::atomic<uint64_t>* passesDone = nullptr, CheckpointExchange* exchange = nullptr,
-                                const PixelMask& mask = {});
+                                const PixelMask& mask = {}, const std::atomic<bool>* stop = nullptr);
 
 }  // namespace pathlab
