@@ -15,7 +15,8 @@ PACKAGES=(g++ make cmake pkg-config python3
   libglfw3-dev libimgui-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri fonts-dejavu-core xvfb xauth
   clang libclang-rt-14-dev
   libopenmpi-dev openmpi-bin
-  pybind11-dev python3-dev python3-numpy python3-pytest)
+  pybind11-dev python3-dev python3-numpy python3-pytest
+  python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib)
 BUILD_DIR=${PATHLAB_BUILD_DIR:-build}
 
 install_packages() {
