@@ -71,7 +71,7 @@ void finishCheckOptions(CheckCommandOptions& o) {
                                             settings.mergeRadiusAlpha));
 }
 
-CheckOutcome checkScene(CheckCommandOptions& o, const Scene& scene, bool progress) {
+CheckOutcome checkScene(CheckCommandOptions& o, const Scene& scene, bool progress, const std::atomic<bool>* stop) {
   RenderSettings& settings = o.estimator.settings;
   const bool merges = covers(enabledTechniques(settings).families(), TechniqueKind::Merge);
   // The camera's shape, as `render` (core/camera/image_size.h).
@@ -107,8 +107,10 @@ CheckOutcome checkScene(CheckCommandOptions& o, const Scene& scene, bool progres
         return std::pair{done, fmt::format("{}{} passes  {:.1f} s", label, session.passes(), elapsed())};
       });
     // A timed check still runs the passes a standard error needs.
-    while (timed ? (session.passes() < minPasses || elapsed() < seconds) : session.passes() < targetPasses)
+    while (timed ? (session.passes() < minPasses || elapsed() < seconds) : session.passes() < targetPasses) {
       session.renderPass();
+      if (stop && stop->load(std::memory_order_relaxed)) throw CheckStopped();
+    }
     radii.push_back(MergeBiasLevel{s.mergeRadius, session.techniqueCheck()});
   }
   // The connections do not depend on the radius: their sums over every render are one longer check.

@@ -9,7 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <optional>
+#include <stdexcept>
 
 #include <CLI/CLI.hpp>
 
@@ -56,8 +58,14 @@ struct CheckOutcome {
 // command line's one-line messages.
 void finishCheckOptions(CheckCommandOptions& options);
 // The check's renders of `scene` (one, or one per radius) and their verdicts; `progress`: a
-// progress bar on stderr.
-CheckOutcome checkScene(CheckCommandOptions& options, const Scene& scene, bool progress);
+// progress bar on stderr. `stop`, when set (from any thread), ends the check after the pass in
+// progress by throwing CheckStopped (the Python module's Ctrl+C).
+class CheckStopped : public std::runtime_error {
+ public:
+  CheckStopped() : std::runtime_error("the check was stopped") {}
+};
+CheckOutcome checkScene(CheckCommandOptions& options, const Scene& scene, bool progress,
+                        const std::atomic<bool>* stop = nullptr);
 // The JSON of check --json.
 nlohmann::json checkOutcomeJson(const CheckOutcome& outcome, const std::string& scenePath);
 

@@ -59,14 +59,23 @@ py::object inspect(const LoadedScene& scene, const PySettings& settings, std::pa
 py::object check(const LoadedScene& scene, const PySettings& settings, const py::kwargs& kwargs) {
   app::CheckCommandOptions o = checkFromArguments(settings.words, kwargs);
   nlohmann::json json;
-  {
-    py::gil_scoped_release release;  // seconds of rendering; nothing here touches Python
-    try {
-      const app::ThreadLimit threads(o.threads);
-      json = app::checkOutcomeJson(app::checkScene(o, *scene.scene, false), scene.path);
-    } catch (const std::exception& e) {
-      throw Error(withArgumentNames(e.what()));
-    }
+  std::atomic<bool> stop{false};
+  PassThread thread;
+  try {
+    const bool interrupted = runWatchingForCtrlC(
+        thread,
+        [&] {
+          const app::ThreadLimit threads(o.threads);
+          json = app::checkOutcomeJson(app::checkScene(o, *scene.scene, false, &stop), scene.path);
+        },
+        stop);
+    if (interrupted) throw py::error_already_set();
+  } catch (const app::CheckStopped&) {
+    throw py::error_already_set();
+  } catch (const py::error_already_set&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(withArgumentNames(e.what()));
   }
   return py::module_::import("json").attr("loads")(json.dump());
 }

@@ -167,36 +167,23 @@ py::dict converge(const LoadedScene& scene, const py::object& configs, std::opti
     const ConvergenceConfig& run = runs[i];
     // On the pass thread, while this one looks for Ctrl+C every 20 ms (Renderer::render).
     std::atomic<bool> stop{false};
-    bool interrupted = false;
-    std::exception_ptr failure;
     ConvergenceCurve curve;
     PassThread thread;
-    {
-      py::gil_scoped_release release;
-      thread.start([&] {
-        try {
-          const app::ThreadLimit limit(threads[i]);
-          curve = runConvergence(*scene.scene, run, ref ? &*ref : nullptr, budget, {}, nullptr, nullptr, pixels, &stop);
-        } catch (...) {
-          failure = std::current_exception();
-        }
-      });
-      while (!thread.waitFor(std::chrono::milliseconds(20))) {
-        if (interrupted) continue;
-        py::gil_scoped_acquire gil;
-        if (PyErr_CheckSignals() != 0) {
-          interrupted = true;
-          stop.store(true);
-        }
-      }
-    }
-    if (interrupted) throw py::error_already_set();
-    if (failure) {
-      try {
-        std::rethrow_exception(failure);
-      } catch (const std::exception& e) {
-        throw Error(fmt::format("converge: '{}': {}", run.label, withArgumentNames(e.what())));
-      }
+    try {
+      const bool interrupted = runWatchingForCtrlC(
+          thread,
+          [&] {
+            const app::ThreadLimit limit(threads[i]);
+            curve = runConvergence(*scene.scene, run, ref ? &*ref : nullptr, budget, {}, nullptr, nullptr, pixels, &stop);
+          },
+          stop);
+      if (interrupted) throw py::error_already_set();
+    } catch (const ConvergenceStopped&) {
+      throw py::error_already_set();
+    } catch (const py::error_already_set&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw Error(fmt::format("converge: '{}': {}", run.label, withArgumentNames(e.what())));
     }
     out[py::str(run.label)] = curveDict(std::move(curve), ref.has_value());
   }

@@ -71,6 +71,32 @@ bool PassThread::waitFor(std::chrono::milliseconds timeout) {
   return changed_.wait_for(lock, timeout, [this] { return !busy_; });
 }
 
+bool runWatchingForCtrlC(PassThread& thread, const std::function<void()>& job, std::atomic<bool>& stop) {
+  bool interrupted = false;
+  std::exception_ptr failure;
+  {
+    py::gil_scoped_release release;
+    thread.start([&] {
+      try {
+        job();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    });
+    while (!thread.waitFor(std::chrono::milliseconds(20))) {
+      if (interrupted) continue;  // stopping: waiting for the job to end
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {  // the exception stays set for the caller
+        interrupted = true;
+        stop.store(true);
+      }
+    }
+  }
+  if (interrupted) return true;
+  if (failure) std::rethrow_exception(failure);
+  return false;
+}
+
 LoadedScene loadScene(const app::SceneOptions& options) {
   app::SceneOptions o = options;
   try {
@@ -118,33 +144,13 @@ py::array_t<float> Renderer::render(std::optional<int> spp, std::optional<double
     // then) looks for a signal every 20 ms: Python runs its Ctrl+C handler only on the main
     // thread, between bytecodes, which never come while C++ renders.
     std::atomic<bool> cancel{false};
-    bool interrupted = false;
-    std::exception_ptr failure;
     const auto passStart = std::chrono::steady_clock::now();
     if (!passThread_) passThread_ = std::make_unique<PassThread>();
-    {
-      py::gil_scoped_release release;
-      passThread_->start([&] {
-        try {
-          session_->renderPass(&cancel);
-        } catch (...) {
-          failure = std::current_exception();
-        }
-      });
-      while (!passThread_->waitFor(std::chrono::milliseconds(20))) {
-        if (interrupted) continue;  // cancelled: waiting for the pass to stop
-        py::gil_scoped_acquire gil;
-        if (PyErr_CheckSignals() != 0) {  // the exception stays set until thrown below
-          interrupted = true;
-          cancel.store(true);
-        }
-      }
-    }
+    const bool interrupted = runWatchingForCtrlC(*passThread_, [&] { session_->renderPass(&cancel); }, cancel);
     if (interrupted) {
       restart();  // the film holds part of a pass
       throw py::error_already_set();
     }
-    if (failure) std::rethrow_exception(failure);
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - passStart).count();
     if (!progress.is_none()) progress(session_->passes(), seconds_);
   }

@@ -57,6 +57,13 @@ class PassThread {
   std::thread thread_;  // last: started once the members it reads exist
 };
 
+// Runs `job` on a PassThread with the GIL released while the calling thread looks for Ctrl+C every
+// 20 ms (Python runs its signal handlers only on the main thread, between bytecodes, which never
+// come while C++ works). On Ctrl+C `stop` is set and the job is waited for; returns true then,
+// with KeyboardInterrupt set for the caller to raise (py::error_already_set). An exception of the
+// job is rethrown.
+bool runWatchingForCtrlC(PassThread& thread, const std::function<void()>& job, std::atomic<bool>& stop);
+
 class Renderer {
  public:
   Renderer(const LoadedScene& scene, const PySettings& settings);

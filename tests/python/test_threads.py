@@ -61,3 +61,16 @@ def test_ctrl_c_raises_keyboard_interrupt_and_the_renderer_goes_on(box):
     before = r.spp
     assert before < 1_000_000
     assert r.render(spp=1).shape == (256, 256, 3) and r.spp == before + 1
+
+
+def test_ctrl_c_stops_a_check(box):
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    try:
+        pathlab.check(box, pathlab.Settings(width=64, height=64), time=600)
+        raise AssertionError("check returned")
+    except KeyboardInterrupt:
+        pass
+    timer.join()
+    assert time.monotonic() - start < 30
