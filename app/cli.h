@@ -4,6 +4,7 @@
 
 #include "app/check_command.h"
 #include "app/converge_command.h"
+#include "app/finite_numbers.h"
 #include "app/inspect_command.h"
 #include "app/render_command.h"
 #include "app/view_command.h"
@@ -22,10 +23,5 @@ struct CliOptions {
 
 // Registers every subcommand on `app`, then requireFiniteNumbers.
 void addCommands(CLI::App& app, CliOptions& options);
-
-// Gives every numeric option of `app` and its subcommands (CLI11 types INT, UINT, FLOAT) a check
-// that refuses nan, inf and values beyond float's range such as 1e999: CLI11's Range lets NaN
-// through, since every comparison with NaN is false. Run it after the last option is declared.
-void requireFiniteNumbers(CLI::App& app);
 
 }  // namespace pathlab::app

@@ -119,12 +119,14 @@ void finishRenderEstimate(RenderOptions& o) {
     s.pyramidLength = std::max(s.pyramidLength, o.techniqueMaps);
     s.techniqueMaps = true;
   }
-  // Until the camera's aspect is known, a side not given may be as large as allowed: a too large
-  // --width x --height is still refused before any work.
+  // Until the camera's aspect is known, a side not given may be as large as allowed.
   RenderSettings& settings = o.estimator.settings;
   settings.width = o.size.width > 0 ? o.size.width : kMaxImageSide;
   settings.height = o.size.height > 0 ? o.size.height : kMaxImageSide;
-  if (o.size.width > 0 && o.size.height > 0) checkPixels(settings);
+}
+
+void checkRequestedPixels(const RenderOptions& o) {
+  if (o.size.width > 0 && o.size.height > 0) checkPixels(o.estimator.settings);
 }
 
 void sizeRenderForScene(RenderOptions& o, const CameraDesc& camera) {
@@ -178,6 +180,8 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
     throw std::runtime_error("render needs an output image (-o OUT) or --replay X,Y,SAMPLE");
   if (!o.replay.empty() && job.size() > 1)
     throw std::runtime_error("--replay recomputes one sample: run it as one process, without mpirun");
+  // A too large --width x --height is refused before any work.
+  checkRequestedPixels(o);
   if (settings.integrator != IntegratorKind::Pt) {
     const TechniqueSet techniques = enabledTechniques(settings);
     for (int k : techniques.uncoveredLengths(settings.maxLength))

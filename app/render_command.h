@@ -35,6 +35,8 @@ void addRenderEstimateOptions(CLI::App* cmd, RenderOptions& options);
 // After parsing, before the scene: the estimator options into settings (finishEstimatorOptions)
 // and the technique maps' pyramid; throws the one-line messages render prints.
 void finishRenderEstimate(RenderOptions& options);
+// Refuses --width x --height beyond the pixel limit when both are given (before the scene).
+void checkRequestedPixels(const RenderOptions& options);
 // The image's size on `scene`'s camera (--width / --height, else the camera's shape), into the
 // settings; throws when it has too many pixels.
 void sizeRenderForScene(RenderOptions& options, const CameraDesc& camera);

@@ -32,13 +32,18 @@ py::object techniqueKey(Technique x) {
   return py::make_tuple(x.s, x.t);
 }
 
-py::object inspect(const LoadedScene& scene, const PySettings& settings, std::pair<int, int> pixel, uint64_t sample) {
+py::object inspect(const LoadedScene& scene, const PySettings& settings, const py::object& pixelArgument,
+                   const py::object& sampleArgument) {
   app::RenderOptions o = settings.options;
   RenderSettings& s = o.estimator.settings;
   if (s.integrator == IntegratorKind::Pt)
     throw Error("inspect shows the bidirectional techniques: use integrator bpt or lt");
-  if (sample > static_cast<uint64_t>(app::kMaxSpp - 1))
-    throw Error(fmt::format("inspect: sample {} is past the last sample index {}", sample, app::kMaxSpp - 1));
+  if (!py::isinstance<py::sequence>(pixelArgument) || py::isinstance<py::str>(pixelArgument) || py::len(pixelArgument) != 2)
+    throw Error("inspect: pixel must be (x, y)");
+  const py::sequence xy = pixelArgument.cast<py::sequence>();
+  const std::pair<int, int> pixel{static_cast<int>(intArgument(xy[0], "inspect: pixel x", INT32_MIN, INT32_MAX)),
+                                  static_cast<int>(intArgument(xy[1], "inspect: pixel y", INT32_MIN, INT32_MAX))};
+  const uint64_t sample = static_cast<uint64_t>(intArgument(sampleArgument, "inspect: sample", 0, app::kMaxSpp - 1));
   nlohmann::json json;
   try {
     app::sizeRenderForScene(o, scene.scene->cameraDesc());
@@ -58,6 +63,7 @@ py::object inspect(const LoadedScene& scene, const PySettings& settings, std::pa
 
 py::object check(const LoadedScene& scene, const PySettings& settings, const py::kwargs& kwargs) {
   app::CheckCommandOptions o = checkFromArguments(settings.words, kwargs);
+  warnAbout(*scene.scene, o.estimator.settings);
   nlohmann::json json;
   std::atomic<bool> stop{false};
   PassThread thread;
@@ -85,7 +91,7 @@ py::dict techniqueMapsOf(const Renderer& r) {
   if (!s.techniqueMaps)
     throw Error("technique_maps: the renderer keeps no maps (Settings(technique_maps=L) keeps those up to length L)");
   const int length = r.techniqueMapLength();
-  const TechniqueLuminance lum = techniqueLuminance(r.session(), length);
+  const TechniqueLuminance lum = techniqueLuminance(r.session("technique_maps"), length);
   py::dict out;
   py::list techniques;
   for (size_t i = 0; i < Technique::countUpTo(length); ++i) techniques.append(techniqueKey(Technique::fromIndex(i)));

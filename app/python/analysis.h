@@ -14,8 +14,8 @@ namespace pathlab::python {
 
 // pathlab.inspect(scene, settings, pixel, sample): the JSON `pathlab inspect --json` writes for
 // the same options, parsed by Python's json module (so the dicts equal the file's).
-pybind11::object inspect(const LoadedScene& scene, const PySettings& settings, std::pair<int, int> pixel,
-                         uint64_t sample);
+pybind11::object inspect(const LoadedScene& scene, const PySettings& settings, const pybind11::object& pixel,
+                         const pybind11::object& sample);
 
 // pathlab.check(scene, settings, **check options): the dict `pathlab check --json` writes.
 pybind11::object check(const LoadedScene& scene, const PySettings& settings, const pybind11::kwargs& kwargs);

@@ -1,6 +1,8 @@
 // Keyword arguments to render's options, parsed by CLI11 as the command line is.
 #include "app/python/arguments.h"
 
+#include "app/finite_numbers.h"
+
 #include "core/bpt/technique_set.h"
 
 #include <fmt/core.h>
@@ -91,7 +93,7 @@ std::string number(const Argument& a, const py::handle& v) {
   if (isInt(v)) return py::str(v).cast<std::string>();
   const double d = v.cast<double>();
   if (!std::isfinite(d)) throw Error(fmt::format("{}: {} is not a finite number", a.name, py::str(v).cast<std::string>()));
-  return fmt::format("{:.17g}", d);
+  return fmt::format("{}", d);  // the shortest text that reads back as d
 }
 
 // The command-line words of one argument (none: a flag left at its default).
@@ -154,8 +156,10 @@ std::vector<std::string> wordsOf(std::span<const Argument> table, const py::kwar
   return args;
 }
 
-// Parses command-line words with the options `cmd` registers.
+// Parses command-line words with the options `cmd` registers, every number checked finite (and
+// an unsigned one not negative) as on the command line.
 void parse(CLI::App& cmd, std::vector<std::string> args) {
+  app::requireFiniteNumbers(cmd);
   std::reverse(args.begin(), args.end());  // CLI11 takes its arguments from the back
   try {
     cmd.parse(args);
@@ -177,7 +181,10 @@ std::string withArgumentNames(const std::string& message) {
   std::string out;
   for (size_t i = 0; i < message.size();) {
     const Argument* hit = nullptr;
+    // An option starts the message or follows a space, a quote or a bracket: not inside a path.
+    const bool wordStart = i == 0 || std::string_view(" '\"(`").find(message[i - 1]) != std::string_view::npos;
     for (const Argument& a : all) {
+      if (!wordStart) break;
       const std::string_view option(a.option);
       const size_t end = i + option.size();
       if (message.compare(i, option.size(), option) == 0 &&
@@ -198,6 +205,24 @@ std::string withArgumentNames(const std::string& message) {
   return out;
 }
 
+int64_t intArgument(const py::handle& value, const char* name, int64_t lo, int64_t hi) {
+  if (!isInt(value)) throw Error(fmt::format("{}: expected an int, got {}", name, typeName(value)));
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow != 0 || v < lo || v > hi)
+    throw Error(fmt::format("{}: {} is outside {}..{}", name, py::str(value).cast<std::string>(), lo, hi));
+  return v;
+}
+
+std::string pathArgument(const py::handle& value, const char* name) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__fspath__")) {
+    const py::object path = py::module_::import("os").attr("fspath")(value);
+    if (py::isinstance<py::str>(path)) return path.cast<std::string>();
+  }
+  throw Error(fmt::format("{}: expected a path (str or os.PathLike), got {}", name, typeName(value)));
+}
+
 std::string settingsArgumentNames() {
   std::string names;
   for (const Argument& a : kSettingsArguments) names += (names.empty() ? "" : ", ") + std::string(a.name);
@@ -212,6 +237,7 @@ app::RenderOptions settingsFromArguments(const py::kwargs& kwargs, std::vector<s
   parse(cmd, settingsWords);
   try {
     app::finishRenderEstimate(o);
+    app::checkRequestedPixels(o);
   } catch (const std::exception& e) {
     throw Error(withArgumentNames(e.what()));
   }

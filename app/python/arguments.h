@@ -10,6 +10,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -37,6 +38,11 @@ app::CheckCommandOptions checkFromArguments(const std::vector<std::string>& sett
 
 // load(path, **kwargs): how the scene loads (--environment ..., --light-sampler, --max-triangles).
 app::SceneOptions loadOptionsFromArguments(const std::string& path, const pybind11::kwargs& kwargs);
+
+// An int argument within [lo, hi] (not a bool), else a one-line Error naming it.
+int64_t intArgument(const pybind11::handle& value, const char* name, int64_t lo, int64_t hi);
+// A path: a str or an os.PathLike.
+std::string pathArgument(const pybind11::handle& value, const char* name);
 
 // A message of the command line's with its options named as the Python arguments:
 // "--radius-alpha 1.5 is outside" -> "radius_alpha 1.5 is outside", "--no-rr" -> "rr=False".

@@ -37,7 +37,8 @@ std::string labelOf(const std::vector<std::string>& words) {
 }
 
 Image imageFrom(const py::object& value) {
-  if (py::isinstance<py::str>(value)) return readImage(value.cast<std::string>());
+  if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__"))
+    return readImage(pathArgument(value, "converge: reference"));
   const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(value);
   if (!a || a.ndim() != 3 || a.shape(2) != 3) throw Error("converge: reference must be a path or an array (height, width, 3)");
   Image image{static_cast<int>(a.shape(1)), static_cast<int>(a.shape(0)), {}};
@@ -53,7 +54,10 @@ PixelMask maskFrom(const py::object& value, int width, int height) {
     throw Error(fmt::format("converge: mask must be an array ({}, {}), the images' size", height, width));
   PixelMask mask(static_cast<size_t>(a.size()));
   size_t count = 0;
-  for (size_t i = 0; i < mask.size(); ++i) count += mask[i] = a.data()[i] != 0.0 ? 1 : 0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    const double v = a.data()[i];
+    count += mask[i] = !std::isnan(v) && v != 0.0 ? 1 : 0;  // NaN counts as outside, as converge --mask
+  }
   if (count == 0) throw Error("converge: the mask selects no pixel");
   return mask;
 }
@@ -93,33 +97,39 @@ py::dict curveDict(ConvergenceCurve&& curve, bool withReference) {
 }  // namespace
 
 py::dict converge(const LoadedScene& scene, const py::object& configs, std::optional<double> seconds,
-                  std::optional<int> spp, const py::object& reference, double factor, const std::string& clock,
+                  const py::object& sppArgument, const py::object& reference, double factor, const std::string& clock,
                   const py::object& mask) {
   // The configurations and their labels.
-  std::vector<std::pair<std::string, const PySettings*>> given;
+  // Copies: a sequence may hand out objects that live only as long as the loop's step.
+  std::vector<std::pair<std::string, PySettings>> given;
   if (py::isinstance<PySettings>(configs)) {
     const PySettings& s = configs.cast<const PySettings&>();
-    given.emplace_back(labelOf(s.words), &s);
+    given.emplace_back(labelOf(s.words), s);
   } else if (py::isinstance<py::dict>(configs)) {
     for (const auto& [key, value] : configs.cast<py::dict>()) {
       if (!py::isinstance<PySettings>(value)) throw Error("converge: configs must map labels to Settings");
-      given.emplace_back(py::str(key).cast<std::string>(), &value.cast<const PySettings&>());
+      given.emplace_back(py::str(key).cast<std::string>(), value.cast<PySettings>());
     }
   } else if (py::isinstance<py::sequence>(configs) && !py::isinstance<py::str>(configs)) {
     for (const py::handle& value : configs.cast<py::sequence>()) {
       if (!py::isinstance<PySettings>(value)) throw Error("converge: configs must be Settings");
-      const PySettings& s = value.cast<const PySettings&>();
-      given.emplace_back(labelOf(s.words), &s);
+      const PySettings s = value.cast<PySettings>();
+      given.emplace_back(labelOf(s.words), s);
     }
   } else {
     throw Error("converge: configs must be a Settings, a list of them or a dict {label: Settings}");
   }
   if (given.empty()) throw Error("converge: no configuration");
+  for (size_t i = 0; i < given.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (given[i].first == given[j].first)
+        throw Error(fmt::format("converge: two configurations are labelled '{}' (a dict labels them apart)", given[i].first));
+  std::optional<int> spp;
+  if (!sppArgument.is_none()) spp = static_cast<int>(intArgument(sppArgument, "converge: spp", 2, app::kMaxSpp));
   if (spp && seconds) throw Error("converge: give spp or time, not both");
-  if (spp && (*spp < 2 || *spp > app::kMaxSpp)) throw Error(fmt::format("converge: spp {} is outside 2..{}", *spp, app::kMaxSpp));
   if (seconds && !(std::isfinite(*seconds) && *seconds > 0.0))
     throw Error(fmt::format("converge: time {} is not a positive number of seconds", *seconds));
-  if (!(std::isfinite(factor) && factor > 1.0 && factor <= 100.0)) throw Error(fmt::format("converge: factor {} is outside (1, 100]", factor));
+  if (!(factor >= 1.01 && factor <= 100.0)) throw Error(fmt::format("converge: factor {} is outside 1.01..100", factor));
   if (clock != "wall" && clock != "cpu") throw Error(fmt::format("converge: clock '{}' is not wall or cpu", clock));
   ConvergenceBudget budget;
   budget.factor = factor;
@@ -140,7 +150,7 @@ py::dict converge(const LoadedScene& scene, const py::object& configs, std::opti
   std::vector<ConvergenceConfig> runs;
   std::vector<int> threads;  // each configuration's threads= (0: all)
   for (const auto& [label, settings] : given) {
-    app::RenderOptions o = settings->options;
+    app::RenderOptions o = settings.options;
     // The reference's size unless the settings give one, as `converge --reference`.
     if (ref && o.size.width == 0 && o.size.height == 0) {
       o.size.width = ref->width;
@@ -160,7 +170,9 @@ py::dict converge(const LoadedScene& scene, const py::object& configs, std::opti
     threads.push_back(o.threads);
   }
   PixelMask pixels;
+  if (!mask.is_none() && !ref) throw Error("converge: a mask selects where the error against the reference is measured: give a reference");
   if (!mask.is_none()) pixels = maskFrom(mask, runs.front().settings.width, runs.front().settings.height);
+  for (const ConvergenceConfig& run : runs) warnAbout(*scene.scene, run.settings);
 
   py::dict out;
   for (size_t i = 0; i < runs.size(); ++i) {

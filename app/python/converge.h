@@ -15,7 +15,7 @@ namespace pathlab::python {
 // `reference`: an image array or an .exr/.pfm path, or None (the error then only as the two-buffer
 // estimate); `mask`: an (height, width) array, the pixels where it is non-zero.
 pybind11::dict converge(const LoadedScene& scene, const pybind11::object& configs, std::optional<double> seconds,
-                        std::optional<int> spp, const pybind11::object& reference, double factor,
+                        const pybind11::object& spp, const pybind11::object& reference, double factor,
                         const std::string& clock, const pybind11::object& mask);
 
 }  // namespace pathlab::python

@@ -56,6 +56,8 @@ PYBIND11_MODULE(pathlab, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const py::builtin_exception&) {
+      throw;  // pybind11's own (a failed conversion is its TypeError or RuntimeError)
     } catch (const Error& e) {
       error(e.what());
     } catch (const std::invalid_argument& e) {
@@ -71,17 +73,24 @@ PYBIND11_MODULE(pathlab, m) {
            "Parses SPEC: ';'-separated S,T | s=S | t=T | k=K | all | MS,T | m=K | m=all")
       .def(
           "__contains__",
-          [](const TechniqueSet& set, const py::tuple& key) {
-            if (py::len(key) == 3 && py::str(key[0]).cast<std::string>() == "M")
-              return set.contains(Technique::merge(key[1].cast<int>(), key[2].cast<int>()));
-            if (py::len(key) == 2) return set.contains(key[0].cast<int>(), key[1].cast<int>());
-            throw Error("TechniqueSet: a technique is (s, t) or (\"M\", s, t)");
+          [](const TechniqueSet& set, const py::object& key) {
+            const bool tuple = py::isinstance<py::tuple>(key);
+            const size_t n = tuple ? py::len(key) : 0;
+            const bool merge = n == 3 && py::isinstance<py::str>(key[py::int_(0)]) && key[py::int_(0)].cast<std::string>() == "M";
+            if (!(n == 2 || merge)) throw Error("TechniqueSet: a technique is (s, t) or (\"M\", s, t)");
+            const size_t first = merge ? 1 : 0;
+            const int s = static_cast<int>(intArgument(key[py::int_(first)], "TechniqueSet: s", 0, 1 << 20));
+            const int t = static_cast<int>(intArgument(key[py::int_(first + 1)], "TechniqueSet: t", 0, 1 << 20));
+            return merge ? set.contains(Technique::merge(s, t)) : set.contains(s, t);
           },
           py::arg("technique"))
       .def("__str__", &TechniqueSet::toString)
       .def("__repr__", [](const TechniqueSet& s) { return fmt::format("pathlab.TechniqueSet('{}')", s.toString()); })
-      .def("__eq__", [](const TechniqueSet& a, const TechniqueSet& b) { return a == b; })
-      .def("__or__", [](const TechniqueSet& a, const TechniqueSet& b) { return a | b; });
+      .def(
+          "__eq__", [](const TechniqueSet& a, const TechniqueSet& b) { return a == b; }, py::is_operator())
+      .def("__hash__", [](const TechniqueSet& s) { return py::hash(py::str(s.toString())); })
+      .def(
+          "__or__", [](const TechniqueSet& a, const TechniqueSet& b) { return a | b; }, py::is_operator());
 
   py::class_<LoadedScene>(m, "Scene", "A loaded glTF scene (pathlab.load)")
       .def_readonly("path", &LoadedScene::path)
@@ -97,37 +106,6 @@ PYBIND11_MODULE(pathlab, m) {
         return fmt::format("pathlab.Scene('{}', {} triangles, {} lights)", s.path, s.scene->triangleCount(),
                            s.scene->lights().size());
       });
-
-  m.def(
-      "load",
-      [](const std::string& path, const py::kwargs& kwargs) { return loadScene(loadOptionsFromArguments(path, kwargs)); },
-      py::arg("path"),
-      "Loads a glTF 2.0 scene. Keyword arguments as `pathlab render`'s options: environment (a .exr/.hdr file or "
-      "three numbers), environment_strength, environment_rotation, default_light, light_sampler "
-      "('auto', 'power', 'bvh'), max_triangles");
-
-  m.def("inspect", &inspect, py::arg("scene"), py::arg("settings"), py::arg("pixel"), py::arg("sample") = 0,
-        "One sample of one pixel replayed: what `pathlab inspect --json` writes for the same options, as dicts and "
-        "lists (every technique, its path, and the path's density and MIS weight under every technique of its "
-        "length)");
-
-  m.def("check", &check, py::arg("scene"), py::arg("settings"),
-        "`pathlab check`: renders with the check's sums (spp=N passes, or for time=SECONDS, default 10 s; the image "
-        "128 pixels on its longest side unless the settings give a size) and returns what `check --json` writes: "
-        "'verdict', 'techniques' (a row per technique: its worst z-score against the others, where, and its status), "
-        "and with merges each merge's bias radius by radius. Keyword arguments as check's options: spp, time, blocks, "
-        "alpha, min_hits, radius_levels. Options of render that check does not take (pyramid, technique_maps, "
-        "check_mis) are refused.");
-
-  m.def("converge", &converge, py::arg("scene"), py::arg("configs"), py::arg("time") = py::none(),
-        py::arg("spp") = py::none(), py::arg("reference") = py::none(), py::arg("factor") = 1.5,
-        py::arg("clock") = "wall", py::arg("mask") = py::none(),
-        "`pathlab converge`: each configuration (a Settings, a list of them, or a dict {label: Settings}) rendered "
-        "for `time` seconds (default 10) or `spp` passes, its error recorded at checkpoints `factor` apart. Returns "
-        "{label: {'seconds', 'wall_seconds', 'cpu_seconds', 'spp', 'camera_samples', 'rays', 'two_buffer_mse', "
-        "'two_buffer_relmse', and with a reference (an image array or an .exr/.pfm path) 'mse', 'rmse', 'relmse', "
-        "'mape', 'bias2', 'variance': arrays, one value per checkpoint; 'image': the final image}}. clock: 'wall' or "
-        "'cpu' (process CPU time); mask: an array (height, width), the error over its non-zero pixels.");
 
   py::class_<PySettings>(m, "Settings", "The options of `pathlab render` that decide the estimate")
       .def(py::init([](const py::kwargs& kwargs) {
@@ -152,9 +130,10 @@ PYBIND11_MODULE(pathlab, m) {
            py::arg("progress") = py::none(),
            "Renders spp more passes (or for `time` seconds; neither: 64) and returns the image of every pass so "
            "far as a float32 array (height, width, 3). progress(spp, seconds) is called after each pass. Ctrl+C "
-           "raises KeyboardInterrupt at once (a pass it interrupts midway is lost, and the renderer starts again "
-           "from zero passes); cancel() from another thread returns after the pass in progress, keeping every pass.")
-      .def("cancel", &Renderer::cancel, "Stops render() after the pass in progress (any thread)")
+           "raises KeyboardInterrupt after the pass in progress, and cancel() (from any thread) makes render() return "
+           "then: every pass is kept. One render at a time per renderer.")
+      .def("cancel", &Renderer::cancel,
+           "Stops render() after the pass in progress (any thread); called while no render runs, it stops the next")
       .def("image", &Renderer::image, "The image of every pass so far, float32 (height, width, 3)")
       .def("pyramid", &pyramidOf, py::arg("max_length") = py::none(),
            "{(s, t): (weighted, unweighted)} and {('M', s, t): ...} for every technique up to max_length (the "
@@ -170,4 +149,38 @@ PYBIND11_MODULE(pathlab, m) {
       .def_property_readonly("seconds", &Renderer::seconds, "Time spent in those passes")
       .def_property_readonly("width", &Renderer::width)
       .def_property_readonly("height", &Renderer::height);
+
+  // The functions after the classes, so that their signatures name pathlab.Settings, not the C++ types.
+  m.def(
+      "load",
+      [](const py::object& path, const py::kwargs& kwargs) {
+        return loadScene(loadOptionsFromArguments(pathArgument(path, "load: path"), kwargs));
+      },
+      py::arg("path"),
+      "Loads a glTF 2.0 scene. Keyword arguments as `pathlab render`'s options: environment (a .exr/.hdr file or "
+      "three numbers), environment_strength, environment_rotation, default_light, light_sampler "
+      "('auto', 'power', 'bvh'), max_triangles");
+
+  m.def("inspect", &inspect, py::arg("scene"), py::arg("settings"), py::arg("pixel"), py::arg("sample") = 0,
+        "One sample of one pixel replayed: what `pathlab inspect --json` writes for the same options, as dicts and "
+        "lists (every technique, its path, and the path's density and MIS weight under every technique of its "
+        "length)");
+
+  m.def("check", &check, py::arg("scene"), py::arg("settings"),
+        "`pathlab check`: renders with the check's sums (spp=N passes, or for time=SECONDS, default 10 s; the image "
+        "128 pixels on its longest side unless the settings give a size) and returns what `check --json` writes: "
+        "'agrees', 'techniques' (a row per technique: its status, worst z-score, p-value and region), "
+        "and with merges each merge's bias radius by radius. Keyword arguments as check's options: spp, time, blocks, "
+        "alpha, min_hits, radius_levels. Options of render that check does not take (pyramid, technique_maps, "
+        "check_mis) are refused.");
+
+  m.def("converge", &converge, py::arg("scene"), py::arg("configs"), py::arg("time") = py::none(),
+        py::arg("spp") = py::none(), py::arg("reference") = py::none(), py::arg("factor") = 1.5,
+        py::arg("clock") = "wall", py::arg("mask") = py::none(),
+        "`pathlab converge`: each configuration (a Settings, a list of them, or a dict {label: Settings}) rendered "
+        "for `time` seconds (default 10) or `spp` passes, its error recorded at checkpoints `factor` apart. Returns "
+        "{label: {'seconds', 'wall_seconds', 'cpu_seconds', 'spp', 'camera_samples', 'rays', 'two_buffer_mse', "
+        "'two_buffer_relmse', and with a reference (an image array or an .exr/.pfm path) 'mse', 'rmse', 'relmse', "
+        "'mape', 'bias2', 'variance': arrays, one value per checkpoint; 'image': the final image}}. clock: 'wall' or "
+        "'cpu' (process CPU time); mask: an array (height, width), the error over its non-zero pixels.");
 }

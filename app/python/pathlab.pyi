@@ -2,6 +2,7 @@
 
 Set-up: build pathlab (./dev.sh check), then ``PYTHONPATH=build/python /usr/bin/python3``.
 """
+import os
 from typing import Callable, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -20,6 +21,7 @@ class TechniqueSet:
     def __contains__(self, technique: Technique) -> bool: ...
     def __or__(self, other: TechniqueSet) -> TechniqueSet: ...
     def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
 
 class Scene:
     """A loaded glTF 2.0 scene."""
@@ -39,7 +41,7 @@ class Scene:
     def warnings(self) -> list[str]: ...
 
 def load(
-    path: str,
+    path: Union[str, "os.PathLike[str]"],
     *,
     environment: Optional[Union[str, Sequence[float]]] = None,
     environment_strength: Optional[float] = None,
@@ -117,7 +119,7 @@ def check(
 ) -> dict:
     """``pathlab check``: does every enabled technique agree with the others on the paths both can
     sample? Returns what ``check --json`` writes: 'agrees', 'techniques' (a row each: its status,
-    worst z-score, partner and region), and with merges each merge's bias radius by radius. The
+    z-score, p-value and worst region), and with merges each merge's bias radius by radius. The
     image is 128 pixels on its longest side unless the settings give a size; render-only options
     (pyramid, technique_maps, check_mis) are refused."""
 
@@ -126,7 +128,7 @@ def converge(
     configs: Union[Settings, Sequence[Settings], dict[str, Settings]],
     time: Optional[float] = None,
     spp: Optional[int] = None,
-    reference: Optional[Union[str, npt.ArrayLike]] = None,
+    reference: Optional[Union[str, "os.PathLike[str]", npt.ArrayLike]] = None,
     factor: float = 1.5,
     clock: str = "wall",
     mask: Optional[npt.ArrayLike] = None,
@@ -153,11 +155,13 @@ class Renderer:
     ) -> Image:
         """Renders spp more passes (or for `time` seconds of wall time; neither: 64) and returns the
         image of every pass so far. The GIL is released meanwhile; progress(spp, seconds) is called
-        after each pass. Ctrl+C raises KeyboardInterrupt at once (a pass it interrupts midway is
-        lost, and the renderer starts again from zero passes); cancel() from another thread
-        returns after the pass in progress, keeping every pass."""
+        after each pass. Ctrl+C raises KeyboardInterrupt after the pass in progress, and cancel()
+        (from any thread) makes render() return then: every pass is kept. One render at a time
+        per renderer; image(), pyramid(), counters() and technique_maps() are refused while a
+        pass runs (call them from the progress callback, or after render returns)."""
     def cancel(self) -> None:
-        """Stops render() after the pass in progress (safe from any thread)."""
+        """Stops render() after the pass in progress (safe from any thread); called while no
+        render runs, it stops the next one at once."""
     def image(self) -> Image: ...
     def pyramid(self, max_length: Optional[int] = None) -> dict[Technique, Tuple[Image, Image]]:
         """Every technique up to max_length (Settings(pyramid=K)): (MIS-weighted share, own estimate)."""

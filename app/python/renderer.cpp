@@ -3,6 +3,7 @@
 
 #include "app/python/analysis.h"
 #include "app/python/arguments.h"
+#include "core/bpt/mis_off.h"
 #include "core/metrics/technique_table.h"
 #include "core/sampling/technique_label.h"
 
@@ -14,6 +15,8 @@
 #include <exception>
 #include <mutex>
 #include <thread>
+
+#include <unistd.h>
 
 namespace py = pybind11;
 
@@ -35,7 +38,7 @@ py::array_t<float> imageArray(std::vector<float>&& rgb, int width, int height) {
 
 }  // namespace
 
-PassThread::PassThread() : thread_([this] {
+PassThread::PassThread() : owner_(getpid()), thread_([this] {
   std::unique_lock<std::mutex> lock(mutex_);
   for (;;) {
     changed_.wait(lock, [this] { return quit_ || (busy_ && job_); });
@@ -110,6 +113,17 @@ LoadedScene loadScene(const app::SceneOptions& options) {
 
 py::array_t<float> toArray(Image image) { return imageArray(std::move(image.rgb), image.width, image.height); }
 
+void warnAbout(const Scene& scene, const RenderSettings& settings) {
+  std::vector<std::string> lines;
+  if (settings.integrator != IntegratorKind::Pt)
+    for (int k : enabledTechniques(settings).uncoveredLengths(settings.maxLength))
+      lines.push_back(fmt::format("no enabled technique samples paths of length {}", k));
+  if (std::string w = misOffWarning(scene, settings); !w.empty()) lines.push_back(std::move(w));
+  if (std::string w = app::biasInjectionWarning(settings); !w.empty()) lines.push_back(std::move(w));
+  for (const std::string& line : lines)
+    if (PyErr_WarnEx(PyExc_UserWarning, withArgumentNames(line).c_str(), 2) != 0) throw py::error_already_set();
+}
+
 Renderer::Renderer(const LoadedScene& scene, const PySettings& settings) : scene_(scene), options_(settings.options) {
   try {
     app::sizeRenderForScene(options_, scene_.scene->cameraDesc());
@@ -117,62 +131,83 @@ Renderer::Renderer(const LoadedScene& scene, const PySettings& settings) : scene
   } catch (const std::exception& e) {
     throw Error(withArgumentNames(e.what()));
   }
+  warnAbout(*scene_.scene, session_->settings());
 }
 
-void Renderer::restart() {
-  session_ = std::make_unique<RenderSession>(*scene_.scene, options_.estimator.settings);
-  seconds_ = 0.0;
+const RenderSession& Renderer::session(const char* what) const {
+  if (passRunning_.load())
+    throw Error(fmt::format("{}: a pass is being rendered; ask between passes (in the progress callback) or after "
+                            "render() returns",
+                            what));
+  return *session_;
 }
 
-py::array_t<float> Renderer::render(std::optional<int> spp, std::optional<double> seconds, const py::object& progress) {
+py::array_t<float> Renderer::render(const py::object& sppArgument, std::optional<double> seconds,
+                                    const py::object& progress) {
+  std::optional<int> spp;
+  if (!sppArgument.is_none()) spp = static_cast<int>(intArgument(sppArgument, "render: spp", 1, app::kMaxSpp));
   if (spp && seconds) throw Error("render: give spp or time, not both");
-  if (spp && (*spp < 1 || *spp > app::kMaxSpp))
-    throw Error(fmt::format("render: spp {} is outside 1..{}", *spp, app::kMaxSpp));
   if (seconds && !(std::isfinite(*seconds) && *seconds > 0.0))
     throw Error(fmt::format("render: time {} is not a positive number of seconds", *seconds));
   if (!progress.is_none() && !PyCallable_Check(progress.ptr())) throw Error("render: progress must be callable");
+  if (rendering_.exchange(true)) throw Error("render: this renderer is already rendering (one render at a time)");
+  // Whatever ends the call: the next render starts anew; a cancel() from now on stops that one.
+  struct Done {
+    Renderer& r;
+    ~Done() {
+      r.stop_.store(false);
+      r.rendering_.store(false);
+    }
+  } done{*this};
   const uint64_t target = spp ? static_cast<uint64_t>(*spp) : static_cast<uint64_t>(kDefaultSpp);
   const app::ThreadLimit threads(options_.threads);
-  stop_.store(false);
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  for (uint64_t done = 0; seconds ? (done == 0 || elapsed() < *seconds) : done < target; ++done) {
+  // A renderer carried into a child by os.fork() has no pass thread there: a new one (the old
+  // object is left alone, its thread belongs to the parent).
+  if (passThread_ && passThread_->owner() != getpid()) (void)passThread_.release();
+  if (!passThread_) passThread_ = std::make_unique<PassThread>();
+  for (uint64_t passes = 0; seconds ? (passes == 0 || elapsed() < *seconds) : passes < target; ++passes) {
     if (stop_.load()) break;
-    // Ctrl+C between passes: every pass so far is kept.
+    // Ctrl+C between passes.
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    // The pass on the renderer's pass thread, while this one (the caller's, with the GIL now and
-    // then) looks for a signal every 20 ms: Python runs its Ctrl+C handler only on the main
-    // thread, between bytecodes, which never come while C++ renders.
-    std::atomic<bool> cancel{false};
+    // The pass on the renderer's pass thread, whole even after Ctrl+C (a pass adds its samples
+    // into the film in place: one cut short could not be kept), then KeyboardInterrupt.
+    std::atomic<bool> interruptedFlag{false};
     const auto passStart = std::chrono::steady_clock::now();
-    if (!passThread_) passThread_ = std::make_unique<PassThread>();
-    const bool interrupted = runWatchingForCtrlC(*passThread_, [&] { session_->renderPass(&cancel); }, cancel);
-    if (interrupted) {
-      restart();  // the film holds part of a pass
-      throw py::error_already_set();
+    passRunning_.store(true);
+    bool interrupted = false;
+    try {
+      interrupted = runWatchingForCtrlC(*passThread_, [&] { session_->renderPass(); }, interruptedFlag);
+    } catch (...) {
+      passRunning_.store(false);
+      throw;
     }
-    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - passStart).count();
-    if (!progress.is_none()) progress(session_->passes(), seconds_);
+    passRunning_.store(false);
+    seconds_.store(seconds_.load() + std::chrono::duration<double>(std::chrono::steady_clock::now() - passStart).count());
+    if (interrupted) throw py::error_already_set();
+    if (!progress.is_none()) progress(session_->passes(), seconds_.load());
   }
   return image();
 }
 
-py::dict pyramidOf(const Renderer& r, std::optional<int> maxLength) {
+py::dict pyramidOf(const Renderer& r, const py::object& maxLengthArgument) {
   const RenderSettings& s = r.settings();
-  if (!r.session().hasPyramid())
+  const RenderSession& session = r.session("pyramid");
+  if (!session.hasPyramid())
     throw Error("pyramid: the renderer keeps no technique images (Settings(pyramid=K) keeps those up to length K)");
-  const int length = maxLength.value_or(s.pyramidLength);
-  if (length < 1 || length > s.pyramidLength)
-    throw Error(fmt::format("pyramid: max_length {} is outside 1..{} (the settings' pyramid)", length, s.pyramidLength));
+  const int length = maxLengthArgument.is_none()
+                         ? s.pyramidLength
+                         : static_cast<int>(intArgument(maxLengthArgument, "pyramid: max_length", 1, s.pyramidLength));
   py::dict out;
   for (const Technique x : TechniqueRange(1, length, pyramidFamilies(s)))
-    out[techniqueKey(x)] = py::make_tuple(toArray(r.session().techniqueImage(x, false)),
-                                          toArray(r.session().techniqueImage(x, true)));
+    out[techniqueKey(x)] = py::make_tuple(toArray(session.techniqueImage(x, false)),
+                                          toArray(session.techniqueImage(x, true)));
   return out;
 }
 
 py::dict countersOf(const Renderer& r) {
-  const Counters& c = r.session().counters();
+  const Counters& c = r.session("counters").counters();
   py::dict out;
   out["spp"] = r.samplesPerPixel();
   out["seconds"] = r.seconds();

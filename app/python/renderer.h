@@ -19,6 +19,8 @@
 #include <string>
 #include <thread>
 
+#include <sys/types.h>
+
 namespace pathlab::python {
 
 struct LoadedScene {
@@ -48,8 +50,11 @@ class PassThread {
   // Runs `job` on the thread; waitFor then returns true once it has finished.
   void start(std::function<void()> job);
   bool waitFor(std::chrono::milliseconds timeout);
+  // The process that started the thread: after os.fork() the child has no such thread.
+  pid_t owner() const { return owner_; }
 
  private:
+  pid_t owner_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::function<void()> job_;
@@ -71,36 +76,42 @@ class Renderer {
   // Renders `spp` more passes, or passes for `seconds` of wall time (at least one); neither: 64
   // passes, as `pathlab render`. Returns the image of every pass so far. The GIL is released
   // while the passes run; `progress(spp, seconds)` is called after each pass. Ctrl+C (a signal
-  // Python sees on its main thread) raises KeyboardInterrupt at once: between passes every pass
-  // is kept; within one the partial pass cannot be (its sums are added in place), so the
-  // renderer starts again from zero passes. cancel(), from any thread, stops after the pass in
-  // progress and keeps every pass.
-  pybind11::array_t<float> render(std::optional<int> spp, std::optional<double> seconds, const pybind11::object& progress);
+  // Python sees on its main thread) and cancel() (any thread) stop after the pass in progress,
+  // every pass kept: Ctrl+C then raises KeyboardInterrupt, cancel() makes render() return. A
+  // cancel() while no render runs stops the next one at once. One render at a time per renderer.
+  pybind11::array_t<float> render(const pybind11::object& spp, std::optional<double> seconds,
+                                  const pybind11::object& progress);
   void cancel() { stop_.store(true); }
 
-  pybind11::array_t<float> image() const { return toArray(session_->image()); }
+  pybind11::array_t<float> image() const { return toArray(session("image").image()); }
   uint64_t samplesPerPixel() const { return session_->passes(); }
-  double seconds() const { return seconds_; }
+  double seconds() const { return seconds_.load(); }
   const RenderSettings& settings() const { return session_->settings(); }
-  const RenderSession& session() const { return *session_; }
+  // The session between passes (from the progress callback, or when no render runs); refused
+  // with an Error naming `what` while a pass writes it.
+  const RenderSession& session(const char* what) const;
   int width() const { return settings().width; }
   int techniqueMapLength() const { return options_.techniqueMaps; }
   int height() const { return settings().height; }
 
  private:
-  void restart();
-
   LoadedScene scene_;
   app::RenderOptions options_;
   std::unique_ptr<RenderSession> session_;
   std::atomic<bool> stop_{false};
-  double seconds_ = 0.0;  // rendering time of the passes held
+  std::atomic<bool> rendering_{false};   // a render() call is running
+  std::atomic<bool> passRunning_{false};  // ... and its pass thread is writing the session
+  std::atomic<double> seconds_{0.0};  // rendering time of the passes held
   std::unique_ptr<PassThread> passThread_;  // made by the first render
 };
 
+// The estimator's warnings for these settings on this scene (a technique-less length, MIS off's
+// bias, an injected bias), as Python UserWarnings.
+void warnAbout(const Scene& scene, const RenderSettings& settings);
+
 // {(s, t): (weighted, unweighted)} and {("M", s, t): ...} up to `maxLength` (the settings'
 // pyramid length when not given).
-pybind11::dict pyramidOf(const Renderer& r, std::optional<int> maxLength);
+pybind11::dict pyramidOf(const Renderer& r, const pybind11::object& maxLength);
 // The counters of every pass so far: samples, rays, discarded samples, per technique and walk.
 pybind11::dict countersOf(const Renderer& r);
 

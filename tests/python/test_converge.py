@@ -57,10 +57,14 @@ def test_labels_masks_and_no_reference(box):
 
 def test_bad_converge_calls(box):
     s = pathlab.Settings(width=8, height=8)
-    for kwargs, message in [(dict(configs="bpt"), "configs must be"), (dict(configs=s, spp=1), "spp 1"),
+    for kwargs, message in [(dict(configs="bpt"), "configs must be"), (dict(configs=s, spp=1), "spp: 1 is outside"),
                             (dict(configs=s, reference=np.zeros((4, 4, 3))), "renders 8 x 8, the reference is 4 x 4"),
                             (dict(configs=s, clock="sun"), "clock"), (dict(configs=s, factor=1.0), "factor"),
-                            (dict(configs=s, spp=2, mask=np.zeros((8, 8))), "selects no pixel")]:
+                            (dict(configs=s, spp=2, reference=np.ones((8, 8, 3)), mask=np.zeros((8, 8))),
+                             "selects no pixel"),
+                            (dict(configs=s, spp=2, mask=np.ones((8, 8))), "give a reference"),
+                            (dict(configs=[s, s], spp=2), "two configurations are labelled"),
+                            (dict(configs=s, spp=2**40), "spp: 1099511627776 is outside")]:
         with pytest.raises(pathlab.Error) as e:
             pathlab.converge(box, **kwargs)
         assert message in str(e.value)
@@ -71,6 +75,21 @@ def test_ctrl_c_stops_a_run(box):
     timer.start()
     start = time.monotonic()
     with pytest.raises(KeyboardInterrupt):
-        pathlab.converge(box, pathlab.Settings(width=64, height=64), time=600)
+        pathlab.converge(box, pathlab.Settings(width=64, height=64), time=20)
     timer.join()
-    assert time.monotonic() - start < 30
+    assert time.monotonic() - start < 10
+
+
+def test_configs_from_any_sequence(box):
+    # Items that live only while the sequence hands them out: converge keeps its own copies.
+    class Fresh:
+        def __len__(self):
+            return 2
+
+        def __getitem__(self, i):
+            if i >= 2:
+                raise IndexError(i)
+            return pathlab.Settings(width=8, height=8, max_length=2 + i)
+
+    curves = pathlab.converge(box, Fresh(), spp=2)
+    assert list(curves) == ["width=8 height=8 max_length=2", "width=8 height=8 max_length=3"]

@@ -21,6 +21,9 @@ BAD_SETTINGS = [
     (dict(unweighted=True), "unweighted"),
     (dict(rr="no"), "rr: expected a bool, got str"),
     (dict(colour=1), "unknown argument 'colour'"),
+    (dict(seed=-1), "seed: -1 is negative"),
+    (dict(beta=1e999), "beta: inf is not a finite number"),
+    (dict(width=2**70), "width"),
 ]
 
 
@@ -49,9 +52,34 @@ def test_bad_files_name_the_file(tmp_path):
     assert "environment" in str(e.value)
 
 
+def test_paths_and_odd_values(tmp_path, box):
+    import pathlib
+
+    assert pathlab.load(pathlib.Path(scene_path("cornell-box.gltf"))).triangle_count == box.triangle_count
+    with pytest.raises(pathlab.Error) as e:
+        pathlab.load(str(tmp_path / "out--seed" / "box.gltf"))
+    assert "out--seed" in str(e.value)  # a path is not an option
+    assert pathlab.TechniqueSet("all") != "all" and len({pathlab.TechniqueSet("all"), pathlab.TechniqueSet(), pathlab.TechniqueSet("k=1")}) == 2
+    for key in [("M", "a", 2), (2**40, 1), (None, None), (1,)]:
+        with pytest.raises(pathlab.Error):
+            key in pathlab.TechniqueSet()
+    settings = pathlab.Settings(width=8, height=8)
+    for kwargs, message in [(dict(pixel=(2**40, 0)), "pixel x"), (dict(pixel=(0, 0), sample=-1), "sample: -1"),
+                            (dict(pixel=(0, 0), sample=2**70), "sample"), (dict(pixel="0,0"), "pixel must be")]:
+        with pytest.raises(pathlab.Error) as e:
+            pathlab.inspect(box, settings, **kwargs)
+        assert message in str(e.value) and "\n" not in str(e.value)
+
+
+def test_warnings_of_the_command_line(box):
+    with pytest.warns(UserWarning, match="no enabled technique samples paths of length 2"):
+        pathlab.Renderer(box, pathlab.Settings(width=8, height=8, max_length=2, techniques="k=1"))
+
+
 def test_bad_render_calls(box):
     r = pathlab.Renderer(box, pathlab.Settings(width=8, height=8))
-    for kwargs, message in [(dict(spp=0), "spp 0"), (dict(spp=2, time=1.0), "not both"),
+    for kwargs, message in [(dict(spp=0), "spp: 0 is outside"), (dict(spp=2**40), "spp: 1099511627776"),
+                            (dict(spp=2, time=1.0), "not both"),
                             (dict(time=-1.0), "time -1"), (dict(progress=3), "progress")]:
         with pytest.raises(pathlab.Error) as e:
             r.render(**kwargs)
