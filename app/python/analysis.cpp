@@ -15,18 +15,6 @@ namespace py = pybind11;
 
 namespace pathlab::python {
 
-namespace {
-
-// A per-pixel vector as an H x W array that owns it.
-template <class T>
-py::array_t<T> mapArray(std::vector<T>&& values, int width, int height) {
-  auto* owned = new std::vector<T>(std::move(values));
-  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-  return py::array_t<T>({static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width)}, owned->data(), free);
-}
-
-}  // namespace
-
 py::object techniqueKey(Technique x) {
   if (x.isMerge()) return py::make_tuple("M", x.s, x.t);
   return py::make_tuple(x.s, x.t);
@@ -102,21 +90,21 @@ py::dict techniqueMapsOf(const Renderer& r) {
     DominantMap m = dominantMap(lum, k);
     const py::object key = k == 0 ? py::object(py::none()) : py::object(py::int_(k));
     std::vector<int32_t> index(m.technique.begin(), m.technique.end());
-    dominant[key] = mapArray(std::move(index), m.width, m.height);
-    dominantShare[key] = mapArray(std::move(m.share), m.width, m.height);
+    dominant[key] = ownedArray(std::move(index), {m.height, m.width});
+    dominantShare[key] = ownedArray(std::move(m.share), {m.height, m.width});
   }
   out["dominant"] = dominant;
   out["dominant_share"] = dominantShare;
   py::dict share, cannot;
   for (const Technique x : techniquesUpTo(length, lum.families)) {
-    share[techniqueKey(x)] = mapArray(shareMap(lum, x), lum.width, lum.height);
+    share[techniqueKey(x)] = ownedArray(shareMap(lum, x), {lum.height, lum.width});
     CannotSampleMap c = cannotSampleMap(lum, x);
-    cannot[techniqueKey(x)] = mapArray(std::move(c.unreachable), c.width, c.height);
+    cannot[techniqueKey(x)] = ownedArray(std::move(c.unreachable), {c.height, c.width});
   }
   out["share"] = share;
   out["cannot_sample"] = cannot;
   if (covers(lum.families, TechniqueKind::Merge))
-    out["merges_share"] = mapArray(familyShareMap(lum, TechniqueKind::Merge), lum.width, lum.height);
+    out["merges_share"] = ownedArray(familyShareMap(lum, TechniqueKind::Merge), {lum.height, lum.width});
   return out;
 }
 

@@ -26,15 +26,6 @@ namespace {
 
 constexpr int kDefaultSpp = 64;  // as `pathlab render` without --spp or --time
 
-// The film's readout held by the array (no copy); freed with it.
-py::array_t<float> imageArray(std::vector<float>&& rgb, int width, int height) {
-  auto* owned = new std::vector<float>(std::move(rgb));
-  py::capsule free(owned, [](void* p) { delete static_cast<std::vector<float>*>(p); });
-  const auto w = static_cast<py::ssize_t>(width), h = static_cast<py::ssize_t>(height);
-  return py::array_t<float>({h, w, py::ssize_t{3}},
-                            {w * 3 * py::ssize_t{sizeof(float)}, 3 * py::ssize_t{sizeof(float)}, py::ssize_t{sizeof(float)}},
-                            owned->data(), free);
-}
 
 }  // namespace
 
@@ -111,7 +102,9 @@ LoadedScene loadScene(const app::SceneOptions& options) {
   }
 }
 
-py::array_t<float> toArray(Image image) { return imageArray(std::move(image.rgb), image.width, image.height); }
+py::array_t<float> toArray(Image image) {
+  return ownedArray(std::move(image.rgb), {image.height, image.width, 3});
+}
 
 void warnAbout(const Scene& scene, const RenderSettings& settings) {
   std::vector<std::string> lines;

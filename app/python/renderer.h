@@ -13,6 +13,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -34,6 +35,15 @@ struct PySettings {
   app::RenderOptions options;
   std::vector<std::string> words;  // the options as command-line words (pathlab.check parses them again)
 };
+
+// `values` as a C-ordered array of `shape` that owns them (moved in, not copied; freed with it).
+template <class T>
+pybind11::array_t<T> ownedArray(std::vector<T>&& values, std::initializer_list<int> shape) {
+  auto* owned = new std::vector<T>(std::move(values));
+  pybind11::capsule free(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  std::vector<pybind11::ssize_t> dims(shape.begin(), shape.end());
+  return pybind11::array_t<T>(dims, owned->data(), free);
+}
 
 // An image as a float32 H x W x 3 array that owns its pixels: the film's readout is moved into
 // it, not copied.
