@@ -34,7 +34,8 @@ void setEnvironmentVertex(const Scene& scene, const Ray& ray, const PathVertex& 
 // remain a partition of unity (pbrt-v3's BDPT does the same).
 void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, TransportMode mode, Pcg32& rng,
                 const WalkOptions& options, Subpath& path, Counters& counters, int medium) {
-  RussianRoulette roulette(beta);
+  RussianRoulette roulette(beta, mode == TransportMode::Radiance ? RouletteCount::NonDeltaScatterings
+                                                                : RouletteCount::Scatterings);
   bool delta = false;  // the last scattering was a delta lobe
   const Bsdf* prevBsdf = nullptr;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
   float prevPhaseG = 0.f;          // the anisotropy of the phase function that chose `ray`...
@@ -164,7 +165,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
 
     // Russian roulette as in the path tracer (russian_roulette.h). Unbiased; the MIS densities
     // leave it out, which keeps the weights a partition of unity.
-    if (options.russianRoulette && !roulette.survives(beta, delta, path.count - 1, rng)) break;
+    if (options.russianRoulette && !roulette.survives(beta, delta, rng)) break;
   }
 }
 

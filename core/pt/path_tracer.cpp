@@ -107,9 +107,9 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
   float prevPdfW = 0.f;
   // The vertex the ray left, as next-event estimation there saw it (the receiver of its light choice).
   LightSampleContext prev{ray.o, Vec3(0.f)};
-  RussianRoulette roulette(beta);
-  auto survivesRoulette = [&](int edges, bool delta) {
-    return !russianRoulette_ || roulette.survives(beta, delta, edges, rng);
+  RussianRoulette roulette(beta, RouletteCount::NonDeltaScatterings);
+  auto survivesRoulette = [&](bool delta) {
+    return !russianRoulette_ || roulette.survives(beta, delta, rng);
   };
   for (int edges = 1;; ++edges) {
     const MediaStep step = traceStep(scene_, ray, medium, rng, counters);
@@ -129,7 +129,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
       prevPdfW = phaseHG(wo, wi, g);
       prev = LightSampleContext{step.p, Vec3(0.f)};
       ray = Ray{step.p, wi};
-      if (!survivesRoulette(edges, false)) break;
+      if (!survivesRoulette(false)) break;
       continue;
     }
     const std::optional<SurfaceHit>& hit = step.hit;  // empty when the ray escaped
@@ -167,7 +167,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
     ray = Ray{offsetRayOrigin(hit->p, hit->pError, hit->ng, bs->wi), bs->wi};
     medium = hit->media.toward(hit->ng, bs->wi);
 
-    if (!survivesRoulette(edges, bs->isDelta)) break;
+    if (!survivesRoulette(bs->isDelta)) break;
   }
   return L;
 }
