@@ -62,6 +62,10 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
   cmd->add_option("--radius-alpha", s.mergeRadiusAlpha,
                   "Progressive radius: pass i merges within r_1 i^((alpha - 1) / 2) (1: fixed radius)")
       ->check(CLI::Range(0.f, 1.f));
+  cmd->add_option("--noncaustic-photons", s.mergeNonCaustic,
+                  "Share of the light vertices not reached through a mirror or glass that a pass keeps for merging, "
+                  "each standing for 1/share of them (caustic ones are always kept; 1: every vertex, VCM as published)")
+      ->check(CLI::Range(kMinMergeNonCaustic, 1.f));
   auto* isolate = cmd->add_option("--isolate", o.isolate,
                                   "Show technique S,T (or merge MS,T) alone: its MIS-weighted share (or with --unweighted its own estimate)");
   cmd->add_flag("--unweighted", o.unweighted,

@@ -50,6 +50,7 @@ constexpr Argument kSettingsArguments[] = {
     {"unweighted", "--unweighted", Kind::Flag},
     {"radius", "--radius", Kind::Float},
     {"radius_alpha", "--radius-alpha", Kind::Float},
+    {"noncaustic_photons", "--noncaustic-photons", Kind::Float},
     {"rr", "--no-rr", Kind::NegatedFlag},
     {"seed", "--seed", Kind::Int},
     {"aperture", "--aperture", Kind::Float},

@@ -75,6 +75,7 @@ class Settings:
         unweighted: bool = False,
         radius: Optional[float] = None,
         radius_alpha: Optional[float] = None,
+        noncaustic_photons: Optional[float] = None,
         rr: bool = True,
         seed: Optional[int] = None,
         aperture: Optional[float] = None,

@@ -43,7 +43,7 @@ Pcg32 walkStream(uint64_t connectionKey, int s, int t, uint64_t salt) {
 // The replay trace's view of the merges of a pass: none without a pass.
 std::optional<MergesOnPath> mergesOnPath(const MergePass* pass, MergeSite site) {
   if (!pass) return std::nullopt;
-  return MergesOnPath{MergeMis{pass->eta(), site == MergeSite::FirstNonSpecular}, pass->radius};
+  return MergesOnPath{MergeMis{pass->eta(), site == MergeSite::FirstNonSpecular, pass->nonCaustic}, pass->radius};
 }
 
 // Each connection draws its fresh light or lens sample from a stream of its own, keyed by the
@@ -126,7 +126,7 @@ template <bool kRecords>
   const int s = path.s, t = path.t;
   if (kRecords && merges_) {
     if (!mergePass_) return misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
-    const MergeMis merge{mergePass_->eta(), options_.mergeSite == MergeSite::FirstNonSpecular};
+    const MergeMis merge{mergePass_->eta(), options_.mergeSite == MergeSite::FirstNonSpecular, mergePass_->nonCaustic};
     if (options_.checkMis) {
       ++counters.misPartitionChecks;
       const double sum = weightSumWithMerges(scene_, camera_, path, options_.techniques, options_.mis, ratio,
@@ -134,7 +134,7 @@ template <bool kRecords>
       if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
     }
     if (misEvaluation_ == MisEvaluation::PartialSums) {
-      const MergeTerms terms = mergeTerms(merge.eta);
+      const MergeTerms terms = mergeTerms(*mergePass_);
       const std::optional<float> fast =
           s >= 2 && t >= 2 ? misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2,
                                                walks.lightSums, walks.cameraSums, misPower_, ratio,
@@ -318,7 +318,7 @@ int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, 
                                        WalkOptions{vertices, options_.russianRoulette, cameraMedium_}, walks.camera, counters);
   if (misEvaluation_ == MisEvaluation::PartialSums) {
     if (mergePass_)
-      accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, mergeTerms(mergePass_->eta()));
+      accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, mergeTerms(*mergePass_));
     else
       accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums);
   }
@@ -344,13 +344,15 @@ int BidirTracer::traceLightSubpath(Pcg32& lightRng, std::vector<PathVertex>& out
   return ns;
 }
 
-MergeTerms BidirTracer::mergeTerms(double eta) const { return MergeTerms{connectionsInSums_, true, eta}; }
+MergeTerms BidirTracer::mergeTerms(const MergePass& pass) const {
+  return MergeTerms{connectionsInSums_, true, pass.eta(), pass.nonCaustic};
+}
 
 void BidirTracer::prepareMergePass(MergePass& pass) const {
   resizeWithRoom(pass.misSum, pass.vertexCount());
   resizeWithRoom(pass.misShortestEdge2, pass.vertexCount());
   if (misEvaluation_ != MisEvaluation::PartialSums) return;
-  const MergeTerms terms = mergeTerms(pass.eta());
+  const MergeTerms terms = mergeTerms(pass);
   tbb::parallel_for(size_t{0}, pass.pixelPathStart.size(), [&](size_t p) {
     const uint32_t start = pass.pixelPathStart[p], count = pass.pixelPathCount[p];
     if (count > 0)
@@ -484,8 +486,8 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
   // the camera vertex's BSDF standing for the merged vertex's (each beta stops short of its own
   // vertex's cosine, which the density estimate's area measure absorbs).
   const MergePass& pass = *mergePass_;
-  const MergeMis mis{pass.eta(), options_.mergeSite == MergeSite::FirstNonSpecular};
-  const MergeTerms terms = mergeTerms(pass.eta());
+  const MergeMis mis{pass.eta(), options_.mergeSite == MergeSite::FirstNonSpecular, pass.nonCaustic};
+  const MergeTerms terms = mergeTerms(pass);
   const float normalisation = static_cast<float>(pass.normalisation());
   const SinkDemand& demand = sink.demand();
   const std::optional<Isolation>& isolate = options_.isolate;
@@ -496,11 +498,10 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
     const PathVertex& z = walks.camera[t - 1];
     if (z.type != VertexType::Surface || z.isDelta) continue;
     const Bsdf& bsdf = walks.camera.bsdf(t - 1);
-    // z's half of every merge weight at z, once for all the light vertices it finds.
+    // z's half of every merge weight at z, once for all the light vertices it finds, formed at the
+    // first: most camera vertices find none where the pass keeps few (MergePass::nonCaustic).
     const bool partialSums = misEvaluation_ == MisEvaluation::PartialSums;
-    const MergeCameraTerms cameraTerms =
-        partialSums ? mergeCameraTerms(walks.camera, t, walks.cameraSums, misPower_, lightTracingRatio(), terms)
-                    : MergeCameraTerms{};
+    std::optional<MergeCameraTerms> cameraTerms;
     pass.grid.querySlots(z.p, [&](uint32_t slot) {
       const MergeRecord& record = pass.records[slot];
       const int s = record.s;
@@ -525,7 +526,11 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       float w = 0.f;
       if (enabled) {
         std::optional<float> fast;
-        if (partialSums) fast = mergeWeightFromTerms(record.mis, cameraTerms, pdfs, misPower_, terms, minConnectionDistance_);
+        if (partialSums) {
+          if (!cameraTerms)
+            cameraTerms = mergeCameraTerms(walks.camera, t, walks.cameraSums, misPower_, lightTracingRatio(), terms);
+          fast = mergeWeightFromTerms(record.mis, *cameraTerms, pdfs, misPower_, terms, minConnectionDistance_);
+        }
         w = fast ? *fast
                  : mergeWeight(&pass.vertex(start), s, walks.camera.data(), t, pdfs, options_.techniques,
                                options_.mis, lightTracingRatio(), minConnectionDistance_, mis);

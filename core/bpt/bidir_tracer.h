@@ -127,8 +127,8 @@ class BidirTracer {
   // runs without it.
   [[gnu::cold]] void inspectMerge(const MergePass& pass, uint32_t lightVertex, int s, int t, const MergePdfs& pdfs,
                                   Walks& walks, TechniqueResult& r) const;
-  // The merges' part of the partial sums for a pass of this eta.
-  MergeTerms mergeTerms(double eta) const;
+  // The merges' part of the partial sums for this pass (its eta and keep probability).
+  MergeTerms mergeTerms(const MergePass& pass) const;
   bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
 
   const Scene& scene_;

@@ -65,7 +65,11 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
   // A zero camera-side density at the merged vertex is a delta lobe next to it (the vertex itself
   // is not delta): it counts one, as in the ratios, and cancels against C(s'-1), which samples
   // the merged vertex from the camera side through the same lobe.
-  auto mergeFactor = [&](int sp) { return merge.eta * remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]); };
+  // The pass kept x(s'-1) with probability mergeKeep, by x(s'-2)'s delta flag.
+  auto mergeFactor = [&](int sp) {
+    return merge.eta * mergeKeep(merge.nonCaustic, d.delta[static_cast<size_t>(sp - 2)]) *
+           remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]);
+  };
   // n_x p_x relative to p_C(x.s).
   const double own = x.isMerge() ? mergeFactor(x.s) : connectionCount(x.s);
   // r = p_C(s') / p_C(x.s), walked outward from x.s (Veach eq. 10.10, mis.h's ratios), so that no

@@ -22,6 +22,8 @@ struct MergeMis {
   // MergeSite::FirstNonSpecular (progressive photon mapping): a merge at x(s'-1) counts only when
   // every vertex between it and the camera, x(s') .. x(n-2), scattered by a delta lobe.
   bool firstNonSpecularOnly = false;
+  // MergePass::nonCaustic: a merge at x(s'-1) has eta times its keep probability (mergeKeep).
+  double nonCaustic = 1.0;
 };
 
 // Whether x_i can be the merged vertex: interior (not x0 on the light, not the camera x(n-1)),

@@ -1,6 +1,7 @@
 // MergePass::index: the mergeable light vertices and their grid.
 #include "core/bpt/merge_pass.h"
 
+#include "core/math/rng.h"
 #include "core/merge/room.h"
 
 #include <tbb/parallel_for.h>
@@ -17,15 +18,23 @@ const PathVertex& MergePass::vertex(uint32_t v) const {
   return walkItems[item].vertices[v - itemStart[item]];
 }
 
-void MergePass::index(float r) {
+void MergePass::index(float r, double keepNonCaustic, uint64_t key) {
   radius = r;
+  const float keep = static_cast<float>(keepNonCaustic);
+  nonCaustic = static_cast<double>(keep);  // the weights use the very probability the filter does
+  keepKey = key;
   // The filter in parallel, its output in vertex order: each work item counts its mergeable
   // vertices, the items' offsets follow, then each item writes its own.
   const size_t items = walkItems.size();
   auto isMergeable = [&](size_t item, uint32_t i) {
     const PathVertex& v = walkItems[item].vertices[i];
     const uint32_t global = itemStart[item] + i;
-    return global != pathStart[global] && v.type == VertexType::Surface && !v.isDelta;
+    if (global == pathStart[global] || v.type != VertexType::Surface || v.isDelta) return false;
+    // A caustic vertex (its predecessor, in the same item, scattered by a delta lobe) is kept;
+    // another with probability keep, by a uniform number hashed from the pass and the vertex.
+    if (keep >= 1.f || walkItems[item].vertices[i - 1].isDelta) return true;
+    const float u = static_cast<float>(mixBits(keepKey ^ mixBits(global)) >> 40) * 0x1p-24f;
+    return u < keep;
   };
   std::vector<uint32_t> outStart(items + 1, 0);
   tbb::parallel_for(size_t{0}, items, [&](size_t item) {
@@ -56,7 +65,10 @@ void MergePass::index(float r) {
     record.vertex = mergeable[point];
     const PathVertex& v = *mergeableVertex[point];
     record.wo = v.wo;
-    record.beta = v.beta;
+    // Kept with probability keep: the survivor stands for 1 / keep of them (unbiased for the
+    // merges of the pass that keeps every vertex).
+    const bool caustic = (&v - 1)->isDelta;
+    record.beta = caustic || keep >= 1.f ? v.beta : v.beta / keep;
     record.s = static_cast<int>(record.vertex - pathStart[record.vertex]) + 1;
   });
 }

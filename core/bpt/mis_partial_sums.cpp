@@ -19,10 +19,12 @@ void accumulateShortestEdges(const PathVertex* path, int count, float* shortestE
   for (int i = 1; i < count; ++i) shortestEdge2[i] = std::min(shortestEdge2[i - 1], edgeLength2(path[i - 1], path[i]));
 }
 
-// A merge's term of the sums: T(eta pFromCamera(merged vertex)), a zero density (a delta lobe next
-// to the merged vertex) counting one as in the ratios (merge_mis.cpp).
-[[gnu::always_inline]] inline double mergeTerm(const MisPower& power, const MergeTerms& m, double pFromCamera) {
-  return power(m.eta * remap0(pFromCamera));
+// A merge's term of the sums: T(eta keep pFromCamera(merged vertex)), a zero density (a delta lobe
+// next to the merged vertex) counting one as in the ratios (merge_mis.cpp); `caustic`: the merged
+// vertex's predecessor on the light side is a delta vertex (mergeKeep).
+[[gnu::always_inline]] inline double mergeTerm(const MisPower& power, const MergeTerms& m, double pFromCamera,
+                                               bool caustic) {
+  return power(m.eta * mergeKeep(m.nonCaustic, caustic) * remap0(pFromCamera));
 }
 
 // sum[0 .. count] of a light subpath (sum[count] when withLast).
@@ -50,7 +52,8 @@ void lightSums(const PathVertex* path, int count, const MisPower& power, const M
     // Merge M(i, .) merges x(i-1) (i >= 2: not the light's origin).
     if constexpr (kMerges) {
       w *= m.connections;
-      if (m.merges && i >= 2 && mergeableVertex(path[i - 1])) w += mergeTerm(power, m, path[i - 1].pdfRevA);
+      if (m.merges && i >= 2 && mergeableVertex(path[i - 1]))
+        w += mergeTerm(power, m, path[i - 1].pdfRevA, path[i - 2].isDelta);
     }
     left = power(r) * (w + left);
     sum[i + 1] = left;
@@ -92,10 +95,12 @@ void cameraSums(const Subpath& path, const MisPower& power, float lightTracingRa
     const bool usable = !v.isDelta && !path[j - 1].isDelta;
     const double count = j == 1 ? lightTracingCount : 1.0;
     double w = usable ? count : 0.0;
-    // Its merge merges y(j), sampled by the camera walk (pdfFwdA).
+    // Its merge merges y(j), sampled by the camera walk (pdfFwdA). Its predecessor on the light
+    // side is y(j+1): every technique that reads this sum has it on its camera prefix.
     if constexpr (kMerges) {
       w *= m.connections;
-      if (m.merges && mergeableVertex(v)) w += mergeTerm(power, m, v.pdfFwdA);
+      if (m.merges && mergeableVertex(v))
+        w += mergeTerm(power, m, v.pdfFwdA, j + 1 < path.count && path[j + 1].isDelta);
     }
     right = power(ratio(v.pdfRevA, v.pdfFwdA)) * (w + right);
     sums.sum[static_cast<size_t>(j) + 1] = right;
@@ -163,9 +168,10 @@ template <bool kMerges>
   // The connections' count (one, or zero when none is enabled) and the merge of x(s'-1) of
   // technique s' (s' >= 2: x0 is never merged) with its camera-side density.
   const double connections = kMerges ? m.connections : 1.0;
-  auto merge = [&](int sp, const PathVertex& merged, double pFromCamera) {
+  // `caustic`: x(s'-2), the merged vertex's predecessor on the light side, is a delta vertex.
+  auto merge = [&](int sp, const PathVertex& merged, double pFromCamera, bool caustic) {
     if constexpr (!kMerges) return 0.0;
-    return m.merges && sp >= 2 && mergeableVertex(merged) ? mergeTerm(power, m, pFromCamera) : 0.0;
+    return m.merges && sp >= 2 && mergeableVertex(merged) ? mergeTerm(power, m, pFromCamera, caustic) : 0.0;
   };
   // Light side: left(s) = T(r_{s-1}) (w(s-1) + T(r_{s-2}) (w(s-2) + left(s-2))). qs and pt count
   // as non-delta (connect() formed the path through them; a merge's qs is its merged vertex).
@@ -183,7 +189,7 @@ template <bool kMerges>
                                 : ratio(c.qsMinusFromCamera, e.qsMinus->pdfFwdA);
       double w = usable ? connections : 0.0;
       if constexpr (kMerges)
-        if (s >= 4) w += merge(s - 2, path.lightPath[s - 3], path.lightPath[s - 3].pdfRevA);
+        if (s >= 4) w += merge(s - 2, path.lightPath[s - 3], path.lightPath[s - 3].pdfRevA, path.lightPath[s - 4].isDelta);
       beyond = power(r) * (w + lightSum[s - 2]);
     }
     // s = 2: the term is technique s' = 1's.
@@ -195,7 +201,7 @@ template <bool kMerges>
                               : ratio(c.qsFromCamera, e.qs->pdfFwdA);
     double w = usable ? connections : 0.0;
     if constexpr (kMerges)
-      if (s >= 3) w += merge(s - 1, *e.qsMinus, c.qsMinusFromCamera);
+      if (s >= 3) w += merge(s - 1, *e.qsMinus, c.qsMinusFromCamera, path.lightPath[s - 3].isDelta);
     left = power(r) * (w + beyond);
   }
   // Camera side, the mirror image: technique t' weighs the ratios of y(t') .. y(t-1), and the
@@ -211,8 +217,9 @@ template <bool kMerges>
       const double r = s == 0 ? ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA) / neeOverOrigin
                               : ratio(c.ptMinusFromLight, e.ptMinus->pdfFwdA);
       double w = usable ? count(t - 2) * connections : 0.0;
-      // Technique t' = t - 2's merge merges ptMinus (s' = s + 2 >= 2).
-      if constexpr (kMerges) w += merge(2, *e.ptMinus, e.ptMinus->pdfFwdA);
+      // Technique t' = t - 2's merge merges ptMinus (s' = s + 2 >= 2), after pt (never delta: a
+      // connection's end).
+      if constexpr (kMerges) w += merge(2, *e.ptMinus, e.ptMinus->pdfFwdA, false);
       beyond = power(r) * (w + cameraSum[t - 2]);
     }
     // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
@@ -225,15 +232,17 @@ template <bool kMerges>
                      : s == 1 ? ratio(c.ptFromLight, pt.pdfFwdA) / neeOverOrigin
                               : ratio(c.ptFromLight, pt.pdfFwdA);
     double w = usable ? count(t - 1) * connections : 0.0;
-    // Technique t' = t - 1's merge merges pt (s' = s + 1: not x0, s >= 1).
-    if constexpr (kMerges) w += merge(s + 1, pt, pt.pdfFwdA);
+    // Technique t' = t - 1's merge merges pt (s' = s + 1: not x0, s >= 1), after qs.
+    if constexpr (kMerges) w += merge(s + 1, pt, pt.pdfFwdA, false);
     right = power(r) * (w + beyond);
   }
   // Veach eq. 10.9 relative to C(s, t)'s own (n_s p_s)^beta, and with merges the merge at qs
   // (M(s, t + 1), whose density is C(s, t)'s times eta pFromCamera(qs)).
   const double own = t == 1 ? lightTracingCount : 1.0;
   double sum = own + left + right;
-  if constexpr (kMerges) sum = own * m.connections + (e.qs ? merge(s, *e.qs, c.qsFromCamera) : 0.0) + left + right;
+  if constexpr (kMerges)
+    sum = own * m.connections + (e.qs && e.qsMinus ? merge(s, *e.qs, c.qsFromCamera, e.qsMinus->isDelta) : 0.0) +
+          left + right;
   const double w = own / sum;
   if (!std::isfinite(left + right) || !std::isfinite(w)) return std::nullopt;
   return static_cast<float>(w);
@@ -321,12 +330,15 @@ MergeLightTerms mergeLightTerms(const Scene& scene, const PathVertex* lightPath,
   const bool beyondUsable = s == 2 ? canBeHitAsOrigin(q) && !q.isDelta
                                    : !lightPath[s - 3].isDelta && !q.isDelta && (s != 3 || lightPath[0].pdfNeeA != 0.f);
   double w = beyondUsable ? m.connections : 0.0;
-  if (s >= 4 && m.merges && mergeableVertex(lightPath[s - 3])) w += mergeTerm(power, m, lightPath[s - 3].pdfRevA);
+  if (s >= 4 && m.merges && mergeableVertex(lightPath[s - 3]))
+    w += mergeTerm(power, m, lightPath[s - 3].pdfRevA, lightPath[s - 4].isDelta);
   r.beyond = w + lightSum[s - 2];
   r.beyondScale = (s == 3 ? neeOverOrigin : 1.0) / remap0(s == 2 ? q.pdfNeeA : q.pdfFwdA);
   // Technique s - 1 (s = 2: technique 1) and its merge at y(s-2).
   r.connection = !q.isDelta && (s != 2 || q.pdfNeeA != 0.f) ? m.connections : 0.0;
   r.predecessorMergeable = s >= 3 && m.merges && mergeableVertex(q);
+  r.caustic = q.isDelta;
+  r.predecessorCaustic = s >= 3 && lightPath[s - 3].isDelta;
   r.ownScale = (s == 2 ? neeOverOrigin : 1.0) / remap0(y.pdfFwdA);
   r.areaToPrev = y.areaToPrev;
   r.shortestEdge2 = lightShortestEdge2[s - 1];
@@ -345,9 +357,10 @@ MergeCameraTerms mergeCameraTerms(const Subpath& cameraPath, int t, const Subpat
   auto count = [&](int tPrime) { return tPrime == 1 ? lightTracingCount : 1.0; };
   MergeCameraTerms r;
   r.pFwd = remap0(z.pdfFwdA);
-  // The merge weighed, at y (always mergeable: the pass stores no other), and the connection
-  // C(s, t - 1) of the same path, unless z(t-2) is a delta vertex no connection can end at.
-  r.mergeAtZ = m.merges ? mergeTerm(power, m, z.pdfFwdA) : 0.0;
+  // The merge weighed, at y (always mergeable: the pass stores no other), as if y were caustic
+  // (mergeWeightFromTerms applies y's keep), and the connection C(s, t - 1) of the same path,
+  // unless z(t-2) is a delta vertex no connection can end at.
+  r.mergeAtZ = m.merges ? mergeTerm(power, m, z.pdfFwdA, true) : 0.0;
   r.connection = pt.isDelta ? 0.0 : count(tc) * m.connections;
   r.hasCameraSide = tc >= 2;
   if (r.hasCameraSide) {
@@ -356,14 +369,15 @@ MergeCameraTerms mergeCameraTerms(const Subpath& cameraPath, int t, const Subpat
     if (tc >= 3) {
       const bool usable = !ptMinus.isDelta && !cameraPath[tc - 3].isDelta;
       double w = usable ? count(tc - 2) * m.connections : 0.0;
-      if (m.merges && mergeableVertex(ptMinus)) w += mergeTerm(power, m, ptMinus.pdfFwdA);
+      if (m.merges && mergeableVertex(ptMinus)) w += mergeTerm(power, m, ptMinus.pdfFwdA, pt.isDelta);
       beyond = power(ratio(ptMinus.pdfRevA, ptMinus.pdfFwdA)) * (w + cameraSums.sum[static_cast<size_t>(tc - 2)]);
     }
     // Technique t - 2 connects z(t-2) and z(t-3): not through a delta vertex, not from the lens to
     // a light at infinity; its merge at z(t-2).
     const bool usable = !ptMinus.isDelta && !(tc == 2 && pt.isInfinite) && !pt.isDelta;
     double w = usable ? count(tc - 1) * m.connections : 0.0;
-    if (m.merges && mergeableVertex(pt)) w += mergeTerm(power, m, pt.pdfFwdA);
+    // The merge at z(t-2), after the merged vertex (never delta).
+    if (m.merges && mergeableVertex(pt)) w += mergeTerm(power, m, pt.pdfFwdA, false);
     r.beyond = w + beyond;
     r.scale = 1.0 / remap0(pt.pdfFwdA);
   }
@@ -382,14 +396,16 @@ std::optional<float> mergeWeightFromTerms(const MergeLightTerms& light, const Me
   const double x = remap0(static_cast<double>(pdfs.towardLightW * light.areaToPrev));
   const double beyond = power(x * light.beyondScale) * light.beyond;
   double w = light.connection;
-  if (light.predecessorMergeable) w += power(m.eta * x);
+  if (light.predecessorMergeable) w += power(m.eta * mergeKeep(m.nonCaustic, light.predecessorCaustic) * x);
   const double left = power(camera.pFwd * light.ownScale) * (w + beyond);
   double right = 0.0;
   if (camera.hasCameraSide) {
     const double y = remap0(static_cast<double>(pdfs.towardCameraW * camera.areaToPrev));
     right = power(y * camera.scale) * camera.beyond;
   }
-  const double weight = camera.mergeAtZ / (camera.connection + camera.mergeAtZ + left + right);
+  // T(eta k_y pFwd(z)) = T(k_y) T(eta pFwd(z)) (T(x) is x^beta, or one).
+  const double own = light.caustic ? camera.mergeAtZ : power(m.nonCaustic) * camera.mergeAtZ;
+  const double weight = own / (camera.connection + own + left + right);
   if (!std::isfinite(left + right) || !std::isfinite(weight)) return std::nullopt;
   return static_cast<float>(weight);
 }

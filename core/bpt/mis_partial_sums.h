@@ -49,7 +49,19 @@ struct MergeTerms {
   double connections = 1.0;  // 1: every connection enabled; 0: none (bpm)
   bool merges = false;       // every merge enabled
   double eta = 0.0;
+  double nonCaustic = 1.0;   // MergePass::nonCaustic (mergeKeep)
 };
+
+// The probability that a pass keeps light vertex x_i for merging (MergePass::index): one when the
+// light walk reached it by a delta bounce, x(i-1) scattering by a delta lobe (a caustic: light,
+// mirror or glass, then x_i), else `nonCaustic`. One for every vertex is Georgiev et al.'s VCM;
+// below one the pass thins the other light vertices and the survivors carry 1 / keep. A merge at
+// x_i then has the density of the one that kept every vertex times keep: it multiplies eta in
+// every merge term (n_M p_M(s') = eta keep(x(s'-1)) pFromCamera(x(s'-1)) p_C(s')), a function of
+// the path's delta flags alone, so the weights stay a partition of unity.
+inline double mergeKeep(double nonCaustic, bool lightPredecessorDelta) {
+  return lightPredecessorDelta ? 1.0 : nonCaustic;
+}
 
 // A vertex a merge may take as its merged vertex: on a surface, not scattered by a delta lobe (an
 // interior vertex: callers rule out x0 and the camera).
@@ -117,7 +129,8 @@ struct MergePdfs {
 // fixes, the weight of M(s, t) on its merged path C(s, t - 1) (mergedPathDensities) is
 //   left  = T(r_y) (c_y + m_y T(eta X) + T(X K_b) B),   r_y = pFwd(z) K_y,
 //   right = T(Y K_z) B_z,
-//   w = T(eta pFwd(z)) / (c_z + T(eta pFwd(z)) + left + right),
+//   w = T(eta k_y pFwd(z)) / (c_z + T(eta k_y pFwd(z)) + left + right),
+// with k the keep probabilities of the merged vertices (mergeKeep; m_y's term has eta k_q X),
 // every other factor fixed by one walk alone (the members below).
 struct MergeLightTerms {
   double beyond = 0.0;         // B: w(s-2) + left(s-2), the terms beyond y(s-2)
@@ -127,6 +140,8 @@ struct MergeLightTerms {
   float areaToPrev = 0.f;      // y's: X = towardLightW areaToPrev
   float shortestEdge2 = 0.f;   // the light prefix's shortest edge (hasShortEdge)
   bool predecessorMergeable = false;  // m_y: the merge at y(s-2) counted
+  bool caustic = false;               // y(s-2) is a delta vertex: y kept with probability one (mergeKeep)
+  bool predecessorCaustic = false;    // y(s-3) is: the same for the merge at y(s-2)
 };
 struct MergeCameraTerms {
   double mergeAtZ = 0.0;       // T(eta pFwd(z)): the weighed merge's own term

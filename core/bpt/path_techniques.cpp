@@ -52,7 +52,8 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
   if (!merges) return out;
   // M(s', n + 1 - s'), s' = 2 .. n - 1: the connection C(s')'s density times the acceptance
   // probability pi r^2 pFromCamera(x_{s'-1}) (Georgiev et al. 2012 eq. 10; a zero camera-side
-  // density there, a delta lobe beside it, counts one as in the weights).
+  // density there, a delta lobe beside it, counts one as in the weights) and the probability that
+  // the pass kept x_{s'-1} (mergeKeep).
   const double area = 3.14159265358979323846 * static_cast<double>(merges->radius) * static_cast<double>(merges->radius);
   const int onlySite = onlyMergeSite(d, merges->mis);
   for (int sp = 2; sp <= d.n - 1; ++sp) {
@@ -66,7 +67,8 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
     x.enabled = techniques.contains(x.technique());
     x.counted = x.possible && x.enabled;
     if (x.possible) {
-      x.pdfA = connectionDensity(sp) * area * remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]);
+      x.pdfA = connectionDensity(sp) * area * remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]) *
+               mergeKeep(merges->mis.nonCaustic, d.delta[static_cast<size_t>(sp - 2)]);
       weigh(x);
     }
     out.push_back(x);

@@ -98,8 +98,11 @@ std::string describe(const RenderSettings& s) {
                         s.isolate->t, s.isolate->unweighted);
   // Only when not the default, so the keys of existing caches stay what they were.
   if (s.connect != ConnectStrategy::All) text += fmt::format(" connect={}", connectStrategyName(s.connect));
-  if (covers(s.techniques.families(), TechniqueKind::Merge))
+  if (covers(s.techniques.families(), TechniqueKind::Merge)) {
     text += fmt::format(" radius={} alpha={}", s.mergeRadius, s.mergeRadiusAlpha);
+    // Only below one, so that the keys of caches made when every vertex was kept stay theirs.
+    if (mergeNonCaustic(s) != 1.f) text += fmt::format(" noncaustic={}", mergeNonCaustic(s));
+  }
   if (s.mergeSite != MergeSite::Every) text += fmt::format(" mergeSite={}", mergeSiteName(s.mergeSite));
   if (s.camera) {
     text += fmt::format(" yfov={} aspect={} camera=", s.camera->yfov, s.camera->aspectRatio.value_or(0.f));

@@ -55,6 +55,13 @@ TechniqueSet enabledTechniques(const RenderSettings& settings) {
   return settings.techniques;
 }
 
+float mergeNonCaustic(const RenderSettings& settings) {
+  if (settings.mergeNonCaustic) return *settings.mergeNonCaustic;
+  const TechniqueFamilies families = enabledTechniques(settings).families();
+  return covers(families, TechniqueKind::Connection) && settings.mergeSite == MergeSite::Every ? kDefaultMergeNonCaustic
+                                                                                                 : 1.f;
+}
+
 uint64_t mergeStoreBytes(const RenderSettings& s) {
   // A stored vertex (MergePass), its path index and MIS sums, and at most as many mergeable ones:
   // the index's point, position and pointer, the grid's index, position and sort key, and the
@@ -114,6 +121,9 @@ void validateSettings(const RenderSettings& s) {
       throw std::invalid_argument(fmt::format("--radius {} is outside (0, {}]", s.mergeRadius, kMaxMergeRadius));
     if (!(s.mergeRadiusAlpha > 0.f && s.mergeRadiusAlpha <= 1.f))
       throw std::invalid_argument(fmt::format("--radius-alpha {} is outside (0, 1]", s.mergeRadiusAlpha));
+    if (s.mergeNonCaustic && !(*s.mergeNonCaustic >= kMinMergeNonCaustic && *s.mergeNonCaustic <= 1.f))
+      throw std::invalid_argument(
+          fmt::format("--noncaustic-photons {} is outside [{}, 1]", *s.mergeNonCaustic, kMinMergeNonCaustic));
     if (s.connect == ConnectStrategy::Endpoints)
       throw std::invalid_argument("merging techniques need path reuse (--connect all), not naive BPT");
     // The merge pass stores every pixel's light subpath, up to maxLength vertices each: refused

@@ -48,6 +48,10 @@ struct RenderSettings {
   // (core/bpt/merge_pass.h). SmallVCM's defaults.
   float mergeRadius = 0.003f;
   float mergeRadiusAlpha = 0.75f;
+  // The share of the non-caustic light vertices (not reached by a delta bounce) a pass keeps for
+  // merging, each kept one standing for 1 / share of them; caustic ones are always kept
+  // (MergePass::index, mergeKeep). One: every vertex, Georgiev et al.'s VCM. Unset: mergeNonCaustic().
+  std::optional<float> mergeNonCaustic;
   // Progressive photon mapping (Hachisuka, Ogaki and Jensen 2008) among the merges: a camera
   // subpath merges only at its first vertex that is not a delta scatter (MergeSite).
   MergeSite mergeSite = MergeSite::Every;
@@ -64,6 +68,15 @@ struct RenderSettings {
 
 inline constexpr int kMaxPyramidLength = 8;
 inline constexpr float kMaxMergeRadius = 0.5f;  // of the scene's bounding radius
+// Below this a kept non-caustic vertex would carry more than a thousand times its throughput.
+inline constexpr float kMinMergeNonCaustic = 0.001f;
+// The share where the set has connections beside merges at every camera vertex (vcm): there the
+// connections carry what the non-caustic merges would, and keeping a twentieth of those vertices
+// took the all-diffuse box from 0.47 to about 0.7 of BPT's efficiency, and the mirror-and-glass
+// box's caustic region from 1.9x to 2.2x BPT's (docs/benchmarks.md, "Session 20: non-caustic
+// photons"). Without connections (bpm) or with one merge per path (ppm) the merges are all
+// there is: every vertex is kept.
+inline constexpr float kDefaultMergeNonCaustic = 0.05f;
 inline constexpr uint64_t kMaxMergeStoreBytes = 8ull << 30;
 // The consistency check keeps a mask of the techniques able to sample each path (one bit each).
 inline constexpr int kMaxCheckedLength = 30;
@@ -84,6 +97,10 @@ const char* integratorName(IntegratorKind kind);
 // The techniques the bidirectional tracer weighs and adds to the image: settings.techniques, less
 // every t >= 2 under `lt` (light tracing, TechniqueSet::lightTracing). The path tracer ignores them.
 TechniqueSet enabledTechniques(const RenderSettings& settings);
+// The share of non-caustic light vertices a merge pass keeps: settings.mergeNonCaustic when set,
+// else kDefaultMergeNonCaustic where connections are enabled beside merges at every camera vertex,
+// one otherwise.
+float mergeNonCaustic(const RenderSettings& settings);
 // The families the technique pyramid keeps: every connection up to its length, and the merges when
 // any is enabled (a family no technique uses costs no memory).
 TechniqueFamilies pyramidFamilies(const RenderSettings& settings);

@@ -29,6 +29,7 @@ RenderSettings mergeInspectionSettings(const std::string& techniques, MisHeurist
   s.integrator = IntegratorKind::Bpt;
   s.techniques = TechniqueSet::parse(techniques);
   s.mergeRadius = 0.05f;
+  s.mergeNonCaustic = 1.f;  // every light vertex kept: merges in every pixel
   s.mis.heuristic = heuristic;
   s.seed = 17;
   return s;

@@ -3,7 +3,8 @@
 // pairs of the bundled scenes, for every connectable (s, t) and for the merge of every mergeable
 // light vertex with every mergeable camera vertex, under balance, power and uniform, with every
 // connection and merge enabled (vcm) and with the merges alone (bpm), at an eta below, near and
-// above the paths' densities, they agree to 1e-5 relative.
+// above the paths' densities, keeping every light vertex or thinning the non-caustic ones
+// (mergeKeep), they agree to 1e-5 relative.
 #include "core/bpt/connect.h"
 #include "core/bpt/merge_mis.h"
 #include "core/bpt/mis_partial_sums.h"
@@ -46,10 +47,11 @@ MergeSumsTally compareWithMerges(const Scene& scene, const Camera& camera, int m
                                          WalkOptions{maxLength + 1, true, scene.mediumAt(camera.position())}, cp, counters);
     const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, true}, lp, counters);
     for (const double eta : {1e-3, 0.7, 300.0})
-      for (const MisOptions& o : options) {
+      for (const MisOptions& o : options)
+      for (const double nonCaustic : {1.0, 0.15}) {
         const MisPower power(o);
-        const MergeTerms terms{withConnections ? 1.0 : 0.0, true, eta};
-        const MergeMis merge{eta};
+        const MergeTerms terms{withConnections ? 1.0 : 0.0, true, eta, nonCaustic};
+        const MergeMis merge{eta, false, nonCaustic};
         accumulateCameraSums(cp, power, ratio, cameraSums, terms);
         accumulateLightSums(lp, power, lightSums, terms);
         storedSum.assign(static_cast<size_t>(std::max(ns, 1)), 0.0);
@@ -82,7 +84,7 @@ MergeSumsTally compareWithMerges(const Scene& scene, const Camera& camera, int m
             ++tally.connections;
             EXPECT_NEAR(*fast, oracle, 1e-5f * std::max(oracle, 1e-3f))
                 << name << " C(" << s << "," << t << ") " << misHeuristicName(o.heuristic) << " beta " << o.beta
-                << " eta " << eta;
+                << " eta " << eta << " non-caustic " << nonCaustic;
             if (::testing::Test::HasFailure()) return tally;
           }
         // Merges of every mergeable light vertex y(s-1) with every mergeable camera vertex z(t-1):
@@ -106,7 +108,7 @@ MergeSumsTally compareWithMerges(const Scene& scene, const Camera& camera, int m
             ++tally.merges;
             EXPECT_NEAR(*fast, oracle, 1e-5f * std::max(oracle, 1e-3f))
                 << name << " M(" << s << "," << t << ") " << misHeuristicName(o.heuristic) << " beta " << o.beta
-                << " eta " << eta;
+                << " eta " << eta << " non-caustic " << nonCaustic;
             if (::testing::Test::HasFailure()) return tally;
           }
         }

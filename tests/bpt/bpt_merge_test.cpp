@@ -46,6 +46,11 @@ TEST(VertexMerging, EachMergeLengthEstimatesTheConnectionsImageOfItsLength) {
     estimators.push_back({c, mergeSettings(c, 10 + static_cast<uint64_t>(k)), 64});
     estimators.push_back({m, mergeSettings(m, 20 + static_cast<uint64_t>(k)), 64});
     pairs.push_back({m, c, 0, 0.1});
+    // A quarter of the light vertices kept (none is caustic here), each standing for four.
+    RenderSettings thinned = mergeSettings(m, 30 + static_cast<uint64_t>(k));
+    thinned.mergeNonCaustic = 0.25f;
+    estimators.push_back({m + ", non-caustic 0.25", thinned, 64});
+    pairs.push_back({m + ", non-caustic 0.25", c, 0, 0.1});
   }
   const auto run = test::runAgreement(scene, estimators, {grid}, pairs, test::kFamilyAlpha);
   std::cout << run.summary();
@@ -54,15 +59,23 @@ TEST(VertexMerging, EachMergeLengthEstimatesTheConnectionsImageOfItsLength) {
 
 TEST(VertexMerging, ConnectionsAndMergesTogetherAgreeWithBpt) {
   // The integrating sphere, and a glass sphere's caustic, where the merges take the paths
-  // light -> glass -> glass -> floor -> camera that only light tracing and s = 0 connect.
+  // light -> glass -> glass -> floor -> camera that only light tracing and s = 0 connect: with
+  // every light vertex kept for merging, and with the non-caustic ones thinned.
   static const Scene caustic(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/caustic.gltf"));
   const std::vector<std::pair<const char*, const Scene*>> scenes = {{"integrating sphere", &mergeSphere()},
                                                                     {"caustic", &caustic}};
   for (const auto& [name, scene] : scenes) {
     const test::PixelLabels grid = test::gridLabels(kMergeImageSize, kMergeImageSize, 3, 3);
+    // And with a fifth of the non-caustic light vertices kept for merging (each standing for five,
+    // their merges' densities a fifth: mergeKeep), the caustic ones all kept.
+    RenderSettings thinned = mergeSettings("all;m=all", 33, 0.01f);
+    thinned.mergeNonCaustic = 0.2f;
     const std::vector<test::EstimatorSpec> estimators = {{"bpt", mergeSettings("all", 31), 128},
-                                                         {"vcm", mergeSettings("all;m=all", 32, 0.01f), 128}};
-    const auto run = test::runAgreement(*scene, estimators, {grid}, {{"vcm", "bpt", 0, 0.05}}, test::kFamilyAlpha);
+                                                         {"vcm", mergeSettings("all;m=all", 32, 0.01f), 128},
+                                                         {"vcm, non-caustic 0.2", thinned, 128}};
+    const auto run = test::runAgreement(*scene, estimators, {grid},
+                                        {{"vcm", "bpt", 0, 0.05}, {"vcm, non-caustic 0.2", "bpt", 0, 0.05}},
+                                        test::kFamilyAlpha);
     std::cout << run.summary();
     test::expectAgreement(run, name);
   }
@@ -89,29 +102,33 @@ TEST(VertexMerging, ProgressivePhotonMappingAgreesWithBpt) {
 // The MIS check (checkMis) sums, on every connection the render forms, the weights of every
 // technique of its length, connections and merges: one on each.
 TEST(VertexMerging, TheWeightsOverConnectionsAndMergesSumToOneOnEveryPath) {
-  for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
-    RenderSettings s = mergeSettings("all;m=all", 7, 0.05f);
-    s.mis.heuristic = h;
-    s.checkMis = true;
-    RenderSession session(mergeSphere(), s);
-    session.renderPass();
-    EXPECT_GT(session.counters().misPartitionChecks, 1000u) << misHeuristicName(h);
-    EXPECT_EQ(session.counters().misPartitionFailures, 0u) << misHeuristicName(h);
-    // Progressive photon mapping: the camera paths that hit a light and the one merge at their
-    // first non-specular vertex.
-    RenderSettings ppm = mergeSettings("s=0;m=all", 8, 0.05f);
-    ppm.mergeSite = MergeSite::FirstNonSpecular;
-    ppm.mis.heuristic = h;
-    ppm.checkMis = true;
-    RenderSession ppmSession(mergeSphere(), ppm);
-    ppmSession.renderPass();
-    EXPECT_GT(ppmSession.counters().misPartitionChecks, 100u) << misHeuristicName(h);
-    EXPECT_EQ(ppmSession.counters().misPartitionFailures, 0u) << "ppm " << misHeuristicName(h);
-  }
+  for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform})
+    for (const float nonCaustic : {1.f, 0.3f}) {
+      RenderSettings s = mergeSettings("all;m=all", 7, 0.05f);
+      s.mis.heuristic = h;
+      s.mergeNonCaustic = nonCaustic;
+      s.checkMis = true;
+      RenderSession session(mergeSphere(), s);
+      session.renderPass();
+      EXPECT_GT(session.counters().misPartitionChecks, 1000u) << misHeuristicName(h);
+      EXPECT_EQ(session.counters().misPartitionFailures, 0u) << misHeuristicName(h) << " non-caustic " << nonCaustic;
+      // Progressive photon mapping: the camera paths that hit a light and the one merge at their
+      // first non-specular vertex.
+      RenderSettings ppm = mergeSettings("s=0;m=all", 8, 0.05f);
+      ppm.mergeSite = MergeSite::FirstNonSpecular;
+      ppm.mis.heuristic = h;
+      ppm.mergeNonCaustic = nonCaustic;
+      ppm.checkMis = true;
+      RenderSession ppmSession(mergeSphere(), ppm);
+      ppmSession.renderPass();
+      EXPECT_GT(ppmSession.counters().misPartitionChecks, 100u) << misHeuristicName(h);
+      EXPECT_EQ(ppmSession.counters().misPartitionFailures, 0u) << "ppm " << misHeuristicName(h);
+    }
 }
 
 TEST(VertexMerging, TheSameImageAtAnyThreadCount) {
   RenderSettings s = mergeSettings("all;m=all", 5);
+  s.mergeNonCaustic = 0.3f;  // the pass's keep decisions too
   auto render = [&](int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
     RenderSession session(mergeSphere(), s);

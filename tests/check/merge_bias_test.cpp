@@ -74,6 +74,7 @@ RenderSettings mergeCheckSettings(uint64_t seed) {
   RenderSettings s;
   s.width = 48, s.height = 48, s.maxLength = 3, s.seed = seed;
   s.mergeRadius = 0.08f;
+  s.mergeNonCaustic = 1.f;  // every light vertex: the check's power against the radius, as published
   return s;
 }
 

@@ -55,6 +55,8 @@ expect_error "view --error-csv missing parent" "errors.csv: the directory .*/mis
 expect_error "render --integrator vcm --techniques" "--integrator vcm sets the techniques" \
   render "$BOX" -o "$TMP/x.png" --integrator vcm --techniques all
 expect_error "render --radius 0" "--radius" render "$BOX" -o "$TMP/x.png" --integrator vcm --radius 0
+expect_error "render --noncaustic-photons 0" "--noncaustic-photons" render "$BOX" -o "$TMP/x.png" --integrator vcm --noncaustic-photons 0
+expect_error "converge vcm:noncaustic-photons=2" "noncaustic-photons 2" converge "$BOX" -o "$TMP/conv" --configs "vcm:noncaustic-photons=2" --spp 2
 "$PATHLAB" render "$BOX" -o "$TMP/vcm.exr" --integrator vcm --spp 1 --width 16 --height 16 --force >/dev/null 2>&1 &&
   [ -s "$TMP/vcm.exr" ] && ok || fail "render --integrator vcm"
 

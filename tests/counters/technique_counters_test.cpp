@@ -138,6 +138,7 @@ TEST(TechniqueCounters, MergingHasItsRaysAndTime) {
   RenderSettings vcm = bpt();
   vcm.techniques = TechniqueSet::parse("all;m=all");
   vcm.mergeRadius = 0.05f;  // 384 light subpaths: a radius that finds some of them
+  vcm.mergeNonCaustic = 1.f;  // all of them kept
   for (const bool merges : {true, false}) {
     RenderSession session(countersCornellBox(), merges ? vcm : bpt());
     session.setTiming(true);

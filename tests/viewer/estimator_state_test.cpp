@@ -149,6 +149,9 @@ TEST(EstimatorState, DescriptionNamesTheMergeRadiusAndSite) {
   s.mergeSite = MergeSite::FirstNonSpecular;
   EXPECT_EQ(describe(s), "bpt, max length 4, techniques s=0;m=all, MIS balance, merging radius 0.01 alpha 0.5 at the "
                          "first non-specular camera vertex (ppm)");
+  s.mergeNonCaustic = 0.1f;
+  EXPECT_EQ(describe(s), "bpt, max length 4, techniques s=0;m=all, MIS balance, merging radius 0.01 alpha 0.5 at the "
+                         "first non-specular camera vertex (ppm), non-caustic photons 0.1");
   s.techniques = TechniqueSet::all();  // no merge: nothing about merging
   EXPECT_EQ(describe(s), "bpt, max length 4, techniques all, MIS balance");
 }

@@ -125,8 +125,9 @@ std::string describe(const RenderSettings& s) {
     out += fmt::format(", MIS {}", misHeuristicName(s.mis.heuristic));
   if (s.mis.minConnection != kDefaultMinConnection) out += fmt::format(", min connection {:g}", s.mis.minConnection);
   if (covers(enabled.families(), TechniqueKind::Merge))
-    out += fmt::format(", merging radius {:g} alpha {:g}{}", s.mergeRadius, s.mergeRadiusAlpha,
-                       s.mergeSite == MergeSite::FirstNonSpecular ? " at the first non-specular camera vertex (ppm)" : "");
+    out += fmt::format(", merging radius {:g} alpha {:g}{}{}", s.mergeRadius, s.mergeRadiusAlpha,
+                       s.mergeSite == MergeSite::FirstNonSpecular ? " at the first non-specular camera vertex (ppm)" : "",
+                       s.mergeNonCaustic ? fmt::format(", non-caustic photons {:g}", *s.mergeNonCaustic) : "");
   if (s.connect != ConnectStrategy::All) out += fmt::format(", connect {}", connectStrategyName(s.connect));
   if (s.injectBias)
     out += fmt::format(", BIAS INJECTED: ({},{}) x {:g}", s.injectBias->s, s.injectBias->t, s.injectBias->factor);

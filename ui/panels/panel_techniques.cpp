@@ -288,8 +288,9 @@ void drawCheckControls(EstimatorState& estimator, TechniqueGridState& grid, cons
 namespace {
 
 // Vertex merging's parameters, shown while the set has merges: the first pass's radius and its
-// schedule (--radius, --radius-alpha), where the camera subpath merges (ppm), and the radius the
-// shown image's last pass used.
+// schedule (--radius, --radius-alpha), where the camera subpath merges (ppm), the share of
+// non-caustic light vertices kept (--noncaustic-photons), and the radius the shown image's last
+// pass used.
 void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
   if (!covers(enabledTechniques(edited).families(), TechniqueKind::Merge)) return;
   ImGui::Separator();
@@ -308,6 +309,15 @@ void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
     ImGui::SetTooltip("progressive photon mapping's estimator: the camera subpath merges once, where it first meets\n"
                       "a surface that is not a mirror or glass; off, it merges at every such vertex (VCM, BPM)");
   edited.mergeSite = firstOnly ? MergeSite::FirstNonSpecular : MergeSite::Every;
+  // Unset until moved: the share then follows the set (mergeNonCaustic).
+  float nonCaustic = mergeNonCaustic(edited);
+  if (ImGui::SliderFloat("non-caustic photons", &nonCaustic, kMinMergeNonCaustic, 1.f, "%.3g",
+                         ImGuiSliderFlags_Logarithmic))
+    edited.mergeNonCaustic = nonCaustic;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the share of light vertices not reached through a mirror or glass that a pass keeps for\n"
+                      "merging, each kept one standing for 1/share (--noncaustic-photons); caustic ones are always\n"
+                      "kept. 1 is VCM as published; less costs less where connections already do well");
   const RenderSettings* shown = now.shown;
   if (shown && now.passes > 0 && covers(enabledTechniques(*shown).families(), TechniqueKind::Merge))
     ImGui::TextDisabled("pass %llu: r = %.3g (scene radius %.3g)", static_cast<unsigned long long>(now.passes),
