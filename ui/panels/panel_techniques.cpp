@@ -311,7 +311,7 @@ void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
   edited.mergeSite = firstOnly ? MergeSite::FirstNonSpecular : MergeSite::Every;
   // Unset until moved: the share then follows the set (mergeNonCaustic).
   float nonCaustic = mergeNonCaustic(edited);
-  if (ImGui::SliderFloat("non-caustic photons", &nonCaustic, kMinMergeNonCaustic, 1.f, "%.3g",
+  if (ImGui::SliderFloat("non-caustic", &nonCaustic, kMinMergeNonCaustic, 1.f, "%.3g",
                          ImGuiSliderFlags_Logarithmic))
     edited.mergeNonCaustic = nonCaustic;
   if (ImGui::IsItemHovered())
