@@ -15,6 +15,7 @@ BAD_SETTINGS = [
     (dict(techniques="9,9,9"), "techniques"),
     (dict(isolate="M1,2"), "isolate"),
     (dict(radius_alpha=1.5, integrator="vcm"), "radius_alpha: Value 1.5 not in range"),
+    (dict(noncaustic_photons=0, integrator="vcm"), "noncaustic_photons: Value 0 not in range"),
     (dict(width=-3), "width"),
     (dict(width=10000, height=10000), "is more than"),
     (dict(technique_maps=3, integrator="pt"), "technique_maps needs the bidirectional tracer"),
