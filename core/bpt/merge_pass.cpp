@@ -18,11 +18,10 @@ const PathVertex& MergePass::vertex(uint32_t v) const {
   return walkItems[item].vertices[v - itemStart[item]];
 }
 
-void MergePass::index(float r, double keepNonCaustic, uint64_t key) {
+void MergePass::index(float r, double keepNonCaustic, uint64_t keepKey) {
   radius = r;
   const float keep = static_cast<float>(keepNonCaustic);
   nonCaustic = static_cast<double>(keep);  // the weights use the very probability the filter does
-  keepKey = key;
   // The filter in parallel, its output in vertex order: each work item counts its mergeable
   // vertices, the items' offsets follow, then each item writes its own.
   const size_t items = walkItems.size();

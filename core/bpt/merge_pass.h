@@ -62,10 +62,8 @@ struct MergePass {
   std::vector<MergeRecord> records;  // per grid slot (HashGrid::querySlots)
   float radius = 0.f;
   // The probability of keeping a mergeable light vertex that the light walk did not reach by a
-  // delta bounce (mergeKeep; the caustic ones are always kept), and the key of the pass's keep
-  // decisions (a function of the seed and the pass, so any pass can be rebuilt).
+  // delta bounce (mergeKeep; the caustic ones are always kept): every merge weight carries it.
   double nonCaustic = 1.0;
-  uint64_t keepKey = 0;
   uint64_t lightSubpaths = 0;  // N
   // eta = pi r^2 N, the merges' factor in every MIS weight (merge_mis.h), and 1 / (pi r^2 N), the
   // density estimate's normalisation of a merge's contribution (Georgiev et al. eq. 11).
@@ -83,7 +81,8 @@ struct MergePass {
   // Keeps, of the stored vertices, those that can be merged: on a surface, not the light origin
   // (index 0 in its path), not scattered by a delta lobe; of these the non-caustic ones with
   // probability `nonCaustic` (their records' throughput divided by it), decided by a hash of
-  // `keepKey` and the vertex's index; then builds the grid over them with `radius` and their
+  // `keepKey` (a function of the seed and the pass, so any pass can be rebuilt) and the vertex's
+  // index; then builds the grid over them with `radius` and their
   // records in its slot order (without `mis`: BidirTracer::prepareMergePass).
   void index(float radius, double nonCaustic = 1.0, uint64_t keepKey = 0);
 };

@@ -102,27 +102,27 @@ TEST(VertexMerging, ProgressivePhotonMappingAgreesWithBpt) {
 // The MIS check (checkMis) sums, on every connection the render forms, the weights of every
 // technique of its length, connections and merges: one on each.
 TEST(VertexMerging, TheWeightsOverConnectionsAndMergesSumToOneOnEveryPath) {
+  // One pass of `s` under heuristic h with the MIS check on: its counters.
+  auto checkedPass = [](RenderSettings s, MisHeuristic h, float nonCaustic) {
+    s.mis.heuristic = h;
+    s.mergeNonCaustic = nonCaustic;
+    s.checkMis = true;
+    RenderSession session(mergeSphere(), s);
+    session.renderPass();
+    return session.counters();
+  };
   for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform})
     for (const float nonCaustic : {1.f, 0.3f}) {
-      RenderSettings s = mergeSettings("all;m=all", 7, 0.05f);
-      s.mis.heuristic = h;
-      s.mergeNonCaustic = nonCaustic;
-      s.checkMis = true;
-      RenderSession session(mergeSphere(), s);
-      session.renderPass();
-      EXPECT_GT(session.counters().misPartitionChecks, 1000u) << misHeuristicName(h);
-      EXPECT_EQ(session.counters().misPartitionFailures, 0u) << misHeuristicName(h) << " non-caustic " << nonCaustic;
+      const Counters vcm = checkedPass(mergeSettings("all;m=all", 7, 0.05f), h, nonCaustic);
+      EXPECT_GT(vcm.misPartitionChecks, 1000u) << misHeuristicName(h);
+      EXPECT_EQ(vcm.misPartitionFailures, 0u) << misHeuristicName(h) << " non-caustic " << nonCaustic;
       // Progressive photon mapping: the camera paths that hit a light and the one merge at their
       // first non-specular vertex.
       RenderSettings ppm = mergeSettings("s=0;m=all", 8, 0.05f);
       ppm.mergeSite = MergeSite::FirstNonSpecular;
-      ppm.mis.heuristic = h;
-      ppm.mergeNonCaustic = nonCaustic;
-      ppm.checkMis = true;
-      RenderSession ppmSession(mergeSphere(), ppm);
-      ppmSession.renderPass();
-      EXPECT_GT(ppmSession.counters().misPartitionChecks, 100u) << misHeuristicName(h);
-      EXPECT_EQ(ppmSession.counters().misPartitionFailures, 0u) << "ppm " << misHeuristicName(h);
+      const Counters ppmCounters = checkedPass(ppm, h, nonCaustic);
+      EXPECT_GT(ppmCounters.misPartitionChecks, 100u) << misHeuristicName(h);
+      EXPECT_EQ(ppmCounters.misPartitionFailures, 0u) << "ppm " << misHeuristicName(h) << " non-caustic " << nonCaustic;
     }
 }
 
