@@ -90,14 +90,14 @@ CheckOutcome checkScene(CheckCommandOptions& o, const Scene& scene, bool progres
   std::vector<MergeBiasLevel> radii;
   for (int level = 0; level < levels; ++level) {
     RenderSettings s = settings;
-    s.mergeRadius = settings.mergeRadius / static_cast<float>(1 << level);
+    s.mergeRadius = firstMergeRadius(settings) / static_cast<float>(1 << level);
     s.seed = settings.seed + static_cast<uint64_t>(level);
     sessions.push_back(std::make_unique<RenderSession>(scene, s));
     RenderSession& session = *sessions.back();
     const auto start = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     const double pixels = static_cast<double>(session.film().pixelCount());
-    const std::string label = merges ? fmt::format("r = {:g}  ", s.mergeRadius) : "";
+    const std::string label = merges ? fmt::format("r = {:g}  ", *s.mergeRadius) : "";
     std::optional<ProgressBar> bar;
     if (progress)
       bar.emplace([&] {
@@ -111,7 +111,7 @@ CheckOutcome checkScene(CheckCommandOptions& o, const Scene& scene, bool progres
       session.renderPass();
       if (stop && stop->load(std::memory_order_relaxed)) throw CheckStopped();
     }
-    radii.push_back(MergeBiasLevel{s.mergeRadius, session.techniqueCheck()});
+    radii.push_back(MergeBiasLevel{*s.mergeRadius, session.techniqueCheck()});
   }
   // The connections do not depend on the radius: their sums over every render are one longer check.
   TechniqueCheck pooled = *sessions.front()->techniqueCheck();
@@ -146,7 +146,7 @@ int runCheck(CheckCommandOptions o) {
   std::cout << fmt::format("{}: {}, {} x {}, seed {}{}\n", o.scene.path, integratorName(settings.integrator),
                            settings.width, settings.height, settings.seed,
                            outcome.merges ? fmt::format(", merges at {} radii from {:g} (the i-th: halved i times, seed + i)",
-                                                        outcome.radiusLevels, settings.mergeRadius)
+                                                        outcome.radiusLevels, firstMergeRadius(settings))
                                           : "");
   std::cout << checkReportText(outcome.report);
   if (outcome.merges) std::cout << "\n" << mergeBiasText(*outcome.merges);

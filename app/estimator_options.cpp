@@ -57,7 +57,8 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "Enabled techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all (connections), MS,T | m=K | "
                   "m=all (merges; 'all;m=all' is vertex connection and merging)");
   cmd->add_option("--radius", s.mergeRadius,
-                  "Merging radius of the first pass, a fraction of the scene's bounding radius")
+                  "Merging radius of the first pass, a fraction of the scene's bounding radius (default: 0.003 at 512 x 512 "
+                  "pixels, times 512 / sqrt(width x height) at other sizes)")
       ->check(CLI::Range(0.f, kMaxMergeRadius));
   cmd->add_option("--radius-alpha", s.mergeRadiusAlpha,
                   "Progressive radius: pass i merges within r_1 i^((alpha - 1) / 2) (1: fixed radius)")

@@ -99,7 +99,7 @@ std::string describe(const RenderSettings& s) {
   // Only when not the default, so the keys of existing caches stay what they were.
   if (s.connect != ConnectStrategy::All) text += fmt::format(" connect={}", connectStrategyName(s.connect));
   if (covers(s.techniques.families(), TechniqueKind::Merge)) {
-    text += fmt::format(" radius={} alpha={}", s.mergeRadius, s.mergeRadiusAlpha);
+    text += fmt::format(" radius={} alpha={}", firstMergeRadius(s), s.mergeRadiusAlpha);
     // Only below one, so that the keys of caches made when every vertex was kept stay theirs.
     if (mergeNonCaustic(s) != 1.f) text += fmt::format(" noncaustic={}", mergeNonCaustic(s));
   }

@@ -242,7 +242,7 @@ void RenderSession::buildMergePass(uint64_t pass, Counters& counters, MergePass&
     }
   });
   m.lightSubpaths = lightSubpathsPerPass(film_.pixelCount());
-  m.index(mergeRadius(settings_.mergeRadius * scene_.bounds().radius, settings_.mergeRadiusAlpha, pass),
+  m.index(mergeRadius(firstMergeRadius(settings_) * scene_.bounds().radius, settings_.mergeRadiusAlpha, pass),
           mergeNonCaustic(settings_), mixBits(settings_.seed ^ mixBits(pass ^ 0xA0761D6478BD642Full)));
   // Each stored path's MIS partial sums and each mergeable vertex's terms, now that eta is known.
   bidirTracer_->prepareMergePass(m);

@@ -11,6 +11,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -60,6 +61,12 @@ float mergeNonCaustic(const RenderSettings& settings) {
   const TechniqueFamilies families = enabledTechniques(settings).families();
   return covers(families, TechniqueKind::Connection) && settings.mergeSite == MergeSite::Every ? kDefaultMergeNonCaustic
                                                                                                  : 1.f;
+}
+
+float firstMergeRadius(const RenderSettings& settings) {
+  if (settings.mergeRadius) return *settings.mergeRadius;
+  const double pixels = std::max(1.0, static_cast<double>(settings.width) * static_cast<double>(settings.height));
+  return static_cast<float>(std::min<double>(kMaxMergeRadius, kDefaultMergeRadius * std::sqrt(kDefaultMergeRadiusPixels / pixels)));
 }
 
 uint64_t mergeStoreBytes(const RenderSettings& s) {
@@ -117,8 +124,8 @@ void validateSettings(const RenderSettings& s) {
   if (bidirectional) s.techniques.checkFits(s.maxLength);  // throws naming the problem
   if (bidirectional && covers(enabledTechniques(s).families(), TechniqueKind::Merge)) {
     // Vertex merging: light subpaths of the whole pass, merged at surfaces with path reuse.
-    if (!(s.mergeRadius > 0.f && s.mergeRadius <= kMaxMergeRadius))
-      throw std::invalid_argument(fmt::format("--radius {} is outside (0, {}]", s.mergeRadius, kMaxMergeRadius));
+    if (s.mergeRadius && !(*s.mergeRadius > 0.f && *s.mergeRadius <= kMaxMergeRadius))
+      throw std::invalid_argument(fmt::format("--radius {} is outside (0, {}]", *s.mergeRadius, kMaxMergeRadius));
     if (!(s.mergeRadiusAlpha > 0.f && s.mergeRadiusAlpha <= 1.f))
       throw std::invalid_argument(fmt::format("--radius-alpha {} is outside (0, 1]", s.mergeRadiusAlpha));
     if (s.mergeNonCaustic && !(*s.mergeNonCaustic >= kMinMergeNonCaustic && *s.mergeNonCaustic <= 1.f))

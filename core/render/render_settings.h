@@ -44,9 +44,9 @@ struct RenderSettings {
   bool checkTechniques = false;
   int checkBlocks = 4;  // the check's regions: a checkBlocks x checkBlocks grid and the whole image
   // Vertex merging (the techniques' merges): the first pass's radius as a fraction of the scene's
-  // bounding radius, and alpha of the progressive schedule r_i = r_1 i^((alpha - 1) / 2)
-  // (core/bpt/merge_pass.h). SmallVCM's defaults.
-  float mergeRadius = 0.003f;
+  // bounding radius (unset: firstMergeRadius() picks it from the image size), and alpha of the
+  // progressive schedule r_i = r_1 i^((alpha - 1) / 2) (core/bpt/merge_pass.h; SmallVCM's 0.75).
+  std::optional<float> mergeRadius;
   float mergeRadiusAlpha = 0.75f;
   // The share of the non-caustic light vertices (not reached by a delta bounce) a pass keeps for
   // merging, each kept one standing for 1 / share of them; caustic ones are always kept
@@ -68,6 +68,10 @@ struct RenderSettings {
 
 inline constexpr int kMaxPyramidLength = 8;
 inline constexpr float kMaxMergeRadius = 0.5f;  // of the scene's bounding radius
+// The default first radius at 512 x 512 pixels (SmallVCM's radius at its default image size),
+// scaled by 512 / sqrt(width x height) elsewhere: see firstMergeRadius.
+inline constexpr float kDefaultMergeRadius = 0.003f;
+inline constexpr float kDefaultMergeRadiusPixels = 512.f * 512.f;
 // Below this a kept non-caustic vertex would carry more than a thousand times its throughput.
 inline constexpr float kMinMergeNonCaustic = 0.001f;
 // The share where the set has connections beside merges at every camera vertex (vcm): there the
@@ -101,6 +105,14 @@ TechniqueSet enabledTechniques(const RenderSettings& settings);
 // else kDefaultMergeNonCaustic where connections are enabled beside merges at every camera vertex,
 // one otherwise.
 float mergeNonCaustic(const RenderSettings& settings);
+// The first pass's merge radius, a fraction of the scene's bounding radius: settings.mergeRadius
+// when set, else kDefaultMergeRadius x sqrt(512^2 / pixels), at most kMaxMergeRadius. A pass has
+// one light subpath per pixel, so a disk of radius r holds on average (light vertex density per
+// subpath) x pi r^2 x pixels of them: r proportional to 1 / sqrt(pixels) keeps that count, and the
+// disk's size against a pixel, the same at every image size. The merges' variance and blur then
+// look alike at any resolution; at a fixed radius a 256^2 image merged a quarter as many vertices
+// per disk as a 512^2 one (measured: docs/benchmarks.md, "Session 21").
+float firstMergeRadius(const RenderSettings& settings);
 // The families the technique pyramid keeps: every connection up to its length, and the merges when
 // any is enabled (a family no technique uses costs no memory).
 TechniqueFamilies pyramidFamilies(const RenderSettings& settings);

@@ -56,14 +56,14 @@ LadderRun runLadder(const Scene& scene, RenderSettings s, int passes) {
   s.checkTechniques = true;
   s.mergeRadiusAlpha = 1.f;
   LadderRun run;
-  const float r = s.mergeRadius;
+  const float r = *s.mergeRadius;
   for (int level = 0; level < 3; ++level) {
     RenderSettings l = s;
     l.mergeRadius = r / static_cast<float>(1 << level);
     l.seed = s.seed + static_cast<uint64_t>(level);
     run.sessions.push_back(std::make_unique<RenderSession>(scene, l));
     for (int p = 0; p < passes; ++p) run.sessions.back()->renderPass();
-    run.levels.push_back(MergeBiasLevel{l.mergeRadius, run.sessions.back()->techniqueCheck()});
+    run.levels.push_back(MergeBiasLevel{*l.mergeRadius, run.sessions.back()->techniqueCheck()});
   }
   run.merges = mergeBiasReport(run.levels);
   run.atLargestRadius = checkReport(*run.levels.front().check);

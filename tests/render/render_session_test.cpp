@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <cmath>
+#include <optional>
+
 namespace pathlab {
 namespace {
 
@@ -36,6 +39,24 @@ TEST(RenderSession, SameSeedSameImageWhateverTheThreadCount) {
   different.renderPass();
   different.renderPass();
   EXPECT_NE(different.image().rgb, one.rgb);
+}
+
+// Without --radius a merge pass uses firstMergeRadius: at 24 x 16 pixels 0.003 x sqrt(512^2 / 384).
+TEST(RenderSession, MergesUseTheDefaultRadiusOfTheImageSize) {
+  Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
+  auto render = [&](std::optional<float> radius) {
+    RenderSettings s = sessionSettings();
+    s.integrator = IntegratorKind::Bpt;
+    s.techniques = TechniqueSet::parse("all;m=all");
+    s.mergeRadius = radius;
+    s.mergeNonCaustic = 1.f;  // every light vertex: 384 of them a pass
+    RenderSession session(scene, s);
+    for (int i = 0; i < 2; ++i) session.renderPass();
+    return session.image();
+  };
+  const Image unset = render(std::nullopt);
+  EXPECT_EQ(unset.rgb, render(static_cast<float>(double{0.003f} * std::sqrt(512.0 * 512.0 / (24.0 * 16.0)))).rgb);
+  EXPECT_NE(unset.rgb, render(0.003f).rgb);  // the radius reaches the image
 }
 
 // Any sample can be replayed alone: the sum over passes of replaySample is the film's pixel.

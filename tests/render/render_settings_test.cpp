@@ -61,5 +61,26 @@ TEST(RenderSettingsValidation, OutOfRangeFloatSettingsAreRefused) {
   EXPECT_EQ(refusal(s), "");
 }
 
+// The default first merge radius keeps a disk's expected count of light vertices, pi r^2 x
+// pixels x their density per subpath, the same at every image size: r^2 x pixels is constant,
+// with SmallVCM's 0.003 at its 512 x 512. An explicit radius is kept as given.
+TEST(MergeRadius, TheDefaultKeepsTheLightVerticesPerDiskAtEveryImageSize) {
+  RenderSettings s;
+  s.width = s.height = 512;
+  EXPECT_FLOAT_EQ(firstMergeRadius(s), kDefaultMergeRadius);
+  const double perDisk = double(kDefaultMergeRadius) * kDefaultMergeRadius * 512.0 * 512.0;
+  for (const auto& [w, h] : {std::pair{256, 256}, {1024, 256}, {640, 480}, {1920, 1080}, {37, 5}}) {
+    s.width = w, s.height = h;
+    const double r = firstMergeRadius(s);
+    EXPECT_NEAR(r * r * w * h / perDisk, 1.0, 1e-5) << w << " x " << h;
+  }
+  s.width = s.height = 256;
+  EXPECT_FLOAT_EQ(firstMergeRadius(s), 2.f * kDefaultMergeRadius);
+  s.width = s.height = 1;  // a single pixel would want 1.5: held at the most --radius takes
+  EXPECT_FLOAT_EQ(firstMergeRadius(s), kMaxMergeRadius);
+  s.mergeRadius = 0.01f;
+  EXPECT_FLOAT_EQ(firstMergeRadius(s), 0.01f);
+}
+
 }  // namespace
 }  // namespace pathlab

@@ -125,7 +125,7 @@ std::string describe(const RenderSettings& s) {
     out += fmt::format(", MIS {}", misHeuristicName(s.mis.heuristic));
   if (s.mis.minConnection != kDefaultMinConnection) out += fmt::format(", min connection {:g}", s.mis.minConnection);
   if (covers(enabled.families(), TechniqueKind::Merge))
-    out += fmt::format(", merging radius {:g} alpha {:g}{}{}", s.mergeRadius, s.mergeRadiusAlpha,
+    out += fmt::format(", merging radius {:g} alpha {:g}{}{}", firstMergeRadius(s), s.mergeRadiusAlpha,
                        s.mergeSite == MergeSite::FirstNonSpecular ? " at the first non-specular camera vertex (ppm)" : "",
                        s.mergeNonCaustic ? fmt::format(", non-caustic photons {:g}", *s.mergeNonCaustic) : "");
   if (s.connect != ConnectStrategy::All) out += fmt::format(", connect {}", connectStrategyName(s.connect));

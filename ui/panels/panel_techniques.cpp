@@ -295,10 +295,14 @@ void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
   if (!covers(enabledTechniques(edited).families(), TechniqueKind::Merge)) return;
   ImGui::Separator();
   ImGui::TextUnformatted("vertex merging");
-  ImGui::SliderFloat("radius", &edited.mergeRadius, 1e-4f, kMaxMergeRadius, "%.4g", ImGuiSliderFlags_Logarithmic);
+  // Unset until moved: the radius then follows the image size (firstMergeRadius).
+  float radius = firstMergeRadius(edited);
+  if (ImGui::SliderFloat("radius", &radius, 1e-4f, kMaxMergeRadius, "%.4g", ImGuiSliderFlags_Logarithmic))
+    edited.mergeRadius = radius;
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("r1, the first pass's merge radius, as a fraction of the scene's bounding radius (--radius):\n"
-                      "larger merges more light vertices (less noise) over a wider disk (more blur, more bias)");
+                      "larger merges more light vertices (less noise) over a wider disk (more blur, more bias).\n"
+                      "Until moved it follows the image size: 0.003 at 512 x 512, times 512 / sqrt(pixels)");
   ImGui::SliderFloat("radius alpha", &edited.mergeRadiusAlpha, 0.05f, 1.f, "%.2f");
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("pass i merges within r_i = r1 i^((alpha - 1) / 2) (--radius-alpha): the bias vanishes as passes\n"
@@ -321,7 +325,7 @@ void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
   const RenderSettings* shown = now.shown;
   if (shown && now.passes > 0 && covers(enabledTechniques(*shown).families(), TechniqueKind::Merge))
     ImGui::TextDisabled("pass %llu: r = %.3g (scene radius %.3g)", static_cast<unsigned long long>(now.passes),
-                        static_cast<double>(mergeRadius(shown->mergeRadius * now.sceneRadius, shown->mergeRadiusAlpha,
+                        static_cast<double>(mergeRadius(firstMergeRadius(*shown) * now.sceneRadius, shown->mergeRadiusAlpha,
                                                         now.passes - 1)),
                         static_cast<double>(now.sceneRadius));
 }
