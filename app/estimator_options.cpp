@@ -67,6 +67,17 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "Share of the light vertices not reached through a mirror or glass that a pass keeps for merging, "
                   "each standing for 1/share of them (caustic ones are always kept; 1: every vertex, VCM as published)")
       ->check(CLI::Range(kMinMergeNonCaustic, 1.f));
+  cmd->add_option_function<std::string>(
+         "--medium-sampling",
+         [&s](const std::string& name) {
+           const std::optional<MediumSampling> m = parseMediumSampling(name);
+           if (!m) throw CLI::ValidationError("--medium-sampling", "'" + name + "' is not distance, equiangular or mis");
+           s.mediumSampling = m;
+         },
+         "In media, how the path tracer places the scattering vertex it connects to a light: distance (along the "
+         "transmittance), equiangular (toward the light point, Kulla and Fajardo 2012) or mis (both; the path tracer's "
+         "default)")
+      ->type_name("distance|equiangular|mis");
   auto* isolate = cmd->add_option("--isolate", o.isolate,
                                   "Show technique S,T (or merge MS,T) alone: its MIS-weighted share (or with --unweighted its own estimate)");
   cmd->add_flag("--unweighted", o.unweighted,

@@ -771,6 +771,16 @@ def caustic():
     return b
 
 
+def foggy_room(part, half, height, wall, floor, fog_boundary):
+    """A room 2 half x height x 2 half m (x, z in [-half, half], y in [0, height], faces inward)
+    filled with fog: its index-matched boundary box 1 cm inside the walls, 5 mm below the ceiling."""
+    part("floor", rect((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), half, half), floor)
+    part("ceiling", rect((0.0, height, 0.0), (0.0, -1.0, 0.0), half, half), wall)
+    part("walls", merged(*(rect((half * sx, 0.5 * height, half * sz), (-sx, 0.0, -sz), half, 0.5 * height)
+                           for sx, sz in ((1, 0), (-1, 0), (0, 1), (0, -1)))), wall)
+    part("fogVolume", box((0.0, 0.5 * height, 0.0), (half - 0.01, 0.5 * height - 0.005, half - 0.01)), fog_boundary)
+
+
 def fog():
     """A room filled with thin fog, lit by a spot light shining down through a glass sphere: the
     beam is visible in the fog, and the sphere focuses it into a volumetric caustic (light ->
@@ -793,12 +803,8 @@ def fog():
     def part(name, geom, material):
         nodes.append(b.add_node(name, b.add_geom(geom, material, name)))
 
-    # Room 3 x 2.5 x 3 m: x, z in [-1.5, 1.5], y in [0, 2.5], faces inward.
-    part("floor", rect((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 1.5, 1.5), floor)
-    part("ceiling", rect((0.0, 2.5, 0.0), (0.0, -1.0, 0.0), 1.5, 1.5), wall)
-    part("walls", merged(*(rect((1.5 * sx, 1.25, 1.5 * sz), (-sx, 0.0, -sz), 1.5, 1.25)
-                           for sx, sz in ((1, 0), (-1, 0), (0, 1), (0, -1)))), wall)
-    part("fogVolume", box((0.0, 1.25, 0.0), (1.49, 1.245, 1.49)), fog_boundary)
+    # Room 3 x 2.5 x 3 m.
+    foggy_room(part, 1.5, 2.5, wall, floor, fog_boundary)
     part("glassSphere", uv_sphere((-0.3, 1.3, -0.2), 0.3), glass)
     # Volumes nest but must not overlap: the block floats 1 cm up, inside the fog.
     part("glassBlock", box((0.3, 0.21, -0.55), (0.12, 0.2, 0.12)), blue_glass)
@@ -808,6 +814,40 @@ def fog():
                             rotation=quat_axis_angle((1.0, 0.0, 0.0), -math.pi / 2.0)))
     nodes.append(b.add_camera_node((0.9, 1.2, 1.4), (-0.25, 0.8, -0.2), 1.0))
     b.add_scene("fog", nodes)
+    return b
+
+
+def fog_lamp():
+    """A bare bulb (a point light) hanging in a foggy room, a table beneath it, a dim panel in
+    the ceiling's corner: the glow around the bulb and the table's shadow shaft are single
+    scattering that distance sampling finds only where the fog happens to scatter near the bulb;
+    equiangular sampling (issue 35) places the vertex where the bulb's light falls off."""
+    b = GltfBuilder()
+    wall = b.add_material("wall", (0.25, 0.25, 0.25), lambertian=True)
+    floor = b.add_material("floor", (0.2, 0.18, 0.15), lambertian=True)
+    wood = b.add_material("table", (0.5, 0.35, 0.2), lambertian=True)
+    panel = b.add_material("panel", (0.0, 0.0, 0.0), lambertian=True, emission=(1.0, 0.95, 0.9))
+    # Thin fog: sigma_t = -ln(0.95) / 1 m = 0.051 per metre, white, slightly forward scattering.
+    fog_boundary = b.add_material("fog", (1.0, 1.0, 1.0), roughness=0.0, glass=True, ior=1.0,
+                                  volume=((0.95, 0.95, 0.95), 1.0),
+                                  scatter=((1.0, 1.0, 1.0), 0.2))
+    nodes = []
+
+    def part(name, geom, material):
+        nodes.append(b.add_node(name, b.add_geom(geom, material, name)))
+
+    # Room 4 x 2.6 x 4 m.
+    foggy_room(part, 2.0, 2.6, wall, floor, fog_boundary)
+    # A table: a top 1.2 x 0.8 m, 4 cm thick, at 0.75 m, on four legs; inside the fog.
+    legs = [box((sx * 0.55, 0.365, sz * 0.35), (0.03, 0.355, 0.03)) for sx in (-1, 1) for sz in (-1, 1)]
+    part("table", merged(box((0.0, 0.75, 0.0), (0.6, 0.02, 0.4)), *legs), wood)
+    # A dim 0.4 x 0.4 m panel 1 mm below the ceiling, in a corner (an area light in the fog).
+    part("panel", rect((-1.5, 2.599, -1.5), (0.0, -1.0, 0.0), 0.2, 0.2), panel)
+    # The bulb: 2 W/sr, warm, 1.5 m up above the table's edge.
+    bulb = b.add_light("bulb", "point", 2.0, (1.0, 0.85, 0.65))
+    nodes.append(b.add_node("bulb", light=bulb, translation=(0.3, 1.5, -0.2)))
+    nodes.append(b.add_camera_node((1.5, 1.2, 1.8), (-0.2, 1.0, -0.5), 1.0))
+    b.add_scene("fog-lamp", nodes)
     return b
 
 
@@ -1151,6 +1191,7 @@ def main():
     write(ASSETS / "bidir-lamp.gltf", bidir_lamp().gltf_bytes())
     write(ASSETS / "caustic.gltf", caustic().gltf_bytes())
     write(ASSETS / "fog.gltf", fog().gltf_bytes())
+    write(ASSETS / "fog-lamp.gltf", fog_lamp().gltf_bytes())
     write(ASSETS / "isometric.gltf", isometric().gltf_bytes())
     write(ASSETS / "many-lights.gltf", many_lights().gltf_bytes())
     write(ASSETS / "environment.gltf",

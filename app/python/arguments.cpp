@@ -52,6 +52,7 @@ constexpr Argument kSettingsArguments[] = {
     {"radius_alpha", "--radius-alpha", Kind::Float},
     {"noncaustic_photons", "--noncaustic-photons", Kind::Float},
     {"rr", "--no-rr", Kind::NegatedFlag},
+    {"medium_sampling", "--medium-sampling", Kind::String},
     {"seed", "--seed", Kind::Int},
     {"aperture", "--aperture", Kind::Float},
     {"focus_distance", "--focus-distance", Kind::Float},

@@ -77,6 +77,7 @@ class Settings:
         radius_alpha: Optional[float] = None,
         noncaustic_photons: Optional[float] = None,
         rr: bool = True,
+        medium_sampling: Optional[str] = None,
         seed: Optional[int] = None,
         aperture: Optional[float] = None,
         focus_distance: Optional[float] = None,

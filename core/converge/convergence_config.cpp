@@ -122,12 +122,15 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
         s.mergeRadiusAlpha = parseNumber<float>(config, key, value);
       } else if (key == "noncaustic-photons") {
         s.mergeNonCaustic = parseNumber<float>(config, key, value);
+      } else if (key == "medium-sampling") {
+        s.mediumSampling = parseMediumSampling(value);
+        if (!s.mediumSampling) fail(config, fmt::format("unknown medium sampling '{}' (distance, equiangular or mis)", value));
       } else if (key == "max-length") {
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");
       } else {
         fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length, connect, radius, "
-                                  "radius-alpha, noncaustic-photons)",
+                                  "radius-alpha, noncaustic-photons, medium-sampling)",
                                   key));
       }
     }

@@ -89,7 +89,14 @@ BidirOptions bidirOptions(const RenderSettings& s) {
                       s.pyramidLength, s.checkMis,        s.connect,           s.injectBias, s.mergeSite};
 }
 
-PathTracerOptions pathTracerOptions(const RenderSettings& s) { return PathTracerOptions{s.maxLength, s.russianRoulette}; }
+PathTracerOptions pathTracerOptions(const RenderSettings& s) {
+  return PathTracerOptions{s.maxLength, s.russianRoulette, mediumSampling(s)};
+}
+
+MediumSampling mediumSampling(const RenderSettings& settings) {
+  if (settings.mediumSampling) return *settings.mediumSampling;
+  return settings.integrator == IntegratorKind::Pt ? MediumSampling::Mis : MediumSampling::Distance;
+}
 
 std::string misOffWarning(const Scene& scene, const RenderSettings& s) {
   if (s.integrator == IntegratorKind::Pt || s.mis.heuristic != MisHeuristic::Off) return "";
@@ -122,6 +129,10 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument(fmt::format("maximum path length {} is more than the {} edges the {} integrator supports",
                                             s.maxLength, kMaxBidirectionalLength, integratorName(s.integrator)));
   if (bidirectional) s.techniques.checkFits(s.maxLength);  // throws naming the problem
+  if (bidirectional && mediumSampling(s) != MediumSampling::Distance)
+    throw std::invalid_argument(fmt::format("--medium-sampling {}: only the path tracer (--integrator pt) has equiangular "
+                                            "sampling so far; the {} integrator samples distances",
+                                            mediumSamplingName(mediumSampling(s)), integratorName(s.integrator)));
   if (bidirectional && covers(enabledTechniques(s).families(), TechniqueKind::Merge)) {
     // Vertex merging: light subpaths of the whole pass, merged at surfaces with path reuse.
     if (s.mergeRadius && !(*s.mergeRadius > 0.f && *s.mergeRadius <= kMaxMergeRadius))

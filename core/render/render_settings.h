@@ -5,6 +5,7 @@
 #include "core/bpt/bidir_options.h"
 #include "core/bpt/mis_options.h"
 #include "core/bpt/technique_set.h"
+#include "core/media/medium_sampling.h"
 #include "core/pt/path_tracer.h"
 #include "core/camera/camera.h"
 #include "core/scene/scene_desc.h"
@@ -52,6 +53,9 @@ struct RenderSettings {
   // merging, each kept one standing for 1 / share of them; caustic ones are always kept
   // (MergePass::index, mergeKeep). One: every vertex, Georgiev et al.'s VCM. Unset: mergeNonCaustic().
   std::optional<float> mergeNonCaustic;
+  // Media: how the path tracer places the medium vertex of its connection to a light
+  // (core/media/medium_sampling.h). Unset: mediumSampling().
+  std::optional<MediumSampling> mediumSampling;
   // Progressive photon mapping (Hachisuka, Ogaki and Jensen 2008) among the merges: a camera
   // subpath merges only at its first vertex that is not a delta scatter (MergeSite).
   MergeSite mergeSite = MergeSite::Every;
@@ -113,6 +117,10 @@ float mergeNonCaustic(const RenderSettings& settings);
 // look alike at any resolution; at a fixed radius a 256^2 image merged a quarter as many vertices
 // per disk as a 512^2 one (measured: docs/benchmarks.md, "Session 21").
 float firstMergeRadius(const RenderSettings& settings);
+// settings.mediumSampling when set, else MIS of distance and equiangular sampling for the path
+// tracer and distance sampling for the bidirectional integrators (whose equiangular technique is
+// not built yet: validateSettings refuses the others there).
+MediumSampling mediumSampling(const RenderSettings& settings);
 // The families the technique pyramid keeps: every connection up to its length, and the merges when
 // any is enabled (a family no technique uses costs no memory).
 TechniqueFamilies pyramidFamilies(const RenderSettings& settings);

@@ -15,6 +15,7 @@ MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng,
     ++counters.rays;
     std::optional<SurfaceHit> hit = scene.intersect(ray);
     const float tMax = hit ? hit->t : std::numeric_limits<float>::infinity();
+    if (crossing == 0) step.firstSegment = tMax;
     if (medium >= 0) {
       const HomogeneousMedium& m = scene.medium(medium);
       if (m.scatters()) {
@@ -25,6 +26,7 @@ MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng,
           step.kind = isBlack(step.weight) ? MediaStepKind::Absorbed : MediaStepKind::Medium;
           step.p = ray.o + ds.t * ray.d;
           step.medium = medium;
+          if (crossing == 0) step.firstSegmentT = ds.t;
           return step;
         }
       } else {

@@ -23,6 +23,11 @@ struct MediaStep {
   // The segments' transmittance (and sigma_s at a scattering point) over the probability with
   // which the distance sampling produced this outcome; one in vacuum.
   Spectrum weight{1.f};
+  // The ray's first segment, up to the first surface it meets (index-matched or not; infinite
+  // when none), and where along it the step scattered (-1: not within it). Equiangular sampling
+  // places vertices in that segment only (core/pt/path_tracer.cpp).
+  float firstSegment = 0.f;
+  float firstSegmentT = -1.f;
 };
 
 // Traces `ray` starting in `medium` (-1: none) in a scene with media, counting each ray it casts in

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 namespace pathlab {
 namespace {
@@ -134,9 +135,12 @@ struct MediaCase {
   IntegratorKind integrator;
   MisHeuristic heuristic;
   const char* techniques;  // nullptr: all
+  std::optional<MediumSampling> medium = std::nullopt;  // unset: the integrator's default (pt: mis)
 };
 const MediaCase kMediaCases[] = {
     {"pt", IntegratorKind::Pt, MisHeuristic::Balance, nullptr},
+    {"pt distance", IntegratorKind::Pt, MisHeuristic::Balance, nullptr, MediumSampling::Distance},
+    {"pt equiangular", IntegratorKind::Pt, MisHeuristic::Balance, nullptr, MediumSampling::Equiangular},
     {"bpt balance", IntegratorKind::Bpt, MisHeuristic::Balance, nullptr},
     {"bpt power", IntegratorKind::Bpt, MisHeuristic::Power, nullptr},
     {"bpt uniform", IntegratorKind::Bpt, MisHeuristic::Uniform, nullptr},
@@ -169,6 +173,7 @@ TEST(MediaRender, AbsorbingSlabTransmitsExpMinusSigmaD) {
   for (const MediaCase& c : kMediaCases) {
     RenderSettings s = settingsFor(c.integrator, c.heuristic, 8, 4, seed++);
     if (c.techniques) s.techniques = TechniqueSet::parse(c.techniques);
+    s.mediumSampling = c.medium;
     for (int channel = 0; channel < 3; ++channel) {
       const double expected = std::exp(-double(sigmaT[channel]) * d);
       const test::MeanEstimate m = test::passMeans(scene, s, 24, channel);
@@ -192,6 +197,7 @@ TEST(MediaRender, FoggyFurnaceKeepsLeOverOneMinusRho) {
   for (const MediaCase& c : kMediaCases) {
     RenderSettings s = settingsFor(c.integrator, c.heuristic, 8, 60, seed++);
     if (c.techniques) s.techniques = TechniqueSet::parse(c.techniques);
+    s.mediumSampling = c.medium;
     // A subset without every technique of some length misses the paths only those sample: its
     // image is not the furnace's (light tracing alone samples every path here).
     if (c.techniques && std::string(c.techniques) != "t=1") continue;

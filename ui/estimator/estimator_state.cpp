@@ -112,7 +112,9 @@ std::string describe(const RenderSettings& s) {
   std::string out = fmt::format("{}, max length {}", integratorName(s.integrator), s.maxLength);
   // What each integrator really does: the path tracer weighs its light sample against BSDF
   // sampling with the power heuristic; light tracing has one technique per length, t = 1.
-  if (s.integrator == IntegratorKind::Pt) return out + ", light sample + BSDF sampling, MIS power (beta 2)";
+  if (s.integrator == IntegratorKind::Pt)
+    return out + ", light sample + BSDF sampling, MIS power (beta 2)" +
+           (s.mediumSampling ? fmt::format(", medium sampling {}", mediumSamplingName(*s.mediumSampling)) : "");
   const TechniqueSet enabled = enabledTechniques(s);
   out += fmt::format(", techniques {}", enabled.empty() ? "(none)" : enabled.toString());
   if (s.integrator == IntegratorKind::Lt && !s.isolate) {
