@@ -818,14 +818,15 @@ def fog():
 
 
 def fog_lamp():
-    """A bare bulb (a point light) hanging in a foggy room, a table beneath it, a dim panel in
-    the ceiling's corner: the glow around the bulb and the table's shadow shaft are single
-    scattering that distance sampling finds only where the fog happens to scatter near the bulb;
-    equiangular sampling (issue 35) places the vertex where the bulb's light falls off."""
+    """A bare bulb (a point light) hanging in a dark, foggy room (sooty walls, a black floor), a
+    table beneath it, a dim panel in the ceiling's corner: what the camera sees is mostly the
+    fog's single scattering of the bulb, its glow and the table's shadow, which distance sampling
+    finds only where the fog happens to scatter near the bulb; equiangular sampling (issue 35)
+    places the vertex where the bulb's light falls off."""
     b = GltfBuilder()
-    wall = b.add_material("wall", (0.25, 0.25, 0.25), lambertian=True)
-    floor = b.add_material("floor", (0.2, 0.18, 0.15), lambertian=True)
-    wood = b.add_material("table", (0.5, 0.35, 0.2), lambertian=True)
+    wall = b.add_material("wall", (0.06, 0.06, 0.06), lambertian=True)
+    floor = b.add_material("floor", (0.05, 0.045, 0.04), lambertian=True)
+    wood = b.add_material("table", (0.3, 0.2, 0.12), lambertian=True)
     panel = b.add_material("panel", (0.0, 0.0, 0.0), lambertian=True, emission=(1.0, 0.95, 0.9))
     # Thin fog: sigma_t = -ln(0.95) / 1 m = 0.051 per metre, white, slightly forward scattering.
     fog_boundary = b.add_material("fog", (1.0, 1.0, 1.0), roughness=0.0, glass=True, ior=1.0,
@@ -843,8 +844,8 @@ def fog_lamp():
     part("table", merged(box((0.0, 0.75, 0.0), (0.6, 0.02, 0.4)), *legs), wood)
     # A dim 0.4 x 0.4 m panel 1 mm below the ceiling, in a corner (an area light in the fog).
     part("panel", rect((-1.5, 2.599, -1.5), (0.0, -1.0, 0.0), 0.2, 0.2), panel)
-    # The bulb: 2 W/sr, warm, 1.5 m up above the table's edge.
-    bulb = b.add_light("bulb", "point", 2.0, (1.0, 0.85, 0.65))
+    # The bulb: 5 W/sr, warm, 1.5 m up above the table's edge.
+    bulb = b.add_light("bulb", "point", 5.0, (1.0, 0.85, 0.65))
     nodes.append(b.add_node("bulb", light=bulb, translation=(0.3, 1.5, -0.2)))
     nodes.append(b.add_camera_node((1.5, 1.2, 1.8), (-0.2, 1.0, -0.5), 1.0))
     b.add_scene("fog-lamp", nodes)

@@ -57,6 +57,10 @@ expect_error "render --integrator vcm --techniques" "--integrator vcm sets the t
 expect_error "render --radius 0" "--radius" render "$BOX" -o "$TMP/x.png" --integrator vcm --radius 0
 expect_error "render --noncaustic-photons 0" "--noncaustic-photons" render "$BOX" -o "$TMP/x.png" --integrator vcm --noncaustic-photons 0
 expect_error "converge vcm:noncaustic-photons=2" "noncaustic-photons 2" converge "$BOX" -o "$TMP/conv" --configs "vcm:noncaustic-photons=2" --spp 2
+expect_error "render --medium-sampling sideways" "--medium-sampling" render "$BOX" -o "$TMP/x.png" --medium-sampling sideways
+expect_error "render bpt --medium-sampling mis" "only the path tracer" render "$BOX" -o "$TMP/x.png" --integrator bpt --medium-sampling mis
+expect_error "converge medium-sampling=x" "unknown medium sampling 'x'" converge "$BOX" -o "$TMP/conv" --configs "pt:medium-sampling=x" --spp 2
+expect_error "converge bpt:medium-sampling=equiangular" "only the path tracer" converge "$BOX" -o "$TMP/conv" --configs "bpt:medium-sampling=equiangular" --spp 2
 "$PATHLAB" render "$BOX" -o "$TMP/vcm.exr" --integrator vcm --spp 1 --width 16 --height 16 --force >/dev/null 2>&1 &&
   [ -s "$TMP/vcm.exr" ] && ok || fail "render --integrator vcm"
 
