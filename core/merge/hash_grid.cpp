@@ -18,7 +18,9 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
   radius2_ = radius * radius;
   invCellSize_ = 1.f / (2.f * radius);
   const size_t n = points.size();
-  buckets_ = std::max<uint64_t>(n, 1);
+  bucketBits_ = 0;
+  while ((uint64_t{1} << bucketBits_) < 2 * static_cast<uint64_t>(n)) ++bucketBits_;
+  buckets_ = uint64_t{1} << bucketBits_;
   std::vector<uint64_t>& keys = keys_;  // bucket << 32 | index: sorting them sorts by (bucket, index)
   resizeWithRoom(keys, n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
@@ -42,6 +44,17 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
       position_[j] = points[i];
       if (j == 0 || keys[j - 1] >> 32 != b) range_[b][0] = static_cast<uint32_t>(j);
       if (j + 1 == n || keys[j + 1] >> 32 != b) range_[b][1] = static_cast<uint32_t>(j + 1);
+    }
+  });
+  // The occupancy bitmap, a word (64 buckets) per task item: each word written by one thread.
+  const size_t words = static_cast<size_t>((buckets_ + 63) / 64);
+  assignWithRoom(occupied_, words, uint64_t{0});
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, words), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t w = r.begin(); w != r.end(); ++w) {
+      uint64_t bits = 0;
+      for (size_t k = 0; k < 64 && 64 * w + k < buckets_; ++k)
+        if (range_[64 * w + k][0] < range_[64 * w + k][1]) bits |= uint64_t{1} << k;
+      occupied_[w] = bits;
     }
   });
 }

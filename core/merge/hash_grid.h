@@ -15,11 +15,15 @@
 
 namespace pathlab {
 
-// Cells of side 2r, hashed into as many buckets as points (at least one). A ball of radius r lies
-// within the 2 x 2 x 2 cells nearest its centre, so a query visits at most eight buckets; two of
-// them may be one bucket (a hash collision), which is visited once. Points are kept sorted by
-// (bucket, index) with their positions beside them, so a bucket's points are contiguous and the
-// result does not depend on the thread count that built the grid.
+// Cells of side 2r, hashed into the power of two of buckets at or above twice the points. A ball
+// of radius r lies within the 2 x 2 x 2 cells nearest its centre, so a query visits at most eight
+// buckets; two of them may be one bucket (a hash collision), which is visited once. Points are kept
+// sorted by (bucket, index) with their positions beside them, so a bucket's points are contiguous
+// and the result does not depend on the thread count that built the grid. A bitmap of the occupied
+// buckets (an eighth of a byte each, a cache-resident fraction of the ranges) lets a query skip the
+// empty ones without reading their ranges: on a surface most cells of side 2r hold no light vertex
+// when a pass keeps few of them (--noncaustic-photons), and at most 1 - e^(-1/2) of the buckets are
+// occupied.
 class HashGrid {
  public:
   // Builds over `points` with radius r > 0 (finite). In parallel (TBB), no serial pass over the
@@ -48,7 +52,8 @@ class HashGrid {
   void querySlots(const Vec3& x, Fn&& fn, Prefetch&& prefetch) const {
     if (index_.empty()) return;
     std::array<uint32_t, 8> buckets;
-    const size_t count = bucketsNear(x, buckets);
+    const size_t count = occupiedBucketsNear(x, buckets);
+    if (count == 0) return;
     // The buckets lie far apart in a store of a million points, so each visit misses the caches
     // twice (its range, then its points): the misses are issued together first, so that they
     // overlap instead of following one another (the query's cost is memory latency, not work).
@@ -71,18 +76,27 @@ class HashGrid {
   uint32_t pointOfSlot(uint32_t slot) const { return index_[slot]; }
 
  private:
-  // The distinct buckets of the 2 x 2 x 2 cells nearest x, ascending; returns their count.
-  size_t bucketsNear(const Vec3& x, std::array<uint32_t, 8>& buckets) const {
+  // The distinct occupied buckets of the 2 x 2 x 2 cells nearest x, ascending; returns their count.
+  size_t occupiedBucketsNear(const Vec3& x, std::array<uint32_t, 8>& buckets) const {
     const Vec3 c = x * invCellSize_;
     // Per axis, the cell holding x and the neighbour on the side x is closer to.
     const int64_t base[3] = {cellCoordinate(c.x), cellCoordinate(c.y), cellCoordinate(c.z)};
     const int64_t step[3] = {c.x - std::floor(c.x) < 0.5f ? -1 : 1, c.y - std::floor(c.y) < 0.5f ? -1 : 1,
                              c.z - std::floor(c.z) < 0.5f ? -1 : 1};
-    for (int n = 0; n < 8; ++n)
-      buckets[static_cast<size_t>(n)] =
+    size_t count = 0;
+    for (int n = 0; n < 8; ++n) {
+      const uint32_t b =
           bucketOf(base[0] + (n & 1 ? step[0] : 0), base[1] + (n & 2 ? step[1] : 0), base[2] + (n & 4 ? step[2] : 0));
-    std::sort(buckets.begin(), buckets.end());
-    return static_cast<size_t>(std::unique(buckets.begin(), buckets.end()) - buckets.begin());
+      if (!(occupied_[b >> 6] >> (b & 63) & 1u)) continue;
+      // Insertion into the ascending list, once (the few occupied ones: usually none to three).
+      size_t at = count;
+      while (at > 0 && buckets[at - 1] > b) --at;
+      if (at > 0 && buckets[at - 1] == b) continue;
+      for (size_t m = count; m > at; --m) buckets[m] = buckets[m - 1];
+      buckets[at] = b;
+      ++count;
+    }
+    return count;
   }
   // Cell coordinates clamped far beyond any scene (2^40 cells of side 2r), so huge or infinite
   // coordinates still hash and a query never overflows.
@@ -91,14 +105,17 @@ class HashGrid {
     return static_cast<int64_t>(std::floor(std::clamp(c, -kLimit, kLimit)));
   }
   uint32_t bucketOf(int64_t x, int64_t y, int64_t z) const {
-    // Teschner et al. 2003's spatial hash (large primes, xor), over 64-bit coordinates.
+    // Teschner et al. 2003's spatial hash (large primes, xor), over 64-bit coordinates, then its
+    // high bits by a Fibonacci multiply (Knuth): the low bits alone would repeat with the cells'.
     const uint64_t h = (static_cast<uint64_t>(x) * 73856093u) ^ (static_cast<uint64_t>(y) * 19349663u) ^
                        (static_cast<uint64_t>(z) * 83492791u);
-    return static_cast<uint32_t>(h % buckets_);
+    return bucketBits_ == 0 ? 0u : static_cast<uint32_t>((h * 0x9E3779B97F4A7C15ull) >> (64 - bucketBits_));
   }
 
   float radius_ = 0.f, radius2_ = 0.f, invCellSize_ = 0.f;
   uint64_t buckets_ = 1;
+  int bucketBits_ = 0;                 // buckets_ = 2^bucketBits_
+  std::vector<uint64_t> occupied_;     // a bit per bucket: any point in it
   // Per bucket: its points' range [begin, end) in index_ and position_ (one array: a query's
   // visit to a bucket reads one cache line for it).
   std::vector<std::array<uint32_t, 2>> range_;
