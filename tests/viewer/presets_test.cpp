@@ -76,6 +76,24 @@ TEST(Presets, MergingIntegratorsAndIsolatedMerges) {
   EXPECT_EQ(presets[0].applyTo(ppm).mergeSite, MergeSite::Every);
 }
 
+// Medium sampling (the path tracer in media): set by the preset that names it, back to the
+// integrator's default by one that does not (a bidirectional preset would be refused otherwise).
+TEST(Presets, MediumSampling) {
+  const auto presets = parsePresets(R"({"presets": [
+      {"name": "distance", "integrator": "pt", "mediumSampling": "distance"},
+      {"name": "bpt", "integrator": "bpt"}]})",
+                                    "p.json");
+  ASSERT_EQ(presets.size(), 2u);
+  const RenderSettings distance = presets[0].applyTo(RenderSettings{});
+  EXPECT_EQ(distance.mediumSampling, MediumSampling::Distance);
+  RenderSettings equiangular;
+  equiangular.integrator = IntegratorKind::Pt;
+  equiangular.mediumSampling = MediumSampling::Equiangular;
+  const RenderSettings bpt = presets[1].applyTo(equiangular);
+  EXPECT_FALSE(bpt.mediumSampling);
+  EXPECT_NO_THROW(validateSettings(bpt));
+}
+
 TEST(Presets, FieldsAndDefaults) {
   const auto presets = parsePresets(R"({"presets": [
       {"name": "a"},
@@ -139,6 +157,9 @@ INSTANTIATE_TEST_SUITE_P(
                             "(4,4) has length 7"},
                     BadCase{R"({"presets": [{"name": "x", "integrator": "mlt"}]})", "mlt"},
                     BadCase{R"({"presets": [{"name": "x", "mis": "max"}]})", "max"},
+                    BadCase{R"({"presets": [{"name": "x", "integrator": "pt", "mediumSampling": "far"}]})",
+                            "mediumSampling \"far\" is not distance, equiangular or mis"},
+                    BadCase{R"({"presets": [{"name": "x", "mediumSampling": "mis"}]})", "only the path tracer"},
                     BadCase{R"({"presets": [{"name": "x", "maxLength": 0}]})", "maxLength"},
                     BadCase{R"({"presets": [{"name": "x", "minConnection": -1}]})", "minConnection"},
                     BadCase{R"({"presets": [{"name": "x", "maxLength": "5"}]})", "an integer"},

@@ -25,7 +25,7 @@ using Json = nlohmann::json;
 constexpr uint64_t kMaxPresetsBytes = uint64_t(16) << 20;
 
 const std::set<std::string> kKeys = {"name", "integrator", "techniques", "mis", "beta", "minConnection", "maxLength",
-                                     "isolate", "unweighted", "camera", "compare", "description"};
+                                     "isolate", "unweighted", "camera", "compare", "description", "mediumSampling"};
 
 // A JSON number as a float, refused when it is not finite as a float (1e39 is a double but no float,
 // and would come back as "camera transform entry -nan" far from the file).
@@ -117,6 +117,12 @@ NamedPreset parseOne(const Json& p) {
     if (!(out.mis.minConnection >= 0.f && out.mis.minConnection <= 1.f))
       throw std::invalid_argument("\"minConnection\" must be in [0, 1]");
   }
+  if (p.contains("mediumSampling")) {
+    const std::string v = typed(p, "mediumSampling", &Json::is_string, "a string").get<std::string>();
+    out.mediumSampling = parseMediumSampling(v);
+    if (!out.mediumSampling)
+      throw std::invalid_argument(fmt::format("mediumSampling \"{}\" is not distance, equiangular or mis", v));
+  }
   if (p.contains("maxLength")) {
     out.maxLength = integerIn(typed(p, "maxLength", &Json::is_number_integer, "an integer"), "\"maxLength\"", 1, 1000);
   }
@@ -201,6 +207,7 @@ RenderSettings NamedPreset::applyTo(const RenderSettings& current) const {
   s.maxLength = maxLength;
   s.isolate = isolate;
   s.mergeSite = mergeSite;
+  s.mediumSampling = mediumSampling;
   if (camera) s.camera = camera;
   return s;
 }

@@ -8,7 +8,8 @@
 //                 "compare": "bpt:mis=power"}]}
 //
 // "integrator" is also "vcm", "bpm" or "ppm" (bpt with their own technique set, as on the command
-// line); "isolate" is also a string "S,T" or "MS,T" (the merge M(s,t)), as --isolate takes it.
+// line); "isolate" is also a string "S,T" or "MS,T" (the merge M(s,t)), as --isolate takes it;
+// "mediumSampling" is "distance", "equiangular" or "mis" (the path tracer in media, --medium-sampling).
 //
 // Only "name" is required. A field left out takes the default of `pathlab view` (bpt, all,
 // balance, beta 2, min connection 0.001, max length 10, no isolation), so a preset always means
@@ -37,6 +38,7 @@ struct NamedPreset {
   int maxLength = 10;
   std::optional<Isolation> isolate;
   MergeSite mergeSite = MergeSite::Every;  // ppm: FirstNonSpecular
+  std::optional<MediumSampling> mediumSampling;  // unset: the integrator's default
   std::optional<CameraDesc> camera;
   // Side B of the A/B comparison (a converge CONFIG, ui/lane/compare.h): the preset sets both sides and
   // turns the comparison on. None: the comparison is left as it is.
