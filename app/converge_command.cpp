@@ -261,9 +261,12 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
       throw std::invalid_argument(fmt::format("configuration '{}': {}", c.label, e.what()));
     }
   }
-  for (const ConvergenceConfig& c : p.configs)
+  for (const ConvergenceConfig& c : p.configs) {
     if (const std::string w = misOffWarning(*p.scene, c.settings); !w.empty())
       log << fmt::format("pathlab: warning: '{}': {}\n", c.label, w);
+    if (const std::string w = mediumSamplingWarning(*p.scene, c.settings); !w.empty())
+      log << fmt::format("pathlab: warning: '{}': {}\n", c.label, w);
+  }
   if (job.leader() && o.reference.empty()) {
     const fs::path cached = cachedReferencePath(o, referenceRun(o, p.base, p.budget));
     if (fs::exists(cached)) p.reference = readImage(cached.string());

@@ -105,6 +105,14 @@ std::string misOffWarning(const Scene& scene, const RenderSettings& s) {
   return misOffWarning(misOffBias(scene, enabledTechniques(s), s.maxLength, pinhole, orthographic));
 }
 
+std::string mediumSamplingWarning(const Scene& scene, const RenderSettings& s) {
+  if (!s.mediumSampling) return "";
+  for (const HomogeneousMedium& m : scene.media().media())
+    if (m.scatters()) return "";
+  return fmt::format("--medium-sampling {} changes nothing here: no medium in the scene scatters",
+                     mediumSamplingName(*s.mediumSampling));
+}
+
 void validateSettingsForCamera(const RenderSettings& s, const CameraDesc& sceneCamera) {
   if (!s.camera.value_or(sceneCamera).orthographic) return;
   if (s.integrator == IntegratorKind::Lt)

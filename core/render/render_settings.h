@@ -136,6 +136,9 @@ class Scene;
 // The one-line warning of MIS off (mis_off.h) for these settings in this scene: which lengths are
 // biased and why; "" for any other heuristic, the path tracer, or an unbiased scene.
 std::string misOffWarning(const Scene& scene, const RenderSettings& settings);
+// When --medium-sampling is given for a scene in which no medium scatters: it changes nothing
+// there, and a user comparing the modes should know. Empty otherwise.
+std::string mediumSamplingWarning(const Scene& scene, const RenderSettings& settings);
 
 // Throws std::invalid_argument with a one-line message naming the setting when the settings
 // cannot be rendered: no technique of length 1..maxLength enabled or one listed beyond it, an

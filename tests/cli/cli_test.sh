@@ -66,6 +66,13 @@ else fail "mis off warning: $(cat "$TMP/err")"; fi
 if "$PATHLAB" render "$BOX" -o "$TMP/off2.pfm" --spp 1 --width 16 --height 12 --mis off 2>"$TMP/err" &&
   ! grep -q "mis off" "$TMP/err"; then ok
 else fail "mis off warned on the Cornell box: $(cat "$TMP/err")"; fi
+# --medium-sampling where no medium scatters changes nothing: one warning line; none in fog.
+if "$PATHLAB" render "$BOX" -o "$TMP/ms.pfm" --spp 1 --width 16 --height 12 --integrator pt --medium-sampling distance \
+  2>"$TMP/err" && [ "$(grep -c "medium-sampling distance changes nothing here" "$TMP/err")" -eq 1 ]; then ok
+else fail "medium sampling warning: $(cat "$TMP/err")"; fi
+if "$PATHLAB" render "$SRC/assets/fog-lamp.gltf" -o "$TMP/ms2.pfm" --spp 1 --width 16 --height 12 --integrator pt \
+  --medium-sampling equiangular 2>"$TMP/err" && ! grep -q "changes nothing" "$TMP/err"; then ok
+else fail "medium sampling warned in fog: $(cat "$TMP/err")"; fi
 
 # --replay prints one sample technique by technique; bad requests are one-line errors.
 if "$PATHLAB" render "$BOX" --replay 5,6,2 --width 16 --height 12 --max-length 3 >"$TMP/replay" 2>"$TMP/err" &&
