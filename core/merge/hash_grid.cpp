@@ -20,7 +20,7 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
   const size_t n = points.size();
   bucketBits_ = 0;
   while ((uint64_t{1} << bucketBits_) < 2 * static_cast<uint64_t>(n)) ++bucketBits_;
-  buckets_ = uint64_t{1} << bucketBits_;
+  const size_t buckets = size_t{1} << bucketBits_;
   std::vector<uint64_t>& keys = keys_;  // bucket << 32 | index: sorting them sorts by (bucket, index)
   resizeWithRoom(keys, n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
@@ -33,7 +33,7 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
   tbb::parallel_sort(keys.begin(), keys.end());
   resizeWithRoom(index_, n);
   resizeWithRoom(position_, n);
-  assignWithRoom(range_, static_cast<size_t>(buckets_), std::array<uint32_t, 2>{0u, 0u});
+  assignWithRoom(range_, buckets, std::array<uint32_t, 2>{0u, 0u});
   // A bucket's range starts where its key first appears and ends after its last: each boundary is
   // written by the one thread that sees it, so the ranges need no atomics.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n), [&](const tbb::blocked_range<size_t>& r) {
@@ -47,12 +47,12 @@ void HashGrid::build(std::span<const Vec3> points, float radius) {
     }
   });
   // The occupancy bitmap, a word (64 buckets) per task item: each word written by one thread.
-  const size_t words = static_cast<size_t>((buckets_ + 63) / 64);
+  const size_t words = (buckets + 63) / 64;
   assignWithRoom(occupied_, words, uint64_t{0});
   tbb::parallel_for(tbb::blocked_range<size_t>(0, words), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t w = r.begin(); w != r.end(); ++w) {
       uint64_t bits = 0;
-      for (size_t k = 0; k < 64 && 64 * w + k < buckets_; ++k)
+      for (size_t k = 0; k < 64 && 64 * w + k < buckets; ++k)
         if (range_[64 * w + k][0] < range_[64 * w + k][1]) bits |= uint64_t{1} << k;
       occupied_[w] = bits;
     }

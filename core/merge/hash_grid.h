@@ -113,8 +113,7 @@ class HashGrid {
   }
 
   float radius_ = 0.f, radius2_ = 0.f, invCellSize_ = 0.f;
-  uint64_t buckets_ = 1;
-  int bucketBits_ = 0;                 // buckets_ = 2^bucketBits_
+  int bucketBits_ = 0;                 // 2^bucketBits_ buckets
   std::vector<uint64_t> occupied_;     // a bit per bucket: any point in it
   // Per bucket: its points' range [begin, end) in index_ and position_ (one array: a query's
   // visit to a bucket reads one cache line for it).

@@ -104,10 +104,9 @@ Spectrum PathTracer::sampleDirectInMedium(const Vec3& p, int medium, const Vec3&
   const std::optional<LightChoice> c = chooseLight(scene_, LightSampleContext{p, Vec3(0.f)}, rng);
   if (!c) return Spectrum(0.f);
   const LightLiSample& ls = c->ls;
-  const float pdfLight = c->pmf * ls.pdfW;
   const float pdfEquiangular = equiangularRatio(segment, c->index, ls.pLight) * ls.pdfW;
-  // `equiangular` leaves to B every path B can sample.
-  if (mediumSampling_ == MediumSampling::Equiangular && pdfEquiangular > 0.f) return Spectrum(0.f);
+  const float pdfLight = nextEventDensity(c->pmf * ls.pdfW, pdfEquiangular);
+  if (!(pdfLight > 0.f)) return Spectrum(0.f);  // left to B: no shadow ray
   const float phase = phaseHG(wo, ls.wi, scene_.medium(medium).g);
   ++counters.shadowRays;
   const Spectrum T = shadowTransmittance(scene_, *c, p, Vec3(0.f), Vec3(0.f), medium);
@@ -145,8 +144,7 @@ Spectrum PathTracer::sampleEquiangularDirect(const Ray& ray, int medium, float t
   if (!(ls.pdfW > 0.f) || isBlack(ls.Li)) return Spectrum(0.f);
   const float phase = phaseHG(-ray.d, ls.wi, m.g);
   const float pdfEquiangular = pdfT / pdfDistance * pmf * ls.pdfW;
-  const float pdfLight =
-      mediumSampling_ == MediumSampling::Equiangular ? 0.f : lights.pmfNee(LightSampleContext{x, Vec3(0.f)}, li) * ls.pdfW;
+  const float pdfLight = nextEventDensity(lights.pmfNee(LightSampleContext{x, Vec3(0.f)}, li) * ls.pdfW, pdfEquiangular);
   const float weight = powerHeuristic(pdfEquiangular, pdfLight, ls.isDelta ? 0.f : phase);
   if (!(weight > 0.f)) return Spectrum(0.f);
   ++counters.shadowRays;
@@ -226,9 +224,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
         if (!prevDelta) {
           const float pdfW = light.pdfLi(prev.p, hit->p, hit->ng);
           const float pdfEquiangular = equiangularRatio(prevSegment, hit->light, hit->p) * pdfW;
-          const float pdfLight = mediumSampling_ == MediumSampling::Equiangular && pdfEquiangular > 0.f
-                                     ? 0.f
-                                     : scene_.lights().pmfNee(prev, hit->light) * pdfW;
+          const float pdfLight = nextEventDensity(scene_.lights().pmfNee(prev, hit->light) * pdfW, pdfEquiangular);
           weight = powerHeuristic(prevPdfW, pdfLight, pdfEquiangular);
         }
         L += beta * Le * weight;

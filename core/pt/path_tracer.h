@@ -52,6 +52,12 @@ class PathTracer {
   // segment's origin: the factor that turns next-event estimation's density (pmf x pdfW) into the
   // equiangular one. Zero where equiangular sampling is off or cannot place the vertex.
   float equiangularRatio(const MediumVertexSegment& segment, int light, const Vec3& y) const;
+  // The density with which distance sampling and next-event estimation (A) take part in the
+  // weights, given the equiangular one: none under `equiangular` where equiangular sampling can
+  // sample the path (that mode leaves it every path it can sample), pdfLight otherwise.
+  float nextEventDensity(float pdfLight, float pdfEquiangular) const {
+    return mediumSampling_ == MediumSampling::Equiangular && pdfEquiangular > 0.f ? 0.f : pdfLight;
+  }
   Spectrum environmentSeen(const Vec3& w, bool prevDelta, float prevPdfW, const LightSampleContext& prev) const;
   const Scene& scene_;
   int maxLength_;
