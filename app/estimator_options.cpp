@@ -33,8 +33,24 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "Estimator: bpt (bidirectional, default), pt (path tracer), lt (light tracing: the t = 1 techniques), "
                   "vcm (bpt with every merge: vertex connection and merging), bpm (the merges alone: bidirectional "
                   "photon mapping), ppm (progressive photon mapping: merges at the first non-specular camera vertex, "
-                  "and camera paths that hit a light)")
-      ->transform(CLI::IsMember({"pt", "bpt", "lt", "vcm", "bpm", "ppm"}, CLI::ignore_case));
+                  "and camera paths that hit a light), mlt (Metropolis light transport over the bidirectional "
+                  "techniques: multiplexed by default, --mlt-variant)")
+      ->transform(CLI::IsMember({"pt", "bpt", "lt", "vcm", "bpm", "ppm", "mlt"}, CLI::ignore_case));
+  cmd->add_option("--mlt-variant", o.mltVariant,
+                  "mlt: mmlt (multiplexed MLT, Hachisuka et al. 2014: a chain per path length whose state also picks "
+                  "the technique) or pss (primary sample space MLT, Kelemen et al. 2002, over whole bidirectional samples)")
+      ->transform(CLI::IsMember({"mmlt", "pss"}, CLI::ignore_case));
+  cmd->add_option("--chains", o.chains, "mlt: the number of Markov chains (default 1000)")
+      ->check(CLI::Range(1, kMaxMltChains));
+  cmd->add_option("--bootstrap", o.bootstrap,
+                  "mlt: independent samples per path length (pss: in all) that estimate the normalisation and start "
+                  "the chains (default 100000)")
+      ->check(CLI::Range(uint64_t{1}, kMaxMltBootstrap));
+  cmd->add_option("--large-step", o.largeStep, "mlt: the probability of a large step, an independent sample (default 0.3)")
+      ->check(CLI::Range(0.f, 1.f));
+  cmd->add_option("--sigma", o.sigma,
+                  "mlt: the small step's standard deviation in primary sample space (default 0.01)")
+      ->check(CLI::Range(kMinMltSigma, kMaxMltSigma));
   cmd->add_option("--mis", s.mis.heuristic,
                   "MIS heuristic of bpt: balance, power, uniform, or off (1/n_k per technique of length k: biased "
                   "with delta lights or BSDFs)")
@@ -104,7 +120,8 @@ void finishEstimatorOptions(EstimatorOptions& o) {
       {"lt", {IntegratorKind::Lt, "all"}},
       {"vcm", {IntegratorKind::Bpt, "all;m=all"}},
       {"bpm", {IntegratorKind::Bpt, "m=all"}},
-      {"ppm", {IntegratorKind::Bpt, "s=0;m=all"}}};
+      {"ppm", {IntegratorKind::Bpt, "s=0;m=all"}},
+      {"mlt", {IntegratorKind::Mlt, "all"}}};
   const auto integrator = kIntegrators.find(o.integrator);
   if (integrator == kIntegrators.end()) throw std::invalid_argument(fmt::format("--integrator: '{}' is unknown", o.integrator));
   const auto [kind, ownTechniques] = integrator->second;
@@ -114,6 +131,20 @@ void finishEstimatorOptions(EstimatorOptions& o) {
                                             "bpt --techniques",
                                             o.integrator, ownTechniques));
   o.settings.integrator = kind;
+  const char* mltOption = o.mltVariant ? "--mlt-variant"
+                          : o.chains   ? "--chains"
+                          : o.bootstrap ? "--bootstrap"
+                          : o.largeStep ? "--large-step"
+                          : o.sigma     ? "--sigma"
+                                        : nullptr;
+  if (mltOption && kind != IntegratorKind::Mlt)
+    throw std::invalid_argument(fmt::format("{} applies to --integrator mlt, not {}", mltOption, o.integrator));
+  MltOptions& mlt = o.settings.mlt;
+  if (o.mltVariant) mlt.variant = *parseMltVariant(*o.mltVariant);
+  if (o.chains) mlt.chains = *o.chains;
+  if (o.bootstrap) mlt.bootstrap = *o.bootstrap;
+  if (o.largeStep) mlt.largeStep = *o.largeStep;
+  if (o.sigma) mlt.sigma = *o.sigma;
   // ppm: the merges at each camera subpath's first non-specular vertex, and the camera subpaths
   // that hit a light (what no merge samples: lights seen directly or in mirrors and glass).
   o.settings.mergeSite = o.integrator == "ppm" ? MergeSite::FirstNonSpecular : MergeSite::Every;

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -27,6 +28,11 @@ struct EstimatorOptions {
   std::string isolate;      // "S,T" or empty
   bool unweighted = false;  // with --isolate
   std::string injectBias;   // "S,T,FACTOR" or empty
+  // Metropolis (--integrator mlt): given or not, so that another integrator refuses them.
+  std::optional<std::string> mltVariant;
+  std::optional<int> chains;
+  std::optional<uint64_t> bootstrap;
+  std::optional<float> largeStep, sigma;
 };
 
 // Registers --max-length --integrator --mis --connect --beta --min-connection --techniques --isolate --unweighted --rr/--no-rr

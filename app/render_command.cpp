@@ -149,6 +149,11 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   addSampleBudgetOptions(cmd, o.budget,
                          {1, "Samples per pixel (default 64 when --time is not given)",
                           "Render for this many seconds of wall time instead of a sample count"});
+  cmd->add_option("--mutations-per-pixel", o.mutationsPerPixel,
+                  "mlt: mutations per pixel on average, over all chains (--spp's place; default 64 when --time is not "
+                  "given)")
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()))
+      ->excludes("--spp");
   addRenderEstimateOptions(cmd, o);
   addLoadOptions(cmd, o.scene.load, o.scene.environment);
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
@@ -176,6 +181,15 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   p.pyramidOutput = o.estimator.settings.pyramidLength;
   finishRenderEstimate(o);
   RenderSettings& settings = o.estimator.settings;
+  // A Metropolis pass is one mutation per pixel on average: --mutations-per-pixel counts them.
+  if (o.mutationsPerPixel > 0) {
+    if (settings.integrator != IntegratorKind::Mlt)
+      throw std::runtime_error(fmt::format("--mutations-per-pixel applies to --integrator mlt, not {} (use --spp)",
+                                           integratorName(settings.integrator)));
+    o.budget.spp = o.mutationsPerPixel;
+  }
+  if (settings.integrator == IntegratorKind::Mlt && !o.replay.empty())
+    throw std::runtime_error("--replay replays one independent sample: a Metropolis chain's mutations are not (use bpt)");
   if (o.output.empty() && o.replay.empty())
     throw std::runtime_error("render needs an output image (-o OUT) or --replay X,Y,SAMPLE");
   if (!o.replay.empty() && job.size() > 1)

@@ -313,7 +313,8 @@ template <bool kRecords>
   }
 }
 
-int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, Walks& walks, Counters& counters) const {
+template <class Rng>
+int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Rng& rng, Walks& walks, Counters& counters) const {
   const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, rng,
                                        WalkOptions{vertices, options_.russianRoulette, cameraMedium_}, walks.camera, counters);
   if (misEvaluation_ == MisEvaluation::PartialSums) {
@@ -325,7 +326,8 @@ int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, 
   return nt;
 }
 
-int BidirTracer::walkLight(int vertices, Pcg32& rng, Walks& walks, Counters& counters) const {
+template <class Rng>
+int BidirTracer::walkLight(int vertices, Rng& rng, Walks& walks, Counters& counters) const {
   if (vertices <= 0) return 0;
   const int ns = generateLightSubpath(scene_, rng, WalkOptions{vertices, options_.russianRoulette}, walks.light, counters);
   if (ns > 0 && misEvaluation_ == MisEvaluation::PartialSums) accumulateLightSums(walks.light, misPower_, walks.lightSums);
@@ -368,7 +370,8 @@ void BidirTracer::prepareMergePass(MergePass& pass) const {
   });
 }
 
-void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, SampleSink& sink,
+template <class Rng>
+void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Rng& cameraRng, Rng& lightRng, SampleSink& sink,
                          Counters& counters) const {
   // The connections' key is drawn first, so that how long the walks below are allowed to grow
   // changes no connection's random numbers.
@@ -430,6 +433,44 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& ligh
       }
     }
   if (mergePass_) evaluateMerges(timed, nt, pRaster, pyramidLength, walks, sink, counters);
+}
+
+template void BidirTracer::sample(Vec2, Vec2, Pcg32&, Pcg32&, SampleSink&, Counters&) const;
+template void BidirTracer::sample(Vec2, Vec2, PrimarySampleStream&, PrimarySampleStream&, SampleSink&, Counters&) const;
+
+BidirTracer::TechniqueSample BidirTracer::sampleTechnique(int s, int t, Vec2 pRaster, Vec2 uLens,
+                                                          PrimarySampleStream& cameraRng, PrimarySampleStream& lightRng,
+                                                          PrimarySampleStream& connectionRng,
+                                                          Counters& counters) const {
+  // As sampleEndpoints' technique, on the primary sample's streams: the camera walk, then the
+  // light walk, then the connection's fresh endpoint (s = 1, t = 1), each from a stream of its
+  // own so that a small step on one moves the others little.
+  TechniqueSample out;
+  out.pRaster = pRaster;
+  thread_local Walks walks;
+  TechniqueTally<false> tally(counters, Technique{s, t});
+  if (walkCamera(pRaster, uLens, t, cameraRng, walks, counters) < t) return tally.zero(), out;
+  if (lightWalkNeeded(s, t) && walkLight(s, lightRng, walks, counters) < s) return tally.zero(), out;
+  Connection& c = walks.connection;
+  if (!formConnection(scene_, camera_, walks.light, s, walks.camera, t, connectionRng, c)) return tally.zero(), out;
+  const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
+  const float w = options_.techniques.contains(s, t) ? weight<true>(path, c, walks, counters) : 0.f;
+  if (!(w > 0.f)) return tally.zero(), out;
+  if (needsShadowRay(s)) {
+    tally.shadowRay();
+    if (scene_.hasMedia()) {
+      const Spectrum T = transmittance(scene_, c.shadowRay);
+      if (isBlack(T)) return tally.blocked(), out;
+      c.L *= T;
+    } else if (!unoccluded(scene_, c.shadowRay)) {
+      return tally.blocked(), out;
+    }
+  }
+  tally.contributed();
+  if (!isValidContribution(c.L)) return tally.discard(c.L, SampleId{}), out;
+  out.L = c.L * w;
+  if (t == 1) out.pRaster = c.pRaster;
+  return out;
 }
 
 int BidirTracer::storedLightSubpath(const SampleId& id, Walks& walks) const {

@@ -42,7 +42,26 @@ class BidirTracer {
   // the pixel (SampleSink::cameraEstimate) and its splats through SampleSink::toImage, its records
   // as the sink's demand asks. Contributions that are NaN, Inf or negative are dropped one technique
   // at a time, at the kernel's door, and counted under that technique.
-  void sample(Vec2 pRaster, Vec2 uLens, Pcg32& cameraRng, Pcg32& lightRng, SampleSink& sink, Counters& counters) const;
+  // Rng: Pcg32, or the camera and light streams of a primary sample vector (Metropolis over the
+  // whole sample, core/mlt/metropolis.h; its connections' numbers still come from the key the
+  // camera stream gives, connectionStream).
+  template <class Rng>
+  void sample(Vec2 pRaster, Vec2 uLens, Rng& cameraRng, Rng& lightRng, SampleSink& sink, Counters& counters) const;
+
+  // Multiplexed Metropolis (Hachisuka, Kaplanyan and Dachsbacher 2014; core/mlt/metropolis.h):
+  // technique (s, t) alone, on a camera subpath of exactly t vertices through pRaster and a light
+  // subpath of exactly s (no light walk for next-event estimation, s = 1 with t >= 2, whose light
+  // point the connection samples), every number drawn from the primary sample's streams. Its
+  // contribution weighted over the enabled set, as in the image (zero when a walk ended early, the
+  // technique cannot form the path or the connection is blocked), and where it lands: pRaster, or
+  // the t = 1 splat's position. The technique need not be enabled; its weight is then zero.
+  struct TechniqueSample {
+    Spectrum L{0.f};
+    Vec2 pRaster{0.f};
+  };
+  TechniqueSample sampleTechnique(int s, int t, Vec2 pRaster, Vec2 uLens, PrimarySampleStream& cameraRng,
+                                  PrimarySampleStream& lightRng, PrimarySampleStream& connectionRng,
+                                  Counters& counters) const;
 
   // The light subpath this tracer walks for a sample whose light stream is `lightRng` (path reuse:
   // the one every technique of the sample shares; ConnectStrategy::Endpoints draws one per technique
@@ -104,8 +123,10 @@ class BidirTracer {
   void evaluate(bool timed, int s, int t, const TechniqueUse& use, Vec2 pRaster, uint64_t connectionKey, Walks& walks,
                 SampleSink& sink, Counters& counters) const;
   // The walks of both strategies (rays into the counters' walk or technique rows by the caller).
-  int walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Pcg32& rng, Walks& walks, Counters& counters) const;
-  int walkLight(int vertices, Pcg32& rng, Walks& walks, Counters& counters) const;
+  template <class Rng>
+  int walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Rng& rng, Walks& walks, Counters& counters) const;
+  template <class Rng>
+  int walkLight(int vertices, Rng& rng, Walks& walks, Counters& counters) const;
   // ConnectStrategy::Endpoints: each technique in use on subpaths of its own.
   void sampleEndpoints(Vec2 pRaster, Vec2 uLens, uint64_t connectionKey, bool timed, int pyramidLength, Walks& walks,
                        SampleSink& sink, Counters& counters) const;
@@ -148,5 +169,9 @@ class BidirTracer {
   double connectionsInSums_ = 1.0;  // MergeTerms::connections: every connection enabled, or none
   const MergePass* mergePass_ = nullptr;
 };
+
+extern template void BidirTracer::sample(Vec2, Vec2, Pcg32&, Pcg32&, SampleSink&, Counters&) const;
+extern template void BidirTracer::sample(Vec2, Vec2, PrimarySampleStream&, PrimarySampleStream&, SampleSink&,
+                                         Counters&) const;
 
 }  // namespace pathlab

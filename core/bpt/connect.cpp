@@ -38,8 +38,9 @@ Spectrum transmittance(const Scene& scene, const ShadowRay& r) {
                       : scene.transmittance(r.a, r.na, r.ea, r.b, r.nb, r.eb, r.medium);
 }
 
+template <class Rng>
 bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s, const Subpath& cameraPath,
-                    int t, Pcg32& rng, Connection& c) {
+                    int t, Rng& rng, Connection& c) {
   c.hasSampled = false;
   c.pdfs.atLight = c.pdfs.atCamera = c.pdfs.atLens = false;
   if (t < 1 || s < 0) return false;
@@ -154,6 +155,10 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
 
   return formInteriorConnection(scene, lightPath, s, cameraPath, t, c);
 }
+
+template bool formConnection(const Scene&, const Camera&, const Subpath&, int, const Subpath&, int, Pcg32&, Connection&);
+template bool formConnection(const Scene&, const Camera&, const Subpath&, int, const Subpath&, int, PrimarySampleStream&,
+                             Connection&);
 
 Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,
                    const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters) {

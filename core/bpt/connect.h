@@ -75,8 +75,10 @@ struct Connection {
 // contribution the path makes if c.shadowRay is unoccluded (s = 0, the camera subpath's own hit
 // of an emitter, needs none: needsShadowRay). Only the fields the technique produces are written:
 // `c` is scratch reused across techniques, never zero-filled as a whole.
+// Rng: Pcg32, or a primary-sample stream (Metropolis); both instances are compiled in connect.cpp.
+template <class Rng>
 bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s, const Subpath& cameraPath,
-                    int t, Pcg32& rng, Connection& c);
+                    int t, Rng& rng, Connection& c);
 inline bool needsShadowRay(int s) { return s >= 1; }
 
 // The scattering at a medium vertex toward wi, as a connection uses a BSDF evaluation: the phase

@@ -32,7 +32,8 @@ void setEnvironmentVertex(const Scene& scene, const Ray& ray, const PathVertex& 
 // function samples. The distance sampling's own probabilities stay out of pdfFwdA / pdfRevA, as
 // Russian roulette's do: every technique's density omits the same factors, so the MIS weights
 // remain a partition of unity (pbrt-v3's BDPT does the same).
-void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, TransportMode mode, Pcg32& rng,
+template <class Rng>
+void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, TransportMode mode, Rng& rng,
                 const WalkOptions& options, Subpath& path, Counters& counters, int medium) {
   RussianRoulette roulette(beta, mode == TransportMode::Radiance ? RouletteCount::NonDeltaScatterings
                                                                 : RouletteCount::Scatterings);
@@ -171,7 +172,8 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
 
 }  // namespace
 
-int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster, Vec2 uLens, Pcg32& rng,
+template <class Rng>
+int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster, Vec2 uLens, Rng& rng,
                           const WalkOptions& options, CameraSubpath& path, Counters& counters) {
   path.setCapacity(options.maxVertices);
   path.count = 0;
@@ -206,7 +208,8 @@ int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster
   return path.count;
 }
 
-int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& options, LightSubpath& path,
+template <class Rng>
+int generateLightSubpath(const Scene& scene, Rng& rng, const WalkOptions& options, LightSubpath& path,
                          Counters& counters) {
   path.setCapacity(options.maxVertices);
   path.count = 0;
@@ -258,5 +261,13 @@ int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& opti
   }
   return path.count;
 }
+
+#define PATHLAB_WALKS(Rng)                                                                                           \
+  template int generateCameraSubpath(const Scene&, const Camera&, Vec2, Vec2, Rng&, const WalkOptions&,            \
+                                     CameraSubpath&, Counters&);                                                    \
+  template int generateLightSubpath(const Scene&, Rng&, const WalkOptions&, LightSubpath&, Counters&);
+PATHLAB_WALKS(Pcg32)
+PATHLAB_WALKS(PrimarySampleStream)
+#undef PATHLAB_WALKS
 
 }  // namespace pathlab

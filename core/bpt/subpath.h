@@ -6,6 +6,7 @@
 #include "core/bsdf/bsdf.h"
 #include "core/camera/camera.h"
 #include "core/math/rng.h"
+#include "core/sampling/primary_samples.h"
 #include "core/counters/counters.h"
 #include "core/scene/scene.h"
 
@@ -44,11 +45,15 @@ struct WalkOptions {
 };
 
 // The camera subpath through film position pRaster (pixels). Returns the number of vertices.
-int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster, Vec2 uLens, Pcg32& rng,
+// Rng (here and below): Pcg32, or a stream of a primary sample vector (Metropolis,
+// core/sampling/primary_samples.h); both instances are compiled in subpath.cpp.
+template <class Rng>
+int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster, Vec2 uLens, Rng& rng,
                           const WalkOptions& options, CameraSubpath& path, Counters& counters);
 
 // The light subpath from a light chosen in proportion to its power. Returns the number of vertices.
-int generateLightSubpath(const Scene& scene, Pcg32& rng, const WalkOptions& options, LightSubpath& path,
+template <class Rng>
+int generateLightSubpath(const Scene& scene, Rng& rng, const WalkOptions& options, LightSubpath& path,
                          Counters& counters);
 
 }  // namespace pathlab

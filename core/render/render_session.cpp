@@ -75,6 +75,11 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
       tiles_(passTiles(settings.width, settings.height)) {
   replayStore_ = std::make_unique<ReplayStore>();
   if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
+  if (settings.integrator == IntegratorKind::Mlt && schedule_.stride != 1)
+    throw std::invalid_argument("--integrator mlt does not run over MPI ranks yet: its chains need every rank's bootstrap");
+  if (settings.integrator == IntegratorKind::Mlt)
+    metropolis_ = std::make_unique<Metropolis>(*bidirTracer_, settings.width, settings.height, settings.maxLength,
+                                               settings.seed, settings.mlt);
   if (bidirTracer_ && SplatSums::bytesFor(settings.width, settings.height) <= kMaxSplatSumBytes)
     splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
@@ -252,6 +257,15 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   tbb::enumerable_thread_specific<Counters> local;
   pixelsDone_.store(0, std::memory_order_relaxed);
   const uint64_t pass = schedule_.pass(passes_.load(std::memory_order_relaxed));
+  if (metropolis_) {
+    // Metropolis: the pass is the chains' next pixelCount mutations (the first pass bootstraps).
+    Counters passCounters;
+    if (!metropolis_->renderPass(film_.pixelCount(), film_, splatSums_.get(), passCounters, cancel)) return false;
+    counters_ += passCounters;
+    pixelsDone_.store(film_.pixelCount(), std::memory_order_relaxed);
+    passes_.fetch_add(1, std::memory_order_relaxed);
+    return true;
+  }
   // The merge pass's cost, for the counters' table: wall time times the threads (the workers
   // that wait between its parallel phases have nothing else to do), counted once the pass's
   // timed share is known.

@@ -10,6 +10,7 @@
 #include "core/film/splat_buffer.h"
 #include "core/film/splat_sums.h"
 #include "core/film/technique_films.h"
+#include "core/mlt/metropolis.h"
 #include "core/counters/counters.h"
 #include "core/pt/path_tracer.h"
 #include "core/render/pass_tiles.h"
@@ -78,6 +79,8 @@ class RenderSession {
   // The consistency check's sums (settings.checkTechniques), else null.
   const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }
+  // Mlt: the chains (their b, acceptance statistics), else null.
+  const Metropolis* metropolis() const { return metropolis_.get(); }
   // Every sum the passes accumulate (film, splats, pyramid), flat arrays of doubles in an order
   // fixed by the settings: sessions with the same settings that rendered disjoint passes combine
   // by adding these element by element, then addForeignPasses. Not concurrent with a pass.
@@ -99,7 +102,8 @@ class RenderSession {
   Camera camera_;
   PathTracer pathTracer_;
   int cameraMedium_ = -1;  // the medium the camera is in (Scene::mediumAt), for the path tracer
-  std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt and Lt
+  std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt, Lt and Mlt
+  std::unique_ptr<Metropolis> metropolis_;    // Mlt: the chains over bidirTracer_'s techniques
 
   Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;
   Spectrum sampleAt(const BidirTracer* tracer, int x, int y, uint64_t pass, const SampleTargets& targets,

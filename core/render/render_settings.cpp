@@ -47,6 +47,7 @@ const char* integratorName(IntegratorKind kind) {
     case IntegratorKind::Pt: return "pt";
     case IntegratorKind::Bpt: return "bpt";
     case IntegratorKind::Lt: return "lt";
+    case IntegratorKind::Mlt: return "mlt";
   }
   return "?";
 }
@@ -160,6 +161,34 @@ void validateSettings(const RenderSettings& s) {
           "merging at {} x {} with maximum length {} may store {:.1f} GiB of light vertices per pass (at most {} GiB): "
           "lower --max-length or the image size",
           s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxMergeStoreBytes >> 30));
+  }
+  if (s.integrator == IntegratorKind::Mlt) {
+    // Metropolis over the connections: each chain state is one path of one technique (MMLT) or a
+    // whole path-reuse sample (PSSMLT); what needs a sample's every technique at one pixel does not
+    // apply to it.
+    const MltOptions& m = s.mlt;
+    if (covers(s.techniques.families(), TechniqueKind::Merge))
+      throw std::invalid_argument("--integrator mlt runs over connections: merging techniques (m=...) are not among them");
+    if (m.chains < 1 || m.chains > kMaxMltChains)
+      throw std::invalid_argument(fmt::format("--chains {} is outside 1..{}", m.chains, kMaxMltChains));
+    if (m.bootstrap < 1 || m.bootstrap > kMaxMltBootstrap)
+      throw std::invalid_argument(fmt::format("--bootstrap {} is outside 1..{}", m.bootstrap, kMaxMltBootstrap));
+    if (!(m.largeStep >= 0.f && m.largeStep <= 1.f))
+      throw std::invalid_argument(fmt::format("--large-step {} is outside [0, 1]", m.largeStep));
+    if (!(m.sigma >= kMinMltSigma && m.sigma <= kMaxMltSigma))
+      throw std::invalid_argument(fmt::format("--sigma {} is outside [{}, {}]", m.sigma, kMinMltSigma, kMaxMltSigma));
+    if (s.connect == ConnectStrategy::Endpoints)
+      throw std::invalid_argument("--connect endpoints: Metropolis over naive BPT is not supported (use --connect all)");
+    const char* perSample = s.isolate           ? "--isolate"
+                            : s.pyramidLength   ? "the technique pyramid"
+                            : s.techniqueMaps   ? "the technique maps"
+                            : s.checkTechniques ? "the consistency check"
+                            : s.injectBias      ? "--inject-bias"
+                                                : nullptr;
+    if (perSample)
+      throw std::invalid_argument(fmt::format("{} needs the bpt or lt integrator: a Metropolis chain's samples are not "
+                                              "independent per pixel",
+                                              perSample));
   }
   // The technique messages start with the option and its value (issue 37: both options gave the
   // same line, naming neither).

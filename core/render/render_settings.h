@@ -6,6 +6,7 @@
 #include "core/bpt/mis_options.h"
 #include "core/bpt/technique_set.h"
 #include "core/media/medium_sampling.h"
+#include "core/mlt/mlt_options.h"
 #include "core/pt/path_tracer.h"
 #include "core/camera/camera.h"
 #include "core/scene/scene_desc.h"
@@ -16,8 +17,9 @@
 
 namespace pathlab {
 
-// Pt: the path tracer; Bpt: bidirectional; Lt: bidirectional restricted to t = 1 (light tracing).
-enum class IntegratorKind { Pt, Bpt, Lt };
+// Pt: the path tracer; Bpt: bidirectional; Lt: bidirectional restricted to t = 1 (light tracing);
+// Mlt: Metropolis light transport over the bidirectional techniques (core/mlt/metropolis.h).
+enum class IntegratorKind { Pt, Bpt, Lt, Mlt };
 
 struct RenderSettings {
   int width = 512;
@@ -59,6 +61,8 @@ struct RenderSettings {
   // Progressive photon mapping (Hachisuka, Ogaki and Jensen 2008) among the merges: a camera
   // subpath merges only at its first vertex that is not a delta scatter (MergeSite).
   MergeSite mergeSite = MergeSite::Every;
+  // Mlt only: the chains (core/mlt/mlt_options.h). A pass is one mutation per pixel on average.
+  MltOptions mlt;
   // Check on every path that the MIS weights of the enabled techniques able to produce it sum to
   // one (Counters::misPartitionFailures). On by default in debug builds.
 #ifdef NDEBUG

@@ -48,7 +48,8 @@ class RussianRoulette {
 
   // Called after every scattering with the walk's throughput `beta`: false ends the walk; a
   // survivor's beta is divided by q. Draws a number only when q < 1.
-  bool survives(Spectrum& beta, bool delta, Pcg32& rng) {
+  template <class Rng>
+  bool survives(Spectrum& beta, bool delta, Rng& rng) {
     if (!delta || count_ == RouletteCount::Scatterings) ++scatterings_;
     const float q = scatterings_ < kRussianRouletteStart ? 1.f : continuation(last_, beta, delta);
     if (q < 1.f) {

@@ -9,7 +9,8 @@ namespace {
 constexpr int kMaxStepCrossings = 64;
 }  // namespace
 
-MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng, Counters& counters) {
+template <class Rng>
+MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Rng& rng, Counters& counters) {
   MediaStep step;
   for (int crossing = 0; crossing < kMaxStepCrossings; ++crossing) {
     ++counters.rays;
@@ -48,5 +49,8 @@ MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng,
   }
   return step;  // Absorbed
 }
+
+template MediaStep traceThroughMedia(const Scene&, Ray, int, Pcg32&, Counters&);
+template MediaStep traceThroughMedia(const Scene&, Ray, int, PrimarySampleStream&, Counters&);
 
 }  // namespace pathlab

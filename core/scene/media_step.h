@@ -6,6 +6,7 @@
 #pragma once
 
 #include "core/math/rng.h"
+#include "core/sampling/primary_samples.h"
 #include "core/counters/counters.h"
 #include "core/scene/scene.h"
 
@@ -33,7 +34,11 @@ struct MediaStep {
 // Traces `ray` starting in `medium` (-1: none) in a scene with media, counting each ray it casts in
 // counters.rays. Consumes two random numbers per medium segment it samples a distance in (none in
 // vacuum, and none in a purely absorbing medium, whose transmittance is applied as a weight).
-MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Pcg32& rng, Counters& counters);
+// Rng: Pcg32, or a primary-sample stream (core/sampling/primary_samples.h) for Metropolis.
+template <class Rng>
+MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Rng& rng, Counters& counters);
+extern template MediaStep traceThroughMedia(const Scene&, Ray, int, Pcg32&, Counters&);
+extern template MediaStep traceThroughMedia(const Scene&, Ray, int, PrimarySampleStream&, Counters&);
 
 // Without media: one ray cast, every hit a Surface (index-matched or not), the weight exactly one.
 inline MediaStep traceInVacuum(const Scene& scene, const Ray& ray, Counters& counters) {
@@ -45,7 +50,8 @@ inline MediaStep traceInVacuum(const Scene& scene, const Ray& ray, Counters& cou
 
 // The walks' step (randomWalk, PathTracer::Li). Inline, each branch returning its step in place: a
 // call and a copy of the step per vertex cost a bidirectional sample 1 % of its instructions.
-inline MediaStep traceStep(const Scene& scene, const Ray& ray, int medium, Pcg32& rng, Counters& counters) {
+template <class Rng>
+inline MediaStep traceStep(const Scene& scene, const Ray& ray, int medium, Rng& rng, Counters& counters) {
   return scene.hasMedia() ? traceThroughMedia(scene, ray, medium, rng, counters) : traceInVacuum(scene, ray, counters);
 }
 

@@ -1,0 +1,294 @@
+// The chains: bootstrap, resampled starts, mutations with the expected-value splats.
+#include "core/mlt/metropolis.h"
+
+#include "core/film/splat_buffer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace pathlab {
+
+const char* mltVariantName(MltVariant v) { return v == MltVariant::PrimarySpace ? "pss" : "mmlt"; }
+
+std::optional<MltVariant> parseMltVariant(std::string_view name) {
+  if (name == "mmlt") return MltVariant::Multiplexed;
+  if (name == "pss") return MltVariant::PrimarySpace;
+  return std::nullopt;
+}
+
+MltStats& MltStats::operator+=(const MltStats& o) {
+  proposed += o.proposed, accepted += o.accepted;
+  largeProposed += o.largeProposed, largeAccepted += o.largeAccepted;
+  auto add = [](std::vector<uint64_t>& a, const std::vector<uint64_t>& b) {
+    if (a.size() < b.size()) a.resize(b.size(), 0);
+    for (size_t i = 0; i < b.size(); ++i) a[i] += b[i];
+  };
+  add(proposedByLength, o.proposedByLength), add(acceptedByLength, o.acceptedByLength);
+  add(proposedByTechnique, o.proposedByTechnique), add(acceptedByTechnique, o.acceptedByTechnique);
+  return *this;
+}
+
+namespace {
+
+// The chains' random streams, apart from the render's per-pixel ones (render_session.h): the
+// bootstrap sample i's primary numbers, and chain c's own mutations and acceptances.
+constexpr uint64_t kBootstrapSalt = 0x6a09e667f3bcc908ull, kChainSalt = 0xbb67ae8584caa73bull,
+                   kAcceptSalt = 0x3c6ef372fe94f82bull, kStartSalt = 0xa54ff53a5f1d36f1ull;
+Pcg32 keyedStream(uint64_t seed, uint64_t index, uint64_t salt) {
+  return Pcg32(mixBits(seed ^ salt ^ mixBits(index)), mixBits(index + salt));
+}
+
+// PSSMLT: a whole bidirectional sample's image contributions, wherever they land.
+class CollectingSink final : public SampleSink {
+ public:
+  CollectingSink() : SampleSink(SinkDemand{}) {}
+  std::vector<Splat> splats;  // pixel unused: pRaster kept below
+  std::vector<Vec2> at;
+
+ protected:
+  bool splat(Vec2 pRaster, const Spectrum& v) override {
+    at.push_back(pRaster);
+    splats.push_back(Splat{0, v});
+    return true;
+  }
+};
+
+}  // namespace
+
+struct Metropolis::State {
+  struct Contribution {
+    Vec2 pRaster;
+    Spectrum L;
+  };
+  std::vector<Contribution> contributions;  // MMLT: at most one
+  float f = 0.f;                            // the target: the sum of their luminances
+  Technique technique;                      // MMLT: the technique that sampled it
+};
+
+struct Metropolis::Chain {
+  Chain(PrimarySamples s, Pcg32 accept, int k, int width, int height)
+      : samples(std::move(s)), acceptRng(accept), length(k), splats(width, height) {}
+  PrimarySamples samples;
+  Pcg32 acceptRng;
+  int length = 0;  // MMLT: the chain's path length; PSSMLT: 0
+  State current, proposal;
+  double currentWeight = 0.0;  // the current state's expected-value weight not yet splatted
+  SplatBuffer splats;          // this pass's
+  MltStats stats;
+};
+
+Metropolis::Metropolis(const BidirTracer& tracer, int width, int height, int maxLength, uint64_t seed,
+                       const MltOptions& options)
+    : tracer_(tracer), width_(width), height_(height), maxLength_(maxLength), seed_(seed), options_(options) {
+  if (tracer.merges()) throw std::invalid_argument("Metropolis light transport runs over connections only, not merges");
+  enabledByLength_.resize(static_cast<size_t>(maxLength) + 1);
+  for (const Technique x : techniquesUpTo(maxLength))
+    if (tracer.techniques().contains(x)) enabledByLength_[static_cast<size_t>(x.length())].push_back(x);
+}
+
+Metropolis::~Metropolis() = default;
+
+void Metropolis::evaluate(int length, PrimarySamples& samples, State& out, Counters& counters) const {
+  out.contributions.clear();
+  out.f = 0.f;
+  ++counters.cameraSamples;
+  PrimarySampleStream camera(samples, 0), light(samples, 1);
+  const Vec2 size(static_cast<float>(width_), static_cast<float>(height_));
+  if (options_.variant == MltVariant::Multiplexed) {
+    const std::vector<Technique>& techniques = enabledByLength_[static_cast<size_t>(length)];
+    const auto n = static_cast<int>(techniques.size());
+    if (n == 0) return;
+    const int j = std::min(static_cast<int>(camera.next1D() * static_cast<float>(n)), n - 1);
+    const Technique x = techniques[static_cast<size_t>(j)];
+    out.technique = x;
+    const Vec2 pRaster = camera.next2D() * size;
+    const Vec2 uLens = camera.next2D();
+    PrimarySampleStream connection(samples, 2);
+    const BidirTracer::TechniqueSample ts =
+        tracer_.sampleTechnique(x.s, x.t, pRaster, uLens, camera, light, connection, counters);
+    const Spectrum L = ts.L * static_cast<float>(n);
+    const float f = luminance(L);
+    if (f > 0.f && std::isfinite(f)) {
+      out.contributions.push_back({ts.pRaster, L});
+      out.f = f;
+    }
+    return;
+  }
+  const Vec2 pRaster = camera.next2D() * size;
+  const Vec2 uLens = camera.next2D();
+  CollectingSink sink;
+  tracer_.sample(pRaster, uLens, camera, light, sink, counters);
+  double f = 0.0;
+  auto add = [&](Vec2 p, const Spectrum& L) {
+    const float y = luminance(L);
+    if (!(y > 0.f)) return;
+    out.contributions.push_back({p, L});
+    f += y;
+  };
+  add(pRaster, sink.cameraEstimate());
+  for (size_t i = 0; i < sink.splats.size(); ++i) add(sink.at[i], sink.splats[i].v);
+  out.f = std::isfinite(f) ? static_cast<float>(f) : 0.f;
+  if (!(out.f > 0.f)) out.contributions.clear();
+}
+
+bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) {
+  const bool multiplexed = options_.variant == MltVariant::Multiplexed;
+  const uint64_t lengths = multiplexed ? static_cast<uint64_t>(maxLength_) : 1;
+  const uint64_t total = options_.bootstrap * lengths;
+  auto lengthOf = [&](uint64_t i) { return multiplexed ? static_cast<int>(i % lengths) + 1 : 0; };
+  auto bootstrapSamples = [&](uint64_t i) {
+    return PrimarySamples(keyedStream(seed_, i, kBootstrapSalt), options_.sigma, options_.largeStep);
+  };
+  std::vector<double> weights(total, 0.0);
+  tbb::enumerable_thread_specific<Counters> local;
+  std::atomic<bool> cancelled{false};
+  tbb::parallel_for(tbb::blocked_range<uint64_t>(0, total, 1024), [&](const tbb::blocked_range<uint64_t>& r) {
+    if (cancelled.load(std::memory_order_relaxed)) return;
+    if (cancel && cancel->load(std::memory_order_relaxed)) {
+      cancelled = true;
+      return;
+    }
+    State state;
+    Counters& c = local.local();
+    for (uint64_t i = r.begin(); i != r.end(); ++i) {
+      PrimarySamples samples = bootstrapSamples(i);
+      evaluate(lengthOf(i), samples, state, c);
+      weights[i] = state.f;
+    }
+  });
+  for (const Counters& c : local) counters += c;
+  if (cancelled) return false;
+
+  // b, and the chains' starts drawn in proportion to f from the bootstrap samples (sums in index
+  // order: the same bits at any thread count).
+  std::vector<double> cdf(total + 1, 0.0);
+  for (uint64_t i = 0; i < total; ++i) cdf[i + 1] = cdf[i] + weights[i];
+  b_ = options_.bootstrap > 0 ? cdf[total] / static_cast<double>(options_.bootstrap) : 0.0;
+  bootstrapped_ = true;
+  if (!(b_ > 0.0)) return true;  // nothing reaches the film: no chains, a black image
+  chains_.resize(static_cast<size_t>(options_.chains));
+  tbb::enumerable_thread_specific<Counters> startCounters;
+  tbb::parallel_for(size_t{0}, chains_.size(), [&](size_t c) {
+    Pcg32 start = keyedStream(seed_, c, kStartSalt);
+    // A uniform double from two draws: a float's 24 bits could not reach every one of millions of
+    // bootstrap samples.
+    const double u = (static_cast<double>(start.nextU32()) + static_cast<double>(start.nextU32()) * 0x1p-32) * 0x1p-32;
+    const double target = u * cdf[total];
+    uint64_t i = static_cast<uint64_t>(std::upper_bound(cdf.begin() + 1, cdf.end(), target) - cdf.begin()) - 1;
+    i = std::min(i, total - 1);
+    while (weights[i] <= 0.0 && i > 0) --i;  // never a zero-weight start (u at a bin's edge)
+    // The bootstrap sample again (the same primary numbers, hence the same path), then a stream
+    // of the chain's own for its mutations, so chains that start from one sample part at once.
+    auto chain = std::make_unique<Chain>(bootstrapSamples(i), keyedStream(seed_, c, kAcceptSalt), lengthOf(i), width_,
+                                         height_);
+    evaluate(chain->length, chain->samples, chain->current, startCounters.local());
+    chain->samples.reseed(keyedStream(seed_, c, kChainSalt));
+    chains_[c] = std::move(chain);
+  });
+  for (const Counters& c : startCounters) counters += c;
+  return true;
+}
+
+void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) const {
+  const bool multiplexed = options_.variant == MltVariant::Multiplexed;
+  MltStats& stats = chain.stats;
+  if (stats.proposedByLength.empty()) {
+    stats.proposedByLength.assign(static_cast<size_t>(maxLength_) + 1, 0);
+    stats.acceptedByLength.assign(static_cast<size_t>(maxLength_) + 1, 0);
+    if (multiplexed) {
+      stats.proposedByTechnique.assign(Technique::countUpTo(maxLength_), 0);
+      stats.acceptedByTechnique.assign(Technique::countUpTo(maxLength_), 0);
+    }
+  }
+  const double b = b_;
+  auto splat = [&](const State& state, double weight) {
+    if (!(weight > 0.0) || !(state.f > 0.f)) return;
+    const auto scale = static_cast<float>(weight * b / static_cast<double>(state.f));
+    for (const State::Contribution& c : state.contributions) chain.splats.splat(c.pRaster, c.L * scale);
+  };
+  const auto k = static_cast<size_t>(chain.length);
+  for (uint64_t m = 0; m < mutations; ++m) {
+    chain.samples.startIteration();
+    evaluate(chain.length, chain.samples, chain.proposal, counters);
+    // Both mutations are symmetric (primary_samples.h): the acceptance is the targets' ratio.
+    const double a = chain.current.f > 0.f
+                         ? std::min(1.0, static_cast<double>(chain.proposal.f) / static_cast<double>(chain.current.f))
+                         : 1.0;
+    splat(chain.proposal, a);
+    chain.currentWeight += 1.0 - a;
+    const bool large = chain.samples.largeStep();
+    ++stats.proposed, stats.largeProposed += large;
+    ++stats.proposedByLength[k];
+    const size_t x = multiplexed ? chain.proposal.technique.index() : 0;
+    if (multiplexed) ++stats.proposedByTechnique[x];
+    if (chain.acceptRng.next1D() < a) {
+      splat(chain.current, chain.currentWeight);
+      std::swap(chain.current, chain.proposal);
+      chain.currentWeight = 0.0;
+      chain.samples.accept();
+      ++stats.accepted, stats.largeAccepted += large;
+      ++stats.acceptedByLength[k];
+      if (multiplexed) ++stats.acceptedByTechnique[x];
+    } else {
+      chain.samples.reject();
+    }
+  }
+  // The pass's image is complete: the current state's weight so far goes in now.
+  splat(chain.current, chain.currentWeight);
+  chain.currentWeight = 0.0;
+}
+
+bool Metropolis::renderPass(uint64_t mutations, Film& film, SplatSums* sums, Counters& counters,
+                            const std::atomic<bool>* cancel) {
+  if (!bootstrapped_ && !bootstrap(counters, cancel)) return false;
+  const uint64_t passIndex = passes_++;
+  if (!chains_.empty()) {
+    // Chain c runs mutations / C of them, the remainder one more each to the chains from an offset
+    // that moves every pass.
+    const uint64_t C = chains_.size(), share = mutations / C, extra = mutations % C;
+    const uint64_t offset = (passIndex * extra) % C;
+    tbb::enumerable_thread_specific<Counters> local;
+    std::atomic<bool> cancelled{false};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chains_.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t c = r.begin(); c != r.end(); ++c) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) {
+          cancelled = true;
+          return;
+        }
+        const uint64_t n = share + ((c + C - offset) % C < extra ? 1 : 0);
+        runChain(*chains_[c], n, local.local());
+      }
+    });
+    for (const Counters& c : local) counters += c;
+    // The splats in chain order, then the chains' statistics.
+    for (const std::unique_ptr<Chain>& chain : chains_) {
+      if (cancelled) chain->splats.clear();
+      else chain->splats.addTo(sums, film, nullptr);
+    }
+    if (cancelled) {
+      if (sums) sums->clear();
+      return false;
+    }
+    MltStats pass;
+    for (const std::unique_ptr<Chain>& chain : chains_) {
+      pass += chain->stats;
+      chain->stats = MltStats{};
+    }
+    stats_ += pass;
+  }
+  if (sums) sums->mergeInto(film);
+  film.finishPass(0, mutations);
+  return true;
+}
+
+std::vector<int> Metropolis::chainsByLength() const {
+  std::vector<int> n(static_cast<size_t>(maxLength_) + 1, 0);
+  for (const std::unique_ptr<Chain>& chain : chains_) ++n[static_cast<size_t>(chain->length)];
+  return n;
+}
+
+}  // namespace pathlab

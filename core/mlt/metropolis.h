@@ -1,0 +1,92 @@
+// Metropolis light transport over pathlab's bidirectional techniques (issue 33; Veach and Guibas
+// 1997; the course notes' "advanced, global path sampling technique").
+//
+// Markov chains explore primary sample space (core/sampling/primary_samples.h) in proportion to a
+// scalar target f, the luminance of what the state contributes to the image:
+//   - MltVariant::Multiplexed (MMLT, Hachisuka, Kaplanyan and Dachsbacher 2014, pbrt-v4's MLT): a
+//     chain keeps one path length k; its first number picks one of the n_k enabled techniques
+//     (s, t) of that length, the rest sample its two subpaths and connection. Its contribution is
+//     n_k w_{s,t} f / p_{s,t}: the technique's MIS-weighted estimate times n_k, whose expectation
+//     over the technique's choice is the MIS estimate of length k, so the technique set and the
+//     heuristic shape the chain, and a disabled technique is never proposed;
+//   - MltVariant::PrimarySpace (PSSMLT, Kelemen et al. 2002): the state is a whole bidirectional
+//     sample (every enabled technique of every length, BidirTracer::sample) and f is the sum of
+//     its contributions' luminances, wherever they land.
+//
+// The normalisation b = sum_k integral f_k du is estimated from independent bootstrap samples, and
+// every chain starts from one of them chosen in proportion to f (resampling: the chains start in
+// the stationary distribution, so there is no start-up bias to discard). A chain's state
+// contributes F b / f per mutation, F its colour; each mutation adds the proposal with weight a
+// (its acceptance probability) and the current state with 1 - a (Veach's expected-value trick),
+// the current state's weight kept until it changes. With N mutations over P pixels a pixel is
+// (b / (N / P)) times the sum of F / f over the mutations that landed in it: the film's splat
+// normalisation (Film::readout) with N counted as its light subpaths.
+#pragma once
+
+#include "core/bpt/bidir_tracer.h"
+#include "core/counters/counters.h"
+#include "core/film/film.h"
+#include "core/film/splat_sums.h"
+#include "core/mlt/mlt_options.h"
+#include "core/sampling/primary_samples.h"
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace pathlab {
+
+// How the chains moved: proposals and acceptances, over all, by mutation kind, by path length and
+// (MMLT) by technique (Technique::index()).
+struct MltStats {
+  uint64_t proposed = 0, accepted = 0;
+  uint64_t largeProposed = 0, largeAccepted = 0;
+  std::vector<uint64_t> proposedByLength, acceptedByLength;        // index k, 0 unused
+  std::vector<uint64_t> proposedByTechnique, acceptedByTechnique;  // MMLT only
+  MltStats& operator+=(const MltStats& o);
+  double acceptance() const { return proposed ? static_cast<double>(accepted) / static_cast<double>(proposed) : 0.0; }
+};
+
+class Metropolis {
+ public:
+  // `tracer` has no merges (validateSettings refuses mlt with them); width x height is the film's.
+  Metropolis(const BidirTracer& tracer, int width, int height, int maxLength, uint64_t seed, const MltOptions& options);
+  ~Metropolis();
+
+  // The bootstrap (b and the chains' starting states), in parallel; the first pass runs it.
+  // Returns false when cancelled (the session is then discarded).
+  bool bootstrap(Counters& counters, const std::atomic<bool>* cancel = nullptr);
+  bool bootstrapped() const { return bootstrapped_; }
+  // One pass: `mutations` mutations shared among the chains (in chain order, so the same seed gives
+  // the same image at any thread count), their splats into `sums` (null: straight into `film`),
+  // then into the film. Returns false when cancelled.
+  bool renderPass(uint64_t mutations, Film& film, SplatSums* sums, Counters& counters,
+                  const std::atomic<bool>* cancel = nullptr);
+
+  // b: the integral of f over the chains' space (zero: nothing to render, the image stays black).
+  double normalisation() const { return b_; }
+  const MltStats& stats() const { return stats_; }
+  // The chains' share of each path length (MMLT; PSSMLT: all in length 0).
+  std::vector<int> chainsByLength() const;
+
+ private:
+  struct State;
+  struct Chain;
+  // The state's contributions and f for the primary numbers `samples` (of a chain of this length).
+  void evaluate(int length, PrimarySamples& samples, State& out, Counters& counters) const;
+  void runChain(Chain& chain, uint64_t mutations, Counters& counters) const;
+
+  const BidirTracer& tracer_;
+  int width_, height_, maxLength_;
+  uint64_t seed_;
+  MltOptions options_;
+  std::vector<std::vector<Technique>> enabledByLength_;  // MMLT: the techniques a chain of length k picks from
+  std::vector<std::unique_ptr<Chain>> chains_;
+  double b_ = 0.0;
+  bool bootstrapped_ = false;
+  MltStats stats_;
+  uint64_t passes_ = 0;
+};
+
+}  // namespace pathlab
