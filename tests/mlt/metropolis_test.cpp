@@ -1,0 +1,173 @@
+// Metropolis light transport (core/mlt/metropolis.h) against closed forms and the bidirectional
+// tracer: the furnace's geometric series for both variants and several heuristics (the image
+// mean is the bootstrap's b there), region by region agreement with BPT on the Cornell box, the
+// technique set restricting multiplexed chains, and the same image for the same seed at any
+// thread count. A Metropolis render's passes are not independent, so standard errors come from
+// independent renders (seeds) instead.
+#include "core/render/render_session.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/image_means.h"
+#include "tests/support/region_estimate.h"
+#include "tests/support/test_scenes.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <string>
+
+namespace pathlab {
+namespace {
+
+std::string mltAssetPath(const std::string& name) { return std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name; }
+
+RenderSettings mltSettings(int size, int maxLength, MltVariant variant) {
+  RenderSettings s;
+  s.width = s.height = size;
+  s.maxLength = maxLength;
+  s.integrator = IntegratorKind::Mlt;
+  s.mlt.variant = variant;
+  s.mlt.chains = 64;
+  s.mlt.bootstrap = 4000;
+  return s;
+}
+
+struct MltFurnaceCase {
+  MltVariant variant;
+  MisHeuristic heuristic;
+};
+
+class MetropolisFurnace : public ::testing::TestWithParam<MltFurnaceCase> {};
+
+// Every pixel sees Le (1 - rho^K) / (1 - rho) at maximum length K.
+TEST_P(MetropolisFurnace, MatchesGeometricSeries) {
+  const float rho = 0.6f, Le = 0.7f;
+  const int K = 5;
+  Scene scene(test::furnace(rho, Le));
+  RenderSettings s = mltSettings(12, K, GetParam().variant);
+  s.mis.heuristic = GetParam().heuristic;
+  const test::MeanEstimate m = test::seedMeans(scene, s, 24, 2, 100);
+  const double expected = Le * (1.0 - std::pow(rho, K)) / (1.0 - rho);
+  EXPECT_LT(std::abs(m.zScore(expected)), test::kMaxZ) << "mean " << m.mean << " expected " << expected << " se "
+                                                       << m.standardError;
+  EXPECT_LT(m.standardError, 0.02 * expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Variants, MetropolisFurnace,
+    ::testing::Values(MltFurnaceCase{MltVariant::Multiplexed, MisHeuristic::Balance},
+                      MltFurnaceCase{MltVariant::Multiplexed, MisHeuristic::Power},
+                      MltFurnaceCase{MltVariant::Multiplexed, MisHeuristic::Off},
+                      MltFurnaceCase{MltVariant::PrimarySpace, MisHeuristic::Balance}),
+    [](const auto& info) {
+      return std::string(mltVariantName(info.param.variant)) + "_" + misHeuristicName(info.param.heuristic);
+    });
+
+// Region means over independent renders (one sample per seed) of `passes` passes each.
+test::RegionMeans mltSeedRegionMeans(const Scene& scene, RenderSettings s, int seeds, int passes,
+                                  const test::PixelLabels& labels, uint64_t firstSeed) {
+  std::vector<std::array<test::RunningStats, 3>> region(static_cast<size_t>(labels.count));
+  std::array<test::RunningStats, 3> whole;
+  test::RegionMeans out;
+  for (int seed = 0; seed < seeds; ++seed) {
+    s.seed = firstSeed + static_cast<uint64_t>(seed);
+    RenderSession session(scene, s);
+    for (int i = 0; i < passes; ++i) session.renderPass();
+    out.discarded += session.counters().discarded();
+    const Image img = session.image();
+    std::vector<std::array<double, 3>> sum(region.size(), {0, 0, 0});
+    std::vector<int> count(region.size(), 0);
+    std::array<double, 3> all{0, 0, 0};
+    int allCount = 0;
+    for (size_t p = 0; p < labels.label.size(); ++p) {
+      const int l = labels.label[p];
+      if (l < 0) continue;
+      ++count[static_cast<size_t>(l)], ++allCount;
+      for (int c = 0; c < 3; ++c) {
+        sum[static_cast<size_t>(l)][static_cast<size_t>(c)] += img.rgb[3 * p + static_cast<size_t>(c)];
+        all[static_cast<size_t>(c)] += img.rgb[3 * p + static_cast<size_t>(c)];
+      }
+    }
+    for (size_t l = 0; l < region.size(); ++l)
+      for (size_t c = 0; c < 3; ++c) region[l][c].add(sum[l][c] / count[l]);
+    for (size_t c = 0; c < 3; ++c) whole[c].add(all[c] / allCount);
+  }
+  for (const auto& r : region) out.region.push_back({r[0].estimate(), r[1].estimate(), r[2].estimate()});
+  out.whole = {whole[0].estimate(), whole[1].estimate(), whole[2].estimate()};
+  return out;
+}
+
+struct MltAgreementCase {
+  MltVariant variant;
+  const char* techniques;
+};
+
+class MetropolisAgreement : public ::testing::TestWithParam<MltAgreementCase> {};
+
+// The Cornell box in 2 x 2 regions: Metropolis (32 independent renders) against BPT with the same
+// technique set (its passes are independent samples).
+TEST_P(MetropolisAgreement, CornellBoxRegionsAgreeWithBpt) {
+  Scene scene(loadGltf(mltAssetPath("cornell-box.gltf")));
+  RenderSettings mlt = mltSettings(16, 6, GetParam().variant);
+  mlt.techniques = TechniqueSet::parse(GetParam().techniques);
+  RenderSettings bpt = mlt;
+  bpt.integrator = IntegratorKind::Bpt;
+  bpt.seed = 7;
+  const test::PixelLabels labels = test::gridLabels(16, 16, 2, 2);
+  const test::RegionMeans a = mltSeedRegionMeans(scene, mlt, 32, 8, labels, 1000);
+  const test::RegionMeans b = test::renderRegionMeans(scene, bpt, 2048, labels);
+  EXPECT_EQ(a.discarded, 0u);
+  const test::Agreement agreement = test::compareRegions(a, b);
+  const double threshold = test::bonferroniZ(1e-3, agreement.comparisons);
+  EXPECT_LT(agreement.maxAbsZ, threshold) << agreement.worst;
+  // Power: the whole image's standard error is a small fraction of its mean.
+  EXPECT_LT(a.whole[0].standardError, 0.02 * a.whole[0].mean);
+}
+
+INSTANTIATE_TEST_SUITE_P(Variants, MetropolisAgreement,
+                         ::testing::Values(MltAgreementCase{MltVariant::Multiplexed, "all"},
+                                           MltAgreementCase{MltVariant::PrimarySpace, "all"},
+                                           MltAgreementCase{MltVariant::Multiplexed, "s=0;t=1"}),
+                         [](const auto& info) {
+                           return std::string(mltVariantName(info.param.variant)) +
+                                  (std::string(info.param.techniques) == "all" ? "_all" : "_subset");
+                         });
+
+// A multiplexed chain never proposes a technique the set leaves out, and proposes every one it
+// keeps.
+TEST(Metropolis, MultiplexedChainsProposeOnlyEnabledTechniques) {
+  Scene scene(loadGltf(mltAssetPath("cornell-box.gltf")));
+  RenderSettings s = mltSettings(16, 4, MltVariant::Multiplexed);
+  s.techniques = TechniqueSet::parse("s=0;t=1;2,2");
+  RenderSession session(scene, s);
+  for (int i = 0; i < 8; ++i) session.renderPass();
+  const MltStats& stats = session.metropolis()->stats();
+  EXPECT_EQ(stats.proposed, 8u * 16u * 16u);
+  EXPECT_GT(stats.accepted, 0u);
+  EXPECT_GT(stats.largeProposed, 0u);
+  for (const Technique x : techniquesUpTo(4)) {
+    const uint64_t proposed = stats.proposedByTechnique[x.index()];
+    if (s.techniques.contains(x)) EXPECT_GT(proposed, 0u) << x.s << "," << x.t;
+    else EXPECT_EQ(proposed, 0u) << x.s << "," << x.t;
+  }
+}
+
+TEST(Metropolis, SameSeedSameImageAtAnyThreadCount) {
+  Scene scene(loadGltf(mltAssetPath("cornell-box.gltf")));
+  for (const MltVariant variant : {MltVariant::Multiplexed, MltVariant::PrimarySpace}) {
+    RenderSettings s = mltSettings(16, 5, variant);
+    auto render = [&](int threads, uint64_t seed) {
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+      s.seed = seed;
+      RenderSession session(scene, s);
+      for (int i = 0; i < 3; ++i) session.renderPass();
+      return session.image().rgb;
+    };
+    const std::vector<float> one = render(1, 3);
+    EXPECT_EQ(one, render(2, 3)) << mltVariantName(variant);
+    EXPECT_NE(one, render(2, 4)) << mltVariantName(variant);
+  }
+}
+
+}  // namespace
+}  // namespace pathlab
