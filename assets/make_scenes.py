@@ -852,6 +852,56 @@ def fog_lamp():
     return b
 
 
+def door_ajar():
+    """Veach's "door ajar" (Veach and Guibas 1997, fig. 5), in pathlab's own measurements: two
+    rooms joined by a doorway whose door stands open by 6 degrees. The lamp hangs in the back
+    room; the camera stands in the front room, which the lamp lights only through the gap
+    between the door's free edge and the jamb. Almost every path that reaches the camera crosses
+    that gap, which a light subpath passes with a small probability and a camera subpath finds
+    by chance: the hard visibility Metropolis light transport (issue 33) is built for."""
+    b = GltfBuilder()
+    wall = b.add_material("wall", (0.7, 0.7, 0.68), lambertian=True)
+    floor = b.add_material("floor", (0.45, 0.32, 0.22), lambertian=True)
+    door = b.add_material("door", (0.55, 0.4, 0.3), lambertian=True)
+    table = b.add_material("table", (0.35, 0.25, 0.18), lambertian=True)
+    red = b.add_material("red", (0.65, 0.12, 0.1), lambertian=True)
+    blue = b.add_material("blue", (0.12, 0.2, 0.6), lambertian=True)
+    lamp = b.add_emitter("lamp", (1200.0, 1100.0, 900.0))
+    nodes = []
+
+    def part(name, geom, material, **kw):
+        nodes.append(b.add_node(name, b.add_geom(geom, material, name), **kw))
+
+    # The house: x in [-2, 2], y in [0, 2.6], z in [-3, 4]; the front room z > 0, the back z < 0.
+    part("floor", rect((0.0, 0.0, 0.5), (0.0, 1.0, 0.0), 2.0, 3.5), floor)
+    part("walls", merged(rect((0.0, 2.6, 0.5), (0.0, -1.0, 0.0), 2.0, 3.5),
+                         rect((2.0, 1.3, 0.5), (-1.0, 0.0, 0.0), 3.5, 1.3, u_dir=(0.0, 0.0, 1.0)),
+                         rect((-2.0, 1.3, 0.5), (1.0, 0.0, 0.0), 3.5, 1.3, u_dir=(0.0, 0.0, 1.0)),
+                         rect((0.0, 1.3, 4.0), (0.0, 0.0, -1.0), 2.0, 1.3),
+                         rect((0.0, 1.3, -3.0), (0.0, 0.0, 1.0), 2.0, 1.3)), wall)
+    # The dividing wall, 10 cm thick, with a doorway x in [0.2, 1.0], y in [0, 2.0].
+    part("dividingWall", merged(box((-0.9, 1.3, 0.0), (1.1, 1.3, 0.05)),
+                                box((1.5, 1.3, 0.0), (0.5, 1.3, 0.05)),
+                                box((0.6, 2.3, 0.0), (0.4, 0.3, 0.05))), wall)
+    # The door, 0.8 x 2 m and 4 cm thick, hinged at the doorway's left edge (x = 0.2, z = -0.05)
+    # and turned 6 degrees into the back room: its free edge stands about 8 cm from the jamb.
+    angle = math.radians(6.0)
+    hinge = (0.2, 0.0, -0.05)
+    centre = add(hinge, (0.4 * math.cos(angle), 1.0, -0.4 * math.sin(angle) - 0.02))
+    part("door", box((0.0, 0.0, 0.0), (0.4, 0.99, 0.02)), door,
+         translation=centre, rotation=quat_axis_angle((0.0, 1.0, 0.0), angle))
+    # The lamp: a 0.3 x 0.3 m panel under the back room's ceiling, facing down.
+    part("lamp", rect((1.2, 2.59, -2.2), (0.0, -1.0, 0.0), 0.15, 0.15), lamp)
+    # A table in the front room with a block and a tall box on it.
+    legs = [box((0.4 + sx * 0.5, 0.36, 1.6 + sz * 0.3), (0.03, 0.36, 0.03)) for sx in (-1, 1) for sz in (-1, 1)]
+    part("table", merged(box((0.4, 0.74, 1.6), (0.58, 0.02, 0.38)), *legs), table)
+    part("block", box((0.2, 0.88, 1.5), (0.12, 0.12, 0.12)), red)
+    part("tower", box((0.65, 1.01, 1.75), (0.1, 0.25, 0.1)), blue)
+    nodes.append(b.add_camera_node((-1.5, 1.5, 3.8), (0.4, 0.7, 0.3), 0.9))
+    b.add_scene("door-ajar", nodes)
+    return b
+
+
 def isometric():
     """Blocks and a ball on a floor under a square area light, seen by an orthographic camera
     from the isometric angle (azimuth 45 degrees, elevation 35.26): parallel rays, so equal
@@ -1194,6 +1244,7 @@ def main():
     write(ASSETS / "fog.gltf", fog().gltf_bytes())
     write(ASSETS / "fog-lamp.gltf", fog_lamp().gltf_bytes())
     write(ASSETS / "isometric.gltf", isometric().gltf_bytes())
+    write(ASSETS / "door-ajar.gltf", door_ajar().gltf_bytes())
     write(ASSETS / "many-lights.gltf", many_lights().gltf_bytes())
     write(ASSETS / "environment.gltf",
           environment_objects((1.2, 1.1, 2.6), (0.0, 0.3, 0.0), 0.75, 1.5).gltf_bytes())

@@ -78,6 +78,11 @@ class Settings:
         noncaustic_photons: Optional[float] = None,
         rr: bool = True,
         medium_sampling: Optional[str] = None,
+        mlt_variant: Optional[str] = None,
+        chains: Optional[int] = None,
+        bootstrap: Optional[int] = None,
+        large_step: Optional[float] = None,
+        sigma: Optional[float] = None,
         seed: Optional[int] = None,
         aperture: Optional[float] = None,
         focus_distance: Optional[float] = None,
@@ -87,7 +92,7 @@ class Settings:
         check_mis: bool = False,
         threads: Optional[int] = None,
     ) -> None:
-        """integrator: 'bpt' (default), 'pt', 'lt', 'vcm', 'bpm', 'ppm'; mis: 'balance', 'power',
+        """integrator: 'bpt' (default), 'pt', 'lt', 'vcm', 'bpm', 'ppm', 'mlt' (mlt_variant 'mmlt' or 'pss'); mis: 'balance', 'power',
         'uniform', 'off'; connect: 'all' or 'endpoints' (naive BPT); isolate: "S,T" or "MS,T";
         width/height: neither given, the camera's shape with the longest side 512.
         Raises pathlab.Error naming the argument."""

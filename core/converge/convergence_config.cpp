@@ -14,9 +14,11 @@ namespace pathlab {
 namespace {
 
 // vcm and bpm are bpt with a technique set of their own, as on the command line.
-constexpr std::array<std::string_view, 5> kIntegrators = {"bpt", "pt", "lt", "vcm", "bpm"};
-constexpr std::array<std::string_view, 8> kKeys = {"mis",        "beta",    "min-connection", "techniques",
-                                                   "max-length", "connect", "radius",         "radius-alpha"};
+constexpr std::array<std::string_view, 6> kIntegrators = {"bpt", "pt", "lt", "vcm", "bpm", "mlt"};
+constexpr std::array<std::string_view, 15> kKeys = {
+    "mis",        "beta",         "min-connection",     "techniques",      "max-length",
+    "connect",    "radius",       "radius-alpha",       "noncaustic-photons", "medium-sampling",
+    "mlt-variant", "chains",      "bootstrap",          "large-step",      "sigma"};
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -80,7 +82,8 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
   else if (name == "lt") s.integrator = IntegratorKind::Lt;
   else if (name == "vcm") s.integrator = IntegratorKind::Bpt, s.techniques = TechniqueSet::parse("all;m=all");
   else if (name == "bpm") s.integrator = IntegratorKind::Bpt, s.techniques = TechniqueSet::parse("m=all");
-  else fail(config, fmt::format("unknown integrator '{}' (bpt, pt, lt, vcm or bpm)", name));
+  else if (name == "mlt") s.integrator = IntegratorKind::Mlt;
+  else fail(config, fmt::format("unknown integrator '{}' (bpt, pt, lt, vcm, bpm or mlt)", name));
   if (colon != std::string_view::npos) {
     const std::string_view keys = config.substr(colon + 1);
     for (std::string_view pair : splitWhere(keys, ',', startsKey)) {
@@ -94,6 +97,10 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
         fail(config, fmt::format("{} sets the techniques: for another set use bpt:techniques=...", name));
       if (estimatorKey && s.integrator == IntegratorKind::Pt)
         fail(config, fmt::format("{} applies to bpt and lt, not pt", key));
+      const bool mltKey = key == "mlt-variant" || key == "chains" || key == "bootstrap" || key == "large-step" ||
+                          key == "sigma";
+      if (mltKey && s.integrator != IntegratorKind::Mlt)
+        fail(config, fmt::format("{} applies to mlt, not {}", key, name));
       if (key == "mis") {
         if (value == "balance") s.mis.heuristic = MisHeuristic::Balance;
         else if (value == "power") s.mis.heuristic = MisHeuristic::Power;
@@ -125,12 +132,25 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
       } else if (key == "medium-sampling") {
         s.mediumSampling = parseMediumSampling(value);
         if (!s.mediumSampling) fail(config, fmt::format("unknown medium sampling '{}' (distance, equiangular or mis)", value));
+      } else if (key == "mlt-variant") {
+        const std::optional<MltVariant> v = parseMltVariant(value);
+        if (!v) fail(config, fmt::format("unknown MLT variant '{}' (mmlt or pss)", value));
+        s.mlt.variant = *v;
+      } else if (key == "chains") {
+        s.mlt.chains = parseNumber<int>(config, key, value);  // validateSettings checks the ranges
+      } else if (key == "bootstrap") {
+        s.mlt.bootstrap = parseNumber<uint64_t>(config, key, value);
+      } else if (key == "large-step") {
+        s.mlt.largeStep = parseNumber<float>(config, key, value);
+      } else if (key == "sigma") {
+        s.mlt.sigma = parseNumber<float>(config, key, value);
       } else if (key == "max-length") {
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");
       } else {
         fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length, connect, radius, "
-                                  "radius-alpha, noncaustic-photons, medium-sampling)",
+                                  "radius-alpha, noncaustic-photons, medium-sampling, mlt-variant, chains, bootstrap, "
+                                  "large-step, sigma)",
                                   key));
       }
     }

@@ -61,6 +61,21 @@ expect_error "render --medium-sampling sideways" "--medium-sampling" render "$BO
 expect_error "render bpt --medium-sampling mis" "only the path tracer" render "$BOX" -o "$TMP/x.png" --integrator bpt --medium-sampling mis
 expect_error "converge medium-sampling=x" "unknown medium sampling 'x'" converge "$BOX" -o "$TMP/conv" --configs "pt:medium-sampling=x" --spp 2
 expect_error "converge bpt:medium-sampling=equiangular" "only the path tracer" converge "$BOX" -o "$TMP/conv" --configs "bpt:medium-sampling=equiangular" --spp 2
+# Metropolis (issue 33): its options apply to mlt only, in range; what needs independent samples per
+# pixel is refused with it.
+expect_error "render --chains without mlt" "--chains applies to --integrator mlt" render "$BOX" -o "$TMP/x.png" --chains 10
+expect_error "render --sigma 0" "--sigma" render "$BOX" -o "$TMP/x.png" --integrator mlt --sigma 0
+expect_error "render --large-step 2" "--large-step" render "$BOX" -o "$TMP/x.png" --integrator mlt --large-step 2
+expect_error "render --mlt-variant kelemen" "--mlt-variant" render "$BOX" -o "$TMP/x.png" --integrator mlt --mlt-variant kelemen
+expect_error "render mlt with merges" "mlt runs over connections" render "$BOX" -o "$TMP/x.png" --integrator mlt --techniques "all;m=all"
+expect_error "render mlt --pyramid" "technique pyramid needs the bpt or lt" render "$BOX" -o "$TMP/x.png" --integrator mlt --pyramid 2
+expect_error "render mlt --replay" "--replay replays one independent sample" render "$BOX" --integrator mlt --replay 1,1,0
+expect_error "render --mutations-per-pixel with bpt" "--mutations-per-pixel applies to --integrator mlt" \
+  render "$BOX" -o "$TMP/x.png" --mutations-per-pixel 4
+expect_error "converge bpt:chains=4" "chains applies to mlt, not bpt" converge "$BOX" -o "$TMP/conv" --configs "bpt:chains=4" --spp 2
+expect_error "converge mlt:mlt-variant=x" "unknown MLT variant 'x'" converge "$BOX" -o "$TMP/conv" --configs "mlt:mlt-variant=x" --spp 2
+"$PATHLAB" render "$BOX" -o "$TMP/mlt.exr" --integrator mlt --mutations-per-pixel 2 --bootstrap 1000 --chains 16 --width 16 \
+  --height 16 --force >/dev/null 2>&1 && [ -s "$TMP/mlt.exr" ] && ok || fail "render --integrator mlt"
 "$PATHLAB" render "$BOX" -o "$TMP/vcm.exr" --integrator vcm --spp 1 --width 16 --height 16 --force >/dev/null 2>&1 &&
   [ -s "$TMP/vcm.exr" ] && ok || fail "render --integrator vcm"
 

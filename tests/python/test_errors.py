@@ -9,7 +9,7 @@ BAD_SETTINGS = [
     (dict(max_length="5"), "max_length: expected an int, got str"),
     (dict(max_length=True), "max_length: expected an int, got bool"),
     (dict(beta=float("nan")), "beta: nan is not a finite number"),
-    (dict(integrator="mlt"), "integrator"),
+    (dict(integrator="sppm"), "integrator"),
     (dict(integrator="vcm", techniques="all"), "integrator vcm sets the techniques"),
     (dict(mis="max"), "mis"),
     (dict(techniques="9,9,9"), "techniques"),
