@@ -164,6 +164,33 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
 
 namespace {
 
+// The chains' normalisation and how they moved, after a Metropolis render: b with its standard
+// error (the image's brightness is off by b's relative error however long the chains run), the
+// acceptance over all, of large steps, and per path length.
+std::string metropolisSummary(const Metropolis& m, const RenderSettings& s) {
+  const MltStats& stats = m.stats();
+  const double b = m.normalisation();
+  std::string out = fmt::format(
+      "mlt ({}): b = {:.6g} +- {:.2g} ({:.2f} %, {} bootstrap samples{}), {} chains; acceptance {:.1f} %, large steps "
+      "{:.1f} % of the proposals and {:.1f} % accepted\n",
+      mltVariantName(s.mlt.variant), b, m.normalisationError(), b > 0 ? 100.0 * m.normalisationError() / b : 0.0,
+      s.mlt.bootstrap, s.mlt.variant == MltVariant::Multiplexed ? " per length" : "", s.mlt.chains,
+      100.0 * stats.acceptance(),
+      stats.proposed ? 100.0 * static_cast<double>(stats.largeProposed) / static_cast<double>(stats.proposed) : 0.0,
+      stats.largeProposed ? 100.0 * static_cast<double>(stats.largeAccepted) / static_cast<double>(stats.largeProposed)
+                          : 0.0);
+  if (s.mlt.variant == MltVariant::Multiplexed) {
+    const std::vector<int> chains = m.chainsByLength();
+    out += "  length  chains  acceptance\n";
+    for (size_t k = 1; k < chains.size(); ++k) {
+      const uint64_t p = k < stats.proposedByLength.size() ? stats.proposedByLength[k] : 0;
+      const uint64_t a = k < stats.acceptedByLength.size() ? stats.acceptedByLength[k] : 0;
+      out += fmt::format("  {:>6}  {:>6}  {:>9.1f} %\n", k, chains[k], p ? 100.0 * static_cast<double>(a) / static_cast<double>(p) : 0.0);
+    }
+  }
+  return out;
+}
+
 // Everything a render needs before its first pass.
 struct PreparedRender {
   std::unique_ptr<Scene> scene;
@@ -288,6 +315,7 @@ int runRender(RenderOptions o, Job& job) {
     std::cerr << fmt::format("{} ranks: their sums were added into rank 0 in {:.3f} s\n",
                              job.size(), totals.reduceSeconds);
   if (settings.integrator != IntegratorKind::Pt) printTechniqueCounters(c, settings.maxLength, seconds, o.stats);
+  if (const Metropolis* m = session.metropolis()) std::cerr << metropolisSummary(*m, settings);
   if (settings.checkMis)
     std::cerr << fmt::format("MIS check: {} of {} paths whose weights do not sum to one\n", c.misPartitionFailures,
                              c.misPartitionChecks);

@@ -202,10 +202,11 @@ void Viewer::fitEstimatorToFrame(std::optional<float> aspect, float framebufferS
     edited.width = std::max(1, static_cast<int>(static_cast<float>(imageSize().x) * run_.resolutionScale));
     edited.height = std::max(1, static_cast<int>(static_cast<float>(imageSize().y) * run_.resolutionScale));
   }
-  edited.pyramidLength = pyramid_.show ? std::min(pyramid_.length, edited.maxLength) : 0;
+  const bool metropolis = edited.integrator == IntegratorKind::Mlt;  // no per-technique images
+  edited.pyramidLength = pyramid_.show && !metropolis ? std::min(pyramid_.length, edited.maxLength) : 0;
   // The maps read the pyramid's films: showing them makes the pyramid at least their length and
   // keeps its sampleable films (one restart); which map is shown is the viewer's alone.
-  edited.techniqueMaps = maps_.show && edited.integrator != IntegratorKind::Pt;
+  edited.techniqueMaps = maps_.show && edited.integrator != IntegratorKind::Pt && !metropolis;
   if (edited.techniqueMaps)
     edited.pyramidLength = std::max(edited.pyramidLength, std::min({maps_.length, edited.maxLength, kMaxPyramidLength}));
   if (pyramid_.show) {
@@ -261,6 +262,7 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
                       ui_.frameMs, requests);
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
     drawEstimatorSection(estimator_, grid_, a().refused(), a().snapshot().counters, a().snapshot().check.get(),
+                         a().snapshot().mlt.get(),
                          MergeRadiusNow{&a().snapshot().settings, a().snapshot().samplesPerPixel, scene().bounds().radius});
   if (ImGui::CollapsingHeader("Path inspector and 3D view",
                               inspect_.inspector.on || inspect_.view3d.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))

@@ -168,6 +168,19 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
   std::vector<double> cdf(total + 1, 0.0);
   for (uint64_t i = 0; i < total; ++i) cdf[i + 1] = cdf[i] + weights[i];
   b_ = options_.bootstrap > 0 ? cdf[total] / static_cast<double>(options_.bootstrap) : 0.0;
+  // b is a sum over lengths of independent means (bootstrap samples per length each): its variance
+  // is the sum of theirs.
+  {
+    const auto n = static_cast<double>(options_.bootstrap);
+    std::vector<double> sum(lengths, 0.0), sum2(lengths, 0.0);
+    for (uint64_t i = 0; i < total; ++i) sum[i % lengths] += weights[i], sum2[i % lengths] += weights[i] * weights[i];
+    double variance = 0.0;
+    for (uint64_t k = 0; k < lengths; ++k) {
+      const double mean = sum[k] / n;
+      variance += n > 1 ? std::max(0.0, sum2[k] / n - mean * mean) / (n - 1) : 0.0;
+    }
+    bError_ = std::sqrt(variance);
+  }
   bootstrapped_ = true;
   if (!(b_ > 0.0)) return true;  // nothing reaches the film: no chains, a black image
   chains_.resize(static_cast<size_t>(options_.chains));

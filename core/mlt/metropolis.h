@@ -48,6 +48,13 @@ struct MltStats {
   double acceptance() const { return proposed ? static_cast<double>(accepted) / static_cast<double>(proposed) : 0.0; }
 };
 
+// What a viewer shows of the chains after a pass (published with the image).
+struct MltSummary {
+  double b = 0.0, bError = 0.0;
+  MltStats stats;
+  std::vector<int> chainsByLength;
+};
+
 class Metropolis {
  public:
   // `tracer` has no merges (validateSettings refuses mlt with them); width x height is the film's.
@@ -64,11 +71,16 @@ class Metropolis {
   bool renderPass(uint64_t mutations, Film& film, SplatSums* sums, Counters& counters,
                   const std::atomic<bool>* cancel = nullptr);
 
-  // b: the integral of f over the chains' space (zero: nothing to render, the image stays black).
+  // b: the integral of f over the chains' space (zero: nothing to render, the image stays black),
+  // and its standard error from the bootstrap samples' spread. Every pixel is proportional to b,
+  // and no number of mutations changes it: the image's overall brightness is off by b's relative
+  // error however long the chains run (as in pbrt-v4 and Mitsuba); --bootstrap lowers it.
   double normalisation() const { return b_; }
+  double normalisationError() const { return bError_; }
   const MltStats& stats() const { return stats_; }
   // The chains' share of each path length (MMLT; PSSMLT: all in length 0).
   std::vector<int> chainsByLength() const;
+  MltSummary summary() const { return {b_, bError_, stats_, chainsByLength()}; }
 
  private:
   struct State;
@@ -83,7 +95,7 @@ class Metropolis {
   MltOptions options_;
   std::vector<std::vector<Technique>> enabledByLength_;  // MMLT: the techniques a chain of length k picks from
   std::vector<std::unique_ptr<Chain>> chains_;
-  double b_ = 0.0;
+  double b_ = 0.0, bError_ = 0.0;
   bool bootstrapped_ = false;
   MltStats stats_;
   uint64_t passes_ = 0;

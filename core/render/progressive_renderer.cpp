@@ -29,6 +29,11 @@ RenderSettings previewSettings(const RenderSettings& full, int factor) {
   p.height = (full.height + factor - 1) / factor;
   p.pyramidLength = 0;
   p.techniqueMaps = false;
+  // Metropolis: a preview has factor^2 times fewer pixels, so as many fewer mutations a pass; its
+  // bootstrap (what its first image waits for) shrinks alike, to no fewer than 1000 samples.
+  p.mlt.bootstrap = std::max<uint64_t>(std::min<uint64_t>(full.mlt.bootstrap, 1000),
+                                       full.mlt.bootstrap / static_cast<uint64_t>(factor * factor));
+  p.mlt.chains = std::max(1, std::min(full.mlt.chains, (p.width * p.height + 3) / 4));
   return p;
 }
 
@@ -86,7 +91,7 @@ void ProgressiveRenderer::State::run() {
   };
 
   auto publish = [&](Image image, bool preview, int factor, const Counters& counters, uint64_t spp,
-                     std::shared_ptr<const CheckReport> check) {
+                     std::shared_ptr<const CheckReport> check, std::shared_ptr<const MltSummary> mlt = nullptr) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     std::lock_guard lock(mutex);
     if (generation != gen) return;  // superseded while finishing: never shown
@@ -101,6 +106,7 @@ void ProgressiveRenderer::State::run() {
     front.counters = counters;
     front.settings = set;
     front.check = std::move(check);
+    front.mlt = std::move(mlt);
     published.notify_all();
   };
 
@@ -151,7 +157,9 @@ void ProgressiveRenderer::State::run() {
     if (observe && *observe) (*observe)(PassInfo{gen, set, sc.get(), session->passes(), renderSeconds}, image);
     std::shared_ptr<const CheckReport> check;
     if (const TechniqueCheck* c = session->techniqueCheck()) check = std::make_shared<const CheckReport>(checkReport(*c));
-    publish(std::move(image), false, 1, counters, session->passes(), std::move(check));
+    std::shared_ptr<const MltSummary> mlt;
+    if (const Metropolis* m = session->metropolis()) mlt = std::make_shared<const MltSummary>(m->summary());
+    publish(std::move(image), false, 1, counters, session->passes(), std::move(check), std::move(mlt));
 
     if (session->hasPyramid()) {
       {

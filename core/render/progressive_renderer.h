@@ -13,6 +13,7 @@
 #include "core/film/film.h"
 #include "core/maps/technique_maps.h"
 #include "core/counters/counters.h"
+#include "core/mlt/metropolis.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
@@ -37,6 +38,8 @@ struct RenderSnapshot {
   RenderSettings settings;        // the settings this image was rendered with
   // The consistency check over this generation's full passes (settings.checkTechniques), else null.
   std::shared_ptr<const CheckReport> check;
+  // The Metropolis chains' normalisation and acceptance after the last full pass (Mlt), else null.
+  std::shared_ptr<const MltSummary> mlt;
 };
 
 // What the pass observer sees after every full-resolution pass, on the render thread.

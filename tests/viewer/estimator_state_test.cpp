@@ -190,5 +190,29 @@ TEST(EstimatorState, DescriptionSaysWhatPathAndLightTracingUse) {
   EXPECT_EQ(describe(s), "lt, max length 4, techniques 2,1, one technique a length (weight 1)");
 }
 
+// Metropolis (issue 33): the renderer gets the set's connections alone, and nothing that needs a
+// sample's every technique at its pixel, while the state keeps them for the other integrators.
+TEST(EstimatorState, MetropolisGetsTheConnectionsAndNoPerTechniqueOutputs) {
+  EstimatorState e = bidirectional(6);
+  e.settings.techniques = TechniqueSet::parse("all;m=all");
+  e.settings.pyramidLength = 3;
+  e.settings.techniqueMaps = true;
+  e.settings.checkTechniques = true;
+  e.settings.injectBias = BiasInjection{1, 2, 2.f};
+  EXPECT_TRUE(setIsolated(e, {2, 2}));
+  cycleMode(e);
+  e.settings.integrator = IntegratorKind::Mlt;
+  const RenderSettings s = renderSettings(e);
+  EXPECT_NO_THROW(validateSettings(s));
+  EXPECT_EQ(s.techniques.families(), TechniqueFamilies::Connections);
+  EXPECT_TRUE(s.techniques.containsAllUpTo(6));
+  EXPECT_FALSE(s.isolate);
+  EXPECT_EQ(s.pyramidLength, 0);
+  EXPECT_FALSE(s.techniqueMaps || s.checkTechniques || s.injectBias);
+  e.settings.integrator = IntegratorKind::Bpt;
+  EXPECT_EQ(renderSettings(e).techniques.families(), TechniqueFamilies::All);
+  EXPECT_TRUE(renderSettings(e).isolate);
+}
+
 }  // namespace
 }  // namespace pathlab::ui

@@ -94,6 +94,20 @@ TEST(Presets, MediumSampling) {
   EXPECT_NO_THROW(validateSettings(bpt));
 }
 
+// Metropolis (issue 33): "integrator": "mlt" sets it, with its compare lane; an isolation with it
+// is refused at parse time.
+TEST(Presets, Metropolis) {
+  const auto presets = parsePresets(R"({"presets": [
+      {"name": "mlt", "integrator": "mlt", "compare": "bpt"}]})",
+                                    "p.json");
+  ASSERT_EQ(presets.size(), 1u);
+  const RenderSettings s = presets[0].applyTo(RenderSettings{});
+  EXPECT_EQ(s.integrator, IntegratorKind::Mlt);
+  EXPECT_NO_THROW(validateSettings(s));
+  EXPECT_THROW(parsePresets(R"({"presets": [{"name": "x", "integrator": "mlt", "isolate": [1, 2]}]})", "p.json"),
+               PresetError);
+}
+
 TEST(Presets, FieldsAndDefaults) {
   const auto presets = parsePresets(R"({"presets": [
       {"name": "a"},

@@ -52,6 +52,15 @@ RenderSettings renderSettings(const EstimatorState& state) {
     s.pyramidLength = 0;
     s.checkTechniques = false;
     s.injectBias.reset();
+  } else if (s.integrator == IntegratorKind::Mlt) {
+    // Metropolis runs over the connections the set keeps (not its merges), every sample of a chain
+    // through the same weights: no isolation, pyramid, maps, check or injected bias.
+    s.techniques = s.techniques & TechniqueSet::all();
+    s.isolate.reset();
+    s.pyramidLength = 0;
+    s.techniqueMaps = false;
+    s.checkTechniques = false;
+    s.injectBias.reset();
   } else if (state.mode != EstimatorMode::Combine) {
     s.isolate = Isolation{state.isolated.s, state.isolated.t, state.mode == EstimatorMode::IsolateUnweighted,
                           state.isolated.kind};

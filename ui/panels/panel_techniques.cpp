@@ -330,14 +330,60 @@ void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
                         static_cast<double>(now.sceneRadius));
 }
 
+// Metropolis (issue 33): the variant, the mutation's two parameters, the chains and bootstrap, and
+// what the last pass's chains did.
+void drawMetropolisControls(MltOptions& m, const MltSummary* now) {
+  int variant = static_cast<int>(m.variant);
+  ImGui::TextUnformatted("chains");
+  ImGui::SameLine();
+  ImGui::RadioButton("multiplexed", &variant, static_cast<int>(MltVariant::Multiplexed));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("MMLT (Hachisuka et al. 2014): a chain per path length; its state also picks the technique (s,t)");
+  ImGui::SameLine();
+  ImGui::RadioButton("primary space", &variant, static_cast<int>(MltVariant::PrimarySpace));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("PSSMLT (Kelemen et al. 2002): the state is a whole bidirectional sample, all techniques by MIS");
+  m.variant = static_cast<MltVariant>(variant);
+  ImGui::SliderFloat("large step", &m.largeStep, 0.f, 1.f, "%.2f");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the probability of a large step: a new, independent path");
+  ImGui::SliderFloat("sigma", &m.sigma, 0.001f, 0.3f, "%.3f", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("a small step moves every primary number by a normal of this deviation");
+  ImGui::SliderInt("chains##count", &m.chains, 1, 10000, "%d", ImGuiSliderFlags_Logarithmic);
+  int bootstrap = static_cast<int>(std::min<uint64_t>(m.bootstrap, 10000000));
+  if (ImGui::SliderInt("bootstrap", &bootstrap, 1000, 10000000, "%d", ImGuiSliderFlags_Logarithmic))
+    m.bootstrap = static_cast<uint64_t>(std::max(bootstrap, 1));
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("independent samples per path length that estimate b (the image's brightness) and start the\n"
+                      "chains: b's error stays in the image however long the chains run");
+  if (!now) return;
+  const MltStats& s = now->stats;
+  const double b = now->b;
+  ImGui::Text("b = %.4g +- %.2f %%   acceptance %.1f %%", b, b > 0 ? 100.0 * now->bError / b : 0.0, 100.0 * s.acceptance());
+  ImGui::Text("large steps: %.1f %% accepted",
+              s.largeProposed ? 100.0 * static_cast<double>(s.largeAccepted) / static_cast<double>(s.largeProposed) : 0.0);
+  if (m.variant != MltVariant::Multiplexed) return;
+  std::string line = "chains by length:";
+  for (size_t k = 1; k < now->chainsByLength.size(); ++k) {
+    const uint64_t p = k < s.proposedByLength.size() ? s.proposedByLength[k] : 0;
+    const uint64_t a = k < s.acceptedByLength.size() ? s.acceptedByLength[k] : 0;
+    if (now->chainsByLength[k] == 0) continue;
+    line += fmt::format(" {}: {} ({:.0f} %)", k, now->chainsByLength[k],
+                        p ? 100.0 * static_cast<double>(a) / static_cast<double>(p) : 0.0);
+  }
+  ImGui::TextWrapped("%s", line.c_str());
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("length k: the chains that sample it (in proportion to its share of b), and their acceptance");
+}
+
 }  // namespace
 
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
-                          const Counters& counters, const CheckReport* check, const MergeRadiusNow& radiusNow) {
+                          const Counters& counters, const CheckReport* check, const MltSummary* mlt,
+                          const MergeRadiusNow& radiusNow) {
   RenderSettings& edited = estimator.settings;
   ImGui::PushID("estimator");
   // Integrator
-  int integrator = edited.integrator == IntegratorKind::Bpt ? 0 : edited.integrator == IntegratorKind::Pt ? 1 : 2;
+  constexpr IntegratorKind kOrder[] = {IntegratorKind::Bpt, IntegratorKind::Pt, IntegratorKind::Lt, IntegratorKind::Mlt};
+  int integrator = static_cast<int>(std::find(std::begin(kOrder), std::end(kOrder), edited.integrator) - std::begin(kOrder));
   ImGui::TextUnformatted("integrator");
   ImGui::SameLine();
   ImGui::RadioButton("bpt", &integrator, 0);
@@ -346,7 +392,13 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   ImGui::SameLine();
   ImGui::RadioButton("lt", &integrator, 2);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("light tracing: only the t = 1 techniques");
-  edited.integrator = integrator == 0 ? IntegratorKind::Bpt : integrator == 1 ? IntegratorKind::Pt : IntegratorKind::Lt;
+  ImGui::SameLine();
+  ImGui::RadioButton("mlt", &integrator, 3);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Metropolis light transport: Markov chains over the enabled techniques (connections), in\n"
+                      "proportion to what each path brings to the image");
+  edited.integrator = kOrder[std::clamp(integrator, 0, 3)];
+  if (edited.integrator == IntegratorKind::Mlt) drawMetropolisControls(edited.mlt, mlt);
 
   int maxLength = edited.maxLength;
   if (ImGui::SliderInt("max length", &maxLength, 1, 32)) setMaxLength(estimator, maxLength);
@@ -403,12 +455,17 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
                         "combination): biased where a technique cannot sample a path (the status says where)");
   }
   edited.mis.heuristic = static_cast<MisHeuristic>(heuristic);
+  const bool metropolis = edited.integrator == IntegratorKind::Mlt;
+  // Metropolis runs over path reuse, every technique weighed: no naive BPT, isolation or check.
+  ImGui::BeginDisabled(metropolis);
   bool naive = edited.connect == ConnectStrategy::Endpoints;
   ImGui::Checkbox("naive BPT: connect endpoints only", &naive);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("each technique (s,t) traces a light subpath of s and a camera subpath of t vertices of its own\n"
                       "and connects their endpoints: same weights and expectation as path reuse, more rays a sample");
   edited.connect = naive ? ConnectStrategy::Endpoints : ConnectStrategy::All;
+  ImGui::EndDisabled();
+  if (metropolis) edited.connect = ConnectStrategy::All;
   if (edited.mis.heuristic == MisHeuristic::Power) ImGui::SliderFloat("beta", &edited.mis.beta, 0.5f, 8.f, "%.2f");
   ImGui::SliderFloat("min connection", &edited.mis.minConnection, 0.f, 0.3f, "%.4f", ImGuiSliderFlags_Logarithmic);
   if (ImGui::IsItemHovered())
@@ -418,9 +475,11 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
 
   // Mode
   int mode = static_cast<int>(estimator.mode);
+  ImGui::BeginDisabled(metropolis);
   for (int m = 0; m < 3; ++m) ImGui::RadioButton(modeLabel(static_cast<EstimatorMode>(m)), &mode, m);
+  ImGui::EndDisabled();
   estimator.mode = static_cast<EstimatorMode>(mode);
-  if (estimator.mode != EstimatorMode::Combine) {
+  if (estimator.mode != EstimatorMode::Combine && !metropolis) {
     const Technique x = estimator.isolated;
     ImGui::Text("isolated technique %s%s, length %d", x.isMerge() ? "" : "(s,t) = ", techniqueLabel(x).c_str(),
                 x.length());
@@ -438,7 +497,9 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
 
   ImGui::Separator();
   drawTechniqueGrid(estimator, grid, counters, check);
+  ImGui::BeginDisabled(metropolis);
   drawCheckControls(estimator, grid, check);
+  ImGui::EndDisabled();
   ImGui::EndDisabled();
   if (!bidirectional) ImGui::TextDisabled("the path tracer ignores the technique set");
 

@@ -11,6 +11,7 @@
 #include "ui/inspect/view3d.h"
 #include "ui/lane/compare.h"
 #include "ui/viewer_state.h"
+#include "core/mlt/metropolis.h"
 
 #include <imgui.h>
 
@@ -52,7 +53,8 @@ struct MergeRadiusNow {
   float sceneRadius = 0.f;
 };
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
-                          const Counters& counters, const CheckReport* check, const MergeRadiusNow& radiusNow);
+                          const Counters& counters, const CheckReport* check, const MltSummary* mlt,
+                          const MergeRadiusNow& radiusNow);
 void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
 void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
 void drawPresetSection(const PresetState& presets, PanelRequests& requests);

@@ -85,10 +85,11 @@ NamedPreset parseOne(const Json& p) {
     if (v == "bpt") out.integrator = IntegratorKind::Bpt;
     else if (v == "pt") out.integrator = IntegratorKind::Pt;
     else if (v == "lt") out.integrator = IntegratorKind::Lt;
+    else if (v == "mlt") out.integrator = IntegratorKind::Mlt;
     else if (v == "vcm") own = "all;m=all";
     else if (v == "bpm") own = "m=all";
     else if (v == "ppm") own = "s=0;m=all";
-    else throw std::invalid_argument(fmt::format("integrator \"{}\" is not bpt, pt, lt, vcm, bpm or ppm", v));
+    else throw std::invalid_argument(fmt::format("integrator \"{}\" is not bpt, pt, lt, mlt, vcm, bpm or ppm", v));
     if (own) {
       if (p.contains("techniques"))
         throw std::invalid_argument(fmt::format("integrator \"{}\" sets the techniques ({}): for another set use "
@@ -142,7 +143,8 @@ NamedPreset parseOne(const Json& p) {
     if (!x.valid() || x.length() > out.maxLength)
       throw std::invalid_argument(fmt::format("isolated technique {} is not a technique of length {}..{}",
                                               techniqueLabel(x), x.isMerge() ? 2 : 1, out.maxLength));
-    if (out.integrator == IntegratorKind::Pt) throw std::invalid_argument("\"isolate\" needs integrator bpt or lt");
+    if (out.integrator == IntegratorKind::Pt || out.integrator == IntegratorKind::Mlt)
+      throw std::invalid_argument("\"isolate\" needs integrator bpt or lt");
     if (out.integrator == IntegratorKind::Lt && x.isMerge())
       throw std::invalid_argument(
           fmt::format("\"isolate\" {}: light tracing has only the t = 1 techniques (a merge needs bpt)", techniqueLabel(x)));
