@@ -18,6 +18,12 @@ CASES = [
      ["--width", "40", "--height", "40", "--integrator", "vcm", "--radius", "0.01", "--radius-alpha", "0.5"]),
     ("cornell-box.gltf", dict(width=32, height=32, integrator="lt", rr=False),
      ["--width", "32", "--height", "32", "--integrator", "lt", "--no-rr"]),
+    ("door-ajar.gltf", dict(width=32, height=24, integrator="mlt", chains=50, bootstrap=2000, large_step=0.5),
+     ["--width", "32", "--height", "24", "--integrator", "mlt", "--chains", "50", "--bootstrap", "2000",
+      "--large-step", "0.5"]),
+    ("cornell-box.gltf", dict(width=32, height=32, integrator="mlt", mlt_variant="pss", bootstrap=2000, sigma=0.05),
+     ["--width", "32", "--height", "32", "--integrator", "mlt", "--mlt-variant", "pss", "--bootstrap", "2000",
+      "--sigma", "0.05"]),
 ]
 
 

@@ -73,6 +73,11 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
     state.error = "the path tracer has no (s,t) techniques to inspect: switch to bpt or lt (I)";
     return false;
   }
+  if (settings.integrator == IntegratorKind::Mlt) {
+    // A pixel's value is the chains' visits, not independent samples of its own to replay.
+    state.error = "Metropolis has no per-pixel samples to replay: switch to bpt or lt to inspect one";
+    return false;
+  }
   const Vec2i p = *state.pixel;
   state.error.clear();
   const RenderSession session(scene, settings);

@@ -124,6 +124,11 @@ bool refreshLightParticles(LightParticles& particles, const std::shared_ptr<cons
     particles.error = "the path tracer traces no light subpaths: switch to bpt or lt (I)";
     return true;
   }
+  if (settings.integrator == IntegratorKind::Mlt) {
+    // Its chains' light subpaths are functions of their primary numbers, not of a pass's streams.
+    particles.error = "the Metropolis chains' paths are not drawn yet: switch to bpt or lt for light subpaths (I)";
+    return true;
+  }
   particles.error.clear();
   const uint64_t pixels = static_cast<uint64_t>(settings.width) * static_cast<uint64_t>(settings.height);
   for (int i = 0; i < count; ++i) {
