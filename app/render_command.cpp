@@ -170,17 +170,19 @@ namespace {
 std::string metropolisSummary(const Metropolis& m, const RenderSettings& s) {
   const MltStats& stats = m.stats();
   const double b = m.normalisation();
+  const std::vector<int> chains = m.chainsByLength();
+  int chainCount = 0;
+  for (int n : chains) chainCount += n;
   std::string out = fmt::format(
-      "mlt ({}): b = {:.6g} +- {:.2g} ({:.2f} %, {} bootstrap samples{}), {} chains; acceptance {:.1f} %, large steps "
-      "{:.1f} % of the proposals and {:.1f} % accepted\n",
+      "mlt ({}): b = {:.6g} +- {:.2g} ({:.2f} %, from {} bootstrap samples{} and the large steps), {} chains; "
+      "acceptance {:.1f} %, large steps {:.1f} % of the proposals and {:.1f} % accepted\n",
       mltVariantName(s.mlt.variant), b, m.normalisationError(), b > 0 ? 100.0 * m.normalisationError() / b : 0.0,
-      s.mlt.bootstrap, s.mlt.variant == MltVariant::Multiplexed ? " per length" : "", s.mlt.chains,
+      s.mlt.bootstrap, s.mlt.variant == MltVariant::Multiplexed ? " per length" : "", chainCount,
       100.0 * stats.acceptance(),
       stats.proposed ? 100.0 * static_cast<double>(stats.largeProposed) / static_cast<double>(stats.proposed) : 0.0,
       stats.largeProposed ? 100.0 * static_cast<double>(stats.largeAccepted) / static_cast<double>(stats.largeProposed)
                           : 0.0);
   if (s.mlt.variant == MltVariant::Multiplexed) {
-    const std::vector<int> chains = m.chainsByLength();
     out += "  length  chains  acceptance\n";
     for (size_t k = 1; k < chains.size(); ++k) {
       const uint64_t p = k < stats.proposedByLength.size() ? stats.proposedByLength[k] : 0;

@@ -9,6 +9,7 @@
 #include "core/film/technique_films.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace pathlab {
@@ -38,6 +39,8 @@ class SplatBuffer {
   // when null) and to `pyramid` (if any), then clears them.
   void addTo(SplatSums* sums, Film& film, TechniqueFilms* pyramid);
   void clear();  // keeps the capacity, for the next item
+  // The image splats recorded so far, in their order (a Metropolis chain's, summed by its length).
+  std::span<const Splat> imageSplats() const { return image_; }
 
  private:
   struct TechniqueSplat {

@@ -77,7 +77,9 @@ struct Metropolis::Chain {
   int length = 0;  // MMLT: the chain's path length; PSSMLT: 0
   State current, proposal;
   double currentWeight = 0.0;  // the current state's expected-value weight not yet splatted
-  SplatBuffer splats;          // this pass's
+  SplatBuffer splats;          // this pass's (F / f with their weights)
+  double largeSum = 0.0, largeSum2 = 0.0;  // this pass's large steps' f (b_k's refinement)
+  uint64_t largeCount = 0;
   MltStats stats;
 };
 
@@ -139,6 +141,7 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
   const bool multiplexed = options_.variant == MltVariant::Multiplexed;
   const uint64_t lengths = multiplexed ? static_cast<uint64_t>(maxLength_) : 1;
   const uint64_t total = options_.bootstrap * lengths;
+  // Sample i has length i % lengths + 1 (MMLT; PSSMLT: 0) and is the (i / lengths)-th of it.
   auto lengthOf = [&](uint64_t i) { return multiplexed ? static_cast<int>(i % lengths) + 1 : 0; };
   auto bootstrapSamples = [&](uint64_t i) {
     return PrimarySamples(keyedStream(seed_, i, kBootstrapSalt), options_.sigma, options_.largeStep);
@@ -163,47 +166,75 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
   for (const Counters& c : local) counters += c;
   if (cancelled) return false;
 
-  // b, and the chains' starts drawn in proportion to f from the bootstrap samples (sums in index
-  // order: the same bits at any thread count).
-  std::vector<double> cdf(total + 1, 0.0);
-  for (uint64_t i = 0; i < total; ++i) cdf[i + 1] = cdf[i] + weights[i];
-  b_ = options_.bootstrap > 0 ? cdf[total] / static_cast<double>(options_.bootstrap) : 0.0;
-  // b is a sum over lengths of independent means (bootstrap samples per length each): its variance
-  // is the sum of theirs.
-  {
-    const auto n = static_cast<double>(options_.bootstrap);
-    std::vector<double> sum(lengths, 0.0), sum2(lengths, 0.0);
-    for (uint64_t i = 0; i < total; ++i) sum[i % lengths] += weights[i], sum2[i % lengths] += weights[i] * weights[i];
-    double variance = 0.0;
-    for (uint64_t k = 0; k < lengths; ++k) {
-      const double mean = sum[k] / n;
-      variance += n > 1 ? std::max(0.0, sum2[k] / n - mean * mean) / (n - 1) : 0.0;
-    }
-    bError_ = std::sqrt(variance);
+  // Each length's b_k from its samples (sums in index order: the same bits at any thread count).
+  totals_.assign(multiplexed ? static_cast<size_t>(maxLength_) + 1 : 1, LengthTotals{});
+  for (uint64_t i = 0; i < total; ++i) {
+    LengthTotals& t = totals_[static_cast<size_t>(lengthOf(i))];
+    t.fSum += weights[i], t.fSum2 += weights[i] * weights[i], ++t.fCount;
   }
+  updateNormalisation();
   bootstrapped_ = true;
   if (!(b_ > 0.0)) return true;  // nothing reaches the film: no chains, a black image
-  chains_.resize(static_cast<size_t>(options_.chains));
+
+  // Chains per length in proportion to b_k, at least one wherever b_k > 0 (a length left without
+  // a chain would be missing from the image), each started from a bootstrap sample of its length
+  // drawn in proportion to f.
+  struct Start {
+    size_t length;
+    uint64_t sample;
+  };
+  std::vector<Start> starts;
+  for (size_t k = 0; k < totals_.size(); ++k) {
+    if (!(totals_[k].b() > 0.0)) continue;
+    const auto n = std::max<int64_t>(1, std::llround(options_.chains * totals_[k].b() / b_));
+    // The cumulative weights of this length's samples i = k - 1 + j lengths (PSSMLT: i = j).
+    const uint64_t first = multiplexed ? k - 1 : 0;
+    std::vector<double> cdf(options_.bootstrap + 1, 0.0);
+    for (uint64_t j = 0; j < options_.bootstrap; ++j) cdf[j + 1] = cdf[j] + weights[first + j * lengths];
+    for (int64_t c = 0; c < n; ++c) {
+      Pcg32 start = keyedStream(seed_, starts.size(), kStartSalt);
+      // A uniform double from two draws: a float's 24 bits could not reach every one of millions
+      // of bootstrap samples.
+      const double u =
+          (static_cast<double>(start.nextU32()) + static_cast<double>(start.nextU32()) * 0x1p-32) * 0x1p-32;
+      uint64_t j = static_cast<uint64_t>(std::upper_bound(cdf.begin() + 1, cdf.end(), u * cdf.back()) - cdf.begin()) - 1;
+      j = std::min(j, options_.bootstrap - 1);
+      while (weights[first + j * lengths] <= 0.0 && j > 0) --j;  // never a zero-weight start
+      starts.push_back({k, first + j * lengths});
+    }
+  }
+  chains_.resize(starts.size());
   tbb::enumerable_thread_specific<Counters> startCounters;
   tbb::parallel_for(size_t{0}, chains_.size(), [&](size_t c) {
-    Pcg32 start = keyedStream(seed_, c, kStartSalt);
-    // A uniform double from two draws: a float's 24 bits could not reach every one of millions of
-    // bootstrap samples.
-    const double u = (static_cast<double>(start.nextU32()) + static_cast<double>(start.nextU32()) * 0x1p-32) * 0x1p-32;
-    const double target = u * cdf[total];
-    uint64_t i = static_cast<uint64_t>(std::upper_bound(cdf.begin() + 1, cdf.end(), target) - cdf.begin()) - 1;
-    i = std::min(i, total - 1);
-    while (weights[i] <= 0.0 && i > 0) --i;  // never a zero-weight start (u at a bin's edge)
     // The bootstrap sample again (the same primary numbers, hence the same path), then a stream
     // of the chain's own for its mutations, so chains that start from one sample part at once.
-    auto chain = std::make_unique<Chain>(bootstrapSamples(i), keyedStream(seed_, c, kAcceptSalt), lengthOf(i), width_,
-                                         height_);
+    auto chain = std::make_unique<Chain>(bootstrapSamples(starts[c].sample), keyedStream(seed_, c, kAcceptSalt),
+                                         static_cast<int>(starts[c].length), width_, height_);
     evaluate(chain->length, chain->samples, chain->current, startCounters.local());
     chain->samples.reseed(keyedStream(seed_, c, kChainSalt));
     chains_[c] = std::move(chain);
   });
   for (const Counters& c : startCounters) counters += c;
+  const size_t values = 3 * static_cast<size_t>(width_) * static_cast<size_t>(height_);
+  for (const std::unique_ptr<Chain>& chain : chains_) {
+    std::vector<double>& h = totals_[static_cast<size_t>(chain->length)].histogram;
+    if (h.empty()) h.assign(values, 0.0);
+  }
   return true;
+}
+
+void Metropolis::updateNormalisation() {
+  // b is a sum over lengths of independent means: its variance is the sum of theirs.
+  double b = 0.0, variance = 0.0;
+  for (const LengthTotals& t : totals_) {
+    if (t.fCount == 0) continue;
+    const auto n = static_cast<double>(t.fCount);
+    const double mean = t.fSum / n;
+    b += mean;
+    if (n > 1) variance += std::max(0.0, t.fSum2 / n - mean * mean) / (n - 1);
+  }
+  b_ = b;
+  bError_ = std::sqrt(variance);
 }
 
 void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) const {
@@ -217,23 +248,28 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
       stats.acceptedByTechnique.assign(Technique::countUpTo(maxLength_), 0);
     }
   }
-  const double b = b_;
+  // F / f with its expected-value weight: the length's normalisation comes at read-out.
   auto splat = [&](const State& state, double weight) {
     if (!(weight > 0.0) || !(state.f > 0.f)) return;
-    const auto scale = static_cast<float>(weight * b / static_cast<double>(state.f));
+    const auto scale = static_cast<float>(weight / static_cast<double>(state.f));
     for (const State::Contribution& c : state.contributions) chain.splats.splat(c.pRaster, c.L * scale);
   };
   const auto k = static_cast<size_t>(chain.length);
   for (uint64_t m = 0; m < mutations; ++m) {
     chain.samples.startIteration();
     evaluate(chain.length, chain.samples, chain.proposal, counters);
+    const bool large = chain.samples.largeStep();
+    if (large) {
+      // An independent sample of f_k: b_k's estimate grows with it (Kelemen et al. 2002).
+      const auto f = static_cast<double>(chain.proposal.f);
+      chain.largeSum += f, chain.largeSum2 += f * f, ++chain.largeCount;
+    }
     // Both mutations are symmetric (primary_samples.h): the acceptance is the targets' ratio.
     const double a = chain.current.f > 0.f
                          ? std::min(1.0, static_cast<double>(chain.proposal.f) / static_cast<double>(chain.current.f))
                          : 1.0;
     splat(chain.proposal, a);
     chain.currentWeight += 1.0 - a;
-    const bool large = chain.samples.largeStep();
     ++stats.proposed, stats.largeProposed += large;
     ++stats.proposedByLength[k];
     const size_t x = multiplexed ? chain.proposal.technique.index() : 0;
@@ -255,8 +291,7 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
   chain.currentWeight = 0.0;
 }
 
-bool Metropolis::renderPass(uint64_t mutations, Film& film, SplatSums* sums, Counters& counters,
-                            const std::atomic<bool>* cancel) {
+bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, const std::atomic<bool>* cancel) {
   if (!bootstrapped_ && !bootstrap(counters, cancel)) return false;
   const uint64_t passIndex = passes_++;
   if (!chains_.empty()) {
@@ -264,6 +299,7 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, SplatSums* sums, Cou
     // that moves every pass.
     const uint64_t C = chains_.size(), share = mutations / C, extra = mutations % C;
     const uint64_t offset = (passIndex * extra) % C;
+    auto mutationsOf = [&](size_t c) { return share + ((c + C - offset) % C < extra ? 1 : 0); };
     tbb::enumerable_thread_specific<Counters> local;
     std::atomic<bool> cancelled{false};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chains_.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
@@ -272,34 +308,44 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, SplatSums* sums, Cou
           cancelled = true;
           return;
         }
-        const uint64_t n = share + ((c + C - offset) % C < extra ? 1 : 0);
-        runChain(*chains_[c], n, local.local());
+        runChain(*chains_[c], mutationsOf(c), local.local());
       }
     });
     for (const Counters& c : local) counters += c;
-    // The splats in chain order, then the chains' statistics.
-    for (const std::unique_ptr<Chain>& chain : chains_) {
-      if (cancelled) chain->splats.clear();
-      else chain->splats.addTo(sums, film, nullptr);
-    }
-    if (cancelled) {
-      if (sums) sums->clear();
-      return false;
-    }
+    if (cancelled) return false;  // the session is discarded
+    // The chains' splats, large steps and statistics, in chain order.
     MltStats pass;
-    for (const std::unique_ptr<Chain>& chain : chains_) {
-      pass += chain->stats;
-      chain->stats = MltStats{};
+    for (size_t c = 0; c < chains_.size(); ++c) {
+      Chain& chain = *chains_[c];
+      LengthTotals& t = totals_[static_cast<size_t>(chain.length)];
+      for (const Splat& s : chain.splats.imageSplats())
+        for (size_t i = 0; i < 3; ++i) t.histogram[3 * size_t{s.pixel} + i] += static_cast<double>(s.v[static_cast<int>(i)]);
+      chain.splats.clear();
+      t.mutations += mutationsOf(c);
+      t.fSum += chain.largeSum, t.fSum2 += chain.largeSum2, t.fCount += chain.largeCount;
+      chain.largeSum = chain.largeSum2 = 0.0, chain.largeCount = 0;
+      pass += chain.stats;
+      chain.stats = MltStats{};
     }
     stats_ += pass;
+    updateNormalisation();
   }
-  if (sums) sums->mergeInto(film);
-  film.finishPass(0, mutations);
+  // The image sum_k b_k P H_k / M_k as the film's splat sums over P light subpaths (a pixel reads
+  // splat sum x P / P): rewritten whole, since every b_k moved.
+  film.clear();
+  std::span<double> image = film.sums()[1];
+  const auto P = static_cast<double>(film.pixelCount());
+  for (const LengthTotals& t : totals_) {
+    if (t.mutations == 0 || t.histogram.empty()) continue;
+    const double scale = t.b() * P / static_cast<double>(t.mutations);
+    for (size_t i = 0; i < image.size(); ++i) image[i] += scale * t.histogram[i];
+  }
+  film.finishPass(0, film.pixelCount());
   return true;
 }
 
 std::vector<int> Metropolis::chainsByLength() const {
-  std::vector<int> n(static_cast<size_t>(maxLength_) + 1, 0);
+  std::vector<int> n(std::max(static_cast<size_t>(maxLength_) + 1, totals_.size()), 0);
   for (const std::unique_ptr<Chain>& chain : chains_) ++n[static_cast<size_t>(chain->length)];
   return n;
 }

@@ -13,20 +13,21 @@
 //     sample (every enabled technique of every length, BidirTracer::sample) and f is the sum of
 //     its contributions' luminances, wherever they land.
 //
-// The normalisation b = sum_k integral f_k du is estimated from independent bootstrap samples, and
-// every chain starts from one of them chosen in proportion to f (resampling: the chains start in
-// the stationary distribution, so there is no start-up bias to discard). A chain's state
-// contributes F b / f per mutation, F its colour; each mutation adds the proposal with weight a
-// (its acceptance probability) and the current state with 1 - a (Veach's expected-value trick),
-// the current state's weight kept until it changes. With N mutations over P pixels a pixel is
-// (b / (N / P)) times the sum of F / f over the mutations that landed in it: the film's splat
-// normalisation (Film::readout) with N counted as its light subpaths.
+// The normalisation b = sum_k b_k, b_k = integral f_k du, is estimated from independent bootstrap
+// samples. Each length gets chains in proportion to its b_k (at least one where b_k > 0), and each
+// chain starts from one of its length's bootstrap samples chosen in proportion to f (resampling:
+// the chains start in the stationary distribution, so there is no start-up bias to discard). Each
+// mutation adds F / f of the proposal with weight a (its acceptance probability) and of the current
+// state with 1 - a (Veach's expected-value trick; the current state's weight kept until it
+// changes) to its length's histogram H_k, F the colour. A large step proposes an independent
+// sample, so its f refines b_k as the chains run (Kelemen et al. 2002, sec. 4): b's error shrinks
+// with the render instead of staying in the image. With M_k mutations of length k over P pixels a
+// pixel is sum_k b_k P H_k / M_k (consistent: the ratio's bias falls as 1 / M_k).
 #pragma once
 
 #include "core/bpt/bidir_tracer.h"
 #include "core/counters/counters.h"
 #include "core/film/film.h"
-#include "core/film/splat_sums.h"
 #include "core/mlt/mlt_options.h"
 #include "core/sampling/primary_samples.h"
 
@@ -65,16 +66,15 @@ class Metropolis {
   // Returns false when cancelled (the session is then discarded).
   bool bootstrap(Counters& counters, const std::atomic<bool>* cancel = nullptr);
   bool bootstrapped() const { return bootstrapped_; }
-  // One pass: `mutations` mutations shared among the chains (in chain order, so the same seed gives
-  // the same image at any thread count), their splats into `sums` (null: straight into `film`),
-  // then into the film. Returns false when cancelled.
-  bool renderPass(uint64_t mutations, Film& film, SplatSums* sums, Counters& counters,
-                  const std::atomic<bool>* cancel = nullptr);
+  // One pass: `mutations` mutations shared among the chains, their splats added to their lengths'
+  // histograms in chain order (the same seed gives the same image at any thread count), then the
+  // image sum_k b_k P H_k / M_k written into `film` (its splat sums, normalised by P light
+  // subpaths). Returns false when cancelled.
+  bool renderPass(uint64_t mutations, Film& film, Counters& counters, const std::atomic<bool>* cancel = nullptr);
 
   // b: the integral of f over the chains' space (zero: nothing to render, the image stays black),
-  // and its standard error from the bootstrap samples' spread. Every pixel is proportional to b,
-  // and no number of mutations changes it: the image's overall brightness is off by b's relative
-  // error however long the chains run (as in pbrt-v4 and Mitsuba); --bootstrap lowers it.
+  // from the bootstrap and every large step so far, and its standard error from their spread.
+  // The image's overall brightness is off by about b's relative error.
   double normalisation() const { return b_; }
   double normalisationError() const { return bError_; }
   const MltStats& stats() const { return stats_; }
@@ -95,6 +95,18 @@ class Metropolis {
   MltOptions options_;
   std::vector<std::vector<Technique>> enabledByLength_;  // MMLT: the techniques a chain of length k picks from
   std::vector<std::unique_ptr<Chain>> chains_;
+  // Per length (MMLT: index k; PSSMLT: 0): the histogram H_k (3 doubles a pixel, made when a chain
+  // has that length), its mutations M_k, and the sums of f over the bootstrap samples and large
+  // steps that estimate b_k.
+  struct LengthTotals {
+    std::vector<double> histogram;
+    uint64_t mutations = 0;
+    double fSum = 0.0, fSum2 = 0.0;
+    uint64_t fCount = 0;
+    double b() const { return fCount ? fSum / static_cast<double>(fCount) : 0.0; }
+  };
+  std::vector<LengthTotals> totals_;
+  void updateNormalisation();
   double b_ = 0.0, bError_ = 0.0;
   bool bootstrapped_ = false;
   MltStats stats_;

@@ -260,7 +260,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   if (metropolis_) {
     // Metropolis: the pass is the chains' next pixelCount mutations (the first pass bootstraps).
     Counters passCounters;
-    if (!metropolis_->renderPass(film_.pixelCount(), film_, splatSums_.get(), passCounters, cancel)) return false;
+    if (!metropolis_->renderPass(film_.pixelCount(), film_, passCounters, cancel)) return false;
     counters_ += passCounters;
     pixelsDone_.store(film_.pixelCount(), std::memory_order_relaxed);
     passes_.fetch_add(1, std::memory_order_relaxed);

@@ -70,6 +70,12 @@ float firstMergeRadius(const RenderSettings& settings) {
   return static_cast<float>(std::min<double>(kMaxMergeRadius, kDefaultMergeRadius * std::sqrt(kDefaultMergeRadiusPixels / pixels)));
 }
 
+uint64_t mltHistogramBytes(const RenderSettings& s) {
+  // As Metropolis::histogramBytes (core/mlt/ is a consumer of these settings, not a dependency).
+  const uint64_t lengths = s.mlt.variant == MltVariant::Multiplexed ? static_cast<uint64_t>(std::max(s.maxLength, 1)) : 1;
+  return 3 * sizeof(double) * static_cast<uint64_t>(s.width) * static_cast<uint64_t>(s.height) * lengths;
+}
+
 uint64_t mergeStoreBytes(const RenderSettings& s) {
   // A stored vertex (MergePass), its path index and MIS sums, and at most as many mergeable ones:
   // the index's point, position and pointer, the grid's index, position and sort key, and the
@@ -179,6 +185,13 @@ void validateSettings(const RenderSettings& s) {
       throw std::invalid_argument(fmt::format("--sigma {} is outside [{}, {}]", m.sigma, kMinMltSigma, kMaxMltSigma));
     if (s.connect == ConnectStrategy::Endpoints)
       throw std::invalid_argument("--connect endpoints: Metropolis over naive BPT is not supported (use --connect all)");
+    // A histogram of doubles per path length (metropolis.h): refused before allocating.
+    const uint64_t bytes = mltHistogramBytes(s);
+    if (bytes > kMaxMltHistogramBytes)
+      throw std::invalid_argument(fmt::format(
+          "mlt at {} x {} with maximum length {} keeps {:.1f} GiB of histograms (at most {} GiB): lower --max-length or "
+          "the image size, or use --mlt-variant pss (one histogram)",
+          s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxMltHistogramBytes >> 30));
     const char* perSample = s.isolate           ? "--isolate"
                             : s.pyramidLength   ? "the technique pyramid"
                             : s.techniqueMaps   ? "the technique maps"

@@ -131,6 +131,9 @@ TechniqueFamilies pyramidFamilies(const RenderSettings& settings);
 // The most a pass's merge store (core/bpt/merge_pass.h) can take: every pixel's light subpath at
 // the maximum length.
 uint64_t mergeStoreBytes(const RenderSettings& settings);
+// The most Metropolis's histograms take: 3 doubles a pixel for each path length (PSSMLT: one).
+uint64_t mltHistogramBytes(const RenderSettings& settings);
+inline constexpr uint64_t kMaxMltHistogramBytes = 8ull << 30;
 // What each tracer needs of the settings.
 BidirOptions bidirOptions(const RenderSettings& settings);
 PathTracerOptions pathTracerOptions(const RenderSettings& settings);

@@ -75,7 +75,10 @@ expect_error "render --mutations-per-pixel with bpt" "--mutations-per-pixel appl
 expect_error "converge bpt:chains=4" "chains applies to mlt, not bpt" converge "$BOX" -o "$TMP/conv" --configs "bpt:chains=4" --spp 2
 expect_error "converge mlt:mlt-variant=x" "unknown MLT variant 'x'" converge "$BOX" -o "$TMP/conv" --configs "mlt:mlt-variant=x" --spp 2
 "$PATHLAB" render "$BOX" -o "$TMP/mlt.exr" --integrator mlt --mutations-per-pixel 2 --bootstrap 1000 --chains 16 --width 16 \
-  --height 16 --force >/dev/null 2>&1 && [ -s "$TMP/mlt.exr" ] && ok || fail "render --integrator mlt"
+  --height 16 --force >/dev/null 2>"$TMP/mlt.err" && [ -s "$TMP/mlt.exr" ] && ok || fail "render --integrator mlt"
+# Its summary: b with its standard error, the acceptance, and the chains per length.
+grep -qE "^mlt \(mmlt\): b = [0-9.e+-]+ \+- [0-9.e+-]+ \([0-9.]+ %, from 1000 bootstrap samples per length and the large steps\), [0-9]+ chains" "$TMP/mlt.err" &&
+  grep -qE "^ +2 +[0-9]+ +[0-9.]+ %$" "$TMP/mlt.err" && ok || fail "render --integrator mlt summary: $(cat "$TMP/mlt.err")"
 "$PATHLAB" render "$BOX" -o "$TMP/vcm.exr" --integrator vcm --spp 1 --width 16 --height 16 --force >/dev/null 2>&1 &&
   [ -s "$TMP/vcm.exr" ] && ok || fail "render --integrator vcm"
 

@@ -169,5 +169,32 @@ TEST(Metropolis, SameSeedSameImageAtAnyThreadCount) {
   }
 }
 
+// Large steps are independent samples of f, so b's estimate (and with it the image's brightness)
+// keeps improving as the chains run, past what the bootstrap alone gives; in the furnace the
+// image mean is b itself, so it is tested against the closed form with b's standard error.
+TEST(Metropolis, LargeStepsRefineTheNormalisation) {
+  const float rho = 0.6f, Le = 0.7f;
+  const int K = 5;
+  Scene scene(test::furnace(rho, Le));
+  RenderSettings s = mltSettings(12, K, MltVariant::Multiplexed);
+  s.mlt.bootstrap = 200;
+  s.seed = 31;
+  RenderSession session(scene, s);
+  session.renderPass();
+  const double afterBootstrap = session.metropolis()->normalisationError();
+  for (int i = 0; i < 99; ++i) session.renderPass();
+  const Metropolis& m = *session.metropolis();
+  // 100 passes of 144 mutations, 30 % large steps: about 4300 samples beside the bootstrap's 1000.
+  EXPECT_LT(m.normalisationError(), 0.6 * afterBootstrap);
+  double sum = 0.0;
+  const Image img = session.image();
+  for (float v : img.rgb) sum += v;
+  const double mean = sum / static_cast<double>(img.rgb.size());
+  EXPECT_NEAR(mean, m.normalisation(), 1e-4 * m.normalisation());
+  const double expected = Le * (1.0 - std::pow(rho, K)) / (1.0 - rho);
+  EXPECT_LT(std::abs(mean - expected) / m.normalisationError(), test::kMaxZ)
+      << "mean " << mean << " expected " << expected << " se " << m.normalisationError();
+}
+
 }  // namespace
 }  // namespace pathlab
