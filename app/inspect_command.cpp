@@ -40,8 +40,8 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
 int runInspect(InspectOptions o) {
   finishEstimatorOptions(o.estimator);
   RenderSettings& settings = o.estimator.settings;
-  if (settings.integrator == IntegratorKind::Pt)
-    throw std::invalid_argument("inspect shows the bidirectional techniques: use --integrator bpt or lt");
+  if (settings.integrator == IntegratorKind::Pt || settings.integrator == IntegratorKind::Mlt)
+    throw std::invalid_argument("inspect replays one independent bidirectional sample: use --integrator bpt or lt");
   long long x = -1, y = -1;
   char extra = 0;
   if (std::sscanf(o.pixel.c_str(), "%lld,%lld%c", &x, &y, &extra) != 2)

@@ -152,8 +152,9 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--mutations-per-pixel", o.mutationsPerPixel,
                   "mlt: mutations per pixel on average, over all chains (--spp's place; default 64 when --time is not "
                   "given)")
-      ->check(CLI::Range(1, std::numeric_limits<int>::max()))
-      ->excludes("--spp");
+      ->check(CLI::Range(1, 1 << 24))
+      ->excludes("--spp")
+      ->excludes("--time");
   addRenderEstimateOptions(cmd, o);
   addLoadOptions(cmd, o.scene.load, o.scene.environment);
   cmd->add_option("--exposure", o.exposure, "Exposure in stops applied to PNG output")->check(CLI::Range(-40.f, 40.f));
@@ -165,8 +166,8 @@ void addRenderCommand(CLI::App& app, RenderOptions& o) {
 namespace {
 
 // The chains' normalisation and how they moved, after a Metropolis render: b with its standard
-// error (the image's brightness is off by b's relative error however long the chains run), the
-// acceptance over all, of large steps, and per path length.
+// error (the image's brightness is off by about b's relative error, which the large steps keep
+// lowering), the acceptance over all, of large steps, and per path length.
 std::string metropolisSummary(const Metropolis& m, const RenderSettings& s) {
   const MltStats& stats = m.stats();
   const double b = m.normalisation();

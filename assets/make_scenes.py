@@ -884,8 +884,8 @@ def door_ajar():
                                 box((1.5, 1.3, 0.0), (0.5, 1.3, 0.05)),
                                 box((0.6, 2.3, 0.0), (0.4, 0.3, 0.05))), wall)
     # The door, 0.8 x 2 m and 4 cm thick, hinged at the doorway's left edge (x = 0.2, z = -0.05)
-    # and turned 6 degrees into the back room: its free edge stands about 8 cm from the jamb.
-    angle = math.radians(6.0)
+    # and turned 3 degrees into the back room: its free edge stands about 5 cm from the jamb.
+    angle = math.radians(3.0)
     hinge = (0.2, 0.0, -0.05)
     centre = add(hinge, (0.4 * math.cos(angle), 1.0, -0.4 * math.sin(angle) - 0.02))
     part("door", box((0.0, 0.0, 0.0), (0.4, 0.99, 0.02)), door,

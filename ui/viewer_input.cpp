@@ -48,9 +48,10 @@ void Viewer::perform(Action action) {
       e.settings.mis.heuristic = static_cast<MisHeuristic>((static_cast<int>(e.settings.mis.heuristic) + 1) % kMisHeuristicCount);
       break;
     case Action::CycleIntegrator: {
-      constexpr IntegratorKind order[] = {IntegratorKind::Bpt, IntegratorKind::Pt, IntegratorKind::Lt};
+      constexpr IntegratorKind order[] = {IntegratorKind::Bpt, IntegratorKind::Pt, IntegratorKind::Lt, IntegratorKind::Mlt};
       const auto* it = std::find(std::begin(order), std::end(order), e.settings.integrator);
-      e.settings.integrator = order[(static_cast<size_t>(it - std::begin(order)) + 1) % 3];
+      e.settings.integrator = order[(static_cast<size_t>(it - std::begin(order)) + 1) % std::size(order)];
+      if (e.settings.integrator == IntegratorKind::Mlt) e.mode = EstimatorMode::Combine;  // it isolates nothing
       break;
     }
     case Action::LongerPaths: setMaxLength(e, std::min(e.settings.maxLength + 1, 64)); break;

@@ -24,8 +24,8 @@ py::object inspect(const LoadedScene& scene, const PySettings& settings, const p
                    const py::object& sampleArgument) {
   app::RenderOptions o = settings.options;
   RenderSettings& s = o.estimator.settings;
-  if (s.integrator == IntegratorKind::Pt)
-    throw Error("inspect shows the bidirectional techniques: use integrator bpt or lt");
+  if (s.integrator == IntegratorKind::Pt || s.integrator == IntegratorKind::Mlt)
+    throw Error("inspect replays one independent bidirectional sample: use integrator bpt or lt");
   if (!py::isinstance<py::sequence>(pixelArgument) || py::isinstance<py::str>(pixelArgument) || py::len(pixelArgument) != 2)
     throw Error("inspect: pixel must be (x, y)");
   const py::sequence xy = pixelArgument.cast<py::sequence>();

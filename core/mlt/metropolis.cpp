@@ -80,7 +80,10 @@ struct Metropolis::Chain {
   SplatBuffer splats;          // this pass's (F / f with their weights)
   double largeSum = 0.0, largeSum2 = 0.0;  // this pass's large steps' f (b_k's refinement)
   uint64_t largeCount = 0;
-  MltStats stats;
+  // This pass's proposals and acceptances: all, large steps, and (MMLT) by technique of the
+  // chain's length, indexed by s.
+  uint64_t proposed = 0, accepted = 0, largeProposed = 0, largeAccepted = 0;
+  std::vector<uint64_t> proposedByS, acceptedByS;
 };
 
 Metropolis::Metropolis(const BidirTracer& tracer, int width, int height, int maxLength, uint64_t seed,
@@ -174,19 +177,26 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
   }
   updateNormalisation();
   bootstrapped_ = true;
-  if (!(b_ > 0.0)) return true;  // nothing reaches the film: no chains, a black image
 
-  // Chains per length in proportion to b_k, at least one wherever b_k > 0 (a length left without
-  // a chain would be missing from the image), each started from a bootstrap sample of its length
-  // drawn in proportion to f.
+  // Chains per length in proportion to b_k, at least one for every length with an enabled
+  // technique (a length without a chain would be missing from the image; one whose bootstrap
+  // found nothing starts from a zero sample, accepts every proposal until it finds light, and its
+  // large steps estimate b_k), each started from a bootstrap sample of its length drawn in
+  // proportion to f. No more chains than a pass has mutations (one per pixel), so that every chain
+  // moves every pass.
+  auto hasTechniques = [&](size_t k) { return !multiplexed || !enabledByLength_[k].empty(); };
+  int lengthsInUse = 0;
+  for (size_t k = 0; k < totals_.size(); ++k) lengthsInUse += hasTechniques(k) && (multiplexed ? k >= 1 : true);
+  const int pixels = static_cast<int>(std::min<int64_t>(int64_t{width_} * height_, options_.chains));
+  const int C = std::max(pixels, lengthsInUse);
   struct Start {
     size_t length;
     uint64_t sample;
   };
   std::vector<Start> starts;
-  for (size_t k = 0; k < totals_.size(); ++k) {
-    if (!(totals_[k].b() > 0.0)) continue;
-    const auto n = std::max<int64_t>(1, std::llround(options_.chains * totals_[k].b() / b_));
+  for (size_t k = multiplexed ? 1 : 0; k < totals_.size(); ++k) {
+    if (!hasTechniques(k)) continue;
+    const int64_t n = b_ > 0.0 ? std::max<int64_t>(1, std::llround(C * totals_[k].b() / b_)) : 1;
     // The cumulative weights of this length's samples i = k - 1 + j lengths (PSSMLT: i = j).
     const uint64_t first = multiplexed ? k - 1 : 0;
     std::vector<double> cdf(options_.bootstrap + 1, 0.0);
@@ -199,7 +209,7 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
           (static_cast<double>(start.nextU32()) + static_cast<double>(start.nextU32()) * 0x1p-32) * 0x1p-32;
       uint64_t j = static_cast<uint64_t>(std::upper_bound(cdf.begin() + 1, cdf.end(), u * cdf.back()) - cdf.begin()) - 1;
       j = std::min(j, options_.bootstrap - 1);
-      while (weights[first + j * lengths] <= 0.0 && j > 0) --j;  // never a zero-weight start
+      while (weights[first + j * lengths] <= 0.0 && j > 0) --j;  // no zero-weight start where b_k > 0
       starts.push_back({k, first + j * lengths});
     }
   }
@@ -239,14 +249,9 @@ void Metropolis::updateNormalisation() {
 
 void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) const {
   const bool multiplexed = options_.variant == MltVariant::Multiplexed;
-  MltStats& stats = chain.stats;
-  if (stats.proposedByLength.empty()) {
-    stats.proposedByLength.assign(static_cast<size_t>(maxLength_) + 1, 0);
-    stats.acceptedByLength.assign(static_cast<size_t>(maxLength_) + 1, 0);
-    if (multiplexed) {
-      stats.proposedByTechnique.assign(Technique::countUpTo(maxLength_), 0);
-      stats.acceptedByTechnique.assign(Technique::countUpTo(maxLength_), 0);
-    }
+  if (multiplexed && chain.proposedByS.empty()) {
+    chain.proposedByS.assign(static_cast<size_t>(chain.length) + 1, 0);
+    chain.acceptedByS.assign(static_cast<size_t>(chain.length) + 1, 0);
   }
   // F / f with its expected-value weight: the length's normalisation comes at read-out.
   auto splat = [&](const State& state, double weight) {
@@ -254,7 +259,6 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
     const auto scale = static_cast<float>(weight / static_cast<double>(state.f));
     for (const State::Contribution& c : state.contributions) chain.splats.splat(c.pRaster, c.L * scale);
   };
-  const auto k = static_cast<size_t>(chain.length);
   for (uint64_t m = 0; m < mutations; ++m) {
     chain.samples.startIteration();
     evaluate(chain.length, chain.samples, chain.proposal, counters);
@@ -270,18 +274,16 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
                          : 1.0;
     splat(chain.proposal, a);
     chain.currentWeight += 1.0 - a;
-    ++stats.proposed, stats.largeProposed += large;
-    ++stats.proposedByLength[k];
-    const size_t x = multiplexed ? chain.proposal.technique.index() : 0;
-    if (multiplexed) ++stats.proposedByTechnique[x];
+    ++chain.proposed, chain.largeProposed += large;
+    const auto s = static_cast<size_t>(chain.proposal.technique.s);
+    if (multiplexed) ++chain.proposedByS[s];
     if (chain.acceptRng.next1D() < a) {
       splat(chain.current, chain.currentWeight);
       std::swap(chain.current, chain.proposal);
       chain.currentWeight = 0.0;
       chain.samples.accept();
-      ++stats.accepted, stats.largeAccepted += large;
-      ++stats.acceptedByLength[k];
-      if (multiplexed) ++stats.acceptedByTechnique[x];
+      ++chain.accepted, chain.largeAccepted += large;
+      if (multiplexed) ++chain.acceptedByS[s];
     } else {
       chain.samples.reject();
     }
@@ -297,6 +299,7 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
   if (!chains_.empty()) {
     // Chain c runs mutations / C of them, the remainder one more each to the chains from an offset
     // that moves every pass.
+    mutations = std::max<uint64_t>(mutations, chains_.size());  // every chain moves (a 1 x 1 image has more chains)
     const uint64_t C = chains_.size(), share = mutations / C, extra = mutations % C;
     const uint64_t offset = (passIndex * extra) % C;
     auto mutationsOf = [&](size_t c) { return share + ((c + C - offset) % C < extra ? 1 : 0); };
@@ -314,7 +317,14 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
     for (const Counters& c : local) counters += c;
     if (cancelled) return false;  // the session is discarded
     // The chains' splats, large steps and statistics, in chain order.
-    MltStats pass;
+    MltStats& stats = stats_;
+    const size_t slots = static_cast<size_t>(maxLength_) + 1;
+    if (stats.proposedByLength.size() < slots) {
+      stats.proposedByLength.resize(slots, 0), stats.acceptedByLength.resize(slots, 0);
+      if (options_.variant == MltVariant::Multiplexed)
+        stats.proposedByTechnique.resize(Technique::countUpTo(maxLength_), 0),
+            stats.acceptedByTechnique.resize(Technique::countUpTo(maxLength_), 0);
+    }
     for (size_t c = 0; c < chains_.size(); ++c) {
       Chain& chain = *chains_[c];
       LengthTotals& t = totals_[static_cast<size_t>(chain.length)];
@@ -324,10 +334,17 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
       t.mutations += mutationsOf(c);
       t.fSum += chain.largeSum, t.fSum2 += chain.largeSum2, t.fCount += chain.largeCount;
       chain.largeSum = chain.largeSum2 = 0.0, chain.largeCount = 0;
-      pass += chain.stats;
-      chain.stats = MltStats{};
+      const auto k = static_cast<size_t>(chain.length);
+      stats.proposed += chain.proposed, stats.accepted += chain.accepted;
+      stats.largeProposed += chain.largeProposed, stats.largeAccepted += chain.largeAccepted;
+      stats.proposedByLength[k] += chain.proposed, stats.acceptedByLength[k] += chain.accepted;
+      chain.proposed = chain.accepted = chain.largeProposed = chain.largeAccepted = 0;
+      for (size_t s = 0; s < chain.proposedByS.size(); ++s) {
+        const size_t x = Technique{static_cast<int>(s), static_cast<int>(k + 1 - s)}.index();
+        stats.proposedByTechnique[x] += chain.proposedByS[s], stats.acceptedByTechnique[x] += chain.acceptedByS[s];
+        chain.proposedByS[s] = chain.acceptedByS[s] = 0;
+      }
     }
-    stats_ += pass;
     updateNormalisation();
   }
   // The image sum_k b_k P H_k / M_k as the film's splat sums over P light subpaths (a pixel reads

@@ -23,7 +23,10 @@ struct MltOptions {
 };
 
 inline constexpr int kMaxMltChains = 1 << 20;
-inline constexpr uint64_t kMaxMltBootstrap = uint64_t{1} << 32;
+// Per length: the bootstrap keeps a double per sample of every length (at most 2^24 x 100 lengths
+// of the viewer's and the CLI's range would be 13 GiB: validateSettings bounds the product too).
+inline constexpr uint64_t kMaxMltBootstrap = uint64_t{1} << 24;
+inline constexpr uint64_t kMaxMltBootstrapSamples = uint64_t{1} << 27;  // over all lengths: 1 GiB of weights
 inline constexpr float kMinMltSigma = 1e-5f, kMaxMltSigma = 1.f;
 
 const char* mltVariantName(MltVariant v);  // "mmlt", "pss"

@@ -179,6 +179,11 @@ void validateSettings(const RenderSettings& s) {
       throw std::invalid_argument(fmt::format("--chains {} is outside 1..{}", m.chains, kMaxMltChains));
     if (m.bootstrap < 1 || m.bootstrap > kMaxMltBootstrap)
       throw std::invalid_argument(fmt::format("--bootstrap {} is outside 1..{}", m.bootstrap, kMaxMltBootstrap));
+    const uint64_t lengths = m.variant == MltVariant::Multiplexed ? static_cast<uint64_t>(std::max(s.maxLength, 1)) : 1;
+    if (m.bootstrap * lengths > kMaxMltBootstrapSamples)
+      throw std::invalid_argument(fmt::format("--bootstrap {} per length x {} lengths is more than {} samples to keep: "
+                                              "lower --bootstrap or --max-length",
+                                              m.bootstrap, lengths, kMaxMltBootstrapSamples));
     if (!(m.largeStep >= 0.f && m.largeStep <= 1.f))
       throw std::invalid_argument(fmt::format("--large-step {} is outside [0, 1]", m.largeStep));
     if (!(m.sigma >= kMinMltSigma && m.sigma <= kMaxMltSigma))

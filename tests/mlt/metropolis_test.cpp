@@ -196,5 +196,21 @@ TEST(Metropolis, LargeStepsRefineTheNormalisation) {
       << "mean " << mean << " expected " << expected << " se " << m.normalisationError();
 }
 
+// Hostile sizes: a 1 x 1 image (fewer pixels than lengths: every chain still moves every pass) and
+// a bootstrap of one sample per length (most lengths start from a zero sample and find their
+// light by large steps) still converge to the furnace's closed form.
+TEST(Metropolis, OnePixelAndABootstrapOfOneStillConverge) {
+  const float rho = 0.6f, Le = 0.7f;
+  const int K = 5;
+  Scene scene(test::furnace(rho, Le));
+  RenderSettings s = mltSettings(1, K, MltVariant::Multiplexed);
+  s.mlt.bootstrap = 1;
+  const test::MeanEstimate m = test::seedMeans(scene, s, 24, 200, 500);
+  const double expected = Le * (1.0 - std::pow(rho, K)) / (1.0 - rho);
+  EXPECT_LT(std::abs(m.zScore(expected)), test::kMaxZ) << "mean " << m.mean << " expected " << expected << " se "
+                                                       << m.standardError;
+  EXPECT_LT(m.standardError, 0.05 * expected);
+}
+
 }  // namespace
 }  // namespace pathlab

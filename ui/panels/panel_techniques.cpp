@@ -349,12 +349,12 @@ void drawMetropolisControls(MltOptions& m, const MltSummary* now) {
   ImGui::SliderFloat("sigma", &m.sigma, 0.001f, 0.3f, "%.3f", ImGuiSliderFlags_Logarithmic);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("a small step moves every primary number by a normal of this deviation");
   ImGui::SliderInt("chains##count", &m.chains, 1, 10000, "%d", ImGuiSliderFlags_Logarithmic);
-  int bootstrap = static_cast<int>(std::min<uint64_t>(m.bootstrap, 10000000));
-  if (ImGui::SliderInt("bootstrap", &bootstrap, 1000, 10000000, "%d", ImGuiSliderFlags_Logarithmic))
+  int bootstrap = static_cast<int>(std::min<uint64_t>(m.bootstrap, 1000000));
+  if (ImGui::SliderInt("bootstrap", &bootstrap, 1000, 1000000, "%d", ImGuiSliderFlags_Logarithmic))
     m.bootstrap = static_cast<uint64_t>(std::max(bootstrap, 1));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("independent samples per path length that estimate b (the image's brightness) and start the\n"
-                      "chains: b's error stays in the image however long the chains run");
+                      "chains; every large step refines b as the chains run");
   if (!now) return;
   const MltStats& s = now->stats;
   const double b = now->b;
@@ -398,7 +398,10 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
     ImGui::SetTooltip("Metropolis light transport: Markov chains over the enabled techniques (connections), in\n"
                       "proportion to what each path brings to the image");
   edited.integrator = kOrder[std::clamp(integrator, 0, 3)];
-  if (edited.integrator == IntegratorKind::Mlt) drawMetropolisControls(edited.mlt, mlt);
+  if (edited.integrator == IntegratorKind::Mlt) {
+    estimator.mode = EstimatorMode::Combine;  // the chains weigh every enabled technique: nothing isolated
+    drawMetropolisControls(edited.mlt, mlt);
+  }
 
   int maxLength = edited.maxLength;
   if (ImGui::SliderInt("max length", &maxLength, 1, 32)) setMaxLength(estimator, maxLength);
