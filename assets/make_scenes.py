@@ -854,7 +854,7 @@ def fog_lamp():
 
 def door_ajar():
     """Veach's "door ajar" (Veach and Guibas 1997, fig. 5), in pathlab's own measurements: two
-    rooms joined by a doorway whose door stands open by 6 degrees. The lamp hangs in the back
+    rooms joined by a doorway whose door stands open by 3 degrees. The lamp hangs in the back
     room; the camera stands in the front room, which the lamp lights only through the gap
     between the door's free edge and the jamb. Almost every path that reaches the camera crosses
     that gap, which a light subpath passes with a small probability and a camera subpath finds
