@@ -169,7 +169,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{R"({"presets": [{"name": "x", "techniques": "9;x"}]})", "preset 0 (\"x\"): techniques"},
                     BadCase{R"({"presets": [{"name": "x", "techniques": "4,4", "maxLength": 6}]})",
                             "(4,4) has length 7"},
-                    BadCase{R"({"presets": [{"name": "x", "integrator": "mlt"}]})", "mlt"},
+                    BadCase{R"({"presets": [{"name": "x", "integrator": "sppm"}]})", "sppm"},
                     BadCase{R"({"presets": [{"name": "x", "mis": "max"}]})", "max"},
                     BadCase{R"({"presets": [{"name": "x", "integrator": "pt", "mediumSampling": "far"}]})",
                             "mediumSampling \"far\" is not distance, equiangular or mis"},
