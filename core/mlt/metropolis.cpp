@@ -45,14 +45,16 @@ Pcg32 keyedStream(uint64_t seed, uint64_t index, uint64_t salt) {
 // PSSMLT: a whole bidirectional sample's image contributions, wherever they land.
 class CollectingSink final : public SampleSink {
  public:
+  struct Landed {
+    Vec2 pRaster;
+    Spectrum v;
+  };
   CollectingSink() : SampleSink(SinkDemand{}) {}
-  std::vector<Splat> splats;  // pixel unused: pRaster kept below
-  std::vector<Vec2> at;
+  std::vector<Landed> splats;  // the t = 1 contributions, where they land
 
  protected:
   bool splat(Vec2 pRaster, const Spectrum& v) override {
-    at.push_back(pRaster);
-    splats.push_back(Splat{0, v});
+    splats.push_back({pRaster, v});
     return true;
   }
 };
@@ -135,7 +137,7 @@ void Metropolis::evaluate(int length, PrimarySamples& samples, State& out, Count
     f += y;
   };
   add(pRaster, sink.cameraEstimate());
-  for (size_t i = 0; i < sink.splats.size(); ++i) add(sink.at[i], sink.splats[i].v);
+  for (const CollectingSink::Landed& s : sink.splats) add(s.pRaster, s.v);
   out.f = std::isfinite(f) ? static_cast<float>(f) : 0.f;
   if (!(out.f > 0.f)) out.contributions.clear();
 }

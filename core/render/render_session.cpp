@@ -80,7 +80,8 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
   if (settings.integrator == IntegratorKind::Mlt)
     metropolis_ = std::make_unique<Metropolis>(*bidirTracer_, settings.width, settings.height, settings.maxLength,
                                                settings.seed, settings.mlt);
-  if (bidirTracer_ && SplatSums::bytesFor(settings.width, settings.height) <= kMaxSplatSumBytes)
+  // (Metropolis keeps histograms of its own: no pass sums.)
+  if (bidirTracer_ && !metropolis_ && SplatSums::bytesFor(settings.width, settings.height) <= kMaxSplatSumBytes)
     splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength,

@@ -72,8 +72,22 @@ def test_check_equals_the_command_lines_json(tmp_path, integrator):
     assert done.returncode in (0, 1), done.stderr
     got = pathlab.check(pathlab.load(scene), pathlab.Settings(width=24, height=24, max_length=3, integrator=integrator),
                         spp=24, radius_levels=2)
-    assert got == json.loads(out.read_text())
+    # The check sums its passes per render thread and adds the threads' sums in whichever order the
+    # threads ran (TechniqueCheck::finishPass), so two runs may differ in a float's last bits (seen:
+    # a merge fit's standard error, 0.0639056334970808 against 0.06390563349708078): numbers are
+    # equal to 1e-9, everything else exactly.
+    assert same_to_rounding(got, json.loads(out.read_text()))
     assert "agrees" in got and any(row["status"] == "agrees" for row in got["techniques"])
+
+
+def same_to_rounding(a, b):
+    if isinstance(a, float) or isinstance(b, float):
+        return isinstance(a, (int, float)) and isinstance(b, (int, float)) and a == pytest.approx(b, rel=1e-9, abs=1e-12)
+    if isinstance(a, dict):
+        return isinstance(b, dict) and a.keys() == b.keys() and all(same_to_rounding(a[k], b[k]) for k in a)
+    if isinstance(a, list):
+        return isinstance(b, list) and len(a) == len(b) and all(same_to_rounding(x, y) for x, y in zip(a, b))
+    return a == b
 
 
 def test_check_refuses_what_check_does_not_take(box):
