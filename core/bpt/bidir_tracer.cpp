@@ -181,10 +181,10 @@ template <bool kRecords>
 
 // Out of line, one function per instance: inlined into the sample loop, its four instances cost
 // 1.3 % more instructions per sample (callgrind; the loop's registers spill).
-template <bool kRecords, bool kTimed>
+template <bool kRecords, bool kTimed, class ConnectionRng>
 [[gnu::noinline]] void BidirTracer::evaluate(int s, int t, const TechniqueUse& use, Vec2 pRaster,
                                              uint64_t connectionKey, Walks& walks, SampleSink& sink,
-                                             Counters& counters) const {
+                                             Counters& counters, ConnectionRng* connectionRng) const {
   TechniqueTally<kTimed> tally(counters, Technique{s, t});
   const SinkDemand& demand = sink.demand();
   // The record the sink receives (kRecords); the image-only instance never fills it.
@@ -218,9 +218,11 @@ template <bool kRecords, bool kTimed>
   if (s >= 2 && t >= 2) {
     c.hasSampled = false;  // as formConnection leaves it: no endpoint drawn afresh
     formed = formInteriorConnection(scene_, walks.light, s, walks.camera, t, c);
-  } else {
+  } else if constexpr (std::is_same_v<ConnectionRng, Pcg32>) {
     Pcg32 rng = connectionStream(connectionKey, s, t);
     formed = formConnection(scene_, camera_, walks.light, s, walks.camera, t, rng, c);
+  } else {
+    formed = formConnection(scene_, camera_, walks.light, s, walks.camera, t, *connectionRng, c);
   }
   if (!formed) return finishWithout(TechniqueOutcome::Zero);
 
@@ -438,39 +440,42 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Rng& cameraRng, Rng& lightRng
 template void BidirTracer::sample(Vec2, Vec2, Pcg32&, Pcg32&, SampleSink&, Counters&) const;
 template void BidirTracer::sample(Vec2, Vec2, PrimarySampleStream&, PrimarySampleStream&, SampleSink&, Counters&) const;
 
+namespace {
+// sampleTechnique's sink: the one technique's weighted contribution and where it lands.
+class TechniqueSampleSink final : public SampleSink {
+ public:
+  TechniqueSampleSink() : SampleSink(SinkDemand{}) {}
+  Spectrum splatted{0.f};
+  Vec2 splatAt{0.f};
+
+ protected:
+  bool splat(Vec2 pRaster, const Spectrum& v) override {
+    splatted = v, splatAt = pRaster;
+    return true;
+  }
+};
+}  // namespace
+
 BidirTracer::TechniqueSample BidirTracer::sampleTechnique(int s, int t, Vec2 pRaster, Vec2 uLens,
                                                           PrimarySampleStream& cameraRng, PrimarySampleStream& lightRng,
                                                           PrimarySampleStream& connectionRng,
                                                           Counters& counters) const {
   // As sampleEndpoints' technique, on the primary sample's streams: the camera walk, then the
-  // light walk, then the connection's fresh endpoint (s = 1, t = 1), each from a stream of its
-  // own so that a small step on one moves the others little.
-  TechniqueSample out;
-  out.pRaster = pRaster;
+  // light walk, then the one evaluation of the technique (evaluate), whose fresh endpoint (s = 1,
+  // t = 1) comes from the connection stream; each from a stream of its own so that a small step on
+  // one moves the others little.
   thread_local Walks walks;
-  TechniqueTally<false> tally(counters, Technique{s, t});
-  if (walkCamera(pRaster, uLens, t, cameraRng, walks, counters) < t) return tally.zero(), out;
-  if (lightWalkNeeded(s, t) && walkLight(s, lightRng, walks, counters) < s) return tally.zero(), out;
-  Connection& c = walks.connection;
-  if (!formConnection(scene_, camera_, walks.light, s, walks.camera, t, connectionRng, c)) return tally.zero(), out;
-  const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-  const float w = options_.techniques.contains(s, t) ? weight<true>(path, c, walks, counters) : 0.f;
-  if (!(w > 0.f)) return tally.zero(), out;
-  if (needsShadowRay(s)) {
-    tally.shadowRay();
-    if (scene_.hasMedia()) {
-      const Spectrum T = transmittance(scene_, c.shadowRay);
-      if (isBlack(T)) return tally.blocked(), out;
-      c.L *= T;
-    } else if (!unoccluded(scene_, c.shadowRay)) {
-      return tally.blocked(), out;
-    }
+  if (walkCamera(pRaster, uLens, t, cameraRng, walks, counters) < t ||
+      (lightWalkNeeded(s, t) && walkLight(s, lightRng, walks, counters) < s)) {
+    TechniqueTally<false>(counters, Technique{s, t}).zero();  // a walk ended early
+    return {Spectrum(0.f), pRaster};
   }
-  tally.contributed();
-  if (!isValidContribution(c.L)) return tally.discard(c.L, SampleId{}), out;
-  out.L = c.L * w;
-  if (t == 1) out.pRaster = c.pRaster;
-  return out;
+  const bool enabled = options_.techniques.contains(s, t);
+  TechniqueSampleSink sink;
+  evaluate<true, false>(s, t, TechniqueUse{enabled, enabled, false, false}, pRaster, 0, walks, sink, counters,
+                        &connectionRng);
+  if (t == 1) return {sink.splatted, sink.splatAt};
+  return {sink.cameraEstimate(), pRaster};
 }
 
 int BidirTracer::storedLightSubpath(const SampleId& id, Walks& walks) const {

@@ -116,9 +116,12 @@ class BidirTracer {
   // the result to the sink: its record when kRecords, its weighted contribution to the image.
   // kRecords false is the image-only route (a sink with no records, a technique outside the
   // pyramid, imageOnlyPathActive()): the compiler drops the record and the extras it would fill.
-  template <bool kRecords, bool kTimed>
+  // ConnectionRng Pcg32: the connection's fresh endpoint (s = 1, t = 1) comes from its stream keyed
+  // by connectionKey (connectionStream); PrimarySampleStream: from *connectionRng, the Metropolis
+  // state's connection stream (sampleTechnique).
+  template <bool kRecords, bool kTimed, class ConnectionRng = Pcg32>
   void evaluate(int s, int t, const TechniqueUse& use, Vec2 pRaster, uint64_t connectionKey, Walks& walks,
-                SampleSink& sink, Counters& counters) const;
+                SampleSink& sink, Counters& counters, ConnectionRng* connectionRng = nullptr) const;
   template <bool kRecords>
   void evaluate(bool timed, int s, int t, const TechniqueUse& use, Vec2 pRaster, uint64_t connectionKey, Walks& walks,
                 SampleSink& sink, Counters& counters) const;
