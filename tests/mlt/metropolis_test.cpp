@@ -21,6 +21,12 @@ namespace {
 
 std::string mltAssetPath(const std::string& name) { return std::string(PATHLAB_SOURCE_DIR) + "/assets/" + name; }
 
+// The furnace of every test here: albedo rho, emission Le, paths of at most K edges; every pixel
+// sees Le (1 - rho^K) / (1 - rho).
+constexpr float kMltFurnaceRho = 0.6f, kMltFurnaceLe = 0.7f;
+constexpr int kMltFurnaceLength = 5;
+double mltFurnaceRadiance() { return kMltFurnaceLe * (1.0 - std::pow(kMltFurnaceRho, kMltFurnaceLength)) / (1.0 - kMltFurnaceRho); }
+
 RenderSettings mltSettings(int size, int maxLength, MltVariant variant) {
   RenderSettings s;
   s.width = s.height = size;
@@ -41,13 +47,12 @@ class MetropolisFurnace : public ::testing::TestWithParam<MltFurnaceCase> {};
 
 // Every pixel sees Le (1 - rho^K) / (1 - rho) at maximum length K.
 TEST_P(MetropolisFurnace, MatchesGeometricSeries) {
-  const float rho = 0.6f, Le = 0.7f;
-  const int K = 5;
-  Scene scene(test::furnace(rho, Le));
+  Scene scene(test::furnace(kMltFurnaceRho, kMltFurnaceLe));
+  const int K = kMltFurnaceLength;
   RenderSettings s = mltSettings(12, K, GetParam().variant);
   s.mis.heuristic = GetParam().heuristic;
   const test::MeanEstimate m = test::seedMeans(scene, s, 24, 2, 100);
-  const double expected = Le * (1.0 - std::pow(rho, K)) / (1.0 - rho);
+  const double expected = mltFurnaceRadiance();
   EXPECT_LT(std::abs(m.zScore(expected)), test::kMaxZ) << "mean " << m.mean << " expected " << expected << " se "
                                                        << m.standardError;
   EXPECT_LT(m.standardError, 0.02 * expected);
@@ -173,9 +178,8 @@ TEST(Metropolis, SameSeedSameImageAtAnyThreadCount) {
 // keeps improving as the chains run, past what the bootstrap alone gives; in the furnace the
 // image mean is b itself, so it is tested against the closed form with b's standard error.
 TEST(Metropolis, LargeStepsRefineTheNormalisation) {
-  const float rho = 0.6f, Le = 0.7f;
-  const int K = 5;
-  Scene scene(test::furnace(rho, Le));
+  Scene scene(test::furnace(kMltFurnaceRho, kMltFurnaceLe));
+  const int K = kMltFurnaceLength;
   RenderSettings s = mltSettings(12, K, MltVariant::Multiplexed);
   s.mlt.bootstrap = 200;
   s.seed = 31;
@@ -191,7 +195,7 @@ TEST(Metropolis, LargeStepsRefineTheNormalisation) {
   for (float v : img.rgb) sum += v;
   const double mean = sum / static_cast<double>(img.rgb.size());
   EXPECT_NEAR(mean, m.normalisation(), 1e-4 * m.normalisation());
-  const double expected = Le * (1.0 - std::pow(rho, K)) / (1.0 - rho);
+  const double expected = mltFurnaceRadiance();
   EXPECT_LT(std::abs(mean - expected) / m.normalisationError(), test::kMaxZ)
       << "mean " << mean << " expected " << expected << " se " << m.normalisationError();
 }
@@ -200,13 +204,12 @@ TEST(Metropolis, LargeStepsRefineTheNormalisation) {
 // a bootstrap of one sample per length (most lengths start from a zero sample and find their
 // light by large steps) still converge to the furnace's closed form.
 TEST(Metropolis, OnePixelAndABootstrapOfOneStillConverge) {
-  const float rho = 0.6f, Le = 0.7f;
-  const int K = 5;
-  Scene scene(test::furnace(rho, Le));
+  Scene scene(test::furnace(kMltFurnaceRho, kMltFurnaceLe));
+  const int K = kMltFurnaceLength;
   RenderSettings s = mltSettings(1, K, MltVariant::Multiplexed);
   s.mlt.bootstrap = 1;
   const test::MeanEstimate m = test::seedMeans(scene, s, 24, 200, 500);
-  const double expected = Le * (1.0 - std::pow(rho, K)) / (1.0 - rho);
+  const double expected = mltFurnaceRadiance();
   EXPECT_LT(std::abs(m.zScore(expected)), test::kMaxZ) << "mean " << m.mean << " expected " << expected << " se "
                                                        << m.standardError;
   EXPECT_LT(m.standardError, 0.05 * expected);
