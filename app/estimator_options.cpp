@@ -37,7 +37,7 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "techniques: multiplexed by default, --mlt-variant)")
       ->transform(CLI::IsMember({"pt", "bpt", "lt", "vcm", "bpm", "ppm", "mlt"}, CLI::ignore_case));
   cmd->add_option("--mlt-variant", o.mltVariant,
-                  "mlt: mmlt (multiplexed MLT, Hachisuka et al. 2014: a chain per path length whose state also picks "
+                  "mlt: mmlt (multiplexed MLT, Hachisuka et al. 2014: each chain keeps one path length, its state also picking "
                   "the technique) or pss (primary sample space MLT, Kelemen et al. 2002, over whole bidirectional samples)")
       ->transform(CLI::IsMember({"mmlt", "pss"}, CLI::ignore_case));
   cmd->add_option("--chains", o.chains, "mlt: the number of Markov chains (default 1000)")

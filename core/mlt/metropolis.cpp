@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace pathlab {
@@ -18,18 +19,6 @@ std::optional<MltVariant> parseMltVariant(std::string_view name) {
   if (name == "mmlt") return MltVariant::Multiplexed;
   if (name == "pss") return MltVariant::PrimarySpace;
   return std::nullopt;
-}
-
-MltStats& MltStats::operator+=(const MltStats& o) {
-  proposed += o.proposed, accepted += o.accepted;
-  largeProposed += o.largeProposed, largeAccepted += o.largeAccepted;
-  auto add = [](std::vector<uint64_t>& a, const std::vector<uint64_t>& b) {
-    if (a.size() < b.size()) a.resize(b.size(), 0);
-    for (size_t i = 0; i < b.size(); ++i) a[i] += b[i];
-  };
-  add(proposedByLength, o.proposedByLength), add(acceptedByLength, o.acceptedByLength);
-  add(proposedByTechnique, o.proposedByTechnique), add(acceptedByTechnique, o.acceptedByTechnique);
-  return *this;
 }
 
 namespace {
@@ -95,6 +84,12 @@ Metropolis::Metropolis(const BidirTracer& tracer, int width, int height, int max
   enabledByLength_.resize(static_cast<size_t>(maxLength) + 1);
   for (const Technique x : techniquesUpTo(maxLength))
     if (tracer.techniques().contains(x)) enabledByLength_[static_cast<size_t>(x.length())].push_back(x);
+  stats_.proposedByLength.assign(static_cast<size_t>(maxLength) + 1, 0);
+  stats_.acceptedByLength.assign(static_cast<size_t>(maxLength) + 1, 0);
+  if (options.variant == MltVariant::Multiplexed) {
+    stats_.proposedByTechnique.assign(Technique::countUpTo(maxLength), 0);
+    stats_.acceptedByTechnique.assign(Technique::countUpTo(maxLength), 0);
+  }
 }
 
 Metropolis::~Metropolis() = default;
@@ -320,13 +315,6 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
     if (cancelled) return false;  // the session is discarded
     // The chains' splats, large steps and statistics, in chain order.
     MltStats& stats = stats_;
-    const size_t slots = static_cast<size_t>(maxLength_) + 1;
-    if (stats.proposedByLength.size() < slots) {
-      stats.proposedByLength.resize(slots, 0), stats.acceptedByLength.resize(slots, 0);
-      if (options_.variant == MltVariant::Multiplexed)
-        stats.proposedByTechnique.resize(Technique::countUpTo(maxLength_), 0),
-            stats.acceptedByTechnique.resize(Technique::countUpTo(maxLength_), 0);
-    }
     for (size_t c = 0; c < chains_.size(); ++c) {
       Chain& chain = *chains_[c];
       LengthTotals& t = totals_[static_cast<size_t>(chain.length)];

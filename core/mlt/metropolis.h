@@ -45,7 +45,6 @@ struct MltStats {
   uint64_t largeProposed = 0, largeAccepted = 0;
   std::vector<uint64_t> proposedByLength, acceptedByLength;        // index k, 0 unused
   std::vector<uint64_t> proposedByTechnique, acceptedByTechnique;  // MMLT only
-  MltStats& operator+=(const MltStats& o);
   double acceptance() const { return proposed ? static_cast<double>(accepted) / static_cast<double>(proposed) : 0.0; }
 };
 

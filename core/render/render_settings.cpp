@@ -71,7 +71,7 @@ float firstMergeRadius(const RenderSettings& settings) {
 }
 
 uint64_t mltHistogramBytes(const RenderSettings& s) {
-  // As Metropolis::histogramBytes (core/mlt/ is a consumer of these settings, not a dependency).
+  // Metropolis's per-length histograms (core/mlt/metropolis.h LengthTotals): 3 doubles a pixel each.
   const uint64_t lengths = s.mlt.variant == MltVariant::Multiplexed ? static_cast<uint64_t>(std::max(s.maxLength, 1)) : 1;
   return 3 * sizeof(double) * static_cast<uint64_t>(s.width) * static_cast<uint64_t>(s.height) * lengths;
 }
