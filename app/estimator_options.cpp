@@ -51,6 +51,11 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
   cmd->add_option("--sigma", o.sigma,
                   "mlt: the small step's standard deviation in primary sample space (default 0.01)")
       ->check(CLI::Range(kMinMltSigma, kMaxMltSigma));
+  cmd->add_option("--mlt-direct", o.mltDirect,
+                  "mlt: paths of up to K edges (1: lights seen directly, 2: direct lighting) rendered by BPT beside "
+                  "the chains, one sample a pixel a pass; the chains explore the longer ones (default 0: the chains "
+                  "render every length)")
+      ->check(CLI::Range(0, 100000));
   cmd->add_option("--mis", s.mis.heuristic,
                   "MIS heuristic of bpt: balance, power, uniform, or off (1/n_k per technique of length k: biased "
                   "with delta lights or BSDFs)")
@@ -136,6 +141,7 @@ void finishEstimatorOptions(EstimatorOptions& o) {
                           : o.bootstrap ? "--bootstrap"
                           : o.largeStep ? "--large-step"
                           : o.sigma     ? "--sigma"
+                          : o.mltDirect ? "--mlt-direct"
                                         : nullptr;
   if (mltOption && kind != IntegratorKind::Mlt)
     throw std::invalid_argument(fmt::format("{} applies to --integrator mlt, not {}", mltOption, o.integrator));
@@ -145,6 +151,7 @@ void finishEstimatorOptions(EstimatorOptions& o) {
   if (o.bootstrap) mlt.bootstrap = *o.bootstrap;
   if (o.largeStep) mlt.largeStep = *o.largeStep;
   if (o.sigma) mlt.sigma = *o.sigma;
+  if (o.mltDirect) mlt.directLength = *o.mltDirect;
   // ppm: the merges at each camera subpath's first non-specular vertex, and the camera subpaths
   // that hit a light (what no merge samples: lights seen directly or in mirrors and glass).
   o.settings.mergeSite = o.integrator == "ppm" ? MergeSite::FirstNonSpecular : MergeSite::Every;

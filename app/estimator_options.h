@@ -33,6 +33,7 @@ struct EstimatorOptions {
   std::optional<int> chains;
   std::optional<uint64_t> bootstrap;
   std::optional<float> largeStep, sigma;
+  std::optional<int> mltDirect;
 };
 
 // Registers --max-length --integrator --mis --connect --beta --min-connection --techniques --isolate --unweighted --rr/--no-rr

@@ -183,9 +183,17 @@ std::string metropolisSummary(const Metropolis& m, const RenderSettings& s) {
       stats.proposed ? 100.0 * static_cast<double>(stats.largeProposed) / static_cast<double>(stats.proposed) : 0.0,
       stats.largeProposed ? 100.0 * static_cast<double>(stats.largeAccepted) / static_cast<double>(stats.largeProposed)
                           : 0.0);
+  const MltSummary summary = m.summary();
+  if (summary.directLength > 0)
+    out += fmt::format("  paths of up to {} edges by BPT beside the chains: {} samples per pixel\n", summary.directLength,
+                       summary.directSamples);
   if (s.mlt.variant == MltVariant::Multiplexed) {
     out += "  length  chains  acceptance\n";
     for (size_t k = 1; k < chains.size(); ++k) {
+      if (static_cast<int>(k) <= summary.directLength) {
+        out += fmt::format("  {:>6}  {:>6}  {:>11}\n", k, "BPT", "-");
+        continue;
+      }
       const uint64_t p = k < stats.proposedByLength.size() ? stats.proposedByLength[k] : 0;
       const uint64_t a = k < stats.acceptedByLength.size() ? stats.acceptedByLength[k] : 0;
       out += fmt::format("  {:>6}  {:>6}  {:>9.1f} %\n", k, chains[k], p ? 100.0 * static_cast<double>(a) / static_cast<double>(p) : 0.0);

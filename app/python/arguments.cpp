@@ -58,6 +58,7 @@ constexpr Argument kSettingsArguments[] = {
     {"bootstrap", "--bootstrap", Kind::Int},
     {"large_step", "--large-step", Kind::Float},
     {"sigma", "--sigma", Kind::Float},
+    {"mlt_direct", "--mlt-direct", Kind::Int},
     {"seed", "--seed", Kind::Int},
     {"aperture", "--aperture", Kind::Float},
     {"focus_distance", "--focus-distance", Kind::Float},

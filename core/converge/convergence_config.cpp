@@ -15,10 +15,11 @@ namespace {
 
 // vcm and bpm are bpt with a technique set of their own, as on the command line.
 constexpr std::array<std::string_view, 6> kIntegrators = {"bpt", "pt", "lt", "vcm", "bpm", "mlt"};
-constexpr std::array<std::string_view, 15> kKeys = {
+constexpr std::array<std::string_view, 16> kKeys = {
     "mis",        "beta",         "min-connection",     "techniques",      "max-length",
     "connect",    "radius",       "radius-alpha",       "noncaustic-photons", "medium-sampling",
-    "mlt-variant", "chains",      "bootstrap",          "large-step",      "sigma"};
+    "mlt-variant", "chains",      "bootstrap",          "large-step",      "sigma",
+    "mlt-direct"};
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -98,7 +99,7 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
       if (estimatorKey && s.integrator == IntegratorKind::Pt)
         fail(config, fmt::format("{} applies to bpt and lt, not pt", key));
       const bool mltKey = key == "mlt-variant" || key == "chains" || key == "bootstrap" || key == "large-step" ||
-                          key == "sigma";
+                          key == "sigma" || key == "mlt-direct";
       if (mltKey && s.integrator != IntegratorKind::Mlt)
         fail(config, fmt::format("{} applies to mlt, not {}", key, name));
       if (key == "mis") {
@@ -144,13 +145,15 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
         s.mlt.largeStep = parseNumber<float>(config, key, value);
       } else if (key == "sigma") {
         s.mlt.sigma = parseNumber<float>(config, key, value);
+      } else if (key == "mlt-direct") {
+        s.mlt.directLength = parseNumber<int>(config, key, value);
       } else if (key == "max-length") {
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");
       } else {
         fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length, connect, radius, "
                                   "radius-alpha, noncaustic-photons, medium-sampling, mlt-variant, chains, bootstrap, "
-                                  "large-step, sigma)",
+                                  "large-step, sigma, mlt-direct)",
                                   key));
       }
     }

@@ -26,7 +26,8 @@ namespace {
 // The chains' random streams, apart from the render's per-pixel ones (render_session.h): the
 // bootstrap sample i's primary numbers, and chain c's own mutations and acceptances.
 constexpr uint64_t kBootstrapSalt = 0x6a09e667f3bcc908ull, kChainSalt = 0xbb67ae8584caa73bull,
-                   kAcceptSalt = 0x3c6ef372fe94f82bull, kStartSalt = 0xa54ff53a5f1d36f1ull;
+                   kAcceptSalt = 0x3c6ef372fe94f82bull, kStartSalt = 0xa54ff53a5f1d36f1ull,
+                   kDirectCameraSalt = 0x510e527fade682d1ull, kDirectLightSalt = 0x9b05688c2b3e6c1full;
 Pcg32 keyedStream(uint64_t seed, uint64_t index, uint64_t salt) {
   return Pcg32(mixBits(seed ^ salt ^ mixBits(index)), mixBits(index + salt));
 }
@@ -78,9 +79,12 @@ struct Metropolis::Chain {
 };
 
 Metropolis::Metropolis(const BidirTracer& tracer, int width, int height, int maxLength, uint64_t seed,
-                       const MltOptions& options)
-    : tracer_(tracer), width_(width), height_(height), maxLength_(maxLength), seed_(seed), options_(options) {
-  if (tracer.merges()) throw std::invalid_argument("Metropolis light transport runs over connections only, not merges");
+                       const MltOptions& options, const BidirTracer* direct)
+    : tracer_(tracer), width_(width), height_(height), maxLength_(maxLength), seed_(seed), options_(options),
+      direct_(direct) {
+  if (tracer.merges() || (direct && direct->merges()))
+    throw std::invalid_argument("Metropolis light transport runs over connections only, not merges");
+  if (direct_) directSum_.assign(3 * static_cast<size_t>(width) * static_cast<size_t>(height), 0.0);
   enabledByLength_.resize(static_cast<size_t>(maxLength) + 1);
   for (const Technique x : techniquesUpTo(maxLength))
     if (tracer.techniques().contains(x)) enabledByLength_[static_cast<size_t>(x.length())].push_back(x);
@@ -146,6 +150,12 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
   auto bootstrapSamples = [&](uint64_t i) {
     return PrimarySamples(keyedStream(seed_, i, kBootstrapSalt), options_.sigma, options_.largeStep);
   };
+  // Every enabled technique rendered by the direct tracer (MltOptions::directLength): no chains.
+  if (std::all_of(enabledByLength_.begin(), enabledByLength_.end(), [](const auto& x) { return x.empty(); })) {
+    totals_.assign(1, LengthTotals{});
+    bootstrapped_ = true;
+    return true;
+  }
   std::vector<double> weights(total, 0.0);
   tbb::enumerable_thread_specific<Counters> local;
   std::atomic<bool> cancelled{false};
@@ -290,8 +300,54 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
   chain.currentWeight = 0.0;
 }
 
+bool Metropolis::renderDirect(Counters& counters, const std::atomic<bool>* cancel) {
+  const uint64_t pass = directPasses_;
+  const auto P = static_cast<uint64_t>(width_) * static_cast<uint64_t>(height_);
+  // A row's light-tracing splats, added in row order after the rows ran (the same sums at any
+  // thread count); each pixel's own estimate is its row's alone.
+  std::vector<std::vector<CollectingSink::Landed>> rowSplats(static_cast<size_t>(height_));
+  tbb::enumerable_thread_specific<Counters> local;
+  std::atomic<bool> cancelled{false};
+  tbb::parallel_for(tbb::blocked_range<int>(0, height_, 1), [&](const tbb::blocked_range<int>& r) {
+    Counters& c = local.local();
+    for (int y = r.begin(); y != r.end(); ++y) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) {
+        cancelled = true;
+        return;
+      }
+      for (int x = 0; x < width_; ++x) {
+        const uint64_t pixel = static_cast<uint64_t>(y) * static_cast<uint64_t>(width_) + static_cast<uint64_t>(x);
+        Pcg32 rng = keyedStream(seed_, pass * P + pixel, kDirectCameraSalt);
+        Pcg32 lightRng = keyedStream(seed_, pass * P + pixel, kDirectLightSalt);
+        const Vec2 pRaster = Vec2(static_cast<float>(x), static_cast<float>(y)) + rng.next2D();  // box filter
+        const Vec2 uLens = rng.next2D();
+        ++c.cameraSamples;
+        CollectingSink sink;
+        direct_->sample(pRaster, uLens, rng, lightRng, sink, c);
+        const Spectrum L = sink.cameraEstimate();
+        if (isValidContribution(L))
+          for (size_t i = 0; i < 3; ++i) directSum_[3 * pixel + i] += static_cast<double>(L[static_cast<int>(i)]);
+        std::vector<CollectingSink::Landed>& row = rowSplats[static_cast<size_t>(y)];
+        row.insert(row.end(), sink.splats.begin(), sink.splats.end());
+      }
+    }
+  });
+  for (const Counters& c : local) counters += c;
+  if (cancelled) return false;  // the session is discarded
+  for (const std::vector<CollectingSink::Landed>& row : rowSplats)
+    for (const CollectingSink::Landed& s : row) {
+      const std::optional<size_t> pixel = filmPixel(s.pRaster, width_, height_);
+      if (!pixel || !isValidContribution(s.v)) continue;
+      // One light subpath a pixel: a splat's share of the pixel is v P / (P light subpaths).
+      for (size_t i = 0; i < 3; ++i) directSum_[3 * *pixel + i] += static_cast<double>(s.v[static_cast<int>(i)]);
+    }
+  ++directPasses_;
+  return true;
+}
+
 bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, const std::atomic<bool>* cancel) {
   if (!bootstrapped_ && !bootstrap(counters, cancel)) return false;
+  if (direct_ && !renderDirect(counters, cancel)) return false;
   const uint64_t passIndex = passes_++;
   if (!chains_.empty()) {
     // Chain c runs mutations / C of them, the remainder one more each to the chains from an offset
@@ -342,6 +398,10 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
   film.clear();
   std::span<double> image = film.sums()[1];
   const auto P = static_cast<double>(film.pixelCount());
+  if (directPasses_ > 0) {
+    const double scale = 1.0 / static_cast<double>(directPasses_);
+    for (size_t i = 0; i < image.size(); ++i) image[i] = scale * directSum_[i];
+  }
   for (const LengthTotals& t : totals_) {
     if (t.mutations == 0 || t.histogram.empty()) continue;
     const double scale = t.b() * P / static_cast<double>(t.mutations);

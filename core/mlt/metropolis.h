@@ -53,12 +53,18 @@ struct MltSummary {
   double b = 0.0, bError = 0.0;
   MltStats stats;
   std::vector<int> chainsByLength;
+  int directLength = 0;        // MltOptions::directLength
+  uint64_t directSamples = 0;  // per pixel, of the paths up to directLength edges
 };
 
 class Metropolis {
  public:
   // `tracer` has no merges (validateSettings refuses mlt with them); width x height is the film's.
-  Metropolis(const BidirTracer& tracer, int width, int height, int maxLength, uint64_t seed, const MltOptions& options);
+  // `direct` (or null): the tracer of the lengths up to MltOptions::directLength, which renders
+  // one bidirectional sample a pixel each pass into an image added to the chains' (`tracer` then
+  // leaves those lengths out).
+  Metropolis(const BidirTracer& tracer, int width, int height, int maxLength, uint64_t seed, const MltOptions& options,
+             const BidirTracer* direct = nullptr);
   ~Metropolis();
 
   // The bootstrap (b and the chains' starting states), in parallel; the first pass runs it.
@@ -79,7 +85,9 @@ class Metropolis {
   const MltStats& stats() const { return stats_; }
   // The chains' share of each path length (MMLT; PSSMLT: all in length 0).
   std::vector<int> chainsByLength() const;
-  MltSummary summary() const { return {b_, bError_, stats_, chainsByLength()}; }
+  MltSummary summary() const {
+    return {b_, bError_, stats_, chainsByLength(), direct_ ? options_.directLength : 0, directPasses_};
+  }
 
  private:
   struct State;
@@ -87,6 +95,8 @@ class Metropolis {
   // The state's contributions and f for the primary numbers `samples` (of a chain of this length).
   void evaluate(int length, PrimarySamples& samples, State& out, Counters& counters) const;
   void runChain(Chain& chain, uint64_t mutations, Counters& counters) const;
+  // One bidirectional sample a pixel of the direct lengths into directSum_; false when cancelled.
+  bool renderDirect(Counters& counters, const std::atomic<bool>* cancel);
 
   const BidirTracer& tracer_;
   int width_, height_, maxLength_;
@@ -110,6 +120,9 @@ class Metropolis {
   bool bootstrapped_ = false;
   MltStats stats_;
   uint64_t passes_ = 0;
+  const BidirTracer* direct_ = nullptr;
+  std::vector<double> directSum_;  // 3 a pixel: the direct samples' camera estimates and splats
+  uint64_t directPasses_ = 0;
 };
 
 }  // namespace pathlab

@@ -19,6 +19,11 @@ struct MltOptions {
   uint64_t bootstrap = 100000;   // independent samples per path length (PSSMLT: in all) that estimate b
   float largeStep = 0.3f;        // the probability of a large step (an independent sample)
   float sigma = 0.01f;           // the small step's standard deviation in primary sample space
+  // Paths of up to this many edges are rendered by BPT beside the chains, one sample a pixel a
+  // pass, and the chains explore only the longer ones (Mitsuba's MLT "separateDirect"): light seen
+  // directly and direct lighting are what independent samples do best, and a chain spent on
+  // them is one not spent where they fail. 0: the chains render every length.
+  int directLength = 0;
   bool operator==(const MltOptions&) const = default;
 };
 

@@ -74,12 +74,25 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
       film_(settings.width, settings.height),
       tiles_(passTiles(settings.width, settings.height)) {
   replayStore_ = std::make_unique<ReplayStore>();
-  if (settings.integrator != IntegratorKind::Pt) bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
+  const int directLength = settings.integrator == IntegratorKind::Mlt ? std::min(settings.mlt.directLength, settings_.maxLength) : 0;
+  if (directLength > 0) {
+    // Metropolis with its short paths by BPT (MltOptions::directLength): the chains' tracer keeps
+    // the longer techniques, a second tracer the shorter ones. The MIS weights of a technique
+    // involve only those of its own length, so each keeps its weights.
+    BidirOptions chains = bidirOptions(settings_), direct = chains;
+    for (int k = 1; k <= settings_.maxLength; ++k)
+      (k <= directLength ? chains : direct).techniques.disable(TechniqueSet::ofLength(k), settings_.maxLength);
+    direct.maxLength = directLength;
+    bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, chains);
+    directTracer_ = std::make_unique<BidirTracer>(scene, camera_, direct);
+  } else if (settings.integrator != IntegratorKind::Pt) {
+    bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
+  }
   if (settings.integrator == IntegratorKind::Mlt && schedule_.stride != 1)
     throw std::invalid_argument("--integrator mlt does not run over MPI ranks yet: its chains need every rank's bootstrap");
   if (settings.integrator == IntegratorKind::Mlt)
     metropolis_ = std::make_unique<Metropolis>(*bidirTracer_, settings.width, settings.height, settings.maxLength,
-                                               settings.seed, settings.mlt);
+                                               settings.seed, settings.mlt, directTracer_.get());
   // (Metropolis keeps histograms of its own: no pass sums.)
   if (bidirTracer_ && !metropolis_ && SplatSums::bytesFor(settings.width, settings.height) <= kMaxSplatSumBytes)
     splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);

@@ -103,6 +103,7 @@ class RenderSession {
   PathTracer pathTracer_;
   int cameraMedium_ = -1;  // the medium the camera is in (Scene::mediumAt), for the path tracer
   std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt, Lt and Mlt
+  std::unique_ptr<BidirTracer> directTracer_;  // Mlt with MltOptions::directLength: the short paths' techniques
   std::unique_ptr<Metropolis> metropolis_;    // Mlt: the chains over bidirTracer_'s techniques
 
   Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;

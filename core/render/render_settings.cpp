@@ -190,6 +190,9 @@ void validateSettings(const RenderSettings& s) {
       throw std::invalid_argument(fmt::format("--sigma {} is outside [{}, {}]", m.sigma, kMinMltSigma, kMaxMltSigma));
     if (s.connect == ConnectStrategy::Endpoints)
       throw std::invalid_argument("--connect endpoints: Metropolis over naive BPT is not supported (use --connect all)");
+    if (m.directLength < 0 || m.directLength > s.maxLength)
+      throw std::invalid_argument(
+          fmt::format("--mlt-direct {} is outside 0..{} (the maximum length)", m.directLength, s.maxLength));
     // A histogram of doubles per path length (metropolis.h): refused before allocating.
     const uint64_t bytes = mltHistogramBytes(s);
     if (bytes > kMaxMltHistogramBytes)

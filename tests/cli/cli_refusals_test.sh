@@ -79,6 +79,15 @@ expect_error "converge mlt:mlt-variant=x" "unknown MLT variant 'x'" converge "$B
 # Its summary: b with its standard error, the acceptance, and the chains per length.
 grep -qE "^mlt \(mmlt\): b = [0-9.e+-]+ \+- [0-9.e+-]+ \([0-9.]+ %, from 1000 bootstrap samples per length and the large steps\), [0-9]+ chains" "$TMP/mlt.err" &&
   grep -qE "^ +2 +[0-9]+ +[0-9.]+ %$" "$TMP/mlt.err" && ok || fail "render --integrator mlt summary: $(cat "$TMP/mlt.err")"
+# The short paths by BPT beside the chains (--mlt-direct): within the maximum length, mlt only,
+# and the summary says so.
+expect_error "render --mlt-direct 11" "--mlt-direct 11 is outside 0..10" render "$BOX" -o "$TMP/x.png" --integrator mlt --mlt-direct 11
+expect_error "render --mlt-direct with bpt" "--mlt-direct applies to --integrator mlt" render "$BOX" -o "$TMP/x.png" --mlt-direct 1
+expect_error "converge bpt:mlt-direct=1" "mlt-direct applies to mlt, not bpt" converge "$BOX" -o "$TMP/conv" --configs "bpt:mlt-direct=1" --spp 2
+"$PATHLAB" render "$BOX" -o "$TMP/mlt-direct.exr" --integrator mlt --mlt-direct 2 --mutations-per-pixel 2 --bootstrap 1000 \
+  --chains 16 --width 16 --height 16 --force >/dev/null 2>"$TMP/mlt-direct.err" &&
+  grep -qE "^  paths of up to 2 edges by BPT beside the chains: 2 samples per pixel$" "$TMP/mlt-direct.err" &&
+  grep -qE "^ +2 +BPT +-$" "$TMP/mlt-direct.err" && ok || fail "render --mlt-direct 2 summary: $(cat "$TMP/mlt-direct.err")"
 "$PATHLAB" render "$BOX" -o "$TMP/vcm.exr" --integrator vcm --spp 1 --width 16 --height 16 --force >/dev/null 2>&1 &&
   [ -s "$TMP/vcm.exr" ] && ok || fail "render --integrator vcm"
 

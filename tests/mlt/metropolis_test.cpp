@@ -105,6 +105,7 @@ test::RegionMeans mltSeedRegionMeans(const Scene& scene, RenderSettings s, int s
 struct MltAgreementCase {
   MltVariant variant;
   const char* techniques;
+  int direct = 0;  // MltOptions::directLength
 };
 
 class MetropolisAgreement : public ::testing::TestWithParam<MltAgreementCase> {};
@@ -115,6 +116,7 @@ TEST_P(MetropolisAgreement, CornellBoxRegionsAgreeWithBpt) {
   Scene scene(loadGltf(mltAssetPath("cornell-box.gltf")));
   RenderSettings mlt = mltSettings(16, 6, GetParam().variant);
   mlt.techniques = TechniqueSet::parse(GetParam().techniques);
+  mlt.mlt.directLength = GetParam().direct;
   RenderSettings bpt = mlt;
   bpt.integrator = IntegratorKind::Bpt;
   bpt.seed = 7;
@@ -132,10 +134,15 @@ TEST_P(MetropolisAgreement, CornellBoxRegionsAgreeWithBpt) {
 INSTANTIATE_TEST_SUITE_P(Variants, MetropolisAgreement,
                          ::testing::Values(MltAgreementCase{MltVariant::Multiplexed, "all"},
                                            MltAgreementCase{MltVariant::PrimarySpace, "all"},
-                                           MltAgreementCase{MltVariant::Multiplexed, "s=0;t=1"}),
+                                           MltAgreementCase{MltVariant::Multiplexed, "s=0;t=1"},
+                                           // The short paths by BPT beside the chains, and every length by it.
+                                           MltAgreementCase{MltVariant::Multiplexed, "all", 2},
+                                           MltAgreementCase{MltVariant::PrimarySpace, "all", 2},
+                                           MltAgreementCase{MltVariant::Multiplexed, "s=0;t=1", 6}),
                          [](const auto& info) {
                            return std::string(mltVariantName(info.param.variant)) +
-                                  (std::string(info.param.techniques) == "all" ? "_all" : "_subset");
+                                  (std::string(info.param.techniques) == "all" ? "_all" : "_subset") +
+                                  (info.param.direct ? "_direct" + std::to_string(info.param.direct) : "");
                          });
 
 // A multiplexed chain never proposes a technique the set leaves out, and proposes every one it
@@ -159,8 +166,10 @@ TEST(Metropolis, MultiplexedChainsProposeOnlyEnabledTechniques) {
 
 TEST(Metropolis, SameSeedSameImageAtAnyThreadCount) {
   Scene scene(loadGltf(mltAssetPath("cornell-box.gltf")));
-  for (const MltVariant variant : {MltVariant::Multiplexed, MltVariant::PrimarySpace}) {
+  for (const MltVariant variant : {MltVariant::Multiplexed, MltVariant::PrimarySpace})
+  for (const int direct : {0, 2}) {
     RenderSettings s = mltSettings(16, 5, variant);
+    s.mlt.directLength = direct;
     auto render = [&](int threads, uint64_t seed) {
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
       s.seed = seed;
@@ -169,8 +178,8 @@ TEST(Metropolis, SameSeedSameImageAtAnyThreadCount) {
       return session.image().rgb;
     };
     const std::vector<float> one = render(1, 3);
-    EXPECT_EQ(one, render(2, 3)) << mltVariantName(variant);
-    EXPECT_NE(one, render(2, 4)) << mltVariantName(variant);
+    EXPECT_EQ(one, render(2, 3)) << mltVariantName(variant) << " direct " << direct;
+    EXPECT_NE(one, render(2, 4)) << mltVariantName(variant) << " direct " << direct;
   }
 }
 

@@ -24,6 +24,8 @@ CASES = [
     ("cornell-box.gltf", dict(width=32, height=32, integrator="mlt", mlt_variant="pss", bootstrap=2000, sigma=0.05),
      ["--width", "32", "--height", "32", "--integrator", "mlt", "--mlt-variant", "pss", "--bootstrap", "2000",
       "--sigma", "0.05"]),
+    ("cornell-box.gltf", dict(width=32, height=32, integrator="mlt", bootstrap=2000, mlt_direct=2),
+     ["--width", "32", "--height", "32", "--integrator", "mlt", "--bootstrap", "2000", "--mlt-direct", "2"]),
 ]
 
 

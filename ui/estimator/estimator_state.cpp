@@ -81,6 +81,7 @@ void setMaxLength(EstimatorState& state, int maxLength) {
     state.isolated = Technique{std::min(state.isolated.s, maxLength), maxLength + 1 - std::min(state.isolated.s, maxLength)};
   }
   state.oneLength = std::min(state.oneLength, maxLength);
+  state.settings.mlt.directLength = std::min(state.settings.mlt.directLength, maxLength);
 }
 
 bool setIsolated(EstimatorState& state, Technique x) {

@@ -332,7 +332,7 @@ void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
 
 // Metropolis (issue 33): the variant, the mutation's two parameters, the chains and bootstrap, and
 // what the last pass's chains did.
-void drawMetropolisControls(MltOptions& m, const MltSummary* now) {
+void drawMetropolisControls(MltOptions& m, int maxLength, const MltSummary* now) {
   int variant = static_cast<int>(m.variant);
   ImGui::TextUnformatted("chains");
   ImGui::SameLine();
@@ -355,12 +355,19 @@ void drawMetropolisControls(MltOptions& m, const MltSummary* now) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("independent samples per path length that estimate b (the image's brightness) and start the\n"
                       "chains; every large step refines b as the chains run");
+  ImGui::SliderInt("BPT up to", &m.directLength, 0, maxLength, m.directLength ? "%d edges" : "none");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("paths of up to this many edges (1: lights seen directly, 2: direct lighting) rendered by BPT,\n"
+                      "one sample a pixel a pass, beside chains that explore only the longer ones (--mlt-direct)");
   if (!now) return;
   const MltStats& s = now->stats;
   const double b = now->b;
   ImGui::Text("b = %.4g +- %.2f %%   acceptance %.1f %%", b, b > 0 ? 100.0 * now->bError / b : 0.0, 100.0 * s.acceptance());
   ImGui::Text("large steps: %.1f %% accepted",
               s.largeProposed ? 100.0 * static_cast<double>(s.largeAccepted) / static_cast<double>(s.largeProposed) : 0.0);
+  if (now->directLength > 0)
+    ImGui::Text("up to %d edges by BPT: %llu samples a pixel", now->directLength,
+                static_cast<unsigned long long>(now->directSamples));
   if (m.variant != MltVariant::Multiplexed) return;
   std::string line = "chains by length:";
   for (size_t k = 1; k < now->chainsByLength.size(); ++k) {
@@ -400,7 +407,7 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   edited.integrator = kOrder[std::clamp(integrator, 0, 3)];
   if (edited.integrator == IntegratorKind::Mlt) {
     estimator.mode = EstimatorMode::Combine;  // the chains weigh every enabled technique: nothing isolated
-    drawMetropolisControls(edited.mlt, mlt);
+    drawMetropolisControls(edited.mlt, edited.maxLength, mlt);
   }
 
   int maxLength = edited.maxLength;
