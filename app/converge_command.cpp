@@ -18,6 +18,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -81,9 +82,11 @@ ConvergenceCurve runWithProgress(const Scene& scene, const ConvergenceConfig& co
 void printSummary(const ConvergenceCurve& curve) {
   const Checkpoint& c = curve.checkpoints.back();
   std::string error = c.error ? fmt::format("relMSE {:.4g}, ", c.error->relMse) : "";
-  std::cerr << fmt::format("{}: {} spp{} in {:.2f} s, {}two-buffer relMSE {:.4g}, {} samples/s, {} rays/s\n", curve.label,
+  const std::string twoBuffer =
+      std::isfinite(c.twoBuffer.relMse) ? fmt::format("two-buffer relMSE {:.4g}, ", c.twoBuffer.relMse) : "";
+  std::cerr << fmt::format("{}: {} spp{} in {:.2f} s, {}{}{} samples/s, {} rays/s\n", curve.label,
                            c.spp, curve.processes > 1 ? fmt::format(" ({} ranks)", curve.processes) : "", c.seconds,
-                           error, c.twoBuffer.relMse,
+                           error, twoBuffer,
                            humanCount(static_cast<double>(c.cameraSamples) / c.seconds),
                            humanCount(static_cast<double>(c.rays) / c.seconds));
 }

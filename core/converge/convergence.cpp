@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -93,6 +94,10 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
   // passes) would need the same read-outs and a second film, and would have to be driven with
   // interleaved pass indices to stay the same estimator as one session.
   EvenOddBuffers buffers(s.width, s.height);
+  // Metropolis's passes continue the same chains: its even and odd images are correlated, so the
+  // two-buffer estimate and the bias^2 / variance split (which assume independent passes) would
+  // understate its error many times (1e-5 against 3e-4 on the door scene): left out, NaN.
+  const bool independentPasses = s.integrator != IntegratorKind::Mlt;
   ConvergenceCurve curve{config.label, {}, {}, {}, run.processes()};
   double wallSeconds = 0.0, cpuSeconds = 0.0;
   auto renderSeconds = [&] { return budget.clock == ClockKind::Cpu ? cpuSeconds : wallSeconds; };
@@ -129,6 +134,7 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
                           buffers.oddPasses()};
     const RunProgress progress = combineProgress(run.gatherProgress(own));
     Checkpoint c;
+    if (!independentPasses) c.twoBuffer.mse = c.twoBuffer.relMse = std::numeric_limits<double>::quiet_NaN();
     c.seconds = progress.renderSeconds;
     c.wallSeconds = progress.wallSeconds;
     c.cpuSeconds = progress.cpuSeconds;
@@ -139,8 +145,10 @@ ConvergenceCurve runConvergence(const Scene& scene, const ConvergenceConfig& con
     if (std::optional<RunImage> image = runImageOnLeader(run, session, buffers, progress, reference, mask)) {
       mean = std::move(image->mean);
       if (reference) c.error = errorMetrics(mean, *reference, mask);
-      c.twoBuffer = image->twoBuffer;
-      c.split = image->split;
+      if (independentPasses) {
+        c.twoBuffer = image->twoBuffer;
+        c.split = image->split;
+      }
     }
     curve.checkpoints.push_back(c);
     if (onCheckpoint) onCheckpoint(c);

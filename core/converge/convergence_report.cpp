@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace pathlab {
@@ -40,9 +41,11 @@ std::string convergenceCsv(const std::vector<ConvergenceCurve>& curves) {
     for (const Checkpoint& c : curve.checkpoints) {
       const std::string errors =
           c.error ? fmt::format("{:.6g},{:.6g},{:.6g}", c.error->rmse, c.error->relMse, c.error->mape) : ",,";
-      csv += fmt::format("{},{},{:.6f},{},{:.6g},{:.6g},{},{},{:.6f},{:.6f}", csvQuote(curve.label), c.spp, c.seconds,
-                         errors, c.twoBuffer.mse, c.twoBuffer.relMse, c.cameraSamples, c.rays, c.wallSeconds,
-                         c.cpuSeconds);
+      // Empty where the passes are not independent (Metropolis: NaN).
+      const std::string twoBuffer =
+          std::isfinite(c.twoBuffer.relMse) ? fmt::format("{:.6g},{:.6g}", c.twoBuffer.mse, c.twoBuffer.relMse) : ",";
+      csv += fmt::format("{},{},{:.6f},{},{},{},{},{:.6f},{:.6f}", csvQuote(curve.label), c.spp, c.seconds, errors,
+                         twoBuffer, c.cameraSamples, c.rays, c.wallSeconds, c.cpuSeconds);
       csv += c.split ? fmt::format(",{:.6g},{:.6g}", c.split->bias2, c.split->variance) : ",,";
       csv += split ? fmt::format(",{}\n", curve.processes) : "\n";
     }
@@ -76,9 +79,10 @@ std::string efficiencyMarkdown(const std::vector<EfficiencyRow>& rows, const std
                    " | relMSE | two-buffer relMSE | RMSE | MAPE | efficiency 1/(relMSE·s) | speed-up |\n"
                    "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const EfficiencyRow& r : rows)
-    md += fmt::format("| {} | {} | {:.3g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.4g} | {:.2f}× |\n",
-                      markdownCell(r.label), r.spp, r.seconds, r.relMse, r.twoBufferRelMse, r.rmse, r.mape,
-                      r.efficiency, r.speedup);
+    md += fmt::format("| {} | {} | {:.3g} | {:.4g} | {} | {:.4g} | {:.4g} | {:.4g} | {:.2f}× |\n",
+                      markdownCell(r.label), r.spp, r.seconds, r.relMse,
+                      std::isfinite(r.twoBufferRelMse) ? fmt::format("{:.4g}", r.twoBufferRelMse) : "–", r.rmse,
+                      r.mape, r.efficiency, r.speedup);
   return md;
 }
 

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -164,6 +165,31 @@ TEST(Convergence, ErrorFallsAndCheckpointsAreGeometric) {
   EXPECT_DOUBLE_EQ(rows[1].efficiency, 1.0 / (rows[1].relMse * rows[1].seconds));
   const std::string md = efficiencyMarkdown(rows);
   EXPECT_EQ(std::count(md.begin(), md.end(), '\n'), 4);
+}
+
+// Metropolis's passes continue the same chains: the two-buffer estimate (which assumes independent
+// passes) and the bias^2 / variance split are left out (NaN, no split), in the CSV as empty fields
+// and in the table as "–"; the error against the reference stays.
+TEST(Convergence, MetropolisHasNoTwoBufferEstimate) {
+  Scene scene(loadGltf(kBox));
+  RenderSettings base;
+  base.width = base.height = 8;
+  base.maxLength = 3;
+  const auto configs = parseConvergenceConfigs("mlt:bootstrap=500,chains=16;bpt", base);
+  ConvergenceBudget budget;
+  budget.spp = 4;
+  const Image reference = runConvergence(scene, configs[1], nullptr, budget).image;
+  const std::vector<ConvergenceCurve> curves{runConvergence(scene, configs[0], &reference, budget),
+                                             runConvergence(scene, configs[1], &reference, budget)};
+  const Checkpoint& mlt = curves[0].checkpoints.back();
+  ASSERT_TRUE(mlt.error.has_value());
+  EXPECT_TRUE(std::isnan(mlt.twoBuffer.relMse) && std::isnan(mlt.twoBuffer.mse));
+  EXPECT_FALSE(mlt.split.has_value());
+  EXPECT_TRUE(std::isfinite(curves[1].checkpoints.back().twoBuffer.relMse));
+  const std::string csv = convergenceCsv(curves);
+  EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
+  const std::string md = efficiencyMarkdown(efficiencyRows(curves));
+  EXPECT_NE(md.find("| – |"), std::string::npos) << md;
 }
 
 TEST(Convergence, ATimeBudgetRunsAtLeastTwoPasses) {
