@@ -156,6 +156,20 @@ TEST(EstimatorState, DescriptionNamesTheMergeRadiusAndSite) {
   EXPECT_EQ(describe(s), "bpt, max length 4, techniques all, MIS balance");
 }
 
+// Metropolis: what decides the chains, so that an A | B of two chain settings tells them apart.
+TEST(EstimatorState, DescriptionNamesTheChainsSettings) {
+  RenderSettings s;
+  s.integrator = IntegratorKind::Mlt;
+  s.maxLength = 4;
+  EXPECT_EQ(describe(s), "mlt, max length 4, techniques all, MIS balance, mmlt chains 1000, large step 0.3, sigma 0.01, "
+                         "bootstrap 100000");
+  s.mlt.variant = MltVariant::PrimarySpace;
+  s.mlt.directLength = 2;
+  s.mlt.sigma = 0.05f;
+  EXPECT_EQ(describe(s), "mlt, max length 4, techniques all, MIS balance, pss chains 1000, large step 0.3, sigma 0.05, "
+                         "bootstrap 100000, up to 2 edges by BPT");
+}
+
 // Ctrl+digit S isolates (S, k + 1 - S) of the grid's chosen length: the seed's comparison of one
 // length's techniques a key each; the isolate mode is kept, combining becomes the weighted share.
 TEST(EstimatorState, DigitKeysIsolateTheTechniquesOfTheChosenLength) {

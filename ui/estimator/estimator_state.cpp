@@ -141,6 +141,13 @@ std::string describe(const RenderSettings& s) {
                        s.mergeSite == MergeSite::FirstNonSpecular ? " at the first non-specular camera vertex (ppm)" : "",
                        s.mergeNonCaustic ? fmt::format(", non-caustic photons {:g}", *s.mergeNonCaustic) : "");
   if (s.connect != ConnectStrategy::All) out += fmt::format(", connect {}", connectStrategyName(s.connect));
+  if (s.integrator == IntegratorKind::Mlt) {
+    // What decides the chains (the A | B lanes of two Metropolis settings differ in these).
+    const MltOptions& m = s.mlt;
+    out += fmt::format(", {} chains {}, large step {:g}, sigma {:g}, bootstrap {}", mltVariantName(m.variant), m.chains,
+                       m.largeStep, m.sigma, m.bootstrap);
+    if (m.directLength > 0) out += fmt::format(", up to {} edges by BPT", m.directLength);
+  }
   if (s.injectBias)
     out += fmt::format(", BIAS INJECTED: ({},{}) x {:g}", s.injectBias->s, s.injectBias->t, s.injectBias->factor);
   return out;
