@@ -332,6 +332,56 @@ void drawMergeControls(RenderSettings& edited, const MergeRadiusNow& now) {
 
 // Metropolis (issue 33): the variant, the mutation's two parameters, the chains and bootstrap, and
 // what the last pass's chains did.
+// Multiplexed chains: for each length with chains, each technique's share of its proposals and
+// the acceptance of those proposals (the state's first number picks the technique, so a technique
+// whose paths the target favours is accepted more often and the chain spends longer in it).
+void drawAcceptanceByTechnique(const MltSummary& now) {
+  const MltStats& s = now.stats;
+  if (s.proposedByTechnique.empty() || !ImGui::TreeNode("acceptance by technique")) return;
+  int widest = 0;
+  for (size_t k = 1; k < now.chainsByLength.size(); ++k)
+    if (now.chainsByLength[k] > 0) widest = static_cast<int>(k);
+  const ImGuiTableFlags flags = ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX;
+  int rows = 0;
+  for (size_t k = 1; k <= static_cast<size_t>(widest); ++k) rows += now.chainsByLength[k] > 0;
+  // The header and the rows, each a line and its cell padding, and the horizontal scroll bar.
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const ImVec2 size(0.f, static_cast<float>(rows + 1) * (ImGui::GetTextLineHeight() + 2.f * style.CellPadding.y + 1.f) +
+                             style.ScrollbarSize + 2.f);
+  if (widest > 0 && ImGui::BeginTable("acceptance", widest + 2, flags, size)) {
+    ImGui::TableSetupColumn("k", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("00").x);
+    const float cell = ImGui::CalcTextSize("100% of 100%").x;
+    for (int sIndex = 0; sIndex <= widest; ++sIndex)
+      ImGui::TableSetupColumn(fmt::format("s={}", sIndex).c_str(), ImGuiTableColumnFlags_WidthFixed, cell);
+    ImGui::TableHeadersRow();
+    for (int k = 1; k <= widest; ++k) {
+      if (now.chainsByLength[static_cast<size_t>(k)] == 0) continue;
+      const uint64_t all = s.proposedByLength[static_cast<size_t>(k)];
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("%d", k);
+      for (int sIndex = 0; sIndex <= k; ++sIndex) {
+        ImGui::TableNextColumn();
+        const size_t x = Technique{sIndex, k + 1 - sIndex}.index();
+        const uint64_t p = x < s.proposedByTechnique.size() ? s.proposedByTechnique[x] : 0;
+        const uint64_t a = x < s.acceptedByTechnique.size() ? s.acceptedByTechnique[x] : 0;
+        if (p == 0) {
+          ImGui::TextDisabled("-");
+          continue;
+        }
+        ImGui::Text("%.0f%% of %.0f%%", 100.0 * static_cast<double>(a) / static_cast<double>(p),
+                    all ? 100.0 * static_cast<double>(p) / static_cast<double>(all) : 0.0);
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("(%d,%d): %.1f %% of length %d's proposals, %.1f %% of them accepted", sIndex, k + 1 - sIndex,
+                            all ? 100.0 * static_cast<double>(p) / static_cast<double>(all) : 0.0, k,
+                            100.0 * static_cast<double>(a) / static_cast<double>(p));
+      }
+    }
+    ImGui::EndTable();
+  }
+  ImGui::TreePop();
+}
+
 void drawMetropolisControls(MltOptions& m, int maxLength, const MltSummary* now) {
   int variant = static_cast<int>(m.variant);
   ImGui::TextUnformatted("chains");
@@ -379,6 +429,7 @@ void drawMetropolisControls(MltOptions& m, int maxLength, const MltSummary* now)
   }
   ImGui::TextWrapped("%s", line.c_str());
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("length k: the chains that sample it (in proportion to its share of b), and their acceptance");
+  drawAcceptanceByTechnique(*now);
 }
 
 }  // namespace
