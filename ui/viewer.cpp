@@ -4,6 +4,7 @@
 
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
+#include "core/maps/map_colours.h"
 #include "ui/lane/thread_priority.h"
 
 #include <imgui.h>
@@ -179,6 +180,7 @@ void Viewer::drawOverImages() {
                                   compare_.on ? (isA ? "A" : "B") : ""});
   }
   techniqueImages_.drawMap(maps_, a().rect, fbScale);
+  drawChainDensity(fbScale);
   inspect_.drawOverlays(scene(), shownSettings(), toImGui(a().rect.origin, fbScale), toImGui(a().rect.size, fbScale),
                         fbScale, ui_.scale);
 }
@@ -379,6 +381,28 @@ void Viewer::resetCamera() {
 
 PresetTarget Viewer::presetTarget() {
   return {estimator_, scenes_.orbit(), compare_, scene(), ui_.message};
+}
+
+// Over A's image, in place of it, when asked and A runs Metropolis: coloured again whenever A
+// publishes (MltSummary comes with every full pass).
+void Viewer::drawChainDensity(float fbScale) {
+  const RenderSnapshot& snapshot = a().snapshot();
+  const MltSummary* mlt = snapshot.mlt.get();
+  if (!estimator_.showChainDensity || !a().running() || !mlt || mlt->density.empty()) return;
+  if (chainDensity_.version != snapshot.version) {
+    const Image colours = densityColours(mlt->density, mlt->width, mlt->height);
+    std::vector<uint8_t> rgba(4 * colours.rgb.size() / 3, 255);
+    for (size_t i = 0; i < rgba.size() / 4; ++i)
+      for (size_t c = 0; c < 3; ++c)
+        rgba[4 * i + c] = static_cast<uint8_t>(std::clamp(colours.rgb[3 * i + c], 0.f, 1.f) * 255.f + 0.5f);
+    chainDensity_.texture.uploadRgba8(colours.width, colours.height, rgba.data());
+    chainDensity_.version = snapshot.version;
+  }
+  const Texture& t = chainDensity_.texture;
+  const PixelRect r = fitAspect(a().rect, static_cast<float>(t.width()) / static_cast<float>(t.height()));
+  ImGui::GetBackgroundDrawList()->AddImage(
+      t.imguiId(), ImVec2(static_cast<float>(r.origin.x) / fbScale, static_cast<float>(r.origin.y) / fbScale),
+      ImVec2(static_cast<float>(r.origin.x + r.size.x) / fbScale, static_cast<float>(r.origin.y + r.size.y) / fbScale));
 }
 
 }  // namespace pathlab::ui

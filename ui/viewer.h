@@ -115,6 +115,12 @@ class Viewer {
   // pyramid and maps.
   Sides sides_;
   TechniqueImages techniqueImages_;
+  // The Metropolis chains' time density of A's last snapshot, coloured (EstimatorState::showChainDensity).
+  struct ChainDensityImage {
+    Texture texture;
+    uint64_t version = ~uint64_t{0};  // the snapshot it was made from
+  } chainDensity_;
+  void drawChainDensity(float framebufferScale);
   std::chrono::steady_clock::time_point lastPriorityCheck_{};
   bool forceRefresh_ = false;
 

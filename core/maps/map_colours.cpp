@@ -88,4 +88,15 @@ Image displayToLinear(Image display) {
   return display;
 }
 
+Image densityColours(const std::vector<float>& density, int width, int height) {
+  Image out{width, height, std::vector<float>(3 * static_cast<size_t>(width) * static_cast<size_t>(height), 0.f)};
+  const size_t n = std::min(density.size(), static_cast<size_t>(width) * static_cast<size_t>(height));
+  for (size_t p = 0; p < n; ++p) {
+    const float d = density[p];
+    const Vec3 c = d > 0.f ? viridis((std::log10(d) + kDensityDecades) / (2.f * kDensityDecades)) : kEmptyColour;
+    for (int i = 0; i < 3; ++i) out.rgb[3 * p + static_cast<size_t>(i)] = c[i];
+  }
+  return out;
+}
+
 }  // namespace pathlab

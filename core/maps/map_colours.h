@@ -40,6 +40,12 @@ Image shareColours(const std::vector<float>& share, int width, int height);  // 
 // cannot sample (fully hatched: impossible; dark and unhatched: weighted away); black where empty.
 Image cannotSampleColours(const CannotSampleMap& m);
 
+// A Metropolis render's chain time density (MltSummary::density: 1 is an even spread) on a log
+// scale: viridis from kDensityDecades decades below one (dark blue) to as many above (yellow),
+// black where the chains never went.
+inline constexpr float kDensityDecades = 2.f;
+Image densityColours(const std::vector<float>& density, int width, int height);
+
 // The linear image whose PNG (writeImage: clamp, sRGB encode) shows these display colours.
 Image displayToLinear(Image display);
 

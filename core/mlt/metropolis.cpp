@@ -411,6 +411,26 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
   return true;
 }
 
+std::vector<float> Metropolis::chainDensity() const {
+  // H_k holds F / f times the weights, so its luminance is the weight times lum(F) / f: the
+  // share of the state's weight its contribution to this pixel carries (all of it in MMLT).
+  uint64_t mutations = 0;
+  for (const LengthTotals& t : totals_) mutations += t.histogram.empty() ? 0 : t.mutations;
+  if (mutations == 0) return {};
+  const size_t P = static_cast<size_t>(width_) * static_cast<size_t>(height_);
+  std::vector<double> sum(P, 0.0);
+  for (const LengthTotals& t : totals_) {
+    if (t.histogram.empty() || t.mutations == 0) continue;
+    for (size_t p = 0; p < P; ++p)
+      // luminance()'s weights, in double.
+      sum[p] += 0.2126 * t.histogram[3 * p] + 0.7152 * t.histogram[3 * p + 1] + 0.0722 * t.histogram[3 * p + 2];
+  }
+  std::vector<float> density(P);
+  const double scale = static_cast<double>(P) / static_cast<double>(mutations);
+  for (size_t p = 0; p < P; ++p) density[p] = static_cast<float>(scale * sum[p]);
+  return density;
+}
+
 std::vector<int> Metropolis::chainsByLength() const {
   std::vector<int> n(std::max(static_cast<size_t>(maxLength_) + 1, totals_.size()), 0);
   for (const std::unique_ptr<Chain>& chain : chains_) ++n[static_cast<size_t>(chain->length)];

@@ -55,6 +55,9 @@ struct MltSummary {
   std::vector<int> chainsByLength;
   int directLength = 0;        // MltOptions::directLength
   uint64_t directSamples = 0;  // per pixel, of the paths up to directLength edges
+  // Where the chains spend their time (Metropolis::chainDensity), width x height, row-major.
+  std::vector<float> density;
+  int width = 0, height = 0;
 };
 
 class Metropolis {
@@ -85,8 +88,16 @@ class Metropolis {
   const MltStats& stats() const { return stats_; }
   // The chains' share of each path length (MMLT; PSSMLT: all in length 0).
   std::vector<int> chainsByLength() const;
+  // Where the chains spend their time: per pixel, the chains' expected-value weight that landed
+  // there (each state's weight spread over its contributions in proportion to their luminance),
+  // times P over all their mutations: 1 where they stay as long as in an average pixel. The
+  // image's luminance from a length k is b_k times its chains' density, so with one length the
+  // image is b times this (Veach 1997 sec. 11.3: the chain's stationary density is f / b).
+  // Empty before the first pass and without chains.
+  std::vector<float> chainDensity() const;
   MltSummary summary() const {
-    return {b_, bError_, stats_, chainsByLength(), direct_ ? options_.directLength : 0, directPasses_};
+    return {b_,      bError_, stats_, chainsByLength(), direct_ ? options_.directLength : 0, directPasses_,
+            chainDensity(), width_, height_};
   }
 
  private:

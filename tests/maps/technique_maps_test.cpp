@@ -3,6 +3,7 @@
 // shares add up to one over the rendered image, and the map functions mark ties and empty pixels.
 #include "core/render/technique_luminance.h"
 #include "core/maps/technique_maps.h"
+#include "core/maps/map_colours.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"
 #include "tests/support/region_estimate.h"
@@ -195,6 +196,20 @@ TEST(TechniqueMaps, RefusedWithoutAPyramidOrForThePathTracer) {
   s.integrator = IntegratorKind::Pt;
   EXPECT_THROW(validateSettings(s), std::invalid_argument);
   EXPECT_NO_THROW(validateSettings(mapSettings(3, 1)));
+}
+
+// The Metropolis chains' time density on its log scale: an even spread (1) mid-scale, two decades
+// either side the ends, beyond them clamped, never visited black.
+TEST(DensityColours, LogScaleAroundAnEvenSpread) {
+  const Image c = densityColours({0.f, 1.f, 100.f, 0.01f, 1e6f, 1e-6f}, 3, 2);
+  ASSERT_EQ(c.rgb.size(), 18u);
+  auto at = [&](size_t p) { return Vec3(c.rgb[3 * p], c.rgb[3 * p + 1], c.rgb[3 * p + 2]); };
+  EXPECT_EQ(at(0), kEmptyColour);
+  EXPECT_EQ(at(1), viridis(0.5f));
+  EXPECT_EQ(at(2), viridis(1.f));
+  EXPECT_EQ(at(3), viridis(0.f));
+  EXPECT_EQ(at(4), viridis(1.f));
+  EXPECT_EQ(at(5), viridis(0.f));
 }
 
 }  // namespace

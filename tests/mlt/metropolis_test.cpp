@@ -224,5 +224,31 @@ TEST(Metropolis, OnePixelAndABootstrapOfOneStillConverge) {
   EXPECT_LT(m.standardError, 0.05 * expected);
 }
 
+// Where the chains spend their time: with one length (or PSSMLT's one histogram) the image's
+// luminance is b times the chains' density, pixel by pixel, and the density averages one over the
+// pixels (every contribution lands on the film: camera estimates and the lens's splats alike).
+TEST(Metropolis, TheImageIsBTimesTheChainDensity) {
+  Scene scene(loadGltf(mltAssetPath("cornell-box.gltf")));
+  for (const MltVariant variant : {MltVariant::Multiplexed, MltVariant::PrimarySpace}) {
+    RenderSettings s = mltSettings(16, 4, variant);
+    s.techniques = TechniqueSet::parse("k=3");  // one length: one b
+    RenderSession session(scene, s);
+    for (int i = 0; i < 4; ++i) session.renderPass();
+    const Metropolis& m = *session.metropolis();
+    const std::vector<float> density = m.chainDensity();
+    ASSERT_EQ(density.size(), 256u);
+    const Image image = session.image();
+    double mean = 0.0, lit = 0.0;
+    for (size_t p = 0; p < density.size(); ++p) {
+      const double y = luminance(Spectrum(image.rgb[3 * p], image.rgb[3 * p + 1], image.rgb[3 * p + 2]));
+      EXPECT_NEAR(y, m.normalisation() * density[p], 1e-5 * (y + 1e-6)) << mltVariantName(variant) << " pixel " << p;
+      mean += density[p] / 256.0;
+      lit += density[p] > 0.f;
+    }
+    EXPECT_NEAR(mean, 1.0, 1e-5) << mltVariantName(variant);
+    EXPECT_GT(lit, 128) << mltVariantName(variant);  // the chains went over most of the image
+  }
+}
+
 }  // namespace
 }  // namespace pathlab

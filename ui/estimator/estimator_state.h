@@ -22,6 +22,8 @@ struct EstimatorState {
   // 1..settings.maxLength (setMaxLength shortens it).
   Technique isolated{1, 2};
   int oneLength = 2;  // the length of the grid's "one length only" preset, 1..settings.maxLength
+  // Metropolis: the chains' time density (MltSummary::density) shown over the image instead of it.
+  bool showChainDensity = false;
 
   // The state of settings (their isolation, if any, becomes mode and isolated).
   static EstimatorState from(const RenderSettings& settings);

@@ -382,7 +382,7 @@ void drawAcceptanceByTechnique(const MltSummary& now) {
   ImGui::TreePop();
 }
 
-void drawMetropolisControls(MltOptions& m, int maxLength, const MltSummary* now) {
+void drawMetropolisControls(MltOptions& m, int maxLength, bool& showDensity, const MltSummary* now) {
   int variant = static_cast<int>(m.variant);
   ImGui::TextUnformatted("chains");
   ImGui::SameLine();
@@ -409,6 +409,11 @@ void drawMetropolisControls(MltOptions& m, int maxLength, const MltSummary* now)
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("paths of up to this many edges (1: lights seen directly, 2: direct lighting) rendered by BPT,\n"
                       "one sample a pixel a pass, beside chains that explore only the longer ones (--mlt-direct)");
+  ImGui::Checkbox("where the chains spend their time", &showDensity);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("over the image, each pixel's share of the chains' time relative to an even spread (viridis,\n"
+                      "log scale: 1/100 dark blue, 1 green, 100 yellow; black: never). The image's brightness is b\n"
+                      "times this density, length by length: the chains stay where the paths carry light");
   if (!now) return;
   const MltStats& s = now->stats;
   const double b = now->b;
@@ -458,7 +463,7 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   edited.integrator = kOrder[std::clamp(integrator, 0, 3)];
   if (edited.integrator == IntegratorKind::Mlt) {
     estimator.mode = EstimatorMode::Combine;  // the chains weigh every enabled technique: nothing isolated
-    drawMetropolisControls(edited.mlt, edited.maxLength, mlt);
+    drawMetropolisControls(edited.mlt, edited.maxLength, estimator.showChainDensity, mlt);
   }
 
   int maxLength = edited.maxLength;
