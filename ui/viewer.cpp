@@ -390,19 +390,10 @@ void Viewer::drawChainDensity(float fbScale) {
   const MltSummary* mlt = snapshot.mlt.get();
   if (!estimator_.showChainDensity || !a().running() || !mlt || mlt->density.empty()) return;
   if (chainDensity_.version != snapshot.version) {
-    const Image colours = densityColours(mlt->density, mlt->width, mlt->height);
-    std::vector<uint8_t> rgba(4 * colours.rgb.size() / 3, 255);
-    for (size_t i = 0; i < rgba.size() / 4; ++i)
-      for (size_t c = 0; c < 3; ++c)
-        rgba[4 * i + c] = static_cast<uint8_t>(std::clamp(colours.rgb[3 * i + c], 0.f, 1.f) * 255.f + 0.5f);
-    chainDensity_.texture.uploadRgba8(colours.width, colours.height, rgba.data());
+    uploadDisplayColours(chainDensity_.texture, densityColours(mlt->density, mlt->width, mlt->height));
     chainDensity_.version = snapshot.version;
   }
-  const Texture& t = chainDensity_.texture;
-  const PixelRect r = fitAspect(a().rect, static_cast<float>(t.width()) / static_cast<float>(t.height()));
-  ImGui::GetBackgroundDrawList()->AddImage(
-      t.imguiId(), ImVec2(static_cast<float>(r.origin.x) / fbScale, static_cast<float>(r.origin.y) / fbScale),
-      ImVec2(static_cast<float>(r.origin.x + r.size.x) / fbScale, static_cast<float>(r.origin.y + r.size.y) / fbScale));
+  drawOverImage(chainDensity_.texture, a().rect, fbScale);
 }
 
 }  // namespace pathlab::ui

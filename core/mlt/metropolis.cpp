@@ -101,13 +101,15 @@ Metropolis::~Metropolis() = default;
 void Metropolis::evaluate(int length, PrimarySamples& samples, State& out, Counters& counters) const {
   out.contributions.clear();
   out.f = 0.f;
-  ++counters.cameraSamples;
   PrimarySampleStream camera(samples, 0), light(samples, 1);
   const Vec2 size(static_cast<float>(width_), static_cast<float>(height_));
   if (options_.variant == MltVariant::Multiplexed) {
     const std::vector<Technique>& techniques = enabledByLength_[static_cast<size_t>(length)];
     const auto n = static_cast<int>(techniques.size());
+    // A length without techniques (left to BPT by --mlt-direct, or switched off) traces nothing:
+    // its bootstrap samples are not samples.
     if (n == 0) return;
+    ++counters.cameraSamples;
     const int j = std::min(static_cast<int>(camera.next1D() * static_cast<float>(n)), n - 1);
     const Technique x = techniques[static_cast<size_t>(j)];
     out.technique = x;
@@ -124,6 +126,7 @@ void Metropolis::evaluate(int length, PrimarySamples& samples, State& out, Count
     }
     return;
   }
+  ++counters.cameraSamples;
   const Vec2 pRaster = camera.next2D() * size;
   const Vec2 uLens = camera.next2D();
   CollectingSink sink;

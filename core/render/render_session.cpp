@@ -74,7 +74,7 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
       film_(settings.width, settings.height),
       tiles_(passTiles(settings.width, settings.height)) {
   replayStore_ = std::make_unique<ReplayStore>();
-  const int directLength = settings.integrator == IntegratorKind::Mlt ? std::min(settings.mlt.directLength, settings_.maxLength) : 0;
+  const int directLength = settings_.integrator == IntegratorKind::Mlt ? settings_.mlt.directLength : 0;  // <= maxLength
   if (directLength > 0) {
     // Metropolis with its short paths by BPT (MltOptions::directLength): the chains' tracer keeps
     // the longer techniques, a second tracer the shorter ones. The MIS weights of a technique

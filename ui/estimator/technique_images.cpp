@@ -23,6 +23,22 @@ bool due(std::chrono::steady_clock::time_point& last, bool force) {
 
 }  // namespace
 
+void uploadDisplayColours(Texture& texture, const Image& colours) {
+  std::vector<uint8_t> rgba(4 * static_cast<size_t>(colours.width) * static_cast<size_t>(colours.height), 255);
+  for (size_t i = 0; i < rgba.size() / 4; ++i)
+    for (size_t c = 0; c < 3; ++c)
+      rgba[4 * i + c] = static_cast<uint8_t>(std::clamp(colours.rgb[3 * i + c], 0.f, 1.f) * 255.f + 0.5f);
+  texture.uploadRgba8(colours.width, colours.height, rgba.data());
+}
+
+void drawOverImage(const Texture& t, const PixelRect& image, float fbScale) {
+  if (t.empty() || image.size.x <= 0 || image.size.y <= 0) return;
+  const PixelRect r = fitAspect(image, static_cast<float>(t.width()) / static_cast<float>(t.height()));
+  const ImVec2 p0(static_cast<float>(r.origin.x) / fbScale, static_cast<float>(r.origin.y) / fbScale);
+  const ImVec2 p1(static_cast<float>(r.origin.x + r.size.x) / fbScale, static_cast<float>(r.origin.y + r.size.y) / fbScale);
+  ImGui::GetBackgroundDrawList()->AddImage(t.imguiId(), p0, p1);
+}
+
 bool TechniqueImages::update(ProgressiveRenderer& renderer, const PyramidView& pyramidView, const MapView& mapView,
                              const DisplaySettings& display, bool force) {
   const bool thumbnails = pyramidView.show && updatePyramid(renderer, pyramidView, display, due(pyramid.lastPoll, force));
@@ -65,23 +81,12 @@ bool TechniqueImages::updateMaps(ProgressiveRenderer& renderer, const MapView& v
     m.texture = Texture();
     return fresh;
   }
-  std::vector<uint8_t> rgba(4 * static_cast<size_t>(map.width) * static_cast<size_t>(map.height), 255);
-  for (size_t i = 0; i < rgba.size() / 4; ++i)
-    for (size_t c = 0; c < 3; ++c)
-      rgba[4 * i + c] = static_cast<uint8_t>(std::clamp(map.rgb[3 * i + c], 0.f, 1.f) * 255.f + 0.5f);
-  m.texture.uploadRgba8(map.width, map.height, rgba.data());
+  uploadDisplayColours(m.texture, map);
   return true;
 }
 
 void TechniqueImages::drawMap(const MapView& mapView, const PixelRect& image, float fbScale) const {
-  const Texture& t = maps.texture;
-  if (!mapView.show || t.empty() || image.size.x <= 0 || image.size.y <= 0) return;
-  // Fitted into the image's rectangle like the image (ImageView::draw), centred: the map has the
-  // image's aspect, so it covers the image exactly.
-  const PixelRect r = fitAspect(image, static_cast<float>(t.width()) / static_cast<float>(t.height()));
-  const ImVec2 p0(static_cast<float>(r.origin.x) / fbScale, static_cast<float>(r.origin.y) / fbScale);
-  const ImVec2 p1(static_cast<float>(r.origin.x + r.size.x) / fbScale, static_cast<float>(r.origin.y + r.size.y) / fbScale);
-  ImGui::GetBackgroundDrawList()->AddImage(t.imguiId(), p0, p1);
+  if (mapView.show) drawOverImage(maps.texture, image, fbScale);
 }
 
 void TechniqueImages::waitForPyramid(ProgressiveRenderer& renderer, double seconds) const {

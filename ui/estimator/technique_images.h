@@ -7,6 +7,12 @@
 
 namespace pathlab::ui {
 
+// Uploads display colours (sRGB values in [0, 1], core/maps/map_colours.h) into `texture`.
+void uploadDisplayColours(Texture& texture, const Image& colours);
+// Draws `texture` over `image` (framebuffer pixels) in ImGui's background, fitted into it like the
+// image (ImageView::draw) and centred: a texture of the image's aspect covers it exactly.
+void drawOverImage(const Texture& texture, const PixelRect& image, float framebufferScale);
+
 class TechniqueImages {
  public:
   PyramidImages pyramid;
