@@ -183,14 +183,15 @@ std::string metropolisSummary(const Metropolis& m, const RenderSettings& s) {
       stats.proposed ? 100.0 * static_cast<double>(stats.largeProposed) / static_cast<double>(stats.proposed) : 0.0,
       stats.largeProposed ? 100.0 * static_cast<double>(stats.largeAccepted) / static_cast<double>(stats.largeProposed)
                           : 0.0);
-  const MltSummary summary = m.summary();
-  if (summary.directLength > 0)
-    out += fmt::format("  paths of up to {} edges by BPT beside the chains: {} samples per pixel\n", summary.directLength,
-                       summary.directSamples);
+  // (Not m.summary(), which also computes the chains' density image.)
+  const int directLength = m.directSamples() > 0 ? s.mlt.directLength : 0;
+  if (directLength > 0)
+    out += fmt::format("  paths of up to {} edges by BPT beside the chains: {} samples per pixel\n", directLength,
+                       m.directSamples());
   if (s.mlt.variant == MltVariant::Multiplexed) {
     out += "  length  chains  acceptance\n";
     for (size_t k = 1; k < chains.size(); ++k) {
-      if (static_cast<int>(k) <= summary.directLength) {
+      if (static_cast<int>(k) <= directLength) {
         out += fmt::format("  {:>6}  {:>6}  {:>11}\n", k, "BPT", "-");
         continue;
       }

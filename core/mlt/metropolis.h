@@ -86,6 +86,8 @@ class Metropolis {
   double normalisation() const { return b_; }
   double normalisationError() const { return bError_; }
   const MltStats& stats() const { return stats_; }
+  // Samples per pixel of the lengths rendered by BPT beside the chains (MltOptions::directLength).
+  uint64_t directSamples() const { return directPasses_; }
   // The chains' share of each path length (MMLT; PSSMLT: all in length 0).
   std::vector<int> chainsByLength() const;
   // Where the chains spend their time: per pixel, the chains' expected-value weight that landed
