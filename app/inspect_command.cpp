@@ -20,16 +20,27 @@ namespace {
 
 // As render's --spp: a pass index beyond it is no sample a render of pathlab ever takes.
 constexpr uint64_t kMaxSample = kMaxSpp - 1;
+// A chain's state after --pass N is found by rendering N passes (a mutation a pixel each): a bound
+// that keeps the wait to minutes at the default size.
+constexpr uint64_t kMaxChainPasses = 4096;
 
 }  // namespace
 
 void addInspectCommand(CLI::App& app, InspectOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "inspect", "Replay one sample of one pixel: every (s,t) technique, its path and the path's density and MIS "
-                 "weight under every technique of its length (text, and JSON with --json)");
+                 "weight under every technique of its length (text, and JSON with --json); for mlt, one chain's "
+                 "state: its primary numbers, technique and path");
   addSceneArgument(cmd, o.scene.path);
-  cmd->add_option("--pixel", o.pixel, "The pixel X,Y (from the top left)")->required();
+  cmd->add_option("--pixel", o.pixel, "The pixel X,Y (from the top left); every integrator but mlt");
   cmd->add_option("--sample", o.sample, "The sample (pass) index, 0 .. 16777215 (default 0)");
+  cmd->add_option("--chain", o.chain,
+                  "With --integrator mlt: the Metropolis chain whose state to show (its primary numbers, "
+                  "technique and path), 0 .. chains - 1");
+  cmd->add_option("--pass", o.pass,
+                  fmt::format("With --chain: the state after this many passes, 0 .. {} (default 0: where the "
+                              "chain starts, resampled from the bootstrap)",
+                              kMaxChainPasses));
   cmd->add_option("--json", o.json, "Also write the inspection as JSON to this file");
   addImageSizeOptions(cmd, o.size, {kMaxImageSide, kDefaultLongestSide});
   addEstimatorOptions(cmd, o.estimator);
@@ -40,14 +51,29 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
 int runInspect(InspectOptions o) {
   finishEstimatorOptions(o.estimator);
   RenderSettings& settings = o.estimator.settings;
-  if (settings.integrator == IntegratorKind::Pt || settings.integrator == IntegratorKind::Mlt)
-    throw std::invalid_argument("inspect replays one independent bidirectional sample: use --integrator bpt or lt");
+  if (settings.integrator == IntegratorKind::Pt)
+    throw std::invalid_argument("inspect replays one bidirectional sample: use --integrator bpt, lt or mlt");
+  const bool metropolis = settings.integrator == IntegratorKind::Mlt;
+  if (metropolis) {
+    // A Metropolis render's samples are its chains' states, not a pixel's independent samples.
+    if (!o.pixel.empty() || o.sample)
+      throw std::invalid_argument("--integrator mlt: a Metropolis render's samples are its chains' states, not a "
+                                  "pixel's: give --chain C [--pass N] instead of --pixel and --sample");
+    if (!o.chain) throw std::invalid_argument("--integrator mlt: give the chain to inspect, --chain C [--pass N]");
+    if (o.pass && *o.pass > kMaxChainPasses)
+      throw std::invalid_argument(fmt::format("--pass {} is more than {} passes", *o.pass, kMaxChainPasses));
+  } else if (o.chain || o.pass) {
+    throw std::invalid_argument("--chain and --pass inspect a Metropolis chain: use them with --integrator mlt");
+  } else if (o.pixel.empty()) {
+    throw std::invalid_argument("give the pixel to inspect, --pixel X,Y");
+  }
   long long x = -1, y = -1;
   char extra = 0;
-  if (std::sscanf(o.pixel.c_str(), "%lld,%lld%c", &x, &y, &extra) != 2)
+  if (!metropolis && std::sscanf(o.pixel.c_str(), "%lld,%lld%c", &x, &y, &extra) != 2)
     throw std::invalid_argument(fmt::format("--pixel: '{}' is not X,Y", o.pixel));
-  if (o.sample > kMaxSample)
-    throw std::invalid_argument(fmt::format("--sample {} is past the last sample index {}", o.sample, kMaxSample));
+  const uint64_t sample = o.sample.value_or(0);
+  if (sample > kMaxSample)
+    throw std::invalid_argument(fmt::format("--sample {} is past the last sample index {}", sample, kMaxSample));
   if (!o.json.empty()) {
     checkOutputWritable(o.json);
     refuseExisting(o.json, o.force);
@@ -57,11 +83,13 @@ int runInspect(InspectOptions o) {
   const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultLongestSide);
   settings.width = size.x;
   settings.height = size.y;
-  if (x < 0 || y < 0 || x >= settings.width || y >= settings.height)
+  if (!metropolis && (x < 0 || y < 0 || x >= settings.width || y >= settings.height))
     throw std::invalid_argument(
         fmt::format("--pixel {},{} is outside the {} x {} image", x, y, settings.width, settings.height));
   RenderSession session(scene, settings);
-  const SampleInspection inspection = inspectSample(session, static_cast<int>(x), static_cast<int>(y), o.sample);
+  const SampleInspection inspection =
+      metropolis ? inspectChain(session, *o.chain, o.pass.value_or(0))
+                 : inspectSample(session, static_cast<int>(x), static_cast<int>(y), sample);
   printInspection(std::cout, settings, inspection, true);
   if (!o.json.empty()) {
     writeTextAtomically(o.json, inspectionJson(settings, inspection).dump(2) + "\n");

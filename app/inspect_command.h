@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace pathlab::app {
@@ -17,8 +18,11 @@ struct InspectOptions {
   SceneOptions scene;
   EstimatorOptions estimator;
   ImageSizeOptions size;      // as render: the camera's shape, longest side 512, unless given
-  std::string pixel;          // "X,Y"
-  uint64_t sample = 0;        // the pass index: samples are keyed by (seed, pixel, pass)
+  std::string pixel;               // "X,Y"
+  std::optional<uint64_t> sample;  // the pass index: samples are keyed by (seed, pixel, pass); default 0
+  // A Metropolis render (--integrator mlt): its samples are its chains' states.
+  std::optional<uint64_t> chain;  // which chain
+  std::optional<uint64_t> pass;   // after how many passes (default 0: where it starts)
   std::string json;           // write the inspection here as JSON
   bool force = false;
 };

@@ -441,37 +441,48 @@ template void BidirTracer::sample(Vec2, Vec2, Pcg32&, Pcg32&, SampleSink&, Count
 template void BidirTracer::sample(Vec2, Vec2, PrimarySampleStream&, PrimarySampleStream&, SampleSink&, Counters&) const;
 
 namespace {
-// sampleTechnique's sink: the one technique's weighted contribution and where it lands.
+// sampleTechnique's sink: the one technique's weighted contribution and where it lands, its subpaths
+// and record passed on to the caller's sink when it asks for them (`forward`, with its demand).
 class TechniqueSampleSink final : public SampleSink {
  public:
-  TechniqueSampleSink() : SampleSink(SinkDemand{}) {}
+  explicit TechniqueSampleSink(SampleSink* forward)
+      : SampleSink(forward ? forward->demand() : SinkDemand{}, forward ? forward->id() : SampleId{}),
+        forward_(forward) {}
   Spectrum splatted{0.f};
   Vec2 splatAt{0.f};
+  void record(const TechniqueResult& result) override {
+    if (forward_) forward_->record(result);
+  }
 
  protected:
   bool splat(Vec2 pRaster, const Spectrum& v) override {
     splatted = v, splatAt = pRaster;
     return true;
   }
+
+ private:
+  SampleSink* forward_;
 };
 }  // namespace
 
 BidirTracer::TechniqueSample BidirTracer::sampleTechnique(int s, int t, Vec2 pRaster, Vec2 uLens,
                                                           PrimarySampleStream& cameraRng, PrimarySampleStream& lightRng,
-                                                          PrimarySampleStream& connectionRng,
-                                                          Counters& counters) const {
+                                                          PrimarySampleStream& connectionRng, Counters& counters,
+                                                          SampleSink* records) const {
   // As sampleEndpoints' technique, on the primary sample's streams: the camera walk, then the
   // light walk, then the one evaluation of the technique (evaluate), whose fresh endpoint (s = 1,
   // t = 1) comes from the connection stream; each from a stream of its own so that a small step on
   // one moves the others little.
   thread_local Walks walks;
-  if (walkCamera(pRaster, uLens, t, cameraRng, walks, counters) < t ||
-      (lightWalkNeeded(s, t) && walkLight(s, lightRng, walks, counters) < s)) {
+  const int nt = walkCamera(pRaster, uLens, t, cameraRng, walks, counters);
+  const int ns = nt < t || !lightWalkNeeded(s, t) ? 0 : walkLight(s, lightRng, walks, counters);
+  if (records) records->beginSample({walks.camera.data(), static_cast<size_t>(nt)}, {walks.light.data(), static_cast<size_t>(ns)});
+  if (nt < t || (lightWalkNeeded(s, t) && ns < s)) {
     TechniqueTally<false>(counters, Technique{s, t}).zero();  // a walk ended early
     return {Spectrum(0.f), pRaster};
   }
   const bool enabled = options_.techniques.contains(s, t);
-  TechniqueSampleSink sink;
+  TechniqueSampleSink sink(records);
   evaluate<true, false>(s, t, TechniqueUse{enabled, enabled, false, false}, pRaster, 0, walks, sink, counters,
                         &connectionRng);
   if (t == 1) return {sink.splatted, sink.splatAt};

@@ -55,13 +55,16 @@ class BidirTracer {
   // contribution weighted over the enabled set, as in the image (zero when a walk ended early, the
   // technique cannot form the path or the connection is blocked), and where it lands: pRaster, or
   // the t = 1 splat's position. The technique need not be enabled; its weight is then zero.
+  // `records` (or null): the sink that gets the subpaths walked (beginSample, also when a walk
+  // ended early) and the technique's record, with the extras its demand asks for (the Metropolis
+  // chains' paths in the 3D view, `pathlab inspect` on a chain's state).
   struct TechniqueSample {
     Spectrum L{0.f};
     Vec2 pRaster{0.f};
   };
   TechniqueSample sampleTechnique(int s, int t, Vec2 pRaster, Vec2 uLens, PrimarySampleStream& cameraRng,
                                   PrimarySampleStream& lightRng, PrimarySampleStream& connectionRng,
-                                  Counters& counters) const;
+                                  Counters& counters, SampleSink* records = nullptr) const;
 
   // The light subpath this tracer walks for a sample whose light stream is `lightRng` (path reuse:
   // the one every technique of the sample shares; ConnectStrategy::Endpoints draws one per technique

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace pathlab {
@@ -32,20 +33,71 @@ Pcg32 keyedStream(uint64_t seed, uint64_t index, uint64_t salt) {
   return Pcg32(mixBits(seed ^ salt ^ mixBits(index)), mixBits(index + salt));
 }
 
-// PSSMLT: a whole bidirectional sample's image contributions, wherever they land.
+// PSSMLT: a whole bidirectional sample's image contributions, wherever they land; its subpaths and
+// records passed on to `forward` when it asks for them (with its demand).
 class CollectingSink final : public SampleSink {
  public:
   struct Landed {
     Vec2 pRaster;
     Spectrum v;
   };
-  CollectingSink() : SampleSink(SinkDemand{}) {}
+  explicit CollectingSink(SampleSink* forward = nullptr)
+      : SampleSink(forward ? forward->demand() : SinkDemand{}), forward_(forward) {}
   std::vector<Landed> splats;  // the t = 1 contributions, where they land
+  void beginSample(std::span<const PathVertex> camera, std::span<const PathVertex> light) override {
+    if (forward_) forward_->beginSample(camera, light);
+  }
+  void walked(int nt, int ns) override {
+    if (forward_) forward_->walked(nt, ns);
+  }
+  void record(const TechniqueResult& result) override {
+    if (forward_) forward_->record(result);
+  }
 
  protected:
   bool splat(Vec2 pRaster, const Spectrum& v) override {
     splats.push_back({pRaster, v});
     return true;
+  }
+
+ private:
+  SampleSink* forward_;
+};
+
+// tracePath's sink: the subpaths walked and (MMLT: one technique) the path its record traced.
+class PathSink final : public SampleSink {
+ public:
+  PathSink() : SampleSink(demand()) {}
+  std::vector<Vec3> camera, light;  // the subpaths walked
+  MltChainPath path;                // MMLT: the technique's path, when it formed one (`traced`)
+  bool multiplexed = false;
+  bool traced = false;
+  void beginSample(std::span<const PathVertex> c, std::span<const PathVertex> l) override {
+    camera.clear(), light.clear();
+    for (const PathVertex& v : c) camera.push_back(v.p);
+    for (const PathVertex& v : l) light.push_back(v.p);
+  }
+  void record(const TechniqueResult& r) override {
+    if (!multiplexed || !r.traced || r.traced->size() < 2) return;
+    // The technique's whole path, light end first: x_0 .. x_{s-1} from the light, x_k .. x_s
+    // from the lens.
+    const std::vector<Vec3>& p = r.traced->p;
+    const auto s = static_cast<size_t>(std::clamp(r.s, 0, static_cast<int>(p.size())));
+    path.light.assign(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(s));
+    path.camera.assign(p.rbegin(), p.rend() - static_cast<std::ptrdiff_t>(s));
+    path.connected = s >= 1 && !path.camera.empty();
+    traced = true;
+  }
+
+ protected:
+  bool splat(Vec2, const Spectrum&) override { return true; }
+
+ private:
+  static SinkDemand demand() {
+    SinkDemand d;
+    d.everyTechnique = true;
+    d.onPath = true;
+    return d;
   }
 };
 
@@ -64,6 +116,8 @@ struct Metropolis::State {
 struct Metropolis::Chain {
   Chain(PrimarySamples s, Pcg32 accept, int k, int width, int height)
       : samples(std::move(s)), acceptRng(accept), length(k), splats(width, height) {}
+  // Watched (setWatchedChains): its index, and its path and last moves after the last pass.
+  std::optional<MltWatchedChain> watch;
   PrimarySamples samples;
   Pcg32 acceptRng;
   int length = 0;  // MMLT: the chain's path length; PSSMLT: 0
@@ -98,7 +152,8 @@ Metropolis::Metropolis(const BidirTracer& tracer, int width, int height, int max
 
 Metropolis::~Metropolis() = default;
 
-void Metropolis::evaluate(int length, PrimarySamples& samples, State& out, Counters& counters) const {
+void Metropolis::evaluate(int length, PrimarySamples& samples, State& out, Counters& counters,
+                          SampleSink* records) const {
   out.contributions.clear();
   out.f = 0.f;
   PrimarySampleStream camera(samples, 0), light(samples, 1);
@@ -117,7 +172,7 @@ void Metropolis::evaluate(int length, PrimarySamples& samples, State& out, Count
     const Vec2 uLens = camera.next2D();
     PrimarySampleStream connection(samples, 2);
     const BidirTracer::TechniqueSample ts =
-        tracer_.sampleTechnique(x.s, x.t, pRaster, uLens, camera, light, connection, counters);
+        tracer_.sampleTechnique(x.s, x.t, pRaster, uLens, camera, light, connection, counters, records);
     const Spectrum L = ts.L * static_cast<float>(n);
     const float f = luminance(L);
     if (f > 0.f && std::isfinite(f)) {
@@ -129,7 +184,7 @@ void Metropolis::evaluate(int length, PrimarySamples& samples, State& out, Count
   ++counters.cameraSamples;
   const Vec2 pRaster = camera.next2D() * size;
   const Vec2 uLens = camera.next2D();
-  CollectingSink sink;
+  CollectingSink sink(records);
   tracer_.sample(pRaster, uLens, camera, light, sink, counters);
   double f = 0.0;
   auto add = [&](Vec2 p, const Spectrum& L) {
@@ -269,10 +324,16 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
     const auto scale = static_cast<float>(weight / static_cast<double>(state.f));
     for (const State::Contribution& c : state.contributions) chain.splats.splat(c.pRaster, c.L * scale);
   };
+  // A watched chain replays its state before its last kMltWatchTrail proposals, then each of them.
+  const uint64_t watchFrom = mutations > kMltWatchTrail ? mutations - kMltWatchTrail : 0;
+  if (chain.watch) chain.watch->moves.clear();
   for (uint64_t m = 0; m < mutations; ++m) {
+    if (chain.watch && m == watchFrom) chain.watch->current = tracePath(chain.length, chain.samples);
     chain.samples.startIteration();
     evaluate(chain.length, chain.samples, chain.proposal, counters);
     const bool large = chain.samples.largeStep();
+    std::optional<MltChainPath> watched;
+    if (chain.watch && m >= watchFrom) watched = tracePath(chain.length, chain.samples);
     if (large) {
       // An independent sample of f_k: b_k's estimate grows with it (Kelemen et al. 2002).
       const auto f = static_cast<double>(chain.proposal.f);
@@ -287,7 +348,12 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
     ++chain.proposed, chain.largeProposed += large;
     const auto s = static_cast<size_t>(chain.proposal.technique.s);
     if (multiplexed) ++chain.proposedByS[s];
-    if (chain.acceptRng.next1D() < a) {
+    const bool accepted = chain.acceptRng.next1D() < a;
+    if (watched) {
+      if (accepted) chain.watch->current = *watched;
+      chain.watch->moves.push_back({std::move(*watched), accepted, large, chain.proposal.f});
+    }
+    if (accepted) {
       splat(chain.current, chain.currentWeight);
       std::swap(chain.current, chain.proposal);
       chain.currentWeight = 0.0;
@@ -298,6 +364,7 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
       chain.samples.reject();
     }
   }
+  if (chain.watch) chain.watch->chainF = chain.current.f;
   // The pass's image is complete: the current state's weight so far goes in now.
   splat(chain.current, chain.currentWeight);
   chain.currentWeight = 0.0;
@@ -359,6 +426,15 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
     const uint64_t C = chains_.size(), share = mutations / C, extra = mutations % C;
     const uint64_t offset = (passIndex * extra) % C;
     auto mutationsOf = [&](size_t c) { return share + ((c + C - offset) % C < extra ? 1 : 0); };
+    // The watched chains: n spread evenly over the chains, the middle one of each n-th.
+    const size_t watching = std::min(static_cast<size_t>(watchCount_), chains_.size());
+    for (size_t c = 0; c < chains_.size(); ++c) chains_[c]->watch.reset();
+    for (size_t i = 0; i < watching; ++i) {
+      const size_t c = (2 * i + 1) * chains_.size() / (2 * watching);
+      chains_[c]->watch.emplace();
+      chains_[c]->watch->chain = static_cast<int>(c);
+      chains_[c]->watch->length = chains_[c]->length;
+    }
     tbb::enumerable_thread_specific<Counters> local;
     std::atomic<bool> cancelled{false};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, chains_.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
@@ -432,6 +508,53 @@ std::vector<float> Metropolis::chainDensity() const {
   const double scale = static_cast<double>(P) / static_cast<double>(mutations);
   for (size_t p = 0; p < P; ++p) density[p] = static_cast<float>(scale * sum[p]);
   return density;
+}
+
+MltChainPath Metropolis::tracePath(int length, PrimarySamples samples) const {
+  // The numbers the state's path read are up to date at this iteration, so reading them again
+  // mutates nothing: the copy makes the same path (a coordinate it did not read would be drawn
+  // from the copy's stream, never the chain's).
+  PathSink sink;
+  sink.multiplexed = options_.variant == MltVariant::Multiplexed;
+  State state;
+  Counters scratch;  // a replay is no sample of the render
+  evaluate(length, samples, state, scratch, &sink);
+  MltChainPath path = sink.traced ? std::move(sink.path) : MltChainPath{};
+  if (!sink.traced) path.light = std::move(sink.light), path.camera = std::move(sink.camera);
+  path.technique = state.technique;
+  path.f = state.f;
+  return path;
+}
+
+std::vector<MltWatchedChain> Metropolis::watched() const {
+  std::vector<MltWatchedChain> w;
+  for (const std::unique_ptr<Chain>& chain : chains_)
+    if (chain->watch) w.push_back(*chain->watch);
+  return w;
+}
+
+MltChainState Metropolis::replayChain(size_t c, SampleSink* records) const {
+  if (c >= chains_.size()) throw std::out_of_range("no such Metropolis chain");
+  const Chain& chain = *chains_[c];
+  MltChainState out;
+  out.chain = static_cast<int>(c);
+  out.length = chain.length;
+  PrimarySamples samples = chain.samples;  // as tracePath: its numbers are up to date
+  std::vector<std::pair<size_t, float>> reads;
+  samples.logReads(&reads);
+  State state;
+  Counters scratch;
+  evaluate(chain.length, samples, state, scratch, records);
+  for (const auto& [index, value] : reads) {
+    std::vector<float>& stream = out.numbers[index % PrimarySamples::kStreams];
+    const size_t i = index / PrimarySamples::kStreams;
+    if (stream.size() <= i) stream.resize(i + 1, 0.f);
+    stream[i] = value;
+  }
+  out.technique = state.technique;
+  out.f = state.f;
+  for (const State::Contribution& x : state.contributions) out.contributions.push_back({x.pRaster, x.L});
+  return out;
 }
 
 std::vector<int> Metropolis::chainsByLength() const {

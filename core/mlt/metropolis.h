@@ -31,6 +31,7 @@
 #include "core/mlt/mlt_options.h"
 #include "core/sampling/primary_samples.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -48,6 +49,48 @@ struct MltStats {
   double acceptance() const { return proposed ? static_cast<double>(accepted) / static_cast<double>(proposed) : 0.0; }
 };
 
+// A chain's state as the viewer's 3D view draws it (Metropolis::setWatchedChains): the vertices of
+// its two subpaths, the light one from the emitter and the camera one from the lens. MMLT: the
+// technique's path x_0 .. x_k split at s (light x_0 .. x_{s-1}, camera x_k .. x_s), `connected`
+// by its connection edge x_{s-1} -- x_s when s >= 1 (for s = 1 with t >= 2 the light point is the
+// one next-event estimation sampled); when no path was formed (a walk ended early, a delta
+// vertex), what was walked. PSSMLT: the sample's two subpaths, which every enabled technique of
+// the sample connects (no one edge is the connection).
+struct MltChainPath {
+  Technique technique;  // MMLT: the state's technique (PSSMLT: unused)
+  float f = 0.f;        // the target (zero: a proposal that found nothing)
+  std::vector<Vec3> light, camera;
+  bool connected = false;
+};
+struct MltChainMove {
+  MltChainPath proposal;
+  bool accepted = false, large = false;
+  float chainF = 0.f;  // the target the chain evaluated for the proposal (the replay's proposal.f is the same)
+};
+// Where a watched chain is and how it moved in the last pass.
+struct MltWatchedChain {
+  int chain = 0, length = 0;         // its index, and (MMLT) its path length
+  MltChainPath current;              // its state after the pass
+  float chainF = 0.f;                // the target the chain holds for it (current.f, the replay's, is the same)
+  std::vector<MltChainMove> moves;   // the pass's last proposals, oldest first (at most kMltWatchTrail)
+};
+inline constexpr int kMaxMltWatchedChains = 16, kMltWatchTrail = 16;
+
+// A chain's current state replayed (`pathlab inspect` on an MLT render): the primary numbers its
+// path read, stream by stream in reading order (PrimarySamples::kStreams: camera, light,
+// connection), the technique (MMLT), the target and what it adds to the image where.
+struct MltChainState {
+  int chain = 0, length = 0;
+  Technique technique;
+  float f = 0.f;
+  std::vector<float> numbers[PrimarySamples::kStreams];
+  struct Contribution {
+    Vec2 pRaster;
+    Spectrum L;
+  };
+  std::vector<Contribution> contributions;
+};
+
 // What a viewer shows of the chains after a pass (published with the image).
 struct MltSummary {
   double b = 0.0, bError = 0.0;
@@ -58,6 +101,7 @@ struct MltSummary {
   // Where the chains spend their time (Metropolis::chainDensity), width x height, row-major.
   std::vector<float> density;
   int width = 0, height = 0;
+  std::vector<MltWatchedChain> watched;  // Metropolis::setWatchedChains
 };
 
 class Metropolis {
@@ -98,15 +142,35 @@ class Metropolis {
   // Empty before the first pass and without chains.
   std::vector<float> chainDensity() const;
   MltSummary summary() const {
-    return {b_,      bError_, stats_, chainsByLength(), direct_ ? options_.directLength : 0, directPasses_,
-            chainDensity(), width_, height_};
+    return {b_,     bError_,         stats_, chainsByLength(), direct_ ? options_.directLength : 0, directPasses_,
+            chainDensity(), width_, height_, watched()};
   }
+
+  // Watch `n` chains (at most kMaxMltWatchedChains; 0: none, the default), spread evenly over the
+  // chains (which are laid out length by length in proportion to b_k, so the lengths that matter
+  // most are watched most): each pass then replays the last kMltWatchTrail proposals of each into
+  // its path (a few dozen evaluations a pass; the image is the same bits). Not an estimator
+  // option: set it between passes.
+  void setWatchedChains(int n) { watchCount_ = std::clamp(n, 0, kMaxMltWatchedChains); }
+  // The watched chains after the last pass (empty before the first, without chains or watching).
+  std::vector<MltWatchedChain> watched() const;
+  // Chains after the bootstrap (0 before it).
+  size_t chainCount() const { return chains_.size(); }
+  // Chain `c`'s current state (after the bootstrap), replayed from its primary numbers: the same
+  // path, target and contributions the chain holds. `records` (or null) gets the replayed
+  // sample's subpaths and technique records, with the extras its demand asks for.
+  MltChainState replayChain(size_t c, SampleSink* records = nullptr) const;
 
  private:
   struct State;
   struct Chain;
-  // The state's contributions and f for the primary numbers `samples` (of a chain of this length).
-  void evaluate(int length, PrimarySamples& samples, State& out, Counters& counters) const;
+  // The state's contributions and f for the primary numbers `samples` (of a chain of this length);
+  // `records` (or null) gets the sample's subpaths and technique records (replayChain, tracePath).
+  void evaluate(int length, PrimarySamples& samples, State& out, Counters& counters,
+                SampleSink* records = nullptr) const;
+  // The path of the state whose numbers `samples` holds at its present iteration, replayed on a
+  // copy (the chain's own numbers and random stream stay untouched).
+  MltChainPath tracePath(int length, PrimarySamples samples) const;
   void runChain(Chain& chain, uint64_t mutations, Counters& counters) const;
   // One bidirectional sample a pixel of the direct lengths into directSum_; false when cancelled.
   bool renderDirect(Counters& counters, const std::atomic<bool>* cancel);
@@ -133,6 +197,7 @@ class Metropolis {
   bool bootstrapped_ = false;
   MltStats stats_;
   uint64_t passes_ = 0;
+  int watchCount_ = 0;
   const BidirTracer* direct_ = nullptr;
   std::vector<double> directSum_;  // 3 a pixel: the direct samples' camera estimates and splats
   uint64_t directPasses_ = 0;

@@ -5,6 +5,8 @@
 
 #include <fmt/core.h>
 
+#include <cmath>
+
 namespace pathlab {
 
 namespace {
@@ -97,10 +99,41 @@ nlohmann::json subpathJson(const std::vector<PathVertex>& subpath) {
 
 }  // namespace
 
+// A Metropolis chain's state: which chain, its technique and target, what it adds where, and the
+// primary numbers its path was made from.
+void printChainState(std::ostream& out, const RenderSettings& settings, const SampleInspection& in) {
+  const MltChainState& c = *in.chain;
+  const bool multiplexed = settings.mlt.variant == MltVariant::Multiplexed;
+  out << fmt::format("chain {} of {} ({}{}) after {} pass{}: ", c.chain, in.chains, mltVariantName(settings.mlt.variant),
+                     multiplexed ? fmt::format(", paths of {} edges", c.length) : std::string(), in.sample,
+                     in.sample == 1 ? "" : "es");
+  if (multiplexed) out << fmt::format("technique ({},{}), ", c.technique.s, c.technique.t);
+  out << fmt::format("target f = {:.6g}\n", c.f);
+  if (multiplexed)
+    out << "  (f is the luminance of the technique's MIS-weighted contribution times the number of enabled "
+           "techniques of its length)\n";
+  for (const MltChainState::Contribution& x : c.contributions)
+    out << fmt::format("  contribution F = ({:.4g}, {:.4g}, {:.4g}) at raster {:.2f},{:.2f} (pixel {},{})\n", x.L.r, x.L.g,
+                       x.L.b, x.pRaster.x, x.pRaster.y, static_cast<int>(std::floor(x.pRaster.x)),
+                       static_cast<int>(std::floor(x.pRaster.y)));
+  if (c.contributions.empty()) out << "  no contribution (a state of f = 0)\n";
+  else out << "  (each mutation the chain spends here adds b F / f to the image, b its length's normalisation)\n";
+  static const char* kStreamNames[PrimarySamples::kStreams] = {"camera", "light", "connection"};
+  out << "primary numbers the path read, stream by stream:\n";
+  for (int k = 0; k < PrimarySamples::kStreams; ++k) {
+    out << fmt::format("{:>12}:", kStreamNames[k]);
+    if (c.numbers[k].empty()) out << " none";
+    for (const float u : c.numbers[k]) out << fmt::format(" {:.6f}", u);
+    out << "\n";
+  }
+}
+
 void printInspection(std::ostream& out, const RenderSettings& settings, const SampleInspection& in, bool paths) {
   const Spectrum L = in.cameraEstimate;
-  out << fmt::format("pixel {},{} sample {} ({}): camera-side estimate ({:g}, {:g}, {:g})\n", in.x, in.y, in.sample,
-                     integratorName(settings.integrator), L.r, L.g, L.b);
+  if (in.chain) printChainState(out, settings, in);
+  else
+    out << fmt::format("pixel {},{} sample {} ({}): camera-side estimate ({:g}, {:g}, {:g})\n", in.x, in.y, in.sample,
+                       integratorName(settings.integrator), L.r, L.g, L.b);
   if (settings.integrator == IntegratorKind::Pt) return;
   const SampleTrace& trace = in.trace;
   out << fmt::format("camera subpath {} vertices, light subpath {} vertices\n", trace.cameraVertices,
@@ -125,6 +158,23 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
   nlohmann::json j;
   j["pixel"] = {in.x, in.y};
   j["sample"] = in.sample;
+  if (in.chain) {
+    // A Metropolis chain's state (docs/cli.md): `sample` is the passes it had run.
+    const MltChainState& c = *in.chain;
+    nlohmann::json chain;
+    chain["index"] = c.chain;
+    chain["chains"] = in.chains;
+    chain["variant"] = mltVariantName(settings.mlt.variant);
+    chain["length"] = c.length;
+    if (settings.mlt.variant == MltVariant::Multiplexed) chain["technique"] = {c.technique.s, c.technique.t};
+    chain["f"] = c.f;
+    nlohmann::json contributions = nlohmann::json::array();
+    for (const MltChainState::Contribution& x : c.contributions)
+      contributions.push_back({{"raster", {x.pRaster.x, x.pRaster.y}}, {"value", rgb(x.L)}});
+    chain["contributions"] = contributions;
+    chain["primaryNumbers"] = {{"camera", c.numbers[0]}, {"light", c.numbers[1]}, {"connection", c.numbers[2]}};
+    j["chain"] = chain;
+  }
   j["seed"] = settings.seed;
   j["integrator"] = integratorName(settings.integrator);
   j["heuristic"] = misHeuristicName(settings.mis.heuristic);

@@ -18,6 +18,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The Metropolis chains a viewer's 3D view can draw (the slider's range).
+constexpr int kViewerWatchedChains = 8;
+
 // Preview resolutions of a new generation, coarsest first (each 1 sample per pixel).
 constexpr int kPreviewFactors[] = {8, 4, 2};
 
@@ -149,7 +152,11 @@ void ProgressiveRenderer::State::run() {
       continue;
     }
 
-    if (!session) session = std::make_unique<RenderSession>(*sc, set);
+    if (!session) {
+      session = std::make_unique<RenderSession>(*sc, set);
+      // The viewer's 3D view draws a few chains as they move (MltSummary::watched).
+      if (Metropolis* m = session->metropolis()) m->setWatchedChains(kViewerWatchedChains);
+    }
     if (!runPass(*session)) continue;
     Counters counters = previewCounters;
     counters += session->counters();

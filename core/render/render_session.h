@@ -81,6 +81,7 @@ class RenderSession {
   const Counters& counters() const { return counters_; }
   // Mlt: the chains (their b, acceptance statistics), else null.
   const Metropolis* metropolis() const { return metropolis_.get(); }
+  Metropolis* metropolis() { return metropolis_.get(); }
   // Every sum the passes accumulate (film, splats, pyramid), flat arrays of doubles in an order
   // fixed by the settings: sessions with the same settings that rendered disjoint passes combine
   // by adding these element by element, then addForeignPasses. Not concurrent with a pass.

@@ -17,6 +17,8 @@ float PrimarySamples::get(size_t index) {
   if (index >= x_.size()) x_.resize(index + 1);
   Coordinate& x = x_[index];
   if (x.modified < iteration_) mutate(x);
+  if (readLog_) [[unlikely]]
+    readLog_->emplace_back(index, x.value);
   return x.value;
 }
 

@@ -20,6 +20,7 @@
 #include "core/math/types.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace pathlab {
@@ -52,6 +53,9 @@ class PrimarySamples {
   float get(size_t index);
   // How many coordinates the chain has read so far.
   size_t size() const { return x_.size(); }
+  // Every coordinate get() reads from now on, appended to *log as (index, value) (null: none):
+  // the numbers a path was made from (`pathlab inspect` on a chain's state).
+  void logReads(std::vector<std::pair<size_t, float>>* log) { readLog_ = log; }
 
  private:
   struct Coordinate {
@@ -67,6 +71,7 @@ class PrimarySamples {
   // Iteration 0 is the state's first sample, a large step: every coordinate drawn afresh.
   int64_t iteration_ = 0, lastLargeStep_ = 0;
   bool largeStep_ = true;
+  std::vector<std::pair<size_t, float>>* readLog_ = nullptr;
 };
 
 // One stream of a PrimarySamples: the random-number interface the walks and connections draw from

@@ -5,6 +5,7 @@
 // thread count. A Metropolis render's passes are not independent, so standard errors come from
 // independent renders (seeds) instead.
 #include "core/render/render_session.h"
+#include "core/render/sample_inspection.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/image_means.h"
 #include "tests/support/region_estimate.h"
@@ -247,6 +248,105 @@ TEST(Metropolis, TheImageIsBTimesTheChainDensity) {
     }
     EXPECT_NEAR(mean, 1.0, 1e-5) << mltVariantName(variant);
     EXPECT_GT(lit, 128) << mltVariantName(variant);  // the chains went over most of the image
+  }
+}
+
+// The chains the viewer's 3D view draws (Metropolis::setWatchedChains): each watched chain's
+// current path and last proposals are replays of the very states the chain evaluated (the same
+// target, bit for bit, the same technique), an MMLT path has its length's vertices from the light
+// to the lens split at s, and watching changes nothing of the image.
+TEST(Metropolis, WatchedChainsAreReplaysOfTheirStates) {
+  Scene scene(loadGltf(mltAssetPath("cornell-box.gltf")));
+  for (const MltVariant variant : {MltVariant::Multiplexed, MltVariant::PrimarySpace}) {
+    const std::string name = mltVariantName(variant);
+    RenderSettings s = mltSettings(16, 5, variant);
+    auto render = [&](int watch, std::vector<MltWatchedChain>* watched) {
+      RenderSession session(scene, s);
+      session.metropolis()->setWatchedChains(watch);
+      for (int i = 0; i < 3; ++i) session.renderPass();
+      if (watched) *watched = session.metropolis()->summary().watched;
+      return session.image().rgb;
+    };
+    std::vector<MltWatchedChain> watched;
+    EXPECT_EQ(render(6, &watched), render(0, nullptr)) << name;
+    ASSERT_EQ(watched.size(), 6u) << name;
+    const Camera camera(scene.cameraDesc(), s.width, s.height);
+    int moves = 0, accepted = 0, lit = 0;
+    for (const MltWatchedChain& w : watched) {
+      // 64 chains share 256 mutations a pass: 4 each, all of them in the trail.
+      EXPECT_EQ(w.moves.size(), 4u) << name;
+      EXPECT_EQ(w.current.f, w.chainF) << name << " chain " << w.chain;
+      const MltChainPath* last = nullptr;
+      for (const MltChainMove& m : w.moves) {
+        EXPECT_EQ(m.proposal.f, m.chainF) << name << " chain " << w.chain;
+        ++moves, accepted += m.accepted;
+        if (m.accepted) last = &m.proposal;
+      }
+      if (last) {
+        EXPECT_EQ(last->camera, w.current.camera) << name;  // the last accepted move is where it is
+      }
+      const MltChainPath& p = w.current;
+      if (!(p.f > 0.f)) continue;
+      ++lit;
+      ASSERT_FALSE(p.camera.empty());
+      EXPECT_LT(glm::length(p.camera.front() - camera.position()), 1e-4f) << name;  // from the lens
+      if (variant == MltVariant::Multiplexed) {
+        EXPECT_EQ(p.technique.length(), w.length) << name;
+        EXPECT_EQ(p.light.size(), static_cast<size_t>(p.technique.s)) << name;
+        EXPECT_EQ(p.light.size() + p.camera.size(), static_cast<size_t>(w.length) + 1) << name;
+        EXPECT_EQ(p.connected, p.technique.s >= 1) << name;
+      } else {
+        EXPECT_FALSE(p.light.empty()) << name;  // the sample's light subpath starts on the lamp
+      }
+    }
+    EXPECT_EQ(moves, 24) << name;
+    EXPECT_GT(accepted, 0) << name;
+    EXPECT_GT(lit, 3) << name;
+  }
+}
+
+// `pathlab inspect` on an MLT render: a chain's state replayed from its primary numbers is the
+// state the chain holds (its target and technique), after the bootstrap and after passes; the
+// numbers it read are in [0, 1), and its contribution is where the trace's record lands.
+TEST(Metropolis, ReplayedChainIsTheChainsState) {
+  Scene scene(loadGltf(mltAssetPath("cornell-box.gltf")));
+  for (const MltVariant variant : {MltVariant::Multiplexed, MltVariant::PrimarySpace}) {
+    const std::string name = mltVariantName(variant);
+    RenderSettings s = mltSettings(16, 5, variant);
+    s.mlt.chains = 12;
+    RenderSession session(scene, s);
+    session.metropolis()->setWatchedChains(kMaxMltWatchedChains);  // every one (12, and one more a length may add)
+    for (int pass = 0; pass < 3; ++pass) {
+      session.renderPass();
+      const Metropolis& m = *session.metropolis();
+      const std::vector<MltWatchedChain> watched = m.summary().watched;
+      ASSERT_EQ(watched.size(), m.chainCount()) << name;
+      for (const MltWatchedChain& w : watched) {
+        const MltChainState state = m.replayChain(static_cast<size_t>(w.chain));
+        EXPECT_EQ(state.f, w.chainF) << name << " chain " << w.chain;
+        EXPECT_EQ(state.length, w.length) << name;
+        if (variant == MltVariant::Multiplexed) {
+          EXPECT_EQ(state.technique.s, w.current.technique.s) << name;
+          EXPECT_EQ(state.technique.t, w.current.technique.t) << name;
+          EXPECT_LE(state.contributions.size(), 1u) << name;
+        }
+        EXPECT_FALSE(state.numbers[0].empty()) << name;  // the technique's choice, the film position
+        for (const std::vector<float>& stream : state.numbers)
+          for (const float u : stream) {
+            EXPECT_GE(u, 0.f);
+            EXPECT_LT(u, 1.f);
+          }
+      }
+    }
+    // Through the session: the trace's one record (MMLT) is the chain's technique.
+    const SampleInspection in = inspectChain(session, 5, 3);
+    ASSERT_TRUE(in.chain.has_value()) << name;
+    EXPECT_EQ(in.sample, 3u);
+    if (variant == MltVariant::Multiplexed) {
+      ASSERT_EQ(in.trace.records.size(), 1u) << name;
+      EXPECT_EQ(in.trace.records[0].s, in.chain->technique.s) << name;
+    }
+    EXPECT_THROW(inspectChain(session, session.metropolis()->chainCount(), 3), std::invalid_argument) << name;
   }
 }
 

@@ -46,10 +46,33 @@ void InspectorController::update(const std::shared_ptr<const Scene>& scene, cons
   }
   if (!raster_) raster_ = std::make_unique<SceneRaster>();
   ensureView3DCamera(view3d, *scene, camera);
-  // The particles follow the newest full pass of the image shown.
-  if (!snapshot.preview && snapshot.settings.width > 0)
+  // The particles (a Metropolis image: its chains) follow the newest full pass of the image shown.
+  if (!snapshot.preview && snapshot.settings.width > 0) {
     refreshLightParticles(view3d.particles, scene, snapshot.settings, snapshot.samplesPerPixel);
+    view3d.chains.shown = snapshot.settings.integrator == IntegratorKind::Mlt;
+    view3d.chains.summary = view3d.chains.shown ? snapshot.mlt : nullptr;
+    view3d.chains.pass = snapshot.samplesPerPixel;
+  }
 }
+
+namespace {
+
+std::string chainsCaption(const ChainPaths& chains) {
+  const size_t watched = chains.summary ? chains.summary->watched.size() : 0;
+  if (watched == 0) return "\nno Metropolis chains yet (L)";
+  const size_t n = std::min(watched, static_cast<size_t>(std::max(chains.count, 1)));
+  std::string lengths;
+  for (size_t i = 0; i < n; ++i) {
+    const MltWatchedChain& w = chains.summary->watched[i];
+    if (w.length > 0) lengths += fmt::format("{}{}", lengths.empty() ? " (path lengths " : ", ", w.length);
+  }
+  if (!lengths.empty()) lengths += ")";
+  return fmt::format("\n{} Metropolis chains{} after pass {} (L): thick, where each is; solid, its last accepted "
+                     "moves{}",
+                     n, lengths, chains.pass, chains.rejected ? "; faint, its rejected proposals" : "");
+}
+
+}  // namespace
 
 void InspectorController::drawOverlays(const Scene& scene, const RenderSettings& shown, ImVec2 imageOrigin,
                                        ImVec2 imageSize, float framebufferScale, float uiScale) {
@@ -63,7 +86,9 @@ void InspectorController::drawOverlays(const Scene& scene, const RenderSettings&
   const ImVec2 size(static_cast<float>(r.size.x) / s, static_cast<float>(r.size.y) / s);
   const Camera view = view3DCamera(view3d, r.size);
   std::string caption = "3D view: drag orbits, Shift+drag pans, wheel zooms (O hides it)";
-  if (view3d.particles.on)
+  if (view3d.particles.on && view3d.chains.shown)
+    caption += chainsCaption(view3d.chains);
+  else if (view3d.particles.on)
     caption += view3d.particles.error.empty()
                    ? fmt::format("\n{} light subpaths of pass {} (L)", view3d.particles.subpaths.size(),
                                  view3d.particles.pass)

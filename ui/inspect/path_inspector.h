@@ -48,11 +48,17 @@ uint64_t brightestSearchCount(const RenderSettings& settings);
 
 // Frustum and Particle: the 3D view's (ui/inspect/view3d.h). MergeDisk: the selected merge's disk
 // of radius r about its camera vertex, in the surface's plane, and the step to its light vertex.
-enum class SegmentRole { CameraSubpath, LightSubpath, Connection, BlockedConnection, Selected, Frustum, Particle, MergeDisk };
+// ChainCurrent, ChainAccepted, ChainRejected: a Metropolis chain's current path, its last accepted
+// moves and its rejected proposals (the 3D view's).
+enum class SegmentRole {
+  CameraSubpath, LightSubpath, Connection, BlockedConnection, Selected, Frustum, Particle, MergeDisk,
+  ChainCurrent, ChainAccepted, ChainRejected
+};
 struct InspectorSegment {
   Vec2 a{0.f}, b{0.f};  // raster positions
   SegmentRole role = SegmentRole::Connection;
-  float shade = 1.f;  // Particle: the throughput at its start, 0 (dim) .. 1 (the brightest)
+  // Particle: the throughput at its start, 0 (dim) .. 1 (the brightest); a chain's: its hue, 0 .. 1.
+  float shade = 1.f;
 };
 struct InspectorMarker {
   Vec2 p{0.f};

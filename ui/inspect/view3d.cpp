@@ -67,6 +67,36 @@ void addParticles(InspectorOverlay& overlay, const LightParticles& particles, co
     }
 }
 
+// Each watched chain's path polylines: light subpath, camera subpath, and the connection.
+void addChainPath(InspectorOverlay& overlay, const MltChainPath& path, SegmentRole role, float hue, const Camera& view) {
+  auto polyline = [&](const std::vector<Vec3>& p) {
+    for (size_t i = 0; i + 1 < p.size(); ++i) addOverlaySegment(overlay, view, p[i], p[i + 1], role, hue);
+  };
+  polyline(path.light);
+  polyline(path.camera);
+  if (path.connected && !path.light.empty() && !path.camera.empty())
+    addOverlaySegment(overlay, view, path.light.back(), path.camera.back(), role, hue);
+}
+
+void addChains(InspectorOverlay& overlay, const ChainPaths& chains, const Camera& view) {
+  if (!chains.summary) return;
+  const std::vector<MltWatchedChain>& watched = chains.summary->watched;
+  const size_t n = std::min(watched.size(), static_cast<size_t>(std::max(chains.count, 0)));
+  // Faint first, so the solid moves and the thick current paths are drawn over them.
+  for (const SegmentRole role : {SegmentRole::ChainRejected, SegmentRole::ChainAccepted, SegmentRole::ChainCurrent})
+    for (size_t i = 0; i < n; ++i) {
+      const float hue = static_cast<float>(i) / static_cast<float>(n);
+      const MltWatchedChain& w = watched[i];
+      if (role == SegmentRole::ChainCurrent) {
+        addChainPath(overlay, w.current, role, hue, view);
+        continue;
+      }
+      if (role == SegmentRole::ChainRejected && !chains.rejected) continue;
+      for (const MltChainMove& m : w.moves)
+        if (m.accepted == (role == SegmentRole::ChainAccepted)) addChainPath(overlay, m.proposal, role, hue, view);
+    }
+}
+
 }  // namespace
 
 void ensureView3DCamera(View3DState& state, const Scene& scene, const CameraDesc& renderCamera) {
@@ -125,8 +155,9 @@ bool refreshLightParticles(LightParticles& particles, const std::shared_ptr<cons
     return true;
   }
   if (settings.integrator == IntegratorKind::Mlt) {
-    // Its chains' light subpaths are functions of their primary numbers, not of a pass's streams.
-    particles.error = "the Metropolis chains' paths are not drawn yet: switch to bpt or lt for light subpaths (I)";
+    // Its light subpaths are functions of the chains' primary numbers, not of a pass's streams:
+    // the view draws the chains instead (ChainPaths).
+    particles.error.clear();
     return true;
   }
   particles.error.clear();
@@ -146,7 +177,8 @@ InspectorOverlay view3DOverlay(const View3DState& state, const PathInspectorStat
   InspectorOverlay overlay;
   addFrustum(overlay, scene, shown, view);
   addPunctualLights(overlay, scene, view);
-  if (state.particles.on) addParticles(overlay, state.particles, view);
+  if (state.particles.on && state.chains.shown) addChains(overlay, state.chains, view);
+  else if (state.particles.on) addParticles(overlay, state.particles, view);
   if (inspector.on && inspector.result) {
     const InspectorOverlay paths = inspectorOverlay(inspector, view);
     overlay.segments.insert(overlay.segments.end(), paths.segments.begin(), paths.segments.end());

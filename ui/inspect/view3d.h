@@ -8,6 +8,7 @@
 // OpenGL or ImGui: ui/gl/scene_raster.h draws the triangles, ui/panels/panel_view3d.cpp the rest.
 #pragma once
 
+#include "core/mlt/metropolis.h"
 #include "core/render/light_subpath_replay.h"
 #include "ui/inspect/path_inspector.h"
 #include "ui/scene/orbit_camera.h"
@@ -33,6 +34,17 @@ struct LightParticles {
   std::string error;  // why there are none ("" when there are)
 };
 
+// A Metropolis render's watched chains (MltSummary::watched), drawn in place of the particles:
+// each chain's current path thick, the pass's last accepted moves solid, its rejected proposals
+// faint, a hue a chain.
+struct ChainPaths {
+  bool shown = false;  // the image shown is a Metropolis one: the particles' toggle draws these
+  int count = 8;       // how many of the watched chains to draw (1 .. their number)
+  bool rejected = true;
+  std::shared_ptr<const MltSummary> summary;  // of the newest full pass
+  uint64_t pass = 0;                          // its passes done
+};
+
 struct View3DState {
   bool on = false;
   // Faces turned away from the view are not drawn, so a closed room (the Cornell box) is seen into
@@ -41,6 +53,7 @@ struct View3DState {
   std::optional<OrbitCamera> orbit;  // set for each scene the first time the view is shown
   const Scene* orbitScene = nullptr;
   LightParticles particles;
+  ChainPaths chains;
 };
 
 // Sets the view's camera if it has none for `scene`: the render camera turned 35 degrees about the
@@ -63,7 +76,8 @@ bool refreshLightParticles(LightParticles& particles, const std::shared_ptr<cons
 // What the view draws over the triangles, in raster coordinates of `view`: the render camera's
 // frustum (`shown`: the shown image's settings, its camera and size), the punctual lights as light
 // markers, the particles (shade: the vertex's throughput, relative to the brightest, over three
-// decades), then the inspector's sample as inspectorOverlay draws it over the image.
+// decades) or for a Metropolis image the chains' paths (shade: the chain's hue), then the
+// inspector's sample as inspectorOverlay draws it over the image.
 InspectorOverlay view3DOverlay(const View3DState& state, const PathInspectorState& inspector, const Scene& scene,
                                const RenderSettings& shown, const Camera& view);
 

@@ -22,6 +22,9 @@ ImU32 roleColour(SegmentRole role) {
     case SegmentRole::Frustum: return IM_COL32(200, 200, 210, 150);
     case SegmentRole::Particle: return IM_COL32(255, 220, 120, 255);
     case SegmentRole::MergeDisk: return IM_COL32(255, 80, 230, 255);
+    case SegmentRole::ChainCurrent:
+    case SegmentRole::ChainAccepted:
+    case SegmentRole::ChainRejected: return IM_COL32_WHITE;  // a hue a chain (drawOverlayShapes)
   }
   return IM_COL32_WHITE;
 }
@@ -45,6 +48,19 @@ void drawOverlayShapes(ImDrawList* draw, const InspectorOverlay& overlay, ImVec2
   const float s = uiScale;
   for (const InspectorSegment& seg : overlay.segments) {
     ImU32 c = roleColour(seg.role);
+    float width = seg.role == SegmentRole::Selected || seg.role == SegmentRole::MergeDisk ? 3.f
+                  : seg.role == SegmentRole::Particle || seg.role == SegmentRole::Frustum ? 1.f
+                                                                                          : 1.8f;
+    if (seg.role == SegmentRole::ChainCurrent || seg.role == SegmentRole::ChainAccepted ||
+        seg.role == SegmentRole::ChainRejected) {
+      // A hue a chain: its current path thick and opaque, its accepted moves solid, its rejected
+      // proposals faint.
+      float r = 1.f, g = 1.f, b = 1.f;
+      ImGui::ColorConvertHSVtoRGB(seg.shade, seg.role == SegmentRole::ChainRejected ? 0.45f : 0.75f, 1.f, r, g, b);
+      const float alpha = seg.role == SegmentRole::ChainCurrent ? 1.f : seg.role == SegmentRole::ChainAccepted ? 0.8f : 0.28f;
+      c = ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, alpha));
+      width = seg.role == SegmentRole::ChainCurrent ? 3.f : seg.role == SegmentRole::ChainAccepted ? 1.5f : 1.f;
+    }
     if (seg.role == SegmentRole::Particle) {
       // Dim red where little throughput is left, bright yellow where much is: a warm glow.
       const float k = seg.shade;
@@ -52,7 +68,7 @@ void drawOverlayShapes(ImDrawList* draw, const InspectorOverlay& overlay, ImVec2
                    static_cast<int>(90.f + 110.f * k));
     }
     if (seg.role == SegmentRole::BlockedConnection) dashed(draw, screen(seg.a), screen(seg.b), c, 6.f * s, 1.5f * s);
-    else draw->AddLine(screen(seg.a), screen(seg.b), c, (seg.role == SegmentRole::Selected || seg.role == SegmentRole::MergeDisk ? 3.f : seg.role == SegmentRole::Particle || seg.role == SegmentRole::Frustum ? 1.f : 1.8f) * s);
+    else draw->AddLine(screen(seg.a), screen(seg.b), c, width * s);
   }
   for (const InspectorMarker& m : overlay.markers) {
     const ImVec2 p = screen(m.p);
@@ -94,8 +110,16 @@ void drawInspectorSection(PathInspectorState& state, View3DState& view3d, PanelR
     ImGui::Indent();
     ImGui::Checkbox("see into rooms: hide faces turned away", &view3d.cullBackFaces);
     bool particles = view3d.particles.on;
-    if (ImGui::Checkbox("light particles (L)", &particles)) requests.actions.push_back(Action::ToggleParticles);
-    if (view3d.particles.on) {
+    if (ImGui::Checkbox(view3d.chains.shown ? "the Metropolis chains' paths (L)" : "light particles (L)", &particles))
+      requests.actions.push_back(Action::ToggleParticles);
+    if (view3d.particles.on && view3d.chains.shown) {
+      const int watched = view3d.chains.summary ? static_cast<int>(view3d.chains.summary->watched.size()) : 0;
+      if (watched > 1) {
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.f);
+        ImGui::SliderInt("chains", &view3d.chains.count, 1, watched, "%d", ImGuiSliderFlags_AlwaysClamp);
+      }
+      ImGui::Checkbox("rejected proposals (faint)", &view3d.chains.rejected);
+    } else if (view3d.particles.on) {
       ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.f);
       ImGui::SliderInt("light subpaths", &view3d.particles.count, 1, LightParticles::kMaxCount, "%d",
                        ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
