@@ -58,18 +58,18 @@ void InspectorController::update(const std::shared_ptr<const Scene>& scene, cons
 namespace {
 
 std::string chainsCaption(const ChainPaths& chains) {
-  const size_t watched = chains.summary ? chains.summary->watched.size() : 0;
-  if (watched == 0) return "\nno Metropolis chains yet (L)";
-  const size_t n = std::min(watched, static_cast<size_t>(std::max(chains.count, 1)));
+  const std::vector<size_t> shown = chainsShown(chains);
+  if (shown.empty()) return "\nno Metropolis chains yet (L)";
+  const size_t n = shown.size();
   std::string lengths;
-  for (size_t i = 0; i < n; ++i) {
+  for (const size_t i : shown) {
     const MltWatchedChain& w = chains.summary->watched[i];
     if (w.length > 0) lengths += fmt::format("{}{}", lengths.empty() ? " (path lengths " : ", ", w.length);
   }
   if (!lengths.empty()) lengths += ")";
-  return fmt::format("\n{} Metropolis chains{} after pass {} (L): thick, where each is; solid, its last accepted "
+  return fmt::format("\n{} Metropolis chains after pass {}{} (L)\nthick: where each is; solid: its last accepted "
                      "moves{}",
-                     n, lengths, chains.pass, chains.rejected ? "; faint, its rejected proposals" : "");
+                     n, chains.pass, lengths, chains.rejected ? ";\nfaint: its rejected proposals" : "");
 }
 
 }  // namespace

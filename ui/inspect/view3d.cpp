@@ -79,14 +79,13 @@ void addChainPath(InspectorOverlay& overlay, const MltChainPath& path, SegmentRo
 }
 
 void addChains(InspectorOverlay& overlay, const ChainPaths& chains, const Camera& view) {
-  if (!chains.summary) return;
-  const std::vector<MltWatchedChain>& watched = chains.summary->watched;
-  const size_t n = std::min(watched.size(), static_cast<size_t>(std::max(chains.count, 0)));
+  const std::vector<size_t> shown = chainsShown(chains);
+  const size_t n = shown.size();
   // Faint first, so the solid moves and the thick current paths are drawn over them.
   for (const SegmentRole role : {SegmentRole::ChainRejected, SegmentRole::ChainAccepted, SegmentRole::ChainCurrent})
     for (size_t i = 0; i < n; ++i) {
       const float hue = static_cast<float>(i) / static_cast<float>(n);
-      const MltWatchedChain& w = watched[i];
+      const MltWatchedChain& w = chains.summary->watched[shown[i]];
       if (role == SegmentRole::ChainCurrent) {
         addChainPath(overlay, w.current, role, hue, view);
         continue;
@@ -98,6 +97,14 @@ void addChains(InspectorOverlay& overlay, const ChainPaths& chains, const Camera
 }
 
 }  // namespace
+
+std::vector<size_t> chainsShown(const ChainPaths& chains) {
+  const size_t watched = chains.summary ? chains.summary->watched.size() : 0;
+  const size_t n = std::min(watched, static_cast<size_t>(std::max(chains.count, 0)));
+  std::vector<size_t> shown;
+  for (size_t i = 0; i < n; ++i) shown.push_back((2 * i + 1) * watched / (2 * n));
+  return shown;
+}
 
 void ensureView3DCamera(View3DState& state, const Scene& scene, const CameraDesc& renderCamera) {
   if (state.orbit && state.orbitScene == &scene) return;

@@ -39,11 +39,15 @@ struct LightParticles {
 // faint, a hue a chain.
 struct ChainPaths {
   bool shown = false;  // the image shown is a Metropolis one: the particles' toggle draws these
-  int count = 8;       // how many of the watched chains to draw (1 .. their number)
+  int count = 4;       // how many of the watched chains to draw (1 .. their number)
   bool rejected = true;
   std::shared_ptr<const MltSummary> summary;  // of the newest full pass
   uint64_t pass = 0;                          // its passes done
 };
+
+// The watched chains drawn: `count` of them spread evenly over the watched ones (which are spread
+// over the chains, so over the lengths), indices into summary->watched.
+std::vector<size_t> chainsShown(const ChainPaths& chains);
 
 struct View3DState {
   bool on = false;
