@@ -2,9 +2,11 @@
 // traced (replayed from the same streams as the inspector's full replay), start on an emitter and
 // are replayed only when the pass or the settings change; the view's overlay shows the render
 // camera where it is and the inspected sample's vertices where its own camera sees them; the
-// depth range holds the scene; materials get their preview colours.
+// depth range holds the scene; materials get their preview colours; a Metropolis image's watched
+// chains are drawn in place of the particles, segment for segment of their paths.
 #include "ui/inspect/view3d.h"
 
+#include "core/render/render_session.h"
 #include "core/render/sample_inspection.h"
 #include "core/scene/gltf_loader.h"
 
@@ -147,6 +149,56 @@ TEST(View3D, DepthRangeHoldsTheSceneAndColoursFollowTheMaterials) {
     }
   }
   EXPECT_EQ(emitters, 1);
+}
+
+TEST(View3D, MetropolisChainsAreDrawnSegmentForSegmentOfTheirPaths) {
+  const Scene& scene = *sharedBox();
+  RenderSettings s = particleBoxSettings();
+  s.width = s.height = 24;
+  s.integrator = IntegratorKind::Mlt;
+  s.mlt.chains = 64;
+  s.mlt.bootstrap = 2000;
+  RenderSession session(scene, s);
+  session.metropolis()->setWatchedChains(8);
+  session.renderPass();
+  session.renderPass();
+  View3DState state;
+  ensureView3DCamera(state, scene, scene.cameraDesc());
+  // Far enough back that every vertex is in front of the view's lens: no segment is clipped away.
+  state.orbit->zoom(-8.f);
+  const Camera view = view3DCamera(state, Vec2i(400, 300));
+  state.particles.on = true;
+  state.chains.shown = true;
+  state.chains.summary = std::make_shared<const MltSummary>(session.metropolis()->summary());
+  ASSERT_EQ(state.chains.summary->watched.size(), 8u);
+  state.chains.count = 3;
+  const std::vector<size_t> shown = chainsShown(state.chains);
+  EXPECT_EQ(shown, (std::vector<size_t>{1, 4, 6}));  // spread over the watched ones
+  auto segments = [](const MltChainPath& p) {
+    const size_t light = p.light.empty() ? 0 : p.light.size() - 1, camera = p.camera.empty() ? 0 : p.camera.size() - 1;
+    return light + camera + (p.connected && !p.light.empty() && !p.camera.empty() ? 1 : 0);
+  };
+  size_t current = 0, accepted = 0, rejected = 0;
+  for (const size_t i : shown) {
+    const MltWatchedChain& w = state.chains.summary->watched[i];
+    current += segments(w.current);
+    for (const MltChainMove& m : w.moves) (m.accepted ? accepted : rejected) += segments(m.proposal);
+  }
+  ASSERT_GT(current, 0u);
+  PathInspectorState inspector;
+  auto count = [&](SegmentRole role) {
+    const InspectorOverlay overlay = view3DOverlay(state, inspector, scene, s, view);
+    return static_cast<size_t>(std::count_if(overlay.segments.begin(), overlay.segments.end(),
+                                             [&](const InspectorSegment& x) { return x.role == role; }));
+  };
+  EXPECT_EQ(count(SegmentRole::ChainCurrent), current);
+  EXPECT_EQ(count(SegmentRole::ChainAccepted), accepted);
+  EXPECT_EQ(count(SegmentRole::ChainRejected), rejected);
+  EXPECT_EQ(count(SegmentRole::Particle), 0u);  // the chains replace the particles
+  state.chains.rejected = false;
+  EXPECT_EQ(count(SegmentRole::ChainRejected), 0u);
+  state.particles.on = false;
+  EXPECT_EQ(count(SegmentRole::ChainCurrent), 0u);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -58,11 +59,13 @@ ScreenRect rectIn(const std::string& err, const std::string& label) {
   return {x, y, x + w, y + h};
 }
 
-InspectorRun view(const std::string& name, const std::string& script, const std::string& dir = kInspectorTmp) {
+InspectorRun view(const std::string& name, const std::string& script, const std::string& dir = kInspectorTmp,
+                  const std::string& estimator = "") {
   const std::string out = kInspectorTmp + "/" + name + ".png";
   const pathlab::test::CommandRun r = pathlab::test::runPathlab(
       dir, "view " + kInspectorBox + " --headless --width 1280 --height 720 --render-scale 0.25 --max-length 4 --spp 2 "
-                "--threads 2 --frames 20 --force --script '" + script + "' --screenshot " + out, "cd " + dir + " &&");
+                "--threads 2 --frames 20 --force " + estimator + " --script '" + script + "' --screenshot " + out,
+      "cd " + dir + " &&");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("at 2 spp"), std::string::npos) << r.err;  // the render ran on undisturbed
   InspectorRun v{readPng(out), r.err, rectIn(r.err, "image"), rectIn(r.err, "3D view")};
@@ -119,6 +122,29 @@ TEST(ViewerInspector, LightParticlesAreDrawnInThe3DView) {
   const int before = warmPixels(plain.png, plain.view3d), after = warmPixels(particles.png, particles.view3d);
   EXPECT_GT(after, before + 500) << before << " " << after;
   EXPECT_EQ(particles.generation, plain.generation);  // replaying them restarts nothing
+}
+
+// Strongly coloured pixels (the chains' hues at saturation 0.75; the box's walls in the 3D view
+// are paler).
+int vividPixels(const Png& png, ScreenRect r) {
+  int n = 0;
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) {
+      const int red = png.rgb[png.index(x, y, 0)], green = png.rgb[png.index(x, y, 1)], blue = png.rgb[png.index(x, y, 2)];
+      const int hi = std::max({red, green, blue}), lo = std::min({red, green, blue});
+      n += hi > 150 && hi - lo > 110 ? 1 : 0;
+    }
+  return n;
+}
+
+TEST(ViewerInspector, MetropolisChainsAreDrawnInThe3DView) {
+  const std::string mlt = "--integrator mlt --bootstrap 5000 --chains 200";
+  const InspectorRun plain = view("chains-none", "2:key=O;6:wait=2", kInspectorTmp, mlt);
+  const InspectorRun chains = view("chains", "2:key=O;3:key=L;6:wait=2", kInspectorTmp, mlt);
+  ASSERT_GT(chains.view3d.x1, chains.view3d.x0) << chains.err;
+  const int before = vividPixels(plain.png, plain.view3d), after = vividPixels(chains.png, chains.view3d);
+  EXPECT_GT(after, before + 400) << before << " " << after;
+  EXPECT_EQ(chains.generation, plain.generation);  // watching them restarts nothing
 }
 
 TEST(ViewerInspector, ExportsTheSampleAsJsonAndThe3DViewAsPng) {
