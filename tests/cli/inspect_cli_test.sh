@@ -2,7 +2,8 @@
 # `pathlab inspect` end to end: the text names every technique; the JSON has the documented fields,
 # its subpaths start on an emitter and at the camera, and every technique's weights are recomputed
 # from its listed densities (python3, which dev.sh installs); the JSON is not overwritten without
-# --force; bad input is one line and a non-zero exit.
+# --force; a Metropolis chain's state is the chain's (its F is its technique's weighted contribution
+# times the technique count); bad input is one line and a non-zero exit.
 source "$(dirname "$0")/cli_lib.sh"
 
 BOX="$SRC/assets/cornell-box.gltf"
@@ -92,6 +93,51 @@ else fail "inspect --integrator vcm: $(cat "$TMP/err" "$TMP/py" 2>/dev/null | ta
 "$PATHLAB" render "$SPHERES" --integrator bpm --radius 0.05 --width 64 --height 64 --max-length 4 --replay 32,40,2 \
   >"$TMP/out" 2>"$TMP/err" && grep -q "^ *M(2,2)" "$TMP/out" && ok || fail "render --replay with merges: $(tail -3 "$TMP/err")"
 
+# Metropolis (--integrator mlt): a chain's state, with the primary numbers its path read, its
+# technique and its one record, whose MIS-weighted contribution times the length's technique count
+# is the chain's F; the same chain after more passes is elsewhere (its state moved).
+check_chain_json() {
+  python3 - "$1" "$2" <<'PY'
+import json, math, sys
+j = json.load(open(sys.argv[1]))
+c = j["chain"]
+for key in ["index", "chains", "variant", "length", "technique", "f", "contributions", "primaryNumbers"]:
+    assert key in c, key
+assert c["index"] == 7 and c["variant"] == "mmlt" and j["sample"] == int(sys.argv[2]), c
+s, t = c["technique"]
+assert s + t - 1 == c["length"], c
+numbers = c["primaryNumbers"]
+assert numbers["camera"], numbers  # the technique's choice, the film position, the lens
+assert all(0 <= u < 1 for stream in numbers.values() for u in stream), numbers
+[record] = j["techniques"]
+assert (record["s"], record["t"]) == (s, t), record
+if c["f"] > 0:
+    [x] = c["contributions"]
+    n = c["length"] + 1  # every technique of the length is enabled
+    for a, b, w in zip(x["value"], record["contribution"], [record["weight"]] * 3):
+        assert math.isclose(a, n * w * b, rel_tol=1e-4), (x, record)
+    luminance = 0.2126 * x["value"][0] + 0.7152 * x["value"][1] + 0.0722 * x["value"][2]
+    assert math.isclose(luminance, c["f"], rel_tol=1e-4), (luminance, c["f"])
+    assert len(record["path"]) == c["length"] + 1
+print(json.dumps(numbers))
+PY
+}
+for pass in 0 3; do
+  if "$PATHLAB" inspect "$BOX" --integrator mlt --chain 7 --pass "$pass" --width 48 --height 48 --max-length 4 \
+       --bootstrap 2000 --chains 50 --json "$TMP/chain$pass.json" --force >"$TMP/out" 2>"$TMP/err" </dev/null &&
+     grep -q "primary numbers the path read" "$TMP/out" && grep -q "^chain 7 of" "$TMP/out" &&
+     check_chain_json "$TMP/chain$pass.json" "$pass" >"$TMP/numbers$pass" 2>"$TMP/py"; then ok
+  else fail "inspect --integrator mlt --pass $pass: $(cat "$TMP/err" "$TMP/py" 2>/dev/null | tail -5)"; fi
+done
+cmp -s "$TMP/numbers0" "$TMP/numbers3" && fail "the chain's numbers did not move in 3 passes" || ok
+expect_error "mlt with --pixel" "give --chain C" inspect "$BOX" --integrator mlt --pixel 1,1
+expect_error "mlt without --chain" "give the chain to inspect" inspect "$BOX" --integrator mlt
+expect_error "--chain without mlt" "use them with --integrator mlt" inspect "$BOX" --chain 1
+expect_error "chain past the last" "past the last chain" inspect "$BOX" --integrator mlt --chain 5000 --width 32 \
+  --height 32 --bootstrap 100
+expect_error "absurd --pass" "more than 4096 passes" inspect "$BOX" --integrator mlt --chain 1 --pass 99999
+expect_error "no pixel" "give the pixel to inspect" inspect "$BOX"
+
 # Not overwritten without --force; with it, it is.
 expect_error "existing JSON" "exists" inspect "$BOX" --pixel 1,1 --json "$TMP/balance.json"
 "$PATHLAB" inspect "$VEACH" --pixel 100,100 --json "$TMP/balance.json" --force >/dev/null 2>&1 && ok || fail "--force"
@@ -99,7 +145,7 @@ expect_error "pixel outside" "outside the 512 x 341 image" inspect "$VEACH" --pi
 expect_error "pixel syntax" "is not X,Y" inspect "$BOX" --pixel 10
 expect_error "sample past the limit" "past the last sample" inspect "$BOX" --pixel 1,1 --sample 99999999
 expect_error "missing scene" "nope.gltf" inspect "$TMP/nope.gltf" --pixel 1,1
-expect_error "path tracer" "bpt or lt" inspect "$BOX" --pixel 1,1 --integrator pt
+expect_error "path tracer" "bpt, lt or mlt" inspect "$BOX" --pixel 1,1 --integrator pt
 
 echo "inspect_cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]
