@@ -229,6 +229,11 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
         fmt::format("--width x --height = {} x {} is more than 16M pixels", p.base.width, p.base.height));
   p.configs = parseConvergenceConfigs(o.configs, p.base);
   for (const ConvergenceConfig& c : p.configs)
+    if (c.settings.integrator == IntegratorKind::Mlt && job.size() > 1)
+      throw std::runtime_error(fmt::format("configuration '{}': Metropolis runs over MPI ranks in `pathlab render` "
+                                           "only; run this convergence as one process, without mpirun",
+                                           c.label));
+  for (const ConvergenceConfig& c : p.configs)
     if (c.settings.integrator != IntegratorKind::Pt)
       for (int k : enabledTechniques(c.settings).uncoveredLengths(c.settings.maxLength))
         log << fmt::format("pathlab: warning: '{}' has no enabled technique for paths of length {} (biased)\n", c.label,

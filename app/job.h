@@ -73,6 +73,9 @@ class Job {
   // Collective: every rank gets the leader's `values`, for what the leader alone decides (the
   // image size of a reference it read, whether it holds a cached one).
   virtual void shareLeaders(std::span<uint64_t> values) {}
+  // Collective: every rank's `values` summed in place on every rank (a Metropolis render's
+  // bootstrap weights, Metropolis::setBootstrapExchange). One process: nothing to add.
+  virtual void sumEverywhere(std::span<double> values) {}
   // How this job's ranks meet at the checkpoints of a convergence run (converge): one process
   // alone, or the ranks together.
   virtual std::unique_ptr<CheckpointExchange> checkpointExchange() { return std::make_unique<CheckpointExchange>(); }

@@ -31,4 +31,13 @@ void sumToRank0(const double* own, double* total, size_t count, bool leader) {
   }
 }
 
+void sumEverywhere(double* values, size_t count) {
+  for (size_t begin = 0; begin < count; begin += kReduceChunk) {
+    const int n = static_cast<int>(std::min(kReduceChunk, count - begin));
+    MPI_Request request;
+    MPI_Iallreduce(MPI_IN_PLACE, values + begin, n, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD, &request);
+    waitAsleep(request);
+  }
+}
+
 }  // namespace pathlab::app

@@ -17,4 +17,8 @@ void waitAsleep(MPI_Request& request);
 // 0 (`total` == `own` there: in place; ignored on the other ranks).
 void sumToRank0(const double* own, double* total, size_t count, bool leader);
 
+// Collective over MPI_COMM_WORLD: every rank's `count` doubles at `values` summed in place on
+// every rank (asleep while waiting for the others).
+void sumEverywhere(double* values, size_t count);
+
 }  // namespace pathlab::app

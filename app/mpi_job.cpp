@@ -71,6 +71,10 @@ void MpiJob::shareLeaders(std::span<uint64_t> values) {
   MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_UINT64_T, 0, MPI_COMM_WORLD);
 }
 
+void MpiJob::sumEverywhere(std::span<double> values) {
+  if (size_ > 1) app::sumEverywhere(values.data(), values.size());
+}
+
 std::unique_ptr<CheckpointExchange> MpiJob::checkpointExchange() {
   if (size_ == 1) return Job::checkpointExchange();  // `mpirun -n 1`: exactly as one process
   return std::make_unique<MpiCheckpointExchange>(rank_, size_);

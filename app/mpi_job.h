@@ -29,6 +29,7 @@ class MpiJob : public Job {
   JobTotals combine(RenderSession& session, double seconds) override;
   void abort(int code) override;
   void shareLeaders(std::span<uint64_t> values) override;
+  void sumEverywhere(std::span<double> values) override;
   std::unique_ptr<CheckpointExchange> checkpointExchange() override;
 
  private:

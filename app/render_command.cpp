@@ -176,9 +176,9 @@ std::string metropolisSummary(const Metropolis& m, const RenderSettings& s) {
   for (int n : chains) chainCount += n;
   std::string out = fmt::format(
       "mlt ({}): b = {:.6g} +- {:.2g} ({:.2f} %, from {} bootstrap samples{} and the large steps), {} chains; "
-      "acceptance {:.1f} %, large steps {:.1f} % of the proposals and {:.1f} % accepted\n",
+      "{} proposals, {:.1f} % accepted, large steps {:.1f} % of them and {:.1f} % accepted\n",
       mltVariantName(s.mlt.variant), b, m.normalisationError(), b > 0 ? 100.0 * m.normalisationError() / b : 0.0,
-      s.mlt.bootstrap, s.mlt.variant == MltVariant::Multiplexed ? " per length" : "", chainCount,
+      s.mlt.bootstrap, s.mlt.variant == MltVariant::Multiplexed ? " per length" : "", chainCount, stats.proposed,
       100.0 * stats.acceptance(),
       stats.proposed ? 100.0 * static_cast<double>(stats.largeProposed) / static_cast<double>(stats.proposed) : 0.0,
       stats.largeProposed ? 100.0 * static_cast<double>(stats.largeAccepted) / static_cast<double>(stats.largeProposed)
@@ -285,9 +285,14 @@ int runRender(RenderOptions o, Job& job) {
   session.setTiming(o.stats);  // two clock reads a connection: only when the shares are printed
   const bool timed = o.budget.seconds > 0.0;
   const uint64_t targetSpp = timed ? 0 : static_cast<uint64_t>(o.budget.spp > 0 ? o.budget.spp : kDefaultSpp);
-  // --spp is the job's: this rank renders its share of the pass indices below it; --time holds
-  // for every rank (each starts its clock as the agreement returns).
-  const uint64_t ownPasses = job.passesOf(targetSpp);
+  // Metropolis over ranks: every rank runs every pass with its share of the chains, after the
+  // ranks' bootstrap samples are pooled (the first pass's collective).
+  const bool metropolis = session.metropolis() != nullptr;
+  if (metropolis) session.metropolis()->setBootstrapExchange([&job](std::span<double> w) { job.sumEverywhere(w); });
+  const uint64_t ranks = static_cast<uint64_t>(job.size());
+  // --spp is the job's: this rank renders its share of the pass indices below it (Metropolis: all
+  // of them); --time holds for every rank (each starts its clock as the agreement returns).
+  const uint64_t ownPasses = metropolis ? targetSpp : job.passesOf(targetSpp);
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   JobTotals totals;
@@ -298,7 +303,7 @@ int runRender(RenderOptions o, Job& job) {
     if (job.leader())
       bar.emplace([&] {
         const double passFraction = static_cast<double>(session.pixelsDoneInPass()) / pixels;
-        const uint64_t passes = job.jobPasses();
+        const uint64_t passes = metropolis ? job.jobPasses() / ranks : job.jobPasses();
         const double done = timed ? elapsed() / o.budget.seconds
                                   : (static_cast<double>(passes) + passFraction) / static_cast<double>(targetSpp);
         return std::pair{done, fmt::format("{} spp  {:.1f} s", passes, elapsed())};
@@ -311,6 +316,8 @@ int runRender(RenderOptions o, Job& job) {
   }
   if (!job.leader()) return 0;
   const double seconds = totals.slowestSeconds;
+  // A Metropolis pass is one mutation a pixel of the job's, each rank running its chains' share.
+  const uint64_t jobSpp = metropolis ? (totals.passes + ranks / 2) / ranks : totals.passes;
   writeImage(o.output, session.image(), o.exposure);
   if (prepared.pyramidOutput > 0) writePyramid(o.output, session, o.exposure, prepared.pyramidOutput);
   if (o.techniqueMaps > 0) writeTechniqueMaps(o.output, session, o.techniqueMaps);
@@ -319,7 +326,7 @@ int runRender(RenderOptions o, Job& job) {
   const Counters& c = session.counters();
   std::cerr << fmt::format(
       "{}: {} spp ({}{}) in {:.2f} s, {} samples/s, {} rays/s, {} discarded samples (NaN {}, Inf {}, negative {})\n",
-      o.output, totals.passes, integratorName(settings.integrator),
+      o.output, jobSpp, integratorName(settings.integrator),
       job.size() > 1 ? fmt::format(", {} ranks", job.size()) : "", seconds,
       humanCount(static_cast<double>(c.cameraSamples) / seconds), humanCount(static_cast<double>(c.totalRays()) / seconds),
       c.discarded(), c.discardedCounts().nan, c.discardedCounts().inf, c.discardedCounts().negative);

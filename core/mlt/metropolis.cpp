@@ -116,6 +116,7 @@ struct Metropolis::State {
 struct Metropolis::Chain {
   Chain(PrimarySamples s, Pcg32 accept, int k, int width, int height)
       : samples(std::move(s)), acceptRng(accept), length(k), splats(width, height) {}
+  size_t index = 0;  // over every rank's chains
   // Watched (setWatchedChains): its index, and its path and last moves after the last pass.
   std::optional<MltWatchedChain> watch;
   PrimarySamples samples;
@@ -133,9 +134,11 @@ struct Metropolis::Chain {
 };
 
 Metropolis::Metropolis(const BidirTracer& tracer, int width, int height, int maxLength, uint64_t seed,
-                       const MltOptions& options, const BidirTracer* direct)
+                       const MltOptions& options, const BidirTracer* direct, MltRanks ranks)
     : tracer_(tracer), width_(width), height_(height), maxLength_(maxLength), seed_(seed), options_(options),
-      direct_(direct) {
+      ranks_(ranks), direct_(direct) {
+  if (ranks.count < 1 || ranks.rank < 0 || ranks.rank >= ranks.count)
+    throw std::invalid_argument("a Metropolis rank must be one of its job's ranks");
   if (tracer.merges() || (direct && direct->merges()))
     throw std::invalid_argument("Metropolis light transport runs over connections only, not merges");
   if (direct_) directSum_.assign(3 * static_cast<size_t>(width) * static_cast<size_t>(height), 0.0);
@@ -148,6 +151,16 @@ Metropolis::Metropolis(const BidirTracer& tracer, int width, int height, int max
     stats_.proposedByTechnique.assign(Technique::countUpTo(maxLength), 0);
     stats_.acceptedByTechnique.assign(Technique::countUpTo(maxLength), 0);
   }
+  // A histogram for every length that will have chains (MMLT: each with an enabled technique;
+  // PSSMLT: the one, if any technique is the chains'), made now so that every rank's sums() have
+  // the same shape before the first pass.
+  const bool multiplexed = options.variant == MltVariant::Multiplexed;
+  totals_.assign(multiplexed ? static_cast<size_t>(maxLength) + 1 : 1, LengthTotals{});
+  const size_t values = 3 * static_cast<size_t>(width) * static_cast<size_t>(height);
+  const bool anyChains =
+      std::any_of(enabledByLength_.begin(), enabledByLength_.end(), [](const auto& x) { return !x.empty(); });
+  for (size_t k = 0; k < totals_.size(); ++k)
+    if (multiplexed ? !enabledByLength_[k].empty() : anyChains) totals_[k].histogram.assign(values, 0.0);
 }
 
 Metropolis::~Metropolis() = default;
@@ -210,10 +223,12 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
   };
   // Every enabled technique rendered by the direct tracer (MltOptions::directLength): no chains.
   if (std::all_of(enabledByLength_.begin(), enabledByLength_.end(), [](const auto& x) { return x.empty(); })) {
-    totals_.assign(1, LengthTotals{});
     bootstrapped_ = true;
     return true;
   }
+  if (ranks_.count > 1 && !shareBootstrap_)
+    throw std::logic_error("Metropolis over ranks needs the exchange of their bootstrap weights");
+  const auto rankCount = static_cast<uint64_t>(ranks_.count), rank = static_cast<uint64_t>(ranks_.rank);
   std::vector<double> weights(total, 0.0);
   tbb::enumerable_thread_specific<Counters> local;
   std::atomic<bool> cancelled{false};
@@ -226,6 +241,7 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
     State state;
     Counters& c = local.local();
     for (uint64_t i = r.begin(); i != r.end(); ++i) {
+      if (i % rankCount != rank) continue;  // another rank's sample (zero until the exchange)
       PrimarySamples samples = bootstrapSamples(i);
       evaluate(lengthOf(i), samples, state, c);
       weights[i] = state.f;
@@ -233,12 +249,14 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
   });
   for (const Counters& c : local) counters += c;
   if (cancelled) return false;
+  // Every rank's samples on every rank: adding zeros changes no weight's bits, so each rank then
+  // holds exactly the weights one process computes.
+  if (ranks_.count > 1) shareBootstrap_(weights);
 
   // Each length's b_k from its samples (sums in index order: the same bits at any thread count).
-  totals_.assign(multiplexed ? static_cast<size_t>(maxLength_) + 1 : 1, LengthTotals{});
   for (uint64_t i = 0; i < total; ++i) {
     LengthTotals& t = totals_[static_cast<size_t>(lengthOf(i))];
-    t.fSum += weights[i], t.fSum2 += weights[i] * weights[i], ++t.fCount;
+    t.bootSum += weights[i], t.bootSum2 += weights[i] * weights[i], ++t.bootCount;
   }
   updateNormalisation();
   bootstrapped_ = true;
@@ -278,23 +296,26 @@ bool Metropolis::bootstrap(Counters& counters, const std::atomic<bool>* cancel) 
       starts.push_back({k, first + j * lengths});
     }
   }
-  chains_.resize(starts.size());
+  // Every rank knows every chain; chain c is rank c mod ranks' (consecutive chains share a length:
+  // interleaved, the ranks get the lengths alike).
+  chainLengths_.clear();
+  for (const Start& start : starts) chainLengths_.push_back(static_cast<int>(start.length));
+  std::vector<size_t> own;
+  for (size_t c = rank; c < starts.size(); c += rankCount) own.push_back(c);
+  chains_.resize(own.size());
   tbb::enumerable_thread_specific<Counters> startCounters;
-  tbb::parallel_for(size_t{0}, chains_.size(), [&](size_t c) {
+  tbb::parallel_for(size_t{0}, own.size(), [&](size_t i) {
+    const size_t c = own[i];
     // The bootstrap sample again (the same primary numbers, hence the same path), then a stream
     // of the chain's own for its mutations, so chains that start from one sample part at once.
     auto chain = std::make_unique<Chain>(bootstrapSamples(starts[c].sample), keyedStream(seed_, c, kAcceptSalt),
                                          static_cast<int>(starts[c].length), width_, height_);
+    chain->index = c;
     evaluate(chain->length, chain->samples, chain->current, startCounters.local());
     chain->samples.reseed(keyedStream(seed_, c, kChainSalt));
-    chains_[c] = std::move(chain);
+    chains_[i] = std::move(chain);
   });
   for (const Counters& c : startCounters) counters += c;
-  const size_t values = 3 * static_cast<size_t>(width_) * static_cast<size_t>(height_);
-  for (const std::unique_ptr<Chain>& chain : chains_) {
-    std::vector<double>& h = totals_[static_cast<size_t>(chain->length)].histogram;
-    if (h.empty()) h.assign(values, 0.0);
-  }
   return true;
 }
 
@@ -302,11 +323,11 @@ void Metropolis::updateNormalisation() {
   // b is a sum over lengths of independent means: its variance is the sum of theirs.
   double b = 0.0, variance = 0.0;
   for (const LengthTotals& t : totals_) {
-    if (t.fCount == 0) continue;
-    const auto n = static_cast<double>(t.fCount);
-    const double mean = t.fSum / n;
+    if (t.count() == 0) continue;
+    const auto n = static_cast<double>(t.count());
+    const double mean = t.b();
     b += mean;
-    if (n > 1) variance += std::max(0.0, t.fSum2 / n - mean * mean) / (n - 1);
+    if (n > 1) variance += std::max(0.0, (t.bootSum2 + t.fSum2) / n - mean * mean) / (n - 1);
   }
   b_ = b;
   bError_ = std::sqrt(variance);
@@ -370,8 +391,7 @@ void Metropolis::runChain(Chain& chain, uint64_t mutations, Counters& counters) 
   chain.currentWeight = 0.0;
 }
 
-bool Metropolis::renderDirect(Counters& counters, const std::atomic<bool>* cancel) {
-  const uint64_t pass = directPasses_;
+bool Metropolis::renderDirect(uint64_t pass, Counters& counters, const std::atomic<bool>* cancel) {
   const auto P = static_cast<uint64_t>(width_) * static_cast<uint64_t>(height_);
   // A row's light-tracing splats, added in row order after the rows ran (the same sums at any
   // thread count); each pixel's own estimate is its row's alone.
@@ -417,23 +437,35 @@ bool Metropolis::renderDirect(Counters& counters, const std::atomic<bool>* cance
 
 bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, const std::atomic<bool>* cancel) {
   if (!bootstrapped_ && !bootstrap(counters, cancel)) return false;
-  if (direct_ && !renderDirect(counters, cancel)) return false;
-  const uint64_t passIndex = passes_++;
+  const uint64_t passIndex = passes_;
+  // The direct image's pass p is rank p mod ranks' (one process: every pass's).
+  if (direct_ && passIndex % static_cast<uint64_t>(ranks_.count) == static_cast<uint64_t>(ranks_.rank) &&
+      !renderDirect(passIndex, counters, cancel))
+    return false;
+  ++passes_;
   if (!chains_.empty()) {
-    // Chain c runs mutations / C of them, the remainder one more each to the chains from an offset
-    // that moves every pass.
-    mutations = std::max<uint64_t>(mutations, chains_.size());  // every chain moves (a 1 x 1 image has more chains)
-    const uint64_t C = chains_.size(), share = mutations / C, extra = mutations % C;
+    // Chain c of all C runs mutations / C of them, the remainder one more each to the chains from
+    // an offset that moves every pass (this rank runs its chains' share).
+    const uint64_t C = chainLengths_.size();
+    mutations = std::max<uint64_t>(mutations, C);  // every chain moves (a 1 x 1 image has more chains)
+    const uint64_t share = mutations / C, extra = mutations % C;
     const uint64_t offset = (passIndex * extra) % C;
-    auto mutationsOf = [&](size_t c) { return share + ((c + C - offset) % C < extra ? 1 : 0); };
-    // The watched chains: n spread evenly over the chains, the middle one of each n-th.
-    const size_t watching = std::min(static_cast<size_t>(watchCount_), chains_.size());
+    auto mutationsOf = [&](size_t own) {
+      const uint64_t c = chains_[own]->index;
+      return share + ((c + C - offset) % C < extra ? 1 : 0);
+    };
+    // The watched chains: n spread evenly over all chains, the middle one of each n-th (those of
+    // this rank's).
+    const size_t watching = std::min(static_cast<size_t>(watchCount_), static_cast<size_t>(C));
     for (size_t c = 0; c < chains_.size(); ++c) chains_[c]->watch.reset();
+    const auto rankCount = static_cast<size_t>(ranks_.count), rank = static_cast<size_t>(ranks_.rank);
     for (size_t i = 0; i < watching; ++i) {
-      const size_t c = (2 * i + 1) * chains_.size() / (2 * watching);
-      chains_[c]->watch.emplace();
-      chains_[c]->watch->chain = static_cast<int>(c);
-      chains_[c]->watch->length = chains_[c]->length;
+      const size_t c = (2 * i + 1) * static_cast<size_t>(C) / (2 * watching);
+      if (c % rankCount != rank) continue;
+      Chain& chain = *chains_[c / rankCount];
+      chain.watch.emplace();
+      chain.watch->chain = static_cast<int>(c);
+      chain.watch->length = chain.length;
     }
     tbb::enumerable_thread_specific<Counters> local;
     std::atomic<bool> cancelled{false};
@@ -472,6 +504,11 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
     }
     updateNormalisation();
   }
+  writeImage(film);
+  return true;
+}
+
+void Metropolis::writeImage(Film& film) const {
   // The image sum_k b_k P H_k / M_k as the film's splat sums over P light subpaths (a pixel reads
   // splat sum x P / P): rewritten whole, since every b_k moved.
   film.clear();
@@ -487,7 +524,43 @@ bool Metropolis::renderPass(uint64_t mutations, Film& film, Counters& counters, 
     for (size_t i = 0; i < image.size(); ++i) image[i] += scale * t.histogram[i];
   }
   film.finishPass(0, film.pixelCount());
-  return true;
+}
+
+std::vector<std::span<double>> Metropolis::sums() {
+  // The counts as doubles (exact below 2^53): per length M_k and the large steps' sums, the direct
+  // passes, then the statistics.
+  packed_.clear();
+  for (const LengthTotals& t : totals_)
+    packed_.insert(packed_.end(), {static_cast<double>(t.mutations), t.fSum, t.fSum2, static_cast<double>(t.fCount)});
+  packed_.push_back(static_cast<double>(directPasses_));
+  for (const uint64_t x : {stats_.proposed, stats_.accepted, stats_.largeProposed, stats_.largeAccepted})
+    packed_.push_back(static_cast<double>(x));
+  for (const std::vector<uint64_t>* v : {&stats_.proposedByLength, &stats_.acceptedByLength,
+                                         &stats_.proposedByTechnique, &stats_.acceptedByTechnique})
+    for (const uint64_t x : *v) packed_.push_back(static_cast<double>(x));
+  std::vector<std::span<double>> all;
+  for (LengthTotals& t : totals_)
+    if (!t.histogram.empty()) all.emplace_back(t.histogram);
+  if (!directSum_.empty()) all.emplace_back(directSum_);
+  all.emplace_back(packed_);
+  return all;
+}
+
+void Metropolis::sumsCombined() {
+  size_t i = 0;
+  auto next = [&] { return packed_.at(i++); };
+  auto count = [&] { return static_cast<uint64_t>(next()); };
+  for (LengthTotals& t : totals_) {
+    t.mutations = count();
+    t.fSum = next(), t.fSum2 = next();
+    t.fCount = count();
+  }
+  directPasses_ = count();
+  stats_.proposed = count(), stats_.accepted = count(), stats_.largeProposed = count(), stats_.largeAccepted = count();
+  for (std::vector<uint64_t>* v : {&stats_.proposedByLength, &stats_.acceptedByLength, &stats_.proposedByTechnique,
+                                   &stats_.acceptedByTechnique})
+    for (uint64_t& x : *v) x = count();
+  updateNormalisation();
 }
 
 std::vector<float> Metropolis::chainDensity() const {
@@ -534,8 +607,10 @@ std::vector<MltWatchedChain> Metropolis::watched() const {
 }
 
 MltChainState Metropolis::replayChain(size_t c, SampleSink* records) const {
-  if (c >= chains_.size()) throw std::out_of_range("no such Metropolis chain");
-  const Chain& chain = *chains_[c];
+  const auto rankCount = static_cast<size_t>(ranks_.count);
+  if (c >= chainLengths_.size() || c % rankCount != static_cast<size_t>(ranks_.rank))
+    throw std::out_of_range("no such Metropolis chain on this rank");
+  const Chain& chain = *chains_[c / rankCount];
   MltChainState out;
   out.chain = static_cast<int>(c);
   out.length = chain.length;
@@ -559,7 +634,7 @@ MltChainState Metropolis::replayChain(size_t c, SampleSink* records) const {
 
 std::vector<int> Metropolis::chainsByLength() const {
   std::vector<int> n(std::max(static_cast<size_t>(maxLength_) + 1, totals_.size()), 0);
-  for (const std::unique_ptr<Chain>& chain : chains_) ++n[static_cast<size_t>(chain->length)];
+  for (const int k : chainLengths_) ++n[static_cast<size_t>(k)];
   return n;
 }
 

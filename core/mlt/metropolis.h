@@ -34,7 +34,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace pathlab {
@@ -104,6 +106,16 @@ struct MltSummary {
   std::vector<MltWatchedChain> watched;  // Metropolis::setWatchedChains
 };
 
+// An MPI job's share of the work (RenderSession's PassSchedule: rank `first` of `stride`): the
+// bootstrap samples i = rank (mod count) and the chains c = rank (mod count) are this rank's, and
+// so is the direct image's pass p (MltOptions::directLength) when p = rank (mod count). The ranks'
+// bootstrap weights are combined (Metropolis::setBootstrapExchange) so that every rank knows b and
+// every chain's start; a pass runs this rank's chains' share of the job's mutations, exactly the
+// mutations those chains run in one process, and the ranks' sums add up to one process's.
+struct MltRanks {
+  int rank = 0, count = 1;
+};
+
 class Metropolis {
  public:
   // `tracer` has no merges (validateSettings refuses mlt with them); width x height is the film's.
@@ -111,7 +123,7 @@ class Metropolis {
   // one bidirectional sample a pixel each pass into an image added to the chains' (`tracer` then
   // leaves those lengths out).
   Metropolis(const BidirTracer& tracer, int width, int height, int maxLength, uint64_t seed, const MltOptions& options,
-             const BidirTracer* direct = nullptr);
+             const BidirTracer* direct = nullptr, MltRanks ranks = {});
   ~Metropolis();
 
   // The bootstrap (b and the chains' starting states), in parallel; the first pass runs it.
@@ -154,9 +166,21 @@ class Metropolis {
   void setWatchedChains(int n) { watchCount_ = std::clamp(n, 0, kMaxMltWatchedChains); }
   // The watched chains after the last pass (empty before the first, without chains or watching).
   std::vector<MltWatchedChain> watched() const;
-  // Chains after the bootstrap (0 before it).
-  size_t chainCount() const { return chains_.size(); }
-  // Chain `c`'s current state (after the bootstrap), replayed from its primary numbers: the same
+  // Chains after the bootstrap, over every rank (0 before it).
+  size_t chainCount() const { return chainLengths_.size(); }
+
+  // With ranks: `exchange` sums the ranks' bootstrap weights in place (each rank's own samples, zero
+  // elsewhere), collectively on every rank, during the first pass. Required when count > 1.
+  void setBootstrapExchange(std::function<void(std::span<double>)> exchange) { shareBootstrap_ = std::move(exchange); }
+  // Everything this rank accumulated, as flat arrays of doubles in an order fixed by the settings
+  // (RenderSession::sums): the lengths' histograms, the direct image and the counts (mutations,
+  // the large steps' sums, the statistics) packed as doubles when called. Adding another rank's
+  // element by element, then sumsCombined(), gives the job's.
+  std::vector<std::span<double>> sums();
+  void sumsCombined();
+  // The image sum_k b_k P H_k / M_k (and the direct lengths') written into `film` as its splat sums.
+  void writeImage(Film& film) const;
+  // Chain `c`'s current state (after the bootstrap; a chain of this rank's), replayed from its primary numbers: the same
   // path, target and contributions the chain holds. `records` (or null) gets the replayed
   // sample's subpaths and technique records, with the extras its demand asks for.
   MltChainState replayChain(size_t c, SampleSink* records = nullptr) const;
@@ -173,7 +197,7 @@ class Metropolis {
   MltChainPath tracePath(int length, PrimarySamples samples) const;
   void runChain(Chain& chain, uint64_t mutations, Counters& counters) const;
   // One bidirectional sample a pixel of the direct lengths into directSum_; false when cancelled.
-  bool renderDirect(Counters& counters, const std::atomic<bool>* cancel);
+  bool renderDirect(uint64_t pass, Counters& counters, const std::atomic<bool>* cancel);
 
   const BidirTracer& tracer_;
   int width_, height_, maxLength_;
@@ -181,15 +205,19 @@ class Metropolis {
   MltOptions options_;
   std::vector<std::vector<Technique>> enabledByLength_;  // MMLT: the techniques a chain of length k picks from
   std::vector<std::unique_ptr<Chain>> chains_;
-  // Per length (MMLT: index k; PSSMLT: 0): the histogram H_k (3 doubles a pixel, made when a chain
-  // has that length), its mutations M_k, and the sums of f over the bootstrap samples and large
-  // steps that estimate b_k.
+  // Per length (MMLT: index k; PSSMLT: 0): the histogram H_k (3 doubles a pixel, made for a length
+  // with enabled techniques, which gets at least one chain), its mutations M_k, and the sums of f
+  // that estimate b_k: over the bootstrap samples (every rank's, the same on every rank) and over
+  // this rank's chains' large steps.
   struct LengthTotals {
     std::vector<double> histogram;
     uint64_t mutations = 0;
+    double bootSum = 0.0, bootSum2 = 0.0;
+    uint64_t bootCount = 0;
     double fSum = 0.0, fSum2 = 0.0;
     uint64_t fCount = 0;
-    double b() const { return fCount ? fSum / static_cast<double>(fCount) : 0.0; }
+    uint64_t count() const { return bootCount + fCount; }
+    double b() const { return count() ? (bootSum + fSum) / static_cast<double>(count()) : 0.0; }
   };
   std::vector<LengthTotals> totals_;
   void updateNormalisation();
@@ -198,6 +226,10 @@ class Metropolis {
   MltStats stats_;
   uint64_t passes_ = 0;
   int watchCount_ = 0;
+  MltRanks ranks_;
+  std::function<void(std::span<double>)> shareBootstrap_;
+  std::vector<int> chainLengths_;  // every rank's chains' lengths, by chain index (chains_: this rank's)
+  std::vector<double> packed_;     // sums()' counts
   const BidirTracer* direct_ = nullptr;
   std::vector<double> directSum_;  // 3 a pixel: the direct samples' camera estimates and splats
   uint64_t directPasses_ = 0;

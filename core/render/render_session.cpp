@@ -88,11 +88,11 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
   } else if (settings.integrator != IntegratorKind::Pt) {
     bidirTracer_ = std::make_unique<BidirTracer>(scene, camera_, bidirOptions(settings));
   }
-  if (settings.integrator == IntegratorKind::Mlt && schedule_.stride != 1)
-    throw std::invalid_argument("--integrator mlt does not run over MPI ranks yet: its chains need every rank's bootstrap");
+  // Metropolis over ranks: every rank runs every pass, with its share of the chains (MltRanks).
   if (settings.integrator == IntegratorKind::Mlt)
-    metropolis_ = std::make_unique<Metropolis>(*bidirTracer_, settings.width, settings.height, settings.maxLength,
-                                               settings.seed, settings.mlt, directTracer_.get());
+    metropolis_ = std::make_unique<Metropolis>(
+        *bidirTracer_, settings.width, settings.height, settings.maxLength, settings.seed, settings.mlt,
+        directTracer_.get(), MltRanks{static_cast<int>(schedule_.first), static_cast<int>(schedule_.stride)});
   // (Metropolis keeps histograms of its own: no pass sums.)
   if (bidirTracer_ && !metropolis_ && SplatSums::bytesFor(settings.width, settings.height) <= kMaxSplatSumBytes)
     splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);
@@ -150,6 +150,7 @@ std::vector<float> RenderSession::sampleableLuminance(Technique x) const {
 }
 
 std::vector<std::span<double>> RenderSession::sums() {
+  if (metropolis_) return metropolis_->sums();  // the film is written from them
   std::vector<std::span<double>> all;
   for (std::span<double> s : film_.sums()) all.push_back(s);
   if (pyramid_)
@@ -158,6 +159,13 @@ std::vector<std::span<double>> RenderSession::sums() {
 }
 
 void RenderSession::addForeignPasses(uint64_t passes, const Counters& counters) {
+  if (metropolis_) {
+    // Every rank ran every pass with its own chains: the job's image from the added sums.
+    metropolis_->sumsCombined();
+    metropolis_->writeImage(film_);
+    counters_ += counters;
+    return;
+  }
   film_.finishPass(passes, bidirTracer_ ? passes * lightSubpathsPerPass(film_.pixelCount()) : 0);
   counters_ += counters;
 }

@@ -85,9 +85,12 @@ class RenderSession {
   // Every sum the passes accumulate (film, splats, pyramid), flat arrays of doubles in an order
   // fixed by the settings: sessions with the same settings that rendered disjoint passes combine
   // by adding these element by element, then addForeignPasses. Not concurrent with a pass.
+  // Metropolis (Metropolis::sums): its histograms, direct image and counts, the film being written
+  // from them; its sessions over ranks all run the same passes, each with its own chains.
   std::vector<std::span<double>> sums();
   // Counts `passes` passes rendered by other sessions whose sums were added to sums(): the film's
-  // normalisation and the counters follow; passes() stays this session's own count.
+  // normalisation and the counters follow; passes() stays this session's own count. (Metropolis:
+  // the image is written from the added sums; `passes` is not needed.)
   void addForeignPasses(uint64_t passes, const Counters& counters);
   // This session's own passes (not those of addForeignPasses).
   uint64_t passes() const { return passes_.load(std::memory_order_relaxed); }

@@ -70,5 +70,12 @@ stops_without_scene converge "$TMP/f" "${small[@]}"
 interrupted converge "$BOX" -o "$TMP/int" --width 16 --height 12 --threads 1 --time 60
 [ -z "$(ls -A "$TMP/int" 2>/dev/null)" ] && ok || fail "SIGINT left output: $(ls -A "$TMP/int")"
 
+# Metropolis runs over ranks in render only: one line from rank 0, a non-zero exit, no directory.
+mpirun2 "$PATHLAB" converge "$BOX" -o "$TMP/mlt" --width 16 --height 12 --threads 1 --configs mlt --spp 2 \
+  >/dev/null 2>"$TMP/err" </dev/null && fail "converge mlt under 2 ranks: exit code 0"
+[ "$(grep -c "^pathlab: .*configuration 'mlt': Metropolis runs over MPI ranks in .pathlab render. only" "$TMP/err")" -eq 1 ] &&
+  ok || fail "converge mlt under 2 ranks: $(cat "$TMP/err")"
+[ -e "$TMP/mlt" ] && fail "converge mlt under 2 ranks left $TMP/mlt"
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -2,7 +2,8 @@
 # `mpirun -n 2 pathlab render` on loopback (issue 17): two ranks of P passes each give the image of
 # one process rendering 2P passes with the same seed, to 1e-6 relative per pixel (the same samples,
 # added in another order), for the path tracer and for BPT with its light-tracing splats and the
-# technique pyramid; `mpirun -n 1` is the plain process bit for bit; a rank that cannot load the
+# technique pyramid, and for Metropolis (the ranks split the chains); `mpirun -n 1` is the plain
+# process bit for bit; a rank that cannot load the
 # scene stops the job within seconds with one line naming it; SIGINT leaves no output behind.
 # Usage: mpi_render_test.sh PATHLAB SOURCE_DIR MPIEXEC
 . "$(dirname "$0")/../cli/cli_lib.sh"
@@ -38,6 +39,26 @@ if mpirun2 "$PATHLAB" render "$BOX" -o "$TMP/b2.pfm" "${small[@]}" --spp 5 --pyr
   [ -s "$TMP/b2-pyramid.png" ] && ok || fail "no pyramid mosaic"
   grep -q "b2.pfm: 5 spp (bpt, 2 ranks)" "$TMP/err" && ok || fail "bpt summary: $(cat "$TMP/err")"
 else fail "bpt, 2 ranks: $(cat "$TMP/err")"; fi
+
+# Metropolis (issue 33): the ranks pool their bootstrap samples and split the chains; every rank
+# runs every pass with its share of the mutations (and rank p mod 2 the direct image's pass p), so
+# two ranks give one process's image to 1e-6 and make as many proposals, not twice as many.
+mlt=(--integrator mlt --chains 40 --bootstrap 2000 --spp 5)
+for variant in "mmlt" "pss" "mmlt --mlt-direct 2"; do
+  name=${variant// /}
+  # shellcheck disable=SC2086
+  "$PATHLAB" render "$BOX" -o "$TMP/m1$name.pfm" "${small[@]}" "${mlt[@]}" --mlt-variant $variant 2>"$TMP/err1" ||
+    fail "mlt $variant, one process: $(cat "$TMP/err1")"
+  # shellcheck disable=SC2086
+  if mpirun2 "$PATHLAB" render "$BOX" -o "$TMP/m2$name.pfm" "${small[@]}" "${mlt[@]}" --mlt-variant $variant 2>"$TMP/err"; then
+    compare "mlt $variant, 2 ranks" "$TMP/m1$name.pfm" "$TMP/m2$name.pfm"
+    grep -q "m2$name.pfm: 5 spp (mlt, 2 ranks)" "$TMP/err" && ok || fail "mlt $variant summary: $(cat "$TMP/err")"
+    one=$(grep -o "[0-9]* proposals" "$TMP/err1") two=$(grep -o "[0-9]* proposals" "$TMP/err")
+    [ -n "$one" ] && [ "$one" = "$two" ] && ok || fail "mlt $variant: '$one' in one process, '$two' in 2 ranks"
+  else fail "mlt $variant, 2 ranks: $(cat "$TMP/err")"; fi
+done
+mpirun2 "$PATHLAB" render "$BOX" -o "$TMP/mt.pfm" "${small[@]}" --integrator mlt --chains 40 --bootstrap 2000 --time 0.5 \
+  2>"$TMP/err" && [ -s "$TMP/mt.pfm" ] && ok || fail "mlt --time under 2 ranks: $(cat "$TMP/err")"
 
 # The same job under one rank is the plain process, bit for bit.
 if timeout 60 "$MPIEXEC" -n 1 "$PATHLAB" render "$BOX" -o "$TMP/b1rank.pfm" "${small[@]}" --spp 5 2>"$TMP/err"; then
