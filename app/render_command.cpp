@@ -7,6 +7,7 @@
 #include "app/progress.h"
 #include "app/pyramid_output.h"
 #include "app/technique_maps_output.h"
+#include "app/variance_maps_output.h"
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
 #include "core/metrics/technique_table.h"
@@ -100,6 +101,10 @@ void addRenderEstimateOptions(CLI::App* cmd, RenderOptions& o) {
                   "Also write the technique maps up to this length next to the output: the dominant technique, "
                   "each technique's share of the image and where each cannot sample (EXR and PNG)")
       ->check(CLI::Range(1, kMaxPyramidLength));
+  cmd->add_option("--variance-maps", o.varianceMaps,
+                  "Also write the variance maps up to this length next to the output: each technique's variance "
+                  "of a pass's estimate per pixel, and the technique with the most variance (EXR and PNG)")
+      ->check(CLI::Range(1, kMaxPyramidLength));
   addThreadsOption(cmd, o.threads);
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
@@ -118,6 +123,19 @@ void finishRenderEstimate(RenderOptions& o) {
           fmt::format("--technique-maps {} is longer than the maximum path length {}", o.techniqueMaps, s.maxLength));
     s.pyramidLength = std::max(s.pyramidLength, o.techniqueMaps);
     s.techniqueMaps = true;
+  }
+  // The variance maps read the pyramid's second moments across passes.
+  if (o.varianceMaps > 0) {
+    RenderSettings& s = o.estimator.settings;
+    if (s.integrator == IntegratorKind::Pt || s.integrator == IntegratorKind::Mlt)
+      throw std::runtime_error(fmt::format("--variance-maps needs independent bidirectional samples (--integrator bpt, "
+                                           "lt, vcm, bpm or ppm), not {}",
+                                           integratorName(s.integrator)));
+    if (o.varianceMaps > s.maxLength)
+      throw std::runtime_error(
+          fmt::format("--variance-maps {} is longer than the maximum path length {}", o.varianceMaps, s.maxLength));
+    s.pyramidLength = std::max(s.pyramidLength, o.varianceMaps);
+    s.varianceMaps = true;
   }
   // Until the camera's aspect is known, a side not given may be as large as allowed.
   RenderSettings& settings = o.estimator.settings;
@@ -251,6 +269,8 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
       for (const std::string& path : pyramidPaths(o.output, p.pyramidOutput, pyramidFamilies(settings))) checkOutput(path, o.force);
     if (o.techniqueMaps > 0)
       for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps, pyramidFamilies(settings))) checkOutput(path, o.force);
+    if (o.varianceMaps > 0)
+      for (const std::string& path : varianceMapPaths(o.output, o.varianceMaps, pyramidFamilies(settings))) checkOutput(path, o.force);
   }
 
   const auto loadStart = std::chrono::steady_clock::now();
@@ -321,6 +341,7 @@ int runRender(RenderOptions o, Job& job) {
   writeImage(o.output, session.image(), o.exposure);
   if (prepared.pyramidOutput > 0) writePyramid(o.output, session, o.exposure, prepared.pyramidOutput);
   if (o.techniqueMaps > 0) writeTechniqueMaps(o.output, session, o.techniqueMaps);
+  if (o.varianceMaps > 0) writeVarianceMaps(o.output, session, o.varianceMaps);
 
   // Under MPI: every rank's samples, rays and discards, over the slowest rank's time.
   const Counters& c = session.counters();

@@ -17,12 +17,6 @@ namespace pathlab::app {
 
 namespace {
 
-std::string besideOutput(const std::string& output, const std::string& suffix) {
-  std::filesystem::path p(output);
-  p.replace_filename(std::filesystem::path(output).stem().string() + suffix);
-  return p.string();
-}
-
 std::string dominantName(int k) { return k > 0 ? fmt::format("-dominant-k{}", k) : "-dominant"; }
 std::string techniqueName(const char* what, Technique x) { return fmt::format("-{}{}", what, techniqueFileTag(x)); }
 
@@ -30,9 +24,26 @@ Image blank(int width, int height) {
   return Image{width, height, std::vector<float>(3 * static_cast<size_t>(width) * static_cast<size_t>(height), 0.f)};
 }
 
-// The EXR of the dominant map: (s, t, the winner's share) for a connection, (s, -t, share) for a
-// merge M(s, t) (s >= 2, so never confused with what follows); (-1, -1, 0) without light and
-// (-2, -2, share) for a tie.
+// The EXR of the cannot-sample map: (fraction it cannot sample, share of its length's image, Reach
+// as 0 empty, 1 impossible, 2 weighted away, 3 sampled); -1 in the first two without light.
+Image cannotSampleValues(const CannotSampleMap& m) {
+  Image img = blank(m.width, m.height);
+  for (size_t i = 0; i < m.reach.size(); ++i) {
+    img.rgb[3 * i] = m.unreachable[i];
+    img.rgb[3 * i + 1] = m.shareOfLength[i];
+    img.rgb[3 * i + 2] = static_cast<float>(m.reach[i]);
+  }
+  return img;
+}
+
+}  // namespace
+
+std::string besideOutput(const std::string& output, const std::string& suffix) {
+  std::filesystem::path p(output);
+  p.replace_filename(std::filesystem::path(output).stem().string() + suffix);
+  return p.string();
+}
+
 Image dominantValues(const DominantMap& m) {
   Image img = blank(m.width, m.height);
   for (size_t i = 0; i < m.technique.size(); ++i) {
@@ -51,20 +62,6 @@ Image grey(const std::vector<float>& v, int width, int height) {
   return img;
 }
 
-// The EXR of the cannot-sample map: (fraction it cannot sample, share of its length's image, Reach
-// as 0 empty, 1 impossible, 2 weighted away, 3 sampled); -1 in the first two without light.
-Image cannotSampleValues(const CannotSampleMap& m) {
-  Image img = blank(m.width, m.height);
-  for (size_t i = 0; i < m.reach.size(); ++i) {
-    img.rgb[3 * i] = m.unreachable[i];
-    img.rgb[3 * i + 1] = m.shareOfLength[i];
-    img.rgb[3 * i + 2] = static_cast<float>(m.reach[i]);
-  }
-  return img;
-}
-
-// The tiles (by Technique::index()) in the pyramid's layout (rows: length, columns: slot), each
-// labelled "(s,t)" or "M(s,t)".
 Image labelledMosaic(const std::vector<Image>& tiles, int length, TechniqueFamilies families) {
   constexpr int kGap = 4;
   Image m = techniqueMosaic(tiles, length, kGap, 0.12f);
@@ -77,8 +74,6 @@ Image labelledMosaic(const std::vector<Image>& tiles, int length, TechniqueFamil
   }
   return m;
 }
-
-}  // namespace
 
 std::vector<std::string> techniqueMapPaths(const std::string& output, int length, TechniqueFamilies families) {
   std::vector<std::string> paths;

@@ -1,27 +1,33 @@
 // Per-technique accumulation buffers.
 #include "core/film/technique_films.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
 namespace pathlab {
 
-uint64_t TechniqueFilms::bytesFor(int width, int height, int maxLength, bool sampleable, TechniqueFamilies families) {
-  const uint64_t valuesPerPixel = 2 * 3 + (sampleable ? 2 : 0);
+uint64_t TechniqueFilms::bytesFor(int width, int height, int maxLength, bool sampleable, TechniqueFamilies families,
+                                  bool moments) {
+  const uint64_t valuesPerPixel = 2 * 3 + (sampleable ? 2 : 0) + (moments ? 2 : 0);
   return Technique::countUpTo(maxLength, families) * valuesPerPixel * sizeof(double) * static_cast<uint64_t>(width) *
          static_cast<uint64_t>(height);
 }
 
-TechniqueFilms::TechniqueFilms(int width, int height, int maxLength, bool sampleable, TechniqueFamilies families)
+TechniqueFilms::TechniqueFilms(int width, int height, int maxLength, bool sampleable, TechniqueFamilies families,
+                               bool moments)
     : width_(width), height_(height), maxLength_(maxLength), families_(families) {
   const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
   buffers_.resize(2 * Technique::countUpTo(maxLength));
   if (sampleable) sampleable_.resize(2 * Technique::countUpTo(maxLength));
-  for (const Technique x : techniquesUpTo(maxLength, families))
+  if (moments) passEstimate_.resize(Technique::countUpTo(maxLength)), moments_.resize(Technique::countUpTo(maxLength));
+  for (const Technique x : techniquesUpTo(maxLength, families)) {
     for (const bool second : {false, true}) {
       buffers_[buffer(x, second)].assign(3 * pixels, 0.0);
       if (sampleable) sampleable_[buffer(x, second)].assign(pixels, 0.0);
     }
+    if (moments) passEstimate_[x.index()].assign(pixels, 0.0), moments_[x.index()].assign(pixels, 0.0);
+  }
 }
 
 long long TechniqueFilms::pixel(Vec2 pRaster) const {
@@ -37,9 +43,10 @@ void TechniqueFilms::add(Technique x, Vec2 pRaster, const Spectrum& weighted, co
   const size_t i = 3 * static_cast<size_t>(p);
   std::vector<double>& w = buffers_[buffer(x, false)];
   std::vector<double>& u = buffers_[buffer(x, true)];
+  const bool splat = x.t == 1 && !x.isMerge();
   for (int c = 0; c < 3; ++c) {
     const size_t j = i + static_cast<size_t>(c);
-    if (x.t == 1 && !x.isMerge()) {
+    if (splat) {
       std::atomic_ref<double>(w[j]).fetch_add(weighted[c], std::memory_order_relaxed);
       std::atomic_ref<double>(u[j]).fetch_add(unweighted[c], std::memory_order_relaxed);
     } else {
@@ -47,6 +54,29 @@ void TechniqueFilms::add(Technique x, Vec2 pRaster, const Spectrum& weighted, co
       u[j] += unweighted[c];
     }
   }
+  if (moments_.empty()) return;
+  // This pass's estimate of the pixel by x (a merge may add several contributions a sample).
+  double& e = passEstimate_[x.index()][static_cast<size_t>(p)];
+  if (splat) std::atomic_ref<double>(e).fetch_add(luminance(weighted), std::memory_order_relaxed);
+  else e += luminance(weighted);
+}
+
+void TechniqueFilms::finishPass(double splatScale) {
+  for (const Technique x : techniquesUpTo(maxLength_, families_)) {
+    if (moments_.empty()) return;
+    std::vector<double>& e = passEstimate_[x.index()];
+    std::vector<double>& m = moments_[x.index()];
+    const double scale = x.t == 1 && !x.isMerge() ? splatScale : 1.0;
+    for (size_t i = 0; i < e.size(); ++i) {
+      const double v = e[i] * scale;
+      m[i] += v * v;
+      e[i] = 0.0;
+    }
+  }
+}
+
+void TechniqueFilms::discardPass() {
+  for (std::vector<double>& e : passEstimate_) std::fill(e.begin(), e.end(), 0.0);
 }
 
 void TechniqueFilms::addSampleable(int k, uint64_t sampleableBy, Vec2 pRaster, bool splat, double weightedLuminance) {
@@ -68,12 +98,15 @@ void TechniqueFilms::addSampleable(int k, uint64_t sampleableBy, Vec2 pRaster, b
 void TechniqueFilms::clear() {
   for (std::vector<double>& b : buffers_) std::fill(b.begin(), b.end(), 0.0);
   for (std::vector<double>& b : sampleable_) std::fill(b.begin(), b.end(), 0.0);
+  for (std::vector<double>& b : moments_) std::fill(b.begin(), b.end(), 0.0);
+  discardPass();
 }
 
 std::vector<std::span<double>> TechniqueFilms::sums() {
   std::vector<std::span<double>> all;
   for (std::vector<double>& b : buffers_) all.emplace_back(b);
   for (std::vector<double>& b : sampleable_) all.emplace_back(b);
+  for (std::vector<double>& b : moments_) all.emplace_back(b);  // (the pass estimates are zero between passes)
   return all;
 }
 
@@ -107,6 +140,24 @@ std::vector<float> TechniqueFilms::readoutSampleable(Technique x, uint64_t sampl
   const std::vector<double>& c = sampleable_[buffer(x, false)];
   const std::vector<double>& l = sampleable_[buffer(x, true)];
   for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(c[i] * camera + l[i] * splat);
+  return out;
+}
+
+std::vector<float> TechniqueFilms::readoutVariance(Technique x, uint64_t passes, uint64_t samplesPerPixel,
+                                                   uint64_t lightSubpaths) const {
+  std::vector<float> out(static_cast<size_t>(width_) * static_cast<size_t>(height_), 0.f);
+  if (moments_.empty() || !covers(x) || passes < 2) return out;
+  // The mean in double, as readout normalises it (a float mean would cancel the digits of a
+  // variance far below its square).
+  const double scale = normalisation(x.t == 1 && !x.isMerge(), width_, height_, samplesPerPixel, lightSubpaths);
+  const std::vector<double>& w = buffers_[buffer(x, false)];
+  const std::vector<double>& m = moments_[x.index()];
+  const auto n = static_cast<double>(passes);
+  for (size_t i = 0; i < out.size(); ++i) {
+    // luminance()'s weights, in double: the mean of the passes' luminances.
+    const double mu = scale * (0.2126 * w[3 * i] + 0.7152 * w[3 * i + 1] + 0.0722 * w[3 * i + 2]);
+    out[i] = static_cast<float>(std::max(0.0, (m[i] - n * mu * mu) / (n - 1.0)));
+  }
   return out;
 }
 

@@ -99,4 +99,15 @@ Image densityColours(const std::vector<float>& density, int width, int height) {
   return out;
 }
 
+Image varianceColours(const std::vector<float>& variance, int width, int height, float largest) {
+  Image out{width, height, std::vector<float>(3 * static_cast<size_t>(width) * static_cast<size_t>(height), 0.f)};
+  const size_t n = std::min(variance.size(), static_cast<size_t>(width) * static_cast<size_t>(height));
+  for (size_t p = 0; p < n; ++p) {
+    const float v = variance[p];
+    const Vec3 c = v > 0.f && largest > 0.f ? viridis(1.f + std::log10(v / largest) / kVarianceDecades) : kEmptyColour;
+    for (int i = 0; i < 3; ++i) out.rgb[3 * p + static_cast<size_t>(i)] = c[i];
+  }
+  return out;
+}
+
 }  // namespace pathlab

@@ -46,6 +46,12 @@ Image cannotSampleColours(const CannotSampleMap& m);
 inline constexpr float kDensityDecades = 2.f;
 Image densityColours(const std::vector<float>& density, int width, int height);
 
+// The variance maps (issue 34): a technique's variance per pixel on a log scale relative to
+// `largest` (one for the whole mosaic, so that the techniques compare): viridis from
+// kVarianceDecades decades below it (dark blue) to it and above (yellow), black where it is zero.
+inline constexpr float kVarianceDecades = 4.f;
+Image varianceColours(const std::vector<float>& variance, int width, int height, float largest);
+
 // The linear image whose PNG (writeImage: clamp, sRGB encode) shows these display colours.
 Image displayToLinear(Image display);
 

@@ -32,6 +32,7 @@ RenderSettings previewSettings(const RenderSettings& full, int factor) {
   p.height = (full.height + factor - 1) / factor;
   p.pyramidLength = 0;
   p.techniqueMaps = false;
+  p.varianceMaps = false;
   // Metropolis: a preview has factor^2 times fewer pixels, so as many fewer mutations a pass; its
   // bootstrap (what its first image waits for) shrinks alike, to no fewer than 1000 samples.
   p.mlt.bootstrap = std::max<uint64_t>(std::min<uint64_t>(full.mlt.bootstrap, 1000),

@@ -98,7 +98,7 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
     splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength,
-                                                settings.techniqueMaps, pyramidFamilies(settings));
+                                                settings.techniqueMaps, pyramidFamilies(settings), settings.varianceMaps);
   if (bidirTracer_ && settings.checkTechniques) {
     const TechniqueSet enabled = enabledTechniques(settings);
     check_ = std::make_unique<TechniqueCheck>(settings.width, settings.height, settings.maxLength, settings.checkBlocks,
@@ -142,6 +142,11 @@ Pcg32 sampleStream(const RenderSettings& settings, int x, int y, uint64_t pass, 
 Image RenderSession::techniqueImage(Technique x, bool unweighted) const {
   if (!pyramid_) return Image{film_.width(), film_.height(), std::vector<float>(3 * film_.pixelCount(), 0.f)};
   return pyramid_->readout(x, unweighted, film_.samplesPerPixel(), film_.lightSubpaths());
+}
+
+std::vector<float> RenderSession::techniqueVariance(Technique x) const {
+  if (!pyramid_) return std::vector<float>(film_.pixelCount(), 0.f);
+  return pyramid_->readoutVariance(x, film_.samplesPerPixel(), film_.samplesPerPixel(), film_.lightSubpaths());
 }
 
 std::vector<float> RenderSession::sampleableLuminance(Technique x) const {
@@ -347,6 +352,13 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
     } else {
       check_->finishPass(sums);
     }
+  }
+  if (pyramid_ && pyramid_->keepsMoments()) {
+    // A pass's splats are scaled by P / its light subpaths in the film (Film::readout).
+    if (cancelled) pyramid_->discardPass();
+    else
+      pyramid_->finishPass(static_cast<double>(film_.pixelCount()) /
+                           static_cast<double>(lightSubpathsPerPass(film_.pixelCount())));
   }
   if (cancelled) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);

@@ -76,6 +76,10 @@ class RenderSession {
   // With settings.techniqueMaps: per pixel, the luminance of the length-(s+t-1) image that (s, t)
   // can sample (TechniqueFilms::readoutSampleable).
   std::vector<float> sampleableLuminance(Technique x) const;
+  // With settings.varianceMaps: per pixel, the variance of one pass's estimate by (s, t) alone
+  // (luminance; TechniqueFilms::readoutVariance), over every pass so far (every rank's, after
+  // addForeignPasses).
+  std::vector<float> techniqueVariance(Technique x) const;
   // The consistency check's sums (settings.checkTechniques), else null.
   const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }

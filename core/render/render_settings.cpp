@@ -203,6 +203,7 @@ void validateSettings(const RenderSettings& s) {
     const char* perSample = s.isolate           ? "--isolate"
                             : s.pyramidLength   ? "the technique pyramid"
                             : s.techniqueMaps   ? "the technique maps"
+                            : s.varianceMaps    ? "the variance maps"
                             : s.checkTechniques ? "the consistency check"
                             : s.injectBias      ? "--inject-bias"
                                                 : nullptr;
@@ -264,6 +265,10 @@ void validateSettings(const RenderSettings& s) {
     if (s.checkBlocks < 1 || s.checkBlocks > kMaxCheckBlocks)
       throw std::invalid_argument(fmt::format("check blocks {} is outside 1..{}", s.checkBlocks, kMaxCheckBlocks));
   }
+  if (s.varianceMaps) {
+    if (!bidirectional) throw std::invalid_argument("the variance maps need the bpt or lt integrator");
+    if (s.pyramidLength == 0) throw std::invalid_argument("the variance maps need the technique pyramid (a length)");
+  }
   if (s.techniqueMaps) {
     if (!bidirectional) throw std::invalid_argument("the technique maps need the bpt or lt integrator");
     if (s.pyramidLength == 0) throw std::invalid_argument("the technique maps need the technique pyramid (a length)");
@@ -275,7 +280,8 @@ void validateSettings(const RenderSettings& s) {
     if (s.pyramidLength > s.maxLength)
       throw std::invalid_argument(
           fmt::format("pyramid length {} is more than the maximum path length {}", s.pyramidLength, s.maxLength));
-    const uint64_t bytes = TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength, s.techniqueMaps, pyramidFamilies(s));
+    const uint64_t bytes =
+        TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength, s.techniqueMaps, pyramidFamilies(s), s.varianceMaps);
     if (bytes > kMaxPyramidBytes)
       throw std::invalid_argument(fmt::format("a pyramid of length {} at {} x {} needs {:.1f} GiB (at most {} GiB)",
                                               s.pyramidLength, s.width, s.height, static_cast<double>(bytes) / (1ull << 30),

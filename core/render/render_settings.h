@@ -40,6 +40,9 @@ struct RenderSettings {
   // With pyramidLength > 0: the pyramid also keeps, per technique, the part of its length's image
   // it can sample at all, for the technique maps' "cannot sample" (core/film/technique_maps.h).
   bool techniqueMaps = false;
+  // With pyramidLength > 0: the pyramid also keeps, per technique, the second moment of its
+  // estimate across passes, for the variance maps (TechniqueFilms::readoutVariance).
+  bool varianceMaps = false;
   // Bpt and Lt only: one technique made wrong on purpose (BiasInjection); the image is biased.
   std::optional<BiasInjection> injectBias;
   // Bpt and Lt only: accumulate the consistency check of every enabled technique against the

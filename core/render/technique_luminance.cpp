@@ -23,4 +23,17 @@ TechniqueLuminance techniqueLuminance(const RenderSession& session, int length) 
   return lum;
 }
 
+TechniqueLuminance techniqueVariance(const RenderSession& session, int length) {
+  TechniqueLuminance v;
+  if (!session.hasPyramid() || !session.settings().varianceMaps) return v;
+  const RenderSettings& s = session.settings();
+  v.width = s.width;
+  v.height = s.height;
+  v.length = length > 0 && length < s.pyramidLength ? length : s.pyramidLength;
+  v.families = pyramidFamilies(s);
+  v.weighted.resize(Technique::countUpTo(v.length));
+  for (const Technique x : techniquesUpTo(v.length, v.families)) v.weighted[x.index()] = session.techniqueVariance(x);
+  return v;
+}
+
 }  // namespace pathlab

@@ -11,4 +11,10 @@ namespace pathlab {
 // (settings.techniqueMaps). Empty without a pyramid.
 TechniqueLuminance techniqueLuminance(const RenderSession& session, int length = 0);
 
+// The variance maps' input (settings.varianceMaps): `weighted` holds each technique's variance
+// of one pass's estimate (RenderSession::techniqueVariance) instead of its estimate, so that
+// dominantMap gives the technique with the most variance and its share of the sum, and
+// `image()` the sum of the techniques' variances. No sampleable part.
+TechniqueLuminance techniqueVariance(const RenderSession& session, int length = 0);
+
 }  // namespace pathlab

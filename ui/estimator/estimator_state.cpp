@@ -59,6 +59,7 @@ RenderSettings renderSettings(const EstimatorState& state) {
     s.isolate.reset();
     s.pyramidLength = 0;
     s.techniqueMaps = false;
+    s.varianceMaps = false;
     s.checkTechniques = false;
     s.injectBias.reset();
   } else if (state.mode != EstimatorMode::Combine) {

@@ -46,6 +46,7 @@ RenderSettings compareRenderSettings(const EstimatorState& b, const RenderSettin
   copyView(s, a);
   s.pyramidLength = 0;
   s.techniqueMaps = false;
+  s.varianceMaps = false;
   s.checkTechniques = false;
   return s;
 }
