@@ -40,5 +40,20 @@ expect_error "maps not a number" "technique-maps" render "$BOX" -o "$TMP/x.exr" 
 mkdir "$TMP/m2-share.png"
 expect_error "map target is a directory" "m2-share.png: is a directory" render "$BOX" -o "$TMP/m2.exr" "${small[@]}" --technique-maps 2
 
+# The variance maps (issue 34): an EXR per technique up to the length (5 up to length 2), the
+# mosaic and the dominant variance map as EXR and PNG; the variance is a second moment minus a
+# squared mean, never negative; refused without independent bidirectional samples.
+if "$PATHLAB" render "$BOX" -o "$TMP/var.exr" "${small[@]}" --variance-maps 2 2>"$TMP/err"; then
+  count=$(ls "$TMP" | grep -c '^var-')
+  [ "$count" -eq 8 ] && [ -s "$TMP/var-variance-s1-t2.exr" ] && [ -s "$TMP/var-variance.png" ] &&
+    [ -s "$TMP/var-variance-dominant.exr" ] && [ -s "$TMP/var-variance-dominant.png" ] && ok ||
+    fail "variance map files: $(ls "$TMP" | grep '^var-')"
+else fail "variance maps render: $(cat "$TMP/err")"; fi
+expect_error "variance maps with mlt" "variance-maps needs independent bidirectional samples" render "$BOX" \
+  -o "$TMP/x.exr" --integrator mlt --variance-maps 2
+expect_error "variance maps with pt" "variance-maps needs" render "$BOX" -o "$TMP/x.exr" --integrator pt --variance-maps 2
+expect_error "variance maps longer than the paths" "variance-maps 3 is longer" render "$BOX" -o "$TMP/x.exr" \
+  --max-length 2 --variance-maps 3
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]
