@@ -27,29 +27,18 @@ std::vector<std::string> varianceMapPaths(const std::string& output, int length,
 }
 
 void writeVarianceMaps(const std::string& output, const RenderSession& session, int length) {
-  const TechniqueLuminance variance = techniqueVariance(session, length);
-  // The colour scale's top: the 99.9th percentile of every technique's non-zero variances, not the
-  // largest (a firefly's pixel would push every other into the scale's darkest decade).
-  std::vector<float> all;
-  for (const Technique x : techniquesUpTo(variance.length, variance.families))
-    for (const float v : variance.weighted[x.index()])
-      if (v > 0.f) all.push_back(v);
-  float largest = 0.f;
-  if (!all.empty()) {
-    const auto top = all.begin() + static_cast<std::ptrdiff_t>(0.999 * static_cast<double>(all.size() - 1));
-    std::nth_element(all.begin(), top, all.end());
-    largest = *top;
-  }
+  const TechniqueLuminance variance = techniqueLuminance(session, length);
+  const float largest = varianceScaleTop(variance);
   std::vector<Image> tiles(Technique::countUpTo(variance.length));
   for (const Technique x : techniquesUpTo(variance.length, variance.families)) {
-    const std::vector<float>& v = variance.weighted[x.index()];
+    const std::vector<float>& v = variance.variance[x.index()];
     writeImage(besideOutput(output, varianceName(x) + ".exr"), grey(v, variance.width, variance.height));
     tiles[x.index()] = varianceColours(v, variance.width, variance.height, largest);
   }
   writeImage(besideOutput(output, "-variance.png"),
              displayToLinear(labelledMosaic(tiles, variance.length, variance.families)));
   // Which technique the noise comes from, and its share of the techniques' variance.
-  const DominantMap m = dominantMap(variance, 0);
+  const DominantMap m = dominantVarianceMap(variance);
   writeImage(besideOutput(output, "-variance-dominant.exr"), dominantValues(m));
   writeImage(besideOutput(output, "-variance-dominant.png"),
              displayToLinear(withDominantLegend(dominantColours(m), m, "most variance")));

@@ -209,6 +209,8 @@ void Viewer::fitEstimatorToFrame(std::optional<float> aspect, float framebufferS
   // The maps read the pyramid's films: showing them makes the pyramid at least their length and
   // keeps its sampleable films (one restart); which map is shown is the viewer's alone.
   edited.techniqueMaps = maps_.show && edited.integrator != IntegratorKind::Pt && !metropolis;
+  // The variance maps with them, so that choosing one restarts nothing.
+  edited.varianceMaps = edited.techniqueMaps;
   if (edited.techniqueMaps)
     edited.pyramidLength = std::max(edited.pyramidLength, std::min({maps_.length, edited.maxLength, kMaxPyramidLength}));
   if (pyramid_.show) {

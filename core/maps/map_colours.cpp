@@ -110,4 +110,15 @@ Image varianceColours(const std::vector<float>& variance, int width, int height,
   return out;
 }
 
+float varianceScaleTop(const TechniqueLuminance& lum) {
+  std::vector<float> all;
+  for (const std::vector<float>& v : lum.variance)
+    for (const float x : v)
+      if (x > 0.f) all.push_back(x);
+  if (all.empty()) return 0.f;
+  const auto top = all.begin() + static_cast<std::ptrdiff_t>(0.999 * static_cast<double>(all.size() - 1));
+  std::nth_element(all.begin(), top, all.end());
+  return *top;
+}
+
 }  // namespace pathlab

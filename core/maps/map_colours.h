@@ -51,6 +51,10 @@ Image densityColours(const std::vector<float>& density, int width, int height);
 // kVarianceDecades decades below it (dark blue) to it and above (yellow), black where it is zero.
 inline constexpr float kVarianceDecades = 4.f;
 Image varianceColours(const std::vector<float>& variance, int width, int height, float largest);
+// The top of the variance maps' scale: the 99.9th percentile of every technique's non-zero
+// variances in lum.variance, not the largest (a firefly's pixel would push every other into the
+// darkest decade); 0 without any.
+float varianceScaleTop(const TechniqueLuminance& lum);
 
 // The linear image whose PNG (writeImage: clamp, sRGB encode) shows these display colours.
 Image displayToLinear(Image display);

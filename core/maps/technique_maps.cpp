@@ -92,4 +92,12 @@ CannotSampleMap cannotSampleMap(const TechniqueLuminance& lum, Technique x) {
   return m;
 }
 
+DominantMap dominantVarianceMap(const TechniqueLuminance& lum) {
+  if (lum.variance.empty()) return {};
+  TechniqueLuminance v;
+  v.width = lum.width, v.height = lum.height, v.length = lum.length, v.families = lum.families;
+  v.weighted = lum.variance;  // the variances in the estimates' place: the largest wins
+  return dominantMap(v, 0);
+}
+
 }  // namespace pathlab

@@ -19,6 +19,9 @@ struct TechniqueLuminance {
   TechniqueFamilies families = TechniqueFamilies::Connections;  // whose entries are filled
   std::vector<std::vector<float>> weighted;    // its MIS-weighted estimate
   std::vector<std::vector<float>> sampleable;  // the part of its length's image it can sample; may be empty
+  // The variance of one pass's estimate by the technique alone (TechniqueFilms::readoutVariance,
+  // the variance maps of issue 34); may be empty.
+  std::vector<std::vector<float>> variance;
   bool has(Technique x) const { return x.index() < weighted.size() && !weighted[x.index()].empty(); }
   size_t pixelCount() const { return static_cast<size_t>(width) * static_cast<size_t>(height); }
   // The image of length k (0: of every length up to `length`): the sum of the weighted films, so
@@ -42,6 +45,10 @@ struct DominantMap {
 // Per pixel, the technique whose weighted estimate is the largest part of the image: of every
 // length (k = 0) or of length k only.
 DominantMap dominantMap(const TechniqueLuminance& lum, int k = 0);
+// Per pixel, the technique whose estimate has the most variance (lum.variance), and its share of
+// the techniques' variances added (their covariances aside): where the noise comes from. Empty
+// without lum.variance.
+DominantMap dominantVarianceMap(const TechniqueLuminance& lum);
 
 // A technique's weighted estimate over the image of every length, in [0, 1]; -1 where the image
 // is zero. The shares of all techniques add up to one wherever the image is not zero.

@@ -183,7 +183,7 @@ void ProgressiveRenderer::State::run() {
         ++thumbnailsVersion;
       }
     }
-    if (set.techniqueMaps && session->hasPyramid()) {
+    if ((set.techniqueMaps || set.varianceMaps) && session->hasPyramid()) {
       TechniqueLuminance lum = techniqueLuminance(*session);
       std::lock_guard lock(mutex);
       if (generation == gen) {

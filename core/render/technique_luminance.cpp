@@ -13,27 +13,16 @@ TechniqueLuminance techniqueLuminance(const RenderSession& session, int length) 
   lum.families = pyramidFamilies(s);
   lum.weighted.resize(Technique::countUpTo(lum.length));
   if (s.techniqueMaps) lum.sampleable.resize(lum.weighted.size());
+  if (s.varianceMaps) lum.variance.resize(lum.weighted.size());
   for (const Technique x : techniquesUpTo(lum.length, lum.families)) {
     const Image img = session.techniqueImage(x, false);
     std::vector<float> y(lum.pixelCount());
     for (size_t i = 0; i < y.size(); ++i) y[i] = luminance(Spectrum(img.rgb[3 * i], img.rgb[3 * i + 1], img.rgb[3 * i + 2]));
     lum.weighted[x.index()] = std::move(y);
     if (s.techniqueMaps) lum.sampleable[x.index()] = session.sampleableLuminance(x);
+    if (s.varianceMaps) lum.variance[x.index()] = session.techniqueVariance(x);
   }
   return lum;
-}
-
-TechniqueLuminance techniqueVariance(const RenderSession& session, int length) {
-  TechniqueLuminance v;
-  if (!session.hasPyramid() || !session.settings().varianceMaps) return v;
-  const RenderSettings& s = session.settings();
-  v.width = s.width;
-  v.height = s.height;
-  v.length = length > 0 && length < s.pyramidLength ? length : s.pyramidLength;
-  v.families = pyramidFamilies(s);
-  v.weighted.resize(Technique::countUpTo(v.length));
-  for (const Technique x : techniquesUpTo(v.length, v.families)) v.weighted[x.index()] = session.techniqueVariance(x);
-  return v;
 }
 
 }  // namespace pathlab

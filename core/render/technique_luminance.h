@@ -7,14 +7,9 @@
 namespace pathlab {
 
 // Every technique up to `length` (0 or more than the pyramid's: the session's pyramid length):
-// weighted luminance, and the sampleable luminance when the session keeps it
-// (settings.techniqueMaps). Empty without a pyramid.
+// weighted luminance, the sampleable luminance when the session keeps it (settings.techniqueMaps)
+// and the variance of a pass's estimate when it keeps that (settings.varianceMaps). Empty without
+// a pyramid.
 TechniqueLuminance techniqueLuminance(const RenderSession& session, int length = 0);
-
-// The variance maps' input (settings.varianceMaps): `weighted` holds each technique's variance
-// of one pass's estimate (RenderSession::techniqueVariance) instead of its estimate, so that
-// dominantMap gives the technique with the most variance and its share of the sum, and
-// `image()` the sum of the techniques' variances. No sampleable part.
-TechniqueLuminance techniqueVariance(const RenderSession& session, int length = 0);
 
 }  // namespace pathlab

@@ -101,16 +101,17 @@ TEST(VarianceMaps, TheDominantVarianceMapNamesTheNoisiestTechnique) {
   s.width = s.height = 24;
   RenderSession session(scene, s);
   for (int i = 0; i < 32; ++i) session.renderPass();
-  const TechniqueLuminance v = techniqueVariance(session);
+  const TechniqueLuminance v = techniqueLuminance(session);
   ASSERT_EQ(v.length, 3);
-  const DominantMap m = dominantMap(v);
+  ASSERT_EQ(v.variance.size(), v.weighted.size());
+  const DominantMap m = dominantVarianceMap(v);
   int named = 0;
   for (size_t p = 0; p < m.technique.size(); ++p) {
     if (m.technique[p] < 0) continue;
     float most = 0.f;
     size_t which = 0;
     for (const Technique x : techniquesUpTo(3))
-      if (v.weighted[x.index()][p] > most) most = v.weighted[x.index()][p], which = x.index();
+      if (v.variance[x.index()][p] > most) most = v.variance[x.index()][p], which = x.index();
     EXPECT_EQ(static_cast<size_t>(m.technique[p]), which) << p;
     ++named;
   }

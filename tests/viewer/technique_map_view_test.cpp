@@ -1,6 +1,9 @@
 // `view --technique-map`: the map names parse to the view they say, merges included ("share:M2,3"),
-// and a merge chosen where the pyramid keeps none falls back to a connection.
+// and a merge chosen where the pyramid keeps none falls back to a connection; the variance maps
+// colour a technique's variance on a log scale and name the noisiest technique.
 #include "ui/estimator/technique_map_view.h"
+
+#include "core/maps/map_colours.h"
 
 #include <gtest/gtest.h>
 
@@ -33,6 +36,38 @@ TEST(TechniqueMapView, AMergeWithoutMergesInThePyramidFallsBack) {
   MapView v = parseMapView("share:M2,2");
   EXPECT_NO_THROW(mapImage(lum, v));
   EXPECT_EQ(mapImage(lum, v).width, 2);
+}
+
+TEST(TechniqueMapView, VarianceMapsParseAndColourTheVariances) {
+  const MapView v = parseMapView("variance:0,3");
+  EXPECT_EQ(v.kind, MapKind::Variance);
+  EXPECT_EQ(mapViewName(v), "variance of (0,3)");
+  const MapView d = parseMapView("variance-dominant");
+  EXPECT_EQ(d.kind, MapKind::VarianceDominant);
+  EXPECT_THROW(parseMapView("variance:"), std::invalid_argument);
+  TechniqueLuminance lum;
+  lum.width = 3;
+  lum.height = 1;
+  lum.length = 2;
+  lum.weighted.resize(Technique::countUpTo(2));
+  for (const Technique x : techniquesUpTo(2)) lum.weighted[x.index()] = {1.f, 1.f, 1.f};
+  EXPECT_EQ(mapImage(lum, v).width, 0);  // no variances kept: nothing to show
+  lum.variance.resize(lum.weighted.size());
+  for (const Technique x : techniquesUpTo(2)) lum.variance[x.index()] = {0.f, 0.f, 0.f};
+  lum.variance[Technique{0, 2}.index()] = {0.f, 1e-4f, 1.f};
+  lum.variance[Technique{1, 1}.index()] = {0.f, 1.f, 1e-4f};
+  // Black without variance, the scale's top yellow and four decades below it dark.
+  const Image c = mapImage(lum, parseMapView("variance:0,2"));
+  ASSERT_EQ(c.width, 3);
+  EXPECT_EQ(c.at(0, 0), Vec3(0.f));
+  EXPECT_LT(glm::length(c.at(2, 0) - viridis(1.f)), 1e-4f);
+  EXPECT_LT(glm::length(c.at(1, 0) - viridis(0.f)), 1e-4f);
+  // The noisiest technique, pixel by pixel.
+  const DominantMap m = dominantVarianceMap(lum);
+  EXPECT_EQ(m.technique[0], kDominantEmpty);
+  EXPECT_EQ(m.technique[1], static_cast<int>(Technique{1, 1}.index()));
+  EXPECT_EQ(m.technique[2], static_cast<int>(Technique{0, 2}.index()));
+  EXPECT_NEAR(m.share[2], 1.f / 1.0001f, 1e-5f);
 }
 
 }  // namespace

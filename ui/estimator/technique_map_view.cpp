@@ -23,6 +23,12 @@ Image mapImage(const TechniqueLuminance& lum, const MapView& view) {
     case MapKind::CannotSample:
       if (lum.sampleable.empty()) return {};
       return cannotSampleColours(cannotSampleMap(lum, x));
+    case MapKind::Variance:
+      if (lum.variance.empty()) return {};
+      return varianceColours(lum.variance[x.index()], lum.width, lum.height, varianceScaleTop(lum));
+    case MapKind::VarianceDominant:
+      if (lum.variance.empty()) return {};
+      return dominantColours(dominantVarianceMap(lum));
   }
   return {};
 }
@@ -33,12 +39,17 @@ MapView parseMapView(const std::string& text) {
   int a = 0, b = 0;
   char extra = 0;
   if (text == "dominant") return v;
+  if (text == "variance-dominant") {
+    v.kind = MapKind::VarianceDominant;
+    return v;
+  }
   if (std::sscanf(text.c_str(), "dominant:%d%c", &a, &extra) == 1 && a >= 1) {
     v.dominantLength = a;
     v.length = std::max(v.length, a);
     return v;
   }
-  for (const auto& [prefix, kind] : {std::pair{"share:", MapKind::Share}, std::pair{"cannot:", MapKind::CannotSample}}) {
+  for (const auto& [prefix, kind] : {std::pair{"share:", MapKind::Share}, std::pair{"cannot:", MapKind::CannotSample},
+                                     std::pair{"variance:", MapKind::Variance}}) {
     const std::string p = prefix;
     if (text.compare(0, p.size(), p) != 0) continue;
     // S,T a connection, MS,T a merge (as --techniques writes them).
@@ -53,7 +64,8 @@ MapView parseMapView(const std::string& text) {
     return v;
   }
   throw std::invalid_argument("--technique-map: '" + text +
-                              "' is not dominant, dominant:K, share:S,T, share:MS,T, cannot:S,T or cannot:MS,T");
+                              "' is not dominant, dominant:K, share:S,T, share:MS,T, cannot:S,T, cannot:MS,T, "
+                              "variance:S,T, variance:MS,T or variance-dominant");
 }
 
 std::string mapViewName(const MapView& v) {
@@ -63,6 +75,8 @@ std::string mapViewName(const MapView& v) {
                                   : fmt::format("dominant technique, lengths 1-{}", v.length);
     case MapKind::Share: return "share of " + techniqueLabel(v.technique);
     case MapKind::CannotSample: return "where " + techniqueLabel(v.technique) + " cannot sample";
+    case MapKind::Variance: return "variance of " + techniqueLabel(v.technique);
+    case MapKind::VarianceDominant: return fmt::format("most variance, lengths 1-{}", v.length);
   }
   return "technique map";
 }

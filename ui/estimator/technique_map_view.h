@@ -11,7 +11,9 @@
 
 namespace pathlab::ui {
 
-enum class MapKind { Dominant, Share, CannotSample };
+// Variance: a technique's variance of a pass's estimate (log scale); VarianceDominant: the technique
+// with the most variance (issue 34, "where the noise comes from").
+enum class MapKind { Dominant, Share, CannotSample, Variance, VarianceDominant };
 
 struct MapView {
   bool show = false;
@@ -26,8 +28,8 @@ struct MapView {
 // A chosen length or technique beyond lum.length is clamped to it.
 Image mapImage(const TechniqueLuminance& lum, const MapView& view);
 
-// `view --technique-map`: "dominant", "dominant:K", "share:S,T" or "cannot:S,T" (MS,T for a
-// merge: "share:M2,3"); throws
+// `view --technique-map`: "dominant", "dominant:K", "share:S,T", "cannot:S,T", "variance:S,T" or
+// "variance-dominant" (MS,T for a merge: "share:M2,3"); throws
 // std::invalid_argument naming the text otherwise.
 MapView parseMapView(const std::string& text);
 // What the caption says of a shown map: "dominant technique, lengths 1-3", "share of (1,2)", ...

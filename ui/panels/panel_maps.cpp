@@ -77,16 +77,27 @@ void drawTechniqueMapSection(MapView& view, int maxLength, TechniqueFamilies fam
   ImGui::RadioButton("share", &kind, 1);
   ImGui::SameLine();
   ImGui::RadioButton("cannot sample", &kind, 2);
+  ImGui::RadioButton("variance", &kind, 3);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the variance of one pass's estimate by the technique alone: where its noise is");
+  ImGui::SameLine();
+  ImGui::RadioButton("most variance", &kind, 4);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("the technique whose estimate has the most variance: where the noise comes from");
   view.kind = static_cast<MapKind>(kind);
   if (view.technique.length() > view.length) view.technique = Technique{1, view.length};
   if (waiting) ImGui::TextDisabled("waiting for the first full pass ...");
   switch (view.kind) {
-    case MapKind::Dominant: {
+    case MapKind::Dominant:
+    case MapKind::VarianceDominant: {
+      const bool variance = view.kind == MapKind::VarianceDominant;
       view.dominantLength = std::clamp(view.dominantLength, 0, view.length);
-      ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.f);
-      ImGui::SliderInt("length (0: all)", &view.dominantLength, 0, view.length);
-      const int first = view.dominantLength > 0 ? view.dominantLength : 1;
-      const int last = view.dominantLength > 0 ? view.dominantLength : view.length;
+      if (!variance) {
+        ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.f);
+        ImGui::SliderInt("length (0: all)", &view.dominantLength, 0, view.length);
+      }
+      const int first = view.dominantLength > 0 && !variance ? view.dominantLength : 1;
+      const int last = view.dominantLength > 0 && !variance ? view.dominantLength : view.length;
       int column = 0;
       for (const Technique x : TechniqueRange(first, last, families)) {
         if (column++ % 4 != 0) ImGui::SameLine(static_cast<float>((column - 1) % 4) * ImGui::GetFontSize() * 4.5f);
@@ -101,6 +112,17 @@ void drawTechniqueMapSection(MapView& view, int maxLength, TechniqueFamilies fam
       techniqueChooser(view, families);
       shareBar("of the image");
       break;
+    case MapKind::Variance: {
+      techniqueChooser(view, families);
+      const float w = ImGui::GetContentRegionAvail().x * 0.8f, h = ImGui::GetTextLineHeight();
+      drawViridisBar(ImGui::GetWindowDrawList(), ImGui::GetCursorScreenPos(), w, h);
+      ImGui::Dummy(ImVec2(w, h));
+      ImGui::Text("1e-%d%*stop", static_cast<int>(kVarianceDecades),
+                  static_cast<int>(w / ImGui::CalcTextSize(" ").x) - 8, "");
+      ImGui::TextDisabled("log scale; top: the 99.9th percentile of every technique's");
+      swatch(kEmptyColour, "no variance");
+      break;
+    }
     case MapKind::CannotSample:
       techniqueChooser(view, families);
       shareBar("of its length");
