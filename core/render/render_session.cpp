@@ -144,6 +144,14 @@ Image RenderSession::techniqueImage(Technique x, bool unweighted) const {
   return pyramid_->readout(x, unweighted, film_.samplesPerPixel(), film_.lightSubpaths());
 }
 
+void RenderSession::setOutlierCount(int count) {
+  if (count > 0 && (!bidirTracer_ || metropolis_))
+    throw std::invalid_argument("the outlier finder needs independent bidirectional samples (bpt, lt, vcm, bpm, ppm)");
+  outlierTally_ = count > 0 ? std::make_unique<OutlierTally>(count) : nullptr;
+}
+
+std::vector<Outlier> RenderSession::outliers() const { return outlierTally_ ? outlierTally_->top() : std::vector<Outlier>{}; }
+
 std::vector<float> RenderSession::techniqueVariance(Technique x) const {
   if (!pyramid_) return std::vector<float>(film_.pixelCount(), 0.f);
   return pyramid_->readoutVariance(x, film_.samplesPerPixel(), film_.samplesPerPixel(), film_.lightSubpaths());
@@ -200,6 +208,7 @@ void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer*
   SampleTargets targets{&film_, pyramid_.get(), nullptr, {}};
   targets.splats = splats;
   targets.check = threadChecks_ ? &threadChecks_->sums.local() : nullptr;
+  if (outlierTally_) targets.outlierTally = outlierTally_.get(), targets.outliers = &outlierTally_->local();
   for (int y = tile.y0; y < tile.y1; ++y)
     for (int x = tile.x0; x < tile.x1; ++x) {
       targets.id = SampleId{x, y, pass};

@@ -11,6 +11,7 @@
 #include "core/film/splat_sums.h"
 #include "core/film/technique_films.h"
 #include "core/mlt/metropolis.h"
+#include "core/render/outliers.h"
 #include "core/counters/counters.h"
 #include "core/pt/path_tracer.h"
 #include "core/render/pass_tiles.h"
@@ -58,6 +59,14 @@ class RenderSession {
   // as a pass's light walks), once per pass for successive replays of the same pass.
   Spectrum replaySample(int x, int y, uint64_t pass, Counters& counters, Film* splats = nullptr,
                         SampleTrace* trace = nullptr) const;
+
+  // The outlier finder (`pathlab outliers`): from the next pass on, keep the `count` brightest
+  // weighted contributions (0: none, the default). Not an estimator option: the image is the
+  // same; the samples take the kernel's recording route. Between passes only; bpt, lt and the
+  // merging integrators.
+  void setOutlierCount(int count);
+  // The brightest contributions so far, brightest first.
+  std::vector<Outlier> outliers() const;
 
   // Per-technique and per-walk timing in the counters (BidirTracer::setTiming); between passes only.
   void setTiming(bool on) {
@@ -112,6 +121,7 @@ class RenderSession {
   int cameraMedium_ = -1;  // the medium the camera is in (Scene::mediumAt), for the path tracer
   std::unique_ptr<BidirTracer> bidirTracer_;  // Bpt, Lt and Mlt
   std::unique_ptr<BidirTracer> directTracer_;  // Mlt with MltOptions::directLength: the short paths' techniques
+  std::unique_ptr<OutlierTally> outlierTally_;
   std::unique_ptr<Metropolis> metropolis_;    // Mlt: the chains over bidirTracer_'s techniques
 
   Spectrum sampleAt(int x, int y, uint64_t pass, const SampleTargets& targets, Counters& counters) const;

@@ -11,7 +11,8 @@ SinkDemand SampleOutputs::demandOf(const SampleTargets& targets) {
   d.pyramid = targets.pyramid != nullptr;
   d.everyTechnique = targets.trace != nullptr;
   // The trace and the check compare every technique's unweighted estimate, whatever its weight.
-  d.everyContribution = targets.trace != nullptr || targets.check != nullptr;
+  // The outlier finder sees every contribution the image receives, through its record.
+  d.everyContribution = targets.trace != nullptr || targets.check != nullptr || targets.outliers != nullptr;
   d.onPath = targets.trace != nullptr;
   d.densityRatios = targets.check != nullptr;
   d.sampleable = targets.check != nullptr || (targets.pyramid != nullptr && targets.pyramid->keepsSampleable());
@@ -57,6 +58,11 @@ void SampleOutputs::trace(const TechniqueResult& r) {
 void SampleOutputs::record(const TechniqueResult& r) {
   if (targets_.trace) trace(r);
   if (r.outcome != TechniqueOutcome::Contributed) return;
+  if (targets_.outliers && r.inImage && r.imageWeight > 0.f) {
+    const Spectrum v = r.unweighted * r.imageWeight;
+    const float y = luminance(v);
+    if (y > 0.f) targets_.outlierTally->add(*targets_.outliers, Outlier{y, v, id(), r.technique(), r.pRaster});
+  }
   // The check compares every enabled technique's unweighted estimate, whatever its weight.
   if (targets_.check) targets_.check->add(r.technique(), r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
   if (r.inPyramid && targets_.pyramid) {

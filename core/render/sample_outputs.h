@@ -9,6 +9,7 @@
 #include "core/film/film.h"
 #include "core/film/splat_buffer.h"
 #include "core/film/technique_films.h"
+#include "core/render/outliers.h"
 
 namespace pathlab {
 
@@ -20,6 +21,9 @@ struct SampleTargets {
   SampleId id;
   SplatBuffer* splats = nullptr;  // the work item's buffer of the t = 1 splats, instead of `film` and the pyramid's
   TechniqueCheck::PassSums* check = nullptr;  // the thread's sums of the consistency check
+  // The outlier finder: every weighted contribution into the thread's heap of the brightest.
+  const OutlierTally* outlierTally = nullptr;
+  OutlierTally::Heap* outliers = nullptr;
 };
 
 class SampleOutputs final : public SampleSink {
