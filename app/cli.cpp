@@ -9,6 +9,7 @@ void addCommands(CLI::App& app, CliOptions& o) {
   addViewCommand(app, o.view);
   addCheckCommand(app, o.check);
   addInspectCommand(app, o.inspect);
+  addOutliersCommand(app, o.outliers);
   requireFiniteNumbers(app);
 }
 

@@ -6,6 +6,7 @@
 #include "app/converge_command.h"
 #include "app/finite_numbers.h"
 #include "app/inspect_command.h"
+#include "app/outliers_command.h"
 #include "app/render_command.h"
 #include "app/view_command.h"
 
@@ -19,6 +20,7 @@ struct CliOptions {
   ViewOptions view;
   CheckCommandOptions check;
   InspectOptions inspect;
+  OutliersOptions outliers;
 };
 
 // Registers every subcommand on `app`, then requireFiniteNumbers.

@@ -68,7 +68,7 @@ TEST(SharedOptions, ImageSizeSaysTheSameButTheDefault) {
       EXPECT_EQ(text.rfind("Image " + side + " in pixels (default: ", 0), 0u) << command << ": " << text;
       EXPECT_NE(text.find("the camera's shape, longest side "), std::string::npos) << command << ": " << text;
     }
-  EXPECT_EQ(commands, 8);  // render, check, inspect, converge
+  EXPECT_EQ(commands, 10);  // render, check, inspect, outliers, converge
 }
 
 }  // namespace

@@ -1,0 +1,179 @@
+// `pathlab outliers`: the options, the render with its tally, each outlier replayed, text and JSON.
+#include "app/outliers_command.h"
+
+#include "app/output_check.h"
+#include "app/progress.h"
+#include "core/camera/image_size.h"
+#include "core/io/text_file.h"
+#include "core/render/inspection_report.h"
+#include "core/render/render_session.h"
+#include "core/render/sample_inspection.h"
+#include "core/sampling/technique_label.h"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+
+namespace pathlab::app {
+
+namespace {
+
+constexpr uint64_t kMaxOutlierSpp = 1 << 16;
+constexpr int kMaxOutliers = 1000;
+
+// One outlier replayed: its record in the sample's trace and what its path's densities say.
+struct ReplayedOutlier {
+  Outlier o;
+  SampleInspection inspection;
+  int record = -1;              // index into inspection.trace.records (-1: not found again)
+  double densityRatio = 0.0;    // p of the technique that sampled it / the largest counted p
+  Technique best;               // the technique of that largest p
+  double shareOfPixel = 0.0;    // of the pixel it landed in, in the image
+};
+
+ReplayedOutlier replay(const RenderSession& session, const Outlier& o, const Image& image, uint64_t spp) {
+  ReplayedOutlier r{o, inspectSample(session, o.id.x, o.id.y, o.id.sample)};
+  // Its record: the same technique, and (a merge may contribute several times) the same value.
+  double closest = INFINITY;
+  const std::vector<TechniqueResult>& records = r.inspection.trace.records;
+  for (size_t i = 0; i < records.size(); ++i) {
+    const TechniqueResult& t = records[i];
+    if (t.technique().index() != o.technique.index() || t.outcome != TechniqueOutcome::Contributed) continue;
+    const double d = std::abs(static_cast<double>(luminance(t.unweighted * t.imageWeight)) - o.luminance);
+    if (d < closest) closest = d, r.record = static_cast<int>(i);
+  }
+  if (r.record >= 0 && static_cast<size_t>(r.record) < r.inspection.trace.onPath.size()) {
+    const std::vector<TechniqueOnPath>& every = r.inspection.trace.onPath[static_cast<size_t>(r.record)];
+    const size_t slot = static_cast<size_t>(o.technique.slot());
+    double best = 0.0;
+    for (const TechniqueOnPath& x : every)
+      if (x.counted && x.pdfA > best) best = x.pdfA, r.best = x.technique();
+    if (slot < every.size() && best > 0.0) r.densityRatio = every[slot].pdfA / best;
+  }
+  // Its share of the pixel it landed in: a camera sample adds v / spp to its pixel, and so does a
+  // splat (the film divides splats by the light subpaths, one a pixel a pass).
+  const int px = static_cast<int>(std::floor(o.pRaster.x)), py = static_cast<int>(std::floor(o.pRaster.y));
+  if (px >= 0 && py >= 0 && px < image.width && py < image.height) {
+    const Vec3 c = image.at(px, py);
+    const double pixel = luminance(Spectrum(c.x, c.y, c.z));
+    if (pixel > 0.0) r.shareOfPixel = static_cast<double>(o.luminance) / static_cast<double>(spp) / pixel;
+  }
+  return r;
+}
+
+nlohmann::json techniqueJson(Technique x) {
+  return {{"kind", x.isMerge() ? "merge" : "connection"}, {"s", x.s}, {"t", x.t}};
+}
+
+}  // namespace
+
+void addOutliersCommand(CLI::App& app, OutliersOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "outliers", "Render and list the brightest weighted contributions (the fireflies): each one's pixel, sample, "
+                  "technique and path, and how much less likely its technique was to sample it than the best "
+                  "enabled one (text, and JSON with --json)");
+  addSceneArgument(cmd, o.scene.path);
+  cmd->add_option("--spp", o.spp, fmt::format("Samples per pixel to render (default 16, at most {})", kMaxOutlierSpp));
+  cmd->add_option("--top", o.top, fmt::format("How many to keep (default 10, at most {})", kMaxOutliers));
+  cmd->add_option("--json", o.json, "Also write the list as JSON to this file");
+  addImageSizeOptions(cmd, o.size, {kMaxImageSide, kDefaultLongestSide});
+  addEstimatorOptions(cmd, o.estimator);
+  addLoadOptions(cmd, o.scene.load, o.scene.environment);
+  addThreadsOption(cmd, o.threads);
+  addForceFlag(cmd, o.force, "the JSON file if it exists");
+}
+
+int runOutliers(OutliersOptions o) {
+  const ThreadLimit threadLimit(o.threads);
+  finishEstimatorOptions(o.estimator);
+  RenderSettings& settings = o.estimator.settings;
+  if (settings.integrator == IntegratorKind::Pt || settings.integrator == IntegratorKind::Mlt)
+    throw std::invalid_argument(fmt::format("outliers ranks independent bidirectional samples by technique: use "
+                                            "--integrator bpt, lt, vcm, bpm or ppm, not {}",
+                                            integratorName(settings.integrator)));
+  if (o.spp < 1 || o.spp > kMaxOutlierSpp)
+    throw std::invalid_argument(fmt::format("--spp {} is outside 1..{}", o.spp, kMaxOutlierSpp));
+  if (o.top < 1 || o.top > kMaxOutliers)
+    throw std::invalid_argument(fmt::format("--top {} is outside 1..{}", o.top, kMaxOutliers));
+  if (!o.json.empty()) {
+    checkOutputWritable(o.json);
+    refuseExisting(o.json, o.force);
+  }
+  Scene scene(readScene(o.scene));
+  for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
+  const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultLongestSide);
+  settings.width = size.x;
+  settings.height = size.y;
+  RenderSession session(scene, settings);
+  session.setOutlierCount(o.top);
+  const auto start = std::chrono::steady_clock::now();
+  {
+    const double pixels = static_cast<double>(session.film().pixelCount());
+    ProgressBar bar([&] {
+      const double done = (static_cast<double>(session.passes()) +
+                           static_cast<double>(session.pixelsDoneInPass()) / pixels) / static_cast<double>(o.spp);
+      return std::pair{done, fmt::format("{} spp", session.passes())};
+    });
+    while (session.passes() < o.spp) session.renderPass();
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Image image = session.image();
+  std::vector<ReplayedOutlier> list;
+  for (const Outlier& x : session.outliers()) list.push_back(replay(session, x, image, o.spp));
+
+  std::cout << fmt::format("the {} brightest weighted contributions of {} x {} x {} spp ({}; {:.1f} s)\n", list.size(),
+                           settings.width, settings.height, o.spp, integratorName(settings.integrator), seconds);
+  std::cout << fmt::format("{:>4} {:>11} {:>11} {:>9} {:>8} {:>7} {:>11} {:>9} {:>10}  {}\n", "rank", "luminance",
+                           "of pixel", "pixel", "sample", "(s,t)", "lands", "weight", "p / best", "best");
+  for (size_t i = 0; i < list.size(); ++i) {
+    const ReplayedOutlier& r = list[i];
+    const float weight = r.record >= 0 ? r.inspection.trace.records[static_cast<size_t>(r.record)].imageWeight : 0.f;
+    std::cout << fmt::format("{:>4} {:>11.4g} {:>10.1f}% {:>9} {:>8} {:>7} {:>11} {:>9.4f} {:>10.3g}  {}\n", i + 1,
+                             r.o.luminance, 100.0 * r.shareOfPixel, fmt::format("{},{}", r.o.id.x, r.o.id.y),
+                             r.o.id.sample, techniqueLabel(r.o.technique),
+                             fmt::format("{:.1f},{:.1f}", r.o.pRaster.x, r.o.pRaster.y), weight, r.densityRatio,
+                             techniqueLabel(r.best));
+  }
+  std::cout << "(p / best: the density of the technique that sampled the path over the largest density among the "
+               "enabled techniques able to sample it; `pathlab inspect --pixel X,Y --sample N` shows the whole "
+               "sample)\n";
+  if (!o.json.empty()) {
+    nlohmann::json j;
+    j["scene"] = o.scene.path;
+    j["width"] = settings.width;
+    j["height"] = settings.height;
+    j["spp"] = o.spp;
+    j["seed"] = settings.seed;
+    j["integrator"] = integratorName(settings.integrator);
+    j["heuristic"] = misHeuristicName(settings.mis.heuristic);
+    j["beta"] = settings.mis.beta;
+    j["lightTracingSampleRatio"] = lightTracingRatio();
+    nlohmann::json outliers = nlohmann::json::array();
+    for (const ReplayedOutlier& r : list) {
+      nlohmann::json x;
+      x["luminance"] = r.o.luminance;
+      x["value"] = {r.o.value.r, r.o.value.g, r.o.value.b};
+      x["pixel"] = {r.o.id.x, r.o.id.y};
+      x["sample"] = r.o.id.sample;
+      x["technique"] = techniqueJson(r.o.technique);
+      x["raster"] = {r.o.pRaster.x, r.o.pRaster.y};
+      x["shareOfPixel"] = r.shareOfPixel;
+      x["densityRatio"] = r.densityRatio;
+      x["bestTechnique"] = techniqueJson(r.best);
+      // The technique's record as `inspect --json` writes it: its path, vertex densities, the path
+      // under every technique of its length and its weights.
+      if (r.record >= 0)
+        x["record"] = inspectionJson(settings, r.inspection)["techniques"][static_cast<size_t>(r.record)];
+      outliers.push_back(x);
+    }
+    j["outliers"] = outliers;
+    writeTextAtomically(o.json, j.dump(2) + "\n");
+    std::cerr << "wrote " << o.json << "\n";
+  }
+  return 0;
+}
+
+}  // namespace pathlab::app
