@@ -119,7 +119,7 @@ void drawTechniqueMapSection(MapView& view, int maxLength, TechniqueFamilies fam
       ImGui::Dummy(ImVec2(w, h));
       ImGui::Text("1e-%d%*stop", static_cast<int>(kVarianceDecades),
                   static_cast<int>(w / ImGui::CalcTextSize(" ").x) - 8, "");
-      ImGui::TextDisabled("log scale; top: the 99.9th percentile of every technique's");
+      ImGui::TextDisabled("log scale; top: 99.9th percentile of all");
       swatch(kEmptyColour, "no variance");
       break;
     }
