@@ -62,8 +62,8 @@ void TechniqueFilms::add(Technique x, Vec2 pRaster, const Spectrum& weighted, co
 }
 
 void TechniqueFilms::finishPass(double splatScale) {
+  if (moments_.empty()) return;
   for (const Technique x : techniquesUpTo(maxLength_, families_)) {
-    if (moments_.empty()) return;
     std::vector<double>& e = passEstimate_[x.index()];
     std::vector<double>& m = moments_[x.index()];
     const double scale = x.t == 1 && !x.isMerge() ? splatScale : 1.0;
