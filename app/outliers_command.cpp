@@ -35,7 +35,9 @@ struct ReplayedOutlier {
 };
 
 ReplayedOutlier replay(const RenderSession& session, const Outlier& o, const Image& image, uint64_t spp) {
-  ReplayedOutlier r{o, inspectSample(session, o.id.x, o.id.y, o.id.sample)};
+  ReplayedOutlier r;
+  r.o = o;
+  r.inspection = inspectSample(session, o.id.x, o.id.y, o.id.sample);
   // Its record: the same technique, and (a merge may contribute several times) the same value.
   double closest = INFINITY;
   const std::vector<TechniqueResult>& records = r.inspection.trace.records;
