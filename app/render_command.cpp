@@ -8,6 +8,7 @@
 #include "app/pyramid_output.h"
 #include "app/technique_maps_output.h"
 #include "app/variance_maps_output.h"
+#include "core/maps/map_colours.h"
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
 #include "core/metrics/technique_table.h"
@@ -105,6 +106,9 @@ void addRenderEstimateOptions(CLI::App* cmd, RenderOptions& o) {
                   "Also write the variance maps up to this length next to the output: each technique's variance "
                   "of a pass's estimate per pixel, and the technique with the most variance (EXR and PNG)")
       ->check(CLI::Range(1, kMaxPyramidLength));
+  cmd->add_flag("--chain-density", o.chainDensity,
+                "mlt: also write where the chains spent their time next to the output (OUT-chain-density.exr, 1 = "
+                "an even spread, and a PNG on a log scale); the image is b times it, length by length");
   addThreadsOption(cmd, o.threads);
   cmd->add_flag("--check-mis", o.estimator.settings.checkMis,
                 "Check on every path that the enabled techniques' MIS weights sum to one (on in debug builds)");
@@ -245,6 +249,10 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
                                            integratorName(settings.integrator)));
     o.budget.spp = o.mutationsPerPixel;
   }
+  if (o.chainDensity && settings.integrator != IntegratorKind::Mlt)
+    throw std::runtime_error(fmt::format("--chain-density shows the Metropolis chains: use it with --integrator mlt, "
+                                         "not {}",
+                                         integratorName(settings.integrator)));
   if (settings.integrator == IntegratorKind::Mlt && !o.replay.empty())
     throw std::runtime_error("--replay replays one independent sample: a Metropolis chain's mutations are not (use bpt)");
   if (o.output.empty() && o.replay.empty())
@@ -271,6 +279,8 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
       for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps, pyramidFamilies(settings))) checkOutput(path, o.force);
     if (o.varianceMaps > 0)
       for (const std::string& path : varianceMapPaths(o.output, o.varianceMaps, pyramidFamilies(settings))) checkOutput(path, o.force);
+    if (o.chainDensity)
+      for (const char* ext : {".exr", ".png"}) checkOutput(besideOutput(o.output, std::string("-chain-density") + ext), o.force);
   }
 
   const auto loadStart = std::chrono::steady_clock::now();
@@ -342,6 +352,15 @@ int runRender(RenderOptions o, Job& job) {
   if (prepared.pyramidOutput > 0) writePyramid(o.output, session, o.exposure, prepared.pyramidOutput);
   if (o.techniqueMaps > 0) writeTechniqueMaps(o.output, session, o.techniqueMaps);
   if (o.varianceMaps > 0) writeVarianceMaps(o.output, session, o.varianceMaps);
+  if (o.chainDensity) {
+    // Every rank's chains' (their histograms were added): the values, and viridis on a log scale.
+    const Metropolis& m = *session.metropolis();
+    std::vector<float> density = m.chainDensity();
+    density.resize(session.film().pixelCount(), 0.f);  // no chains (every length by BPT): zero
+    writeImage(besideOutput(o.output, "-chain-density.exr"), grey(density, settings.width, settings.height));
+    writeImage(besideOutput(o.output, "-chain-density.png"),
+               displayToLinear(densityColours(density, settings.width, settings.height)));
+  }
 
   // Under MPI: every rank's samples, rays and discards, over the slowest rank's time.
   const Counters& c = session.counters();

@@ -26,6 +26,7 @@ struct RenderOptions {
   std::string replay;   // "X,Y,SAMPLE": print that one sample's techniques instead of rendering
   int techniqueMaps = 0;  // > 0: also write the technique maps up to this length
   int varianceMaps = 0;   // > 0: also write the variance maps up to this length
+  bool chainDensity = false;  // mlt: also write where the chains spent their time
   int mutationsPerPixel = 0;  // --integrator mlt: the budget in mutations per pixel (0: --spp / --time)
 };
 

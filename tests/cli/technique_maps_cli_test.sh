@@ -55,5 +55,18 @@ expect_error "variance maps with pt" "variance-maps needs" render "$BOX" -o "$TM
 expect_error "variance maps longer than the paths" "variance-maps 3 is longer" render "$BOX" -o "$TMP/x.exr" \
   --max-length 2 --variance-maps 3
 
+# Where the Metropolis chains spent their time (--chain-density): the values and the colours next
+# to the output; refused without mlt.
+if "$PATHLAB" render "$BOX" -o "$TMP/chains.exr" "${small[@]}" --integrator mlt --bootstrap 500 --chains 20 \
+     --chain-density 2>"$TMP/err"; then
+  [ -s "$TMP/chains-chain-density.exr" ] && [ -s "$TMP/chains-chain-density.png" ] && ok ||
+    fail "chain density files: $(ls "$TMP" | grep '^chains')"
+else fail "mlt --chain-density: $(cat "$TMP/err")"; fi
+expect_error "chain density without mlt" "use it with --integrator mlt" render "$BOX" -o "$TMP/x.exr" --chain-density
+rm -f "$TMP/chains.exr"
+expect_error "chain density file exists" "chains-chain-density.exr: file exists" render "$BOX" -o "$TMP/chains.exr" \
+  "${small[@]}" --integrator mlt --chain-density
+[ -e "$TMP/chains.exr" ] && fail "the image was written although the density file exists"
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]
