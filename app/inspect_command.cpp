@@ -48,6 +48,20 @@ void addInspectCommand(CLI::App& app, InspectOptions& o) {
   addForceFlag(cmd, o.force, "the JSON file if it exists");
 }
 
+std::unique_ptr<Scene> loadSceneToInspect(SceneOptions& sceneOptions, const ImageSizeOptions& sizeOptions,
+                                          RenderSettings& settings, const std::string& json, bool force) {
+  if (!json.empty()) {
+    checkOutputWritable(json);
+    refuseExisting(json, force);
+  }
+  auto scene = std::make_unique<Scene>(readScene(sceneOptions));
+  for (const std::string& w : scene->warnings()) std::cerr << "pathlab: warning: " << w << "\n";
+  const Vec2i size = sizeOptions.sizeFor(cameraAspect(settings.camera, scene->cameraDesc()), kDefaultLongestSide);
+  settings.width = size.x;
+  settings.height = size.y;
+  return scene;
+}
+
 int runInspect(InspectOptions o) {
   finishEstimatorOptions(o.estimator);
   RenderSettings& settings = o.estimator.settings;
@@ -74,15 +88,8 @@ int runInspect(InspectOptions o) {
   const uint64_t sample = o.sample.value_or(0);
   if (sample > kMaxSample)
     throw std::invalid_argument(fmt::format("--sample {} is past the last sample index {}", sample, kMaxSample));
-  if (!o.json.empty()) {
-    checkOutputWritable(o.json);
-    refuseExisting(o.json, o.force);
-  }
-  Scene scene(readScene(o.scene));
-  for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
-  const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultLongestSide);
-  settings.width = size.x;
-  settings.height = size.y;
+  const std::unique_ptr<Scene> loaded = loadSceneToInspect(o.scene, o.size, settings, o.json, o.force);
+  const Scene& scene = *loaded;
   if (!metropolis && (x < 0 || y < 0 || x >= settings.width || y >= settings.height))
     throw std::invalid_argument(
         fmt::format("--pixel {},{} is outside the {} x {} image", x, y, settings.width, settings.height));

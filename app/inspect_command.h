@@ -5,10 +5,12 @@
 
 #include "app/estimator_options.h"
 #include "app/shared_options.h"
+#include "core/scene/scene.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -28,6 +30,12 @@ struct InspectOptions {
 };
 
 void addInspectCommand(CLI::App& app, InspectOptions& options);
+
+// What `inspect` and `outliers` do before rendering: the JSON output checked (writable, never over
+// a file without `force`), the scene loaded with its warnings printed, and `settings` sized to the
+// camera's shape (longest side 512 unless given).
+std::unique_ptr<Scene> loadSceneToInspect(SceneOptions& scene, const ImageSizeOptions& size,
+                                          RenderSettings& settings, const std::string& json, bool force);
 int runInspect(InspectOptions options);
 
 }  // namespace pathlab::app

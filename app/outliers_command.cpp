@@ -1,6 +1,7 @@
 // `pathlab outliers`: the options, the render with its tally, each outlier replayed, text and JSON.
 #include "app/outliers_command.h"
 
+#include "app/inspect_command.h"
 #include "app/output_check.h"
 #include "app/progress.h"
 #include "core/camera/image_size.h"
@@ -100,15 +101,8 @@ int runOutliers(OutliersOptions o) {
     throw std::invalid_argument(fmt::format("--spp {} is outside 1..{}", o.spp, kMaxOutlierSpp));
   if (o.top < 1 || o.top > kMaxOutliers)
     throw std::invalid_argument(fmt::format("--top {} is outside 1..{}", o.top, kMaxOutliers));
-  if (!o.json.empty()) {
-    checkOutputWritable(o.json);
-    refuseExisting(o.json, o.force);
-  }
-  Scene scene(readScene(o.scene));
-  for (const std::string& w : scene.warnings()) std::cerr << "pathlab: warning: " << w << "\n";
-  const Vec2i size = o.size.sizeFor(cameraAspect(settings.camera, scene.cameraDesc()), kDefaultLongestSide);
-  settings.width = size.x;
-  settings.height = size.y;
+  const std::unique_ptr<Scene> loaded = loadSceneToInspect(o.scene, o.size, settings, o.json, o.force);
+  const Scene& scene = *loaded;
   RenderSession session(scene, settings);
   session.setOutlierCount(o.top);
   const auto start = std::chrono::steady_clock::now();
