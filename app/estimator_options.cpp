@@ -57,11 +57,16 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "render every length)")
       ->check(CLI::Range(0, 100000));
   cmd->add_option("--mis", s.mis.heuristic,
-                  "MIS heuristic of bpt: balance, power, uniform, or off (1/n_k per technique of length k: biased "
-                  "with delta lights or BSDFs)")
+                  "MIS heuristic of bpt: balance, power, uniform, off (1/n_k per technique of length k: biased "
+                  "with delta lights or BSDFs), or variance-aware (balance with each technique's count scaled by "
+                  "its second moment over its variance, estimated per region from the earlier passes; Grittmann et "
+                  "al. 2019)")
       ->transform(CLI::CheckedTransformer(
-          std::map<std::string, MisHeuristic>{{"balance", MisHeuristic::Balance}, {"power", MisHeuristic::Power},
-                                              {"uniform", MisHeuristic::Uniform}, {"off", MisHeuristic::Off}},
+          std::map<std::string, MisHeuristic>{{"balance", MisHeuristic::Balance},
+                                              {"power", MisHeuristic::Power},
+                                              {"uniform", MisHeuristic::Uniform},
+                                              {"off", MisHeuristic::Off},
+                                              {"variance-aware", MisHeuristic::VarianceAware}},
           CLI::ignore_case));
   cmd->add_option("--connect", s.connect,
                   "Subpaths of bpt: all (one pair per sample, every prefix pair connected) or endpoints (naive BPT: "

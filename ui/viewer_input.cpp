@@ -46,12 +46,18 @@ void Viewer::perform(Action action) {
     case Action::CycleMode: cycleMode(e); break;
     case Action::CycleHeuristic:
       e.settings.mis.heuristic = static_cast<MisHeuristic>((static_cast<int>(e.settings.mis.heuristic) + 1) % kMisHeuristicCount);
+      // Metropolis has no passes of independent samples to estimate variance-aware factors from.
+      if (e.settings.integrator == IntegratorKind::Mlt && e.settings.mis.heuristic == MisHeuristic::VarianceAware)
+        e.settings.mis.heuristic = MisHeuristic::Balance;
       break;
     case Action::CycleIntegrator: {
       constexpr IntegratorKind order[] = {IntegratorKind::Bpt, IntegratorKind::Pt, IntegratorKind::Lt, IntegratorKind::Mlt};
       const auto* it = std::find(std::begin(order), std::end(order), e.settings.integrator);
       e.settings.integrator = order[(static_cast<size_t>(it - std::begin(order)) + 1) % std::size(order)];
-      if (e.settings.integrator == IntegratorKind::Mlt) e.mode = EstimatorMode::Combine;  // it isolates nothing
+      if (e.settings.integrator == IntegratorKind::Mlt) {
+        e.mode = EstimatorMode::Combine;  // it isolates nothing
+        if (e.settings.mis.heuristic == MisHeuristic::VarianceAware) e.settings.mis.heuristic = MisHeuristic::Balance;
+      }
       break;
     }
     case Action::LongerPaths: setMaxLength(e, std::min(e.settings.maxLength + 1, 64)); break;

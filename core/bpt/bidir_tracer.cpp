@@ -24,6 +24,8 @@ struct BidirTracer::Walks {
   std::vector<double> densityRatios;     // TechniqueResult::densityRatios, when an output wants them
   std::vector<TechniqueOnPath> onPath;   // TechniqueResult::onPath (replay)
   TracedPath traced;                     // TechniqueResult::traced (replay)
+  // Variance-aware MIS: the factors of the weighed path's length at its pixel (null: all 1).
+  const float* misFactors = nullptr;
 };
 
 const char* connectStrategyName(ConnectStrategy c) { return c == ConnectStrategy::Endpoints ? "endpoints" : "all"; }
@@ -67,6 +69,10 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
   if (options_.mis.heuristic == MisHeuristic::Off) {
     misEvaluation_ = MisEvaluation::Constant;
     offWeights_ = misOffWeights(options_.techniques, options_.maxLength);
+  } else if (options_.mis.heuristic == MisHeuristic::VarianceAware) {
+    // Per-pixel factors of every technique: the explicit weights (the partial sums cannot carry a
+    // factor per technique of a length they do not know yet).
+    misEvaluation_ = MisEvaluation::Explicit;
   } else {
     misEvaluation_ = options_.techniques.containsAllUpTo(options_.maxLength) ? MisEvaluation::PartialSums
                                                                             : MisEvaluation::Explicit;
@@ -82,7 +88,7 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
     const bool allConnections = options_.techniques.containsAllUpTo(options_.maxLength);
     const bool allMerges = options_.techniques.containsAllUpTo(options_.maxLength, TechniqueFamilies::Merges);
     connectionsInSums_ = allConnections ? 1.0 : 0.0;
-    if (misEvaluation_ != MisEvaluation::Constant)
+    if (misEvaluation_ != MisEvaluation::Constant && options_.mis.heuristic != MisHeuristic::VarianceAware)
       misEvaluation_ = allMerges && (allConnections || !anyConnection) && options_.mergeSite == MergeSite::Every
                            ? MisEvaluation::PartialSums
                            : MisEvaluation::Explicit;
@@ -125,12 +131,12 @@ template <bool kRecords>
   const float ratio = lightTracingRatio();
   const int s = path.s, t = path.t;
   if (kRecords && merges_) {
-    if (!mergePass_) return misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+    if (!mergePass_) return misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio, walks.misFactors);
     const MergeMis merge{mergePass_->eta(), options_.mergeSite == MergeSite::FirstNonSpecular, mergePass_->nonCaustic};
     if (options_.checkMis) {
       ++counters.misPartitionChecks;
       const double sum = weightSumWithMerges(scene_, camera_, path, options_.techniques, options_.mis, ratio,
-                                             minConnectionDistance_, merge);
+                                             minConnectionDistance_, merge, walks.misFactors);
       if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
     }
     if (misEvaluation_ == MisEvaluation::PartialSums) {
@@ -144,7 +150,7 @@ template <bool kRecords>
       if (fast) return *fast;
     }
     return weightWithMerges(scene_, camera_, path, Technique{s, t}, options_.techniques, options_.mis, ratio,
-                            minConnectionDistance_, merge);
+                            minConnectionDistance_, merge, walks.misFactors);
   }
   if (kRecords && misEvaluation_ == MisEvaluation::Constant) return offWeights_[static_cast<size_t>(s + t - 1)];
   // The partial sums decline (nullopt) a path with a near-coincident connection: misWeight then
@@ -158,11 +164,12 @@ template <bool kRecords>
                                    walks.cameraSums, misPower_, ratio, minConnectionDistance_)
                : misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
                                    minConnectionDistance_);
-  const float w = fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+  const float w =
+      fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio, walks.misFactors);
   if (kRecords && options_.checkMis) {
     // Under MIS off a path some enabled technique cannot sample fails here: that is its bias.
     ++counters.misPartitionChecks;
-    const double sum = misWeightSum(scene_, camera_, path, options_.techniques, options_.mis, ratio);
+    const double sum = misWeightSum(scene_, camera_, path, options_.techniques, options_.mis, ratio, walks.misFactors);
     if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
   }
   return w;
@@ -240,6 +247,9 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
                                                                   !demand.onPath && !demand.everyContribution));
   // Whether the weighed result is used; false leaves it zero (and traces no shadow ray).
   auto weigh = [&] {
+    // Variance-aware MIS: the factors where the path lands (a splat's pixel for t = 1).
+    if (varianceAware_)
+      walks.misFactors = varianceAware_->factorsOfLength(varianceAware_->regionOf(t == 1 ? c.pRaster : pRaster), s + t - 1);
     if (use.enabled) w = weight<kRecords>(path, c, walks, counters);
     imageWeight = !use.inImage ? 0.f : use.unweightedInImage ? 1.f : w;
     if (!(imageWeight > 0.f) && !use.inPyramid && !demand.everyContribution) {
@@ -588,9 +598,11 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
             cameraTerms = mergeCameraTerms(walks.camera, t, walks.cameraSums, misPower_, lightTracingRatio(), terms);
           fast = mergeWeightFromTerms(record.mis, *cameraTerms, pdfs, misPower_, terms, minConnectionDistance_);
         }
+        const float* factors =
+            varianceAware_ ? varianceAware_->factorsOfLength(varianceAware_->regionOf(pRaster), x.length()) : nullptr;
         w = fast ? *fast
                  : mergeWeight(&pass.vertex(start), s, walks.camera.data(), t, pdfs, options_.techniques,
-                               options_.mis, lightTracingRatio(), minConnectionDistance_, mis);
+                               options_.mis, lightTracingRatio(), minConnectionDistance_, mis, factors);
       }
       tally.contributed();
       if (!isValidContribution(L)) return tally.discard(L, sink.id());

@@ -12,6 +12,7 @@
 #include "core/bpt/sample_sink.h"
 #include "core/bpt/subpath.h"
 #include "core/bpt/technique_set.h"
+#include "core/bpt/variance_aware_mis.h"
 
 #include <vector>
 
@@ -87,6 +88,9 @@ class BidirTracer {
   // MergePass::index. Nothing when the weights are explicit.
   void prepareMergePass(MergePass& pass) const;
   MisEvaluation misEvaluation() const { return misEvaluation_; }
+  // Variance-aware MIS (MisHeuristic::VarianceAware): the factors every weight reads from now on
+  // (null: all 1, the balance heuristic); set between passes, never during one.
+  void setVarianceAwareFactors(const VarianceAwareFactors* factors) { varianceAware_ = factors; }
 
   // Time the walks and every technique's connection and weight into the counters, on one camera
   // sample in kTimedSampleStride (Counters::timedSamples counts them). Off by default: when off it
@@ -174,6 +178,7 @@ class BidirTracer {
   bool merges_ = false;
   double connectionsInSums_ = 1.0;  // MergeTerms::connections: every connection enabled, or none
   const MergePass* mergePass_ = nullptr;
+  const VarianceAwareFactors* varianceAware_ = nullptr;
 };
 
 extern template void BidirTracer::sample(Vec2, Vec2, Pcg32&, Pcg32&, SampleSink&, Counters&) const;

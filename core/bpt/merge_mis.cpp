@@ -59,16 +59,19 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
     return 1.0 / static_cast<double>(count);
   }
 
-  const double beta = options.heuristic == MisHeuristic::Balance ? 1.0 : static_cast<double>(options.beta);
+  // Variance-aware: the balance heuristic with each technique's count times its factor (PathDensities::factors).
+  const double beta = options.heuristic == MisHeuristic::Power ? static_cast<double>(options.beta) : 1.0;
   auto term = [beta](double v) { return beta == 1.0 ? v : beta == 2.0 ? v * v : std::pow(v, beta); };
-  auto connectionCount = [&](int sp) { return n - sp == 1 ? static_cast<double>(lightTracingRatio) : 1.0; };
+  auto connectionCount = [&](int sp) {
+    return (n - sp == 1 ? static_cast<double>(lightTracingRatio) : 1.0) * d.factor(sp);
+  };
   // A zero camera-side density at the merged vertex is a delta lobe next to it (the vertex itself
   // is not delta): it counts one, as in the ratios, and cancels against C(s'-1), which samples
   // the merged vertex from the camera side through the same lobe.
   // The pass kept x(s'-1) with probability mergeKeep, by x(s'-2)'s delta flag.
   auto mergeFactor = [&](int sp) {
     return merge.eta * mergeKeep(merge.nonCaustic, d.delta[static_cast<size_t>(sp - 2)]) *
-           remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]);
+           remap0(d.pFromCamera[static_cast<size_t>(sp - 1)]) * d.factor(length - 1 + sp);
   };
   // n_x p_x relative to p_C(x.s).
   const double own = x.isMerge() ? mergeFactor(x.s) : connectionCount(x.s);
@@ -90,10 +93,11 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
 
 float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& path, Technique x,
                        const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
-                       float minDistance, const MergeMis& merge) {
+                       float minDistance, const MergeMis& merge, const float* factors) {
   if (!techniques.contains(x)) return 0.f;
   if (!x.isMerge() && path.t == 1 && camera.isOrthographic()) return 0.f;
   PathScratch& p = densitiesOf(scene, camera, path);
+  p.d.factors = factors;
   // A merge's z(t-2), the connection's camera end here, keeps its walk's delta flag: where it is a
   // mirror the connections through it cannot sample the merged path (mergedPathDensities).
   if (x.isMerge()) p.d.delta[static_cast<size_t>(path.s)] = cameraVertex(path, path.t - 1).isDelta;
@@ -105,6 +109,7 @@ void mergedPathDensities(const PathVertex* lightPath, int s, const PathVertex* c
                          PathDensities& d, std::vector<uint8_t>& surface) {
   const int n = s + t - 1;
   d.n = n;
+  d.factors = nullptr;
   d.pFromLight.resize(static_cast<size_t>(n));
   d.pFromCamera.resize(static_cast<size_t>(n));
   d.delta.resize(static_cast<size_t>(n));
@@ -140,9 +145,10 @@ void mergedPathDensities(const PathVertex* lightPath, int s, const PathVertex* c
 
 float mergeWeight(const PathVertex* lightPath, int s, const PathVertex* cameraPath, int t, const MergePdfs& pdfs,
                   const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio, float minDistance,
-                  const MergeMis& merge) {
+                  const MergeMis& merge, const float* factors) {
   thread_local PathScratch p;
   mergedPathDensities(lightPath, s, cameraPath, t, pdfs, p.d, p.surface);
+  p.d.factors = factors;
   const double w = weightWithMerges(p.d, p.surface, Technique::merge(s, t), techniques, options, lightTracingRatio,
                                     minDistance, merge);
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;
@@ -150,8 +156,9 @@ float mergeWeight(const PathVertex* lightPath, int s, const PathVertex* cameraPa
 
 double weightSumWithMerges(const Scene& scene, const Camera& camera, const MisPath& path,
                            const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
-                           float minDistance, const MergeMis& merge) {
-  const PathScratch& p = densitiesOf(scene, camera, path);
+                           float minDistance, const MergeMis& merge, const float* factors) {
+  PathScratch& p = densitiesOf(scene, camera, path);
+  p.d.factors = factors;
   double sum = 0.0;
   for (const Technique x : techniquesOfLength(p.d.n - 1, TechniqueFamilies::All))
     sum += weightWithMerges(p.d, p.surface, x, techniques, options, lightTracingRatio, minDistance, merge);

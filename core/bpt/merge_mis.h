@@ -56,9 +56,10 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
 // The same on a path as the tracer holds it: a connection C(s, t)'s MisPath for x = C(s, t); for a
 // merge M(s, t), the MisPath of the connection C(s, t - 1) that joins the same vertices (the light
 // prefix through the merged vertex y(s-1), then z(t-2) .. z0), the merged vertex taken as y(s-1).
+// `factors`: variance-aware MIS's factors of the path's length at its pixel (PathDensities::factors).
 float weightWithMerges(const Scene& scene, const Camera& camera, const MisPath& path, Technique x,
                        const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
-                       float minDistance, const MergeMis& merge);
+                       float minDistance, const MergeMis& merge, const float* factors = nullptr);
 
 // The path a merge M(s, t) of light vertex y(s-1) (lightPath[s - 1]) and camera vertex z(t-1)
 // (cameraPath[t - 1]) stands for, n = s + t - 1 vertices x0 .. x(s-2), X, z(t-2) .. z0, and its
@@ -75,12 +76,12 @@ void mergedPathDensities(const PathVertex* lightPath, int s, const PathVertex* c
 // mergeWeightFromSums and its fallback.
 float mergeWeight(const PathVertex* lightPath, int s, const PathVertex* cameraPath, int t, const MergePdfs& pdfs,
                   const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio, float minDistance,
-                  const MergeMis& merge);
+                  const MergeMis& merge, const float* factors = nullptr);
 
 // The sum over every technique of the path's length, both families, of weightWithMerges on this
 // connection's path: one when the weights are a partition of unity (the MIS check, checkMis).
 double weightSumWithMerges(const Scene& scene, const Camera& camera, const MisPath& path,
                            const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
-                           float minDistance, const MergeMis& merge);
+                           float minDistance, const MergeMis& merge, const float* factors = nullptr);
 
 }  // namespace pathlab

@@ -76,8 +76,15 @@ const char* misHeuristicName(MisHeuristic h) {
     case MisHeuristic::Power: return "power";
     case MisHeuristic::Uniform: return "uniform";
     case MisHeuristic::Off: return "off";
+    case MisHeuristic::VarianceAware: return "variance-aware";
   }
   return "?";
+}
+
+std::optional<MisHeuristic> misHeuristicFromName(std::string_view name) {
+  for (int h = 0; h < kMisHeuristicCount; ++h)
+    if (name == misHeuristicName(static_cast<MisHeuristic>(h))) return static_cast<MisHeuristic>(h);
+  return std::nullopt;
 }
 
 PathDensities pathDensities(const Scene& scene, const Camera& camera, const MisPath& path) {
@@ -136,6 +143,7 @@ ConnectionDensities connectionDensities(const Scene& scene, const Camera& camera
 void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path, PathDensities& d) {
   const int s = path.s, t = path.t, n = s + t;
   d.n = n;
+  d.factors = nullptr;
   // resize, not assign: the loops below write every entry exactly once.
   d.pFromLight.resize(static_cast<size_t>(n));
   d.pFromCamera.resize(static_cast<size_t>(n));
@@ -289,8 +297,9 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
   //   p_{i+1} / p_i = pFromLight(x_i) / pFromCamera(x_i),
   // walked outward from i = s so that no p_i is formed on its own (ratioToLight, ratioToCamera:
   // with x0's next-event density for i + 1 = 1).
-  const double beta = options.heuristic == MisHeuristic::Balance ? 1.0 : static_cast<double>(options.beta);
-  auto count = [&](int sp) { return (n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0; };
+  // Variance-aware: the balance heuristic with each n_i times its factor c_i (variance_aware_mis.h).
+  const double beta = options.heuristic == MisHeuristic::Power ? static_cast<double>(options.beta) : 1.0;
+  auto count = [&](int sp) { return ((n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0) * d.factor(sp); };
   const double own = count(s);
   auto term = [beta](double x) { return beta == 1.0 ? x : beta == 2.0 ? x * x : std::pow(x, beta); };
   double sum = 1.0;  // the technique itself, relative to (n_s p_s)^beta
@@ -308,7 +317,7 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
 }
 
 float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
-                const MisOptions& options, float lightTracingRatio) {
+                const MisOptions& options, float lightTracingRatio, const float* factors) {
   if (!techniques.contains(path.s, path.t)) return 0.f;
   // No light subpath connects to an orthographic camera (a delta in direction): t = 1 samples nothing.
   if (path.t == 1 && camera.isOrthographic()) return 0.f;
@@ -316,15 +325,17 @@ float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, c
   // allocate; the result still depends only on the arguments.
   thread_local PathDensities d;
   pathDensities(scene, camera, path, d);
+  d.factors = factors;
   const double w =
       weightFromDensities(d, path.s, techniques, options, lightTracingRatio, minConnectionDistance(scene, options));
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;
 }
 
 double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
-                    const MisOptions& options, float lightTracingRatio) {
+                    const MisOptions& options, float lightTracingRatio, const float* factors) {
   thread_local PathDensities d;
   pathDensities(scene, camera, path, d);
+  d.factors = factors;
   const float minDistance = minConnectionDistance(scene, options);
   double sum = 0.0;
   for (int sp = 0; sp < d.n; ++sp)

@@ -93,14 +93,15 @@ inline double remap0(double p) { return p != 0.0 ? p : 1.0; }
 // of Veach's multi-sample model for t = 1 against t >= 2); see bidir_tracer.h.
 // Returns 0 when (s, t) itself is disabled or impossible. MisHeuristic::Off: 1 / n_k whatever the
 // other techniques can do, so misWeightSum is then the share of n_k that can produce the path.
+// `factors`: variance-aware MIS's factors of the path's length at its pixel (PathDensities::factors).
 float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
-                const MisOptions& options, float lightTracingRatio = 1.f);
+                const MisOptions& options, float lightTracingRatio = 1.f, const float* factors = nullptr);
 
 // The sum over every enabled technique able to produce this path of its weight (the path's own
 // densities, each technique's ratios walked from it): one whenever the weights are a partition of
 // unity (Veach 1997 eq. 9.11). For the checkMis setting and the tests.
 double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
-                    const MisOptions& options, float lightTracingRatio = 1.f);
+                    const MisOptions& options, float lightTracingRatio = 1.f, const float* factors = nullptr);
 
 // The densities of the whole path x0 .. x(n-1) (n = s + t, x0 on the light, x(n-1) the camera)
 // after the connection: pFromLight[i] / pFromCamera[i] are the area densities of x_i sampled from
@@ -122,6 +123,11 @@ struct PathDensities {
   // A light BVH's next-event estimation cannot choose x0's light for x1 (x0Nee is zero there):
   // technique (1, t) cannot sample this path. Never set when lights are chosen by power.
   bool neeRefused = false;
+  // Variance-aware MIS (variance_aware_mis.h): the factor c of each technique of the path's length
+  // at its pixel, by Technique::slot(), multiplying its sample count in the balance weights; null
+  // (every factor 1) under the other heuristics. Set by the weights' callers; pathDensities leaves it null.
+  const float* factors = nullptr;
+  double factor(int slot) const { return factors ? static_cast<double>(factors[slot]) : 1.0; }
 };
 // The density of x_i as technique s' samples it from the light side (i < s'): x0 by next-event
 // estimation for s' = 1, by the light subpath otherwise.

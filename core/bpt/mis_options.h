@@ -1,14 +1,19 @@
 // The choice of MIS heuristic for bidirectional path tracing (a plain setting, no logic).
 #pragma once
 
+#include <optional>
+#include <string_view>
+
 namespace pathlab {
 
 // Off: Veach's naive combination (1997, sec. 9.1): every enabled technique of length k weighs
 // 1 / n_k, n_k the number enabled at that length, whatever the path. Unlike Uniform, which counts
 // only the techniques able to produce the path, it is biased wherever an enabled technique cannot
 // sample some path of its length (mis_off.h says where).
-enum class MisHeuristic { Balance, Power, Uniform, Off };
-inline constexpr int kMisHeuristicCount = 4;
+// VarianceAware: the balance heuristic with each technique's sample count scaled by a factor
+// estimated from the earlier passes (Grittmann et al. 2019; core/bpt/variance_aware_mis.h).
+enum class MisHeuristic { Balance, Power, Uniform, Off, VarianceAware };
+inline constexpr int kMisHeuristicCount = 5;
 
 // Default of MisOptions::minConnection (fraction of the scene's bounding radius).
 inline constexpr float kDefaultMinConnection = 1e-3f;
@@ -27,5 +32,9 @@ struct MisOptions {
 };
 
 const char* misHeuristicName(MisHeuristic h);
+// The heuristic misHeuristicName names, or nullopt.
+std::optional<MisHeuristic> misHeuristicFromName(std::string_view name);
+// "balance, power, uniform, off or variance-aware", for messages.
+inline constexpr const char* kMisHeuristicNames = "balance, power, uniform, off or variance-aware";
 
 }  // namespace pathlab

@@ -103,11 +103,8 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
       if (mltKey && s.integrator != IntegratorKind::Mlt)
         fail(config, fmt::format("{} applies to mlt, not {}", key, name));
       if (key == "mis") {
-        if (value == "balance") s.mis.heuristic = MisHeuristic::Balance;
-        else if (value == "power") s.mis.heuristic = MisHeuristic::Power;
-        else if (value == "uniform") s.mis.heuristic = MisHeuristic::Uniform;
-        else if (value == "off") s.mis.heuristic = MisHeuristic::Off;
-        else fail(config, fmt::format("unknown MIS heuristic '{}' (balance, power, uniform or off)", value));
+        if (const std::optional<MisHeuristic> h = misHeuristicFromName(value)) s.mis.heuristic = *h;
+        else fail(config, fmt::format("unknown MIS heuristic '{}' ({})", value, kMisHeuristicNames));
       } else if (key == "connect") {
         if (value == "all") s.connect = ConnectStrategy::All;
         else if (value == "endpoints") s.connect = ConnectStrategy::Endpoints;

@@ -99,6 +99,10 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength,
                                                 settings.techniqueMaps, pyramidFamilies(settings), settings.varianceMaps);
+  if (bidirTracer_ && !metropolis_ && settings.mis.heuristic == MisHeuristic::VarianceAware) {
+    varianceAware_ = std::make_unique<VarianceAwareFactors>(settings.width, settings.height, tiles_, settings.maxLength);
+    bidirTracer_->setVarianceAwareFactors(varianceAware_.get());
+  }
   if (bidirTracer_ && settings.checkTechniques) {
     const TechniqueSet enabled = enabledTechniques(settings);
     check_ = std::make_unique<TechniqueCheck>(settings.width, settings.height, settings.maxLength, settings.checkBlocks,
@@ -204,9 +208,11 @@ Spectrum RenderSession::sampleAt(const BidirTracer* tracer, int x, int y, uint64
   return pathTracer_.Li(ray, rng, counters, cameraMedium_);
 }
 
-void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats, Counters& c) {
+void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats,
+                               std::vector<VarianceAwareFactors::Splat>* factorSplats, Counters& c) {
   SampleTargets targets{&film_, pyramid_.get(), nullptr, {}};
   targets.splats = splats;
+  if (varianceAware_) targets.varianceAware = varianceAware_.get(), targets.varianceAwareSplats = factorSplats;
   targets.check = threadChecks_ ? &threadChecks_->sums.local() : nullptr;
   if (outlierTally_) targets.outlierTally = outlierTally_.get(), targets.outliers = &outlierTally_->local();
   for (int y = tile.y0; y < tile.y1; ++y)
@@ -317,6 +323,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   const size_t inFlight = std::max(kMinItemsInFlight, kItemsInFlightPerThread * threads);
   if (bidirTracer_ && tileSplats_.size() < inFlight)
     tileSplats_.resize(inFlight, SplatBuffer(settings_.width, settings_.height));
+  if (varianceAware_ && factorSplats_.size() < inFlight) factorSplats_.resize(inFlight);
   size_t next = 0;
   bool cancelled = false;  // both only touched by the pipeline's first stage, one item at a time
   tbb::parallel_pipeline(
@@ -334,13 +341,16 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
           tbb::make_filter<size_t, size_t>(tbb::filter_mode::parallel,
                                            [&](size_t i) {
                                              SplatBuffer* splats = bidirTracer_ ? &tileSplats_[i % inFlight] : nullptr;
-                                             renderTile(tiles_[i], pass, splats, local.local());
+                                             renderTile(tiles_[i], pass, splats,
+                                                        varianceAware_ ? &factorSplats_[i % inFlight] : nullptr,
+                                                        local.local());
                                              return i;
                                            }) &
           // The splats in the items' order (the path tracer has none: any order).
           tbb::make_filter<size_t, void>(bidirTracer_ ? tbb::filter_mode::serial_in_order : tbb::filter_mode::parallel,
                                          [&](size_t i) {
                                            if (bidirTracer_) tileSplats_[i % inFlight].addTo(splatSums_.get(), film_, pyramid_.get());
+                                           if (varianceAware_) varianceAware_->addSplats(factorSplats_[i % inFlight]);
                                          }));
   Counters passCounters;
   for (const Counters& c : local) passCounters += c;
@@ -368,6 +378,15 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
     else
       pyramid_->finishPass(static_cast<double>(film_.pixelCount()) /
                            static_cast<double>(lightSubpathsPerPass(film_.pixelCount())));
+  }
+  if (varianceAware_) {
+    // The next pass weighs with factors that include this one (one camera sample a pixel).
+    if (cancelled) {
+      varianceAware_->discardPass();
+      for (std::vector<VarianceAwareFactors::Splat>& list : factorSplats_) list.clear();
+    } else {
+      varianceAware_->finishPass(1.0);
+    }
   }
   if (cancelled) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);

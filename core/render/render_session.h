@@ -89,6 +89,8 @@ class RenderSession {
   // (luminance; TechniqueFilms::readoutVariance), over every pass so far (every rank's, after
   // addForeignPasses).
   std::vector<float> techniqueVariance(Technique x) const;
+  // Variance-aware MIS: the factors the next pass weighs with, else null.
+  const VarianceAwareFactors* varianceAwareFactors() const { return varianceAware_.get(); }
   // The consistency check's sums (settings.checkTechniques), else null.
   const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }
@@ -128,7 +130,9 @@ class RenderSession {
   Spectrum sampleAt(const BidirTracer* tracer, int x, int y, uint64_t pass, const SampleTargets& targets,
                     Counters& counters) const;
   // Renders one work item's samples: camera estimates into film_, splats into `splats` (Bpt, Lt).
-  void renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats, Counters& counters);
+  // `factorSplats`: the item's list of variance-aware MIS splats (or null).
+  void renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats,
+                  std::vector<VarianceAwareFactors::Splat>* factorSplats, Counters& counters);
   // Vertex merging: every pixel's light subpath of `pass` (the very one its camera sample walks:
   // same stream, same length), stored and indexed for the merges, before the pass's camera samples.
   void traceMergePass(uint64_t pass, Counters& counters);
@@ -145,6 +149,10 @@ class RenderSession {
   // (SplatSums), merged into film_ when it ends; splatSums_ is null (splats straight into film_,
   // in the same order) when it would take too much memory.
   std::vector<SplatBuffer> tileSplats_;
+  // Variance-aware MIS (MisHeuristic::VarianceAware): the factors the weights read, estimated
+  // from the passes so far, and each item in flight's splats for their sums (as tileSplats_).
+  std::unique_ptr<VarianceAwareFactors> varianceAware_;
+  std::vector<std::vector<VarianceAwareFactors::Splat>> factorSplats_;
   std::unique_ptr<SplatSums> splatSums_;
   std::unique_ptr<TechniqueFilms> pyramid_;
   std::unique_ptr<TechniqueCheck> check_;

@@ -4,6 +4,7 @@
 
 #include "core/bpt/merge_pass.h"
 #include "core/bpt/mis_off.h"
+#include "core/bpt/variance_aware_mis.h"
 #include "core/bpt/path_vertex.h"
 #include "core/film/technique_films.h"
 #include "core/math/types.h"
@@ -168,6 +169,16 @@ void validateSettings(const RenderSettings& s) {
           "lower --max-length or the image size",
           s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxMergeStoreBytes >> 30));
   }
+  if (s.mis.heuristic == MisHeuristic::VarianceAware) {
+    if (!bidirectional)
+      throw std::invalid_argument("--mis variance-aware weighs the bidirectional techniques: use bpt, lt, vcm, bpm or ppm");
+    const uint64_t bytes = VarianceAwareFactors::bytesFor(s.width, s.height, s.maxLength);
+    if (bytes > kMaxVarianceAwareBytes)
+      throw std::invalid_argument(fmt::format(
+          "--mis variance-aware at {} x {} with maximum length {} keeps {:.1f} GiB of factors (at most {} GiB): lower "
+          "--max-length or the image size",
+          s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxVarianceAwareBytes >> 30));
+  }
   if (s.integrator == IntegratorKind::Mlt) {
     // Metropolis over the connections: each chain state is one path of one technique (MMLT) or a
     // whole path-reuse sample (PSSMLT); what needs a sample's every technique at one pixel does not
@@ -200,7 +211,8 @@ void validateSettings(const RenderSettings& s) {
           "mlt at {} x {} with maximum length {} keeps {:.1f} GiB of histograms (at most {} GiB): lower --max-length or "
           "the image size, or use --mlt-variant pss (one histogram)",
           s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxMltHistogramBytes >> 30));
-    const char* perSample = s.isolate           ? "--isolate"
+    const char* perSample = s.mis.heuristic == MisHeuristic::VarianceAware ? "--mis variance-aware"
+                            : s.isolate                                    ? "--isolate"
                             : s.pyramidLength   ? "the technique pyramid"
                             : s.techniqueMaps   ? "the technique maps"
                             : s.varianceMaps    ? "the variance maps"

@@ -137,6 +137,8 @@ uint64_t mergeStoreBytes(const RenderSettings& settings);
 // The most Metropolis's histograms take: 3 doubles a pixel for each path length (PSSMLT: one).
 uint64_t mltHistogramBytes(const RenderSettings& settings);
 inline constexpr uint64_t kMaxMltHistogramBytes = 8ull << 30;
+// Variance-aware MIS: the factors' tables (VarianceAwareFactors::bytesFor) at most this much.
+inline constexpr uint64_t kMaxVarianceAwareBytes = 2ull << 30;
 // What each tracer needs of the settings.
 BidirOptions bidirOptions(const RenderSettings& settings);
 PathTracerOptions pathTracerOptions(const RenderSettings& settings);

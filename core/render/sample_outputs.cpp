@@ -12,7 +12,9 @@ SinkDemand SampleOutputs::demandOf(const SampleTargets& targets) {
   d.everyTechnique = targets.trace != nullptr;
   // The trace and the check compare every technique's unweighted estimate, whatever its weight.
   // The outlier finder sees every contribution the image receives, through its record.
-  d.everyContribution = targets.trace != nullptr || targets.check != nullptr || targets.outliers != nullptr;
+  // Variance-aware MIS estimates each technique's own variance from every contribution.
+  d.everyContribution = targets.trace != nullptr || targets.check != nullptr || targets.outliers != nullptr ||
+                        targets.varianceAware != nullptr;
   d.onPath = targets.trace != nullptr;
   d.densityRatios = targets.check != nullptr;
   d.sampleable = targets.check != nullptr || (targets.pyramid != nullptr && targets.pyramid->keepsSampleable());
@@ -63,6 +65,8 @@ void SampleOutputs::record(const TechniqueResult& r) {
     const float y = luminance(v);
     if (y > 0.f) targets_.outlierTally->add(*targets_.outliers, Outlier{y, v, id(), r.technique(), r.pRaster});
   }
+  if (targets_.varianceAware)
+    targets_.varianceAware->add(r.technique(), r.pRaster, luminance(r.unweighted), *targets_.varianceAwareSplats);
   // The check compares every enabled technique's unweighted estimate, whatever its weight.
   if (targets_.check) targets_.check->add(r.technique(), r.pRaster, luminance(r.unweighted), r.sampleableBy, r.densityRatios);
   if (r.inPyramid && targets_.pyramid) {

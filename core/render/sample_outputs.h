@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/bpt/sample_sink.h"
+#include "core/bpt/variance_aware_mis.h"
 #include "core/check/technique_check.h"
 #include "core/film/film.h"
 #include "core/film/splat_buffer.h"
@@ -24,6 +25,10 @@ struct SampleTargets {
   // The outlier finder: every weighted contribution into the thread's heap of the brightest.
   const OutlierTally* outlierTally = nullptr;
   OutlierTally::Heap* outliers = nullptr;
+  // Variance-aware MIS: every contribution's unweighted luminance into the factors' pass sums
+  // (camera contributions at once, splats into the work item's list, added in the items' order).
+  VarianceAwareFactors* varianceAware = nullptr;
+  std::vector<VarianceAwareFactors::Splat>* varianceAwareSplats = nullptr;
 };
 
 class SampleOutputs final : public SampleSink {

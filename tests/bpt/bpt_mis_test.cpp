@@ -407,10 +407,16 @@ void checkMergePartition(const Scene& scene, int maxLength, const char* name) {
     std::vector<uint8_t> surface(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) surface[static_cast<size_t>(i)] = x[static_cast<size_t>(i)].type == VertexType::Surface;
     const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-    const PathDensities d = pathDensities(scene, camera, real);
+    PathDensities d = pathDensities(scene, camera, real);
     const float minDistance = kDefaultMinConnection * scene.bounds().radius;
-    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+    // Variance-aware: the balance heuristic with a factor per technique of the length (by slot:
+    // connections at s', merges at k - 1 + s'), here log-uniform over 1e-2..1e2.
+    std::vector<float> factors(static_cast<size_t>(2 * (n - 1)), 1.f);
+    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform, MisHeuristic::VarianceAware}) {
       const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, kDefaultMinConnection};
+      for (float& c : factors) c = std::pow(10.f, -2.f + 4.f * rng.next1D());
+      d.factors = h == MisHeuristic::VarianceAware ? factors.data() : nullptr;
+      auto factor = [&](int slot) { return d.factors ? static_cast<double>(factors[static_cast<size_t>(slot)]) : 1.0; };
       const MergeMis merge{std::pow(10.0, -4.0 + 7.0 * rng.next1D())};
       TechniqueSet enabled = TechniqueSet::all();
       if (rng.next1D() < 0.5f)
@@ -456,12 +462,12 @@ void checkMergePartition(const Scene& scene, int maxLength, const char* name) {
       int count = 0;
       for (int sp = 0; sp < n; ++sp) {
         if (connectionUsable(sp)) {
-          pc[static_cast<size_t>(sp)] = std::pow(pC(sp) * (n - sp == 1 ? lightTracingRatio() : 1.0), b);
+          pc[static_cast<size_t>(sp)] = std::pow(pC(sp) * (n - sp == 1 ? lightTracingRatio() : 1.0) * factor(sp), b);
           sumP += pc[static_cast<size_t>(sp)], ++count;
         }
         const size_t m = static_cast<size_t>(sp - 1);
         if (sp >= 2 && sp <= n - 1 && enabled.contains(Technique::merge(sp, n + 1 - sp)) && surface[m] && !delta(sp - 1)) {
-          pm[static_cast<size_t>(sp)] = std::pow(merge.eta * one(f.pE[m]) * pC(sp), b);
+          pm[static_cast<size_t>(sp)] = std::pow(merge.eta * one(f.pE[m]) * pC(sp) * factor(n - 2 + sp), b);
           sumP += pm[static_cast<size_t>(sp)], ++count;
         }
       }

@@ -63,12 +63,12 @@ std::vector<uint32_t> render(const Scene& scene, const RenderSettings& s, int th
   });
 }
 
-void expectSameAtAnyThreadCount(const Scene& scene, const RenderSettings& s, const char* what) {
-  const std::vector<uint32_t> one = render(scene, s, 1);
+void expectSameAtAnyThreadCount(const Scene& scene, const RenderSettings& s, const char* what, int passes = 3) {
+  const std::vector<uint32_t> one = render(scene, s, 1, passes);
   // Not all black: the comparison means something.
   EXPECT_TRUE(std::any_of(one.begin(), one.end(), [](uint32_t b) { return b != 0; })) << what;
   for (int threads : {2, 16}) {
-    const std::vector<uint32_t> many = render(scene, s, threads);
+    const std::vector<uint32_t> many = render(scene, s, threads, passes);
     ASSERT_EQ(many.size(), one.size()) << what;
     size_t differ = 0;
     for (size_t i = 0; i < one.size(); ++i) differ += one[i] != many[i];
@@ -93,6 +93,18 @@ TEST(RenderSessionReproducible, LightTracerAndPathTracer) {
   expectSameAtAnyThreadCount(box, settings(IntegratorKind::Lt), "cornell-box lt");
   expectSameAtAnyThreadCount(bundled("fog"), settings(IntegratorKind::Bpt), "fog bpt");
   expectSameAtAnyThreadCount(box, settings(IntegratorKind::Pt), "cornell-box pt");
+}
+
+// Variance-aware MIS weighs each pass with factors estimated from the passes before it, the
+// splats' share summed in the work items' order: past the pilot passes the factors, so the images,
+// are the same bits at any thread count (connections, and merges with their correlated photons).
+TEST(RenderSessionReproducible, VarianceAwareMis) {
+  RenderSettings s = settings(IntegratorKind::Bpt);
+  s.mis.heuristic = MisHeuristic::VarianceAware;
+  const int passes = kVarianceAwarePilotPasses + 3;
+  expectSameAtAnyThreadCount(bundled("cornell-box"), s, "cornell-box bpt variance-aware", passes);
+  s.techniques = TechniqueSet::parse("all;m=all");
+  expectSameAtAnyThreadCount(bundled("caustic"), s, "caustic vcm variance-aware", passes);
 }
 
 // The work items cover the film once, in bands of at most the asked-for pixels (a row at least).

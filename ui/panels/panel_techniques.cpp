@@ -4,6 +4,7 @@
 #include "ui/panels/panels.h"
 
 #include "core/bpt/merge_pass.h"
+#include "core/bpt/variance_aware_mis.h"
 #include "core/sampling/technique_label.h"
 #include "ui/estimator/technique_grid.h"
 
@@ -519,6 +520,15 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("1 / n_k for every enabled technique of length k, whatever the path (Veach's naive\n"
                         "combination): biased where a technique cannot sample a path (the status says where)");
+    ImGui::SameLine();
+    ImGui::BeginDisabled(edited.integrator == IntegratorKind::Mlt);
+    ImGui::RadioButton("variance-aware", &heuristic, static_cast<int>(MisHeuristic::VarianceAware));
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("balance with each technique's count times its second moment over its variance, estimated\n"
+                        "per 8x8 region from the passes so far (Grittmann et al. 2019): balance for the first %d\n"
+                        "passes; unbiased, as each pass weighs with the passes before it. Not with mlt.",
+                        kVarianceAwarePilotPasses);
   }
   edited.mis.heuristic = static_cast<MisHeuristic>(heuristic);
   const bool metropolis = edited.integrator == IntegratorKind::Mlt;

@@ -103,11 +103,8 @@ NamedPreset parseOne(const Json& p) {
     out.techniques = TechniqueSet::parse(typed(p, "techniques", &Json::is_string, "a string").get<std::string>());
   if (p.contains("mis")) {
     const std::string v = typed(p, "mis", &Json::is_string, "a string").get<std::string>();
-    if (v == "balance") out.mis.heuristic = MisHeuristic::Balance;
-    else if (v == "power") out.mis.heuristic = MisHeuristic::Power;
-    else if (v == "uniform") out.mis.heuristic = MisHeuristic::Uniform;
-    else if (v == "off") out.mis.heuristic = MisHeuristic::Off;
-    else throw std::invalid_argument(fmt::format("mis \"{}\" is not balance, power, uniform or off", v));
+    if (const std::optional<MisHeuristic> h = misHeuristicFromName(v)) out.mis.heuristic = *h;
+    else throw std::invalid_argument(fmt::format("mis \"{}\" is not {}", v, kMisHeuristicNames));
   }
   if (p.contains("beta")) {
     out.mis.beta = finiteFloat(typed(p, "beta", &Json::is_number, "a number"), "\"beta\"");

@@ -1,0 +1,179 @@
+// Variance-aware MIS (Grittmann et al. 2019; core/bpt/variance_aware_mis.h): the factor estimate
+// against its closed form on synthetic passes, what the factors say on the Cornell box, and the
+// estimator's unbiasedness on every bundled scene (region agreement with the balance heuristic,
+// and with the path tracer where it samples every path). The weights' partition of unity with
+// factors, connections and merges, is in bpt_mis_test.cpp (MergeMis.PartitionOfUnity*); the same
+// image at any thread count in render_reproducible_test.cpp.
+#include "core/bpt/variance_aware_mis.h"
+#include "core/render/render_session.h"
+#include "core/lights/environment_file.h"
+#include "core/scene/gltf_loader.h"
+#include "tests/support/agreement.h"
+#include "tests/support/test_scenes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace pathlab {
+namespace variance_aware_test {
+
+// One region (an 8 x 8 image), one technique per family of contribution: c = E[X^2] / Var[X] for
+// independent samples X, whatever their mean.
+TEST(VarianceAwareFactors, AreTheSecondMomentOverTheVarianceOfIndependentSamples) {
+  const std::vector<PassTile> tiles = passTiles(8, 8);
+  VarianceAwareFactors factors(8, 8, tiles, 3);
+  ASSERT_EQ(factors.regions(), 1);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<float> uniform(0.f, 1.f);
+  std::vector<VarianceAwareFactors::Splat> splats;
+  const Technique camera{1, 2}, light{2, 1}, never{0, 3}, constant{1, 3};
+  const int passes = 3000;
+  for (int p = 0; p < passes; ++p) {
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const Vec2 pixel(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+        // A camera technique: X uniform on (0, 1): E[X^2] = 1/3, Var = 1/12, c = 4.
+        factors.add(camera, pixel, uniform(rng), splats);
+        // A pixel-stratified technique without noise: V = 0, the largest factor.
+        factors.add(constant, pixel, 0.25f + 0.01f * static_cast<float>(x), splats);
+        // Light tracing: each of the pass's 64 light subpaths lands here with probability 1/2,
+        // with X uniform: Y = X B, E[Y^2] = 1/6, Var = 1/6 - 1/16, c = 1.6.
+        if (uniform(rng) < 0.5f) factors.add(light, pixel, uniform(rng), splats);
+      }
+    factors.addSplats(splats);
+    EXPECT_TRUE(splats.empty());
+    // The pilot passes weigh with the balance heuristic: no factors yet.
+    if (p + 1 < kVarianceAwarePilotPasses) EXPECT_EQ(factors.factorsOfLength(0, 2), nullptr);
+    factors.finishPass(1.0);
+  }
+  ASSERT_NE(factors.factorsOfLength(0, 2), nullptr);
+  // V from n passes has a relative standard error of sqrt(2 / (n - 1)) (2.6 %); M's is smaller.
+  const double se = std::sqrt(2.0 / (passes - 1));
+  EXPECT_NEAR(factors.factor(0, camera), 4.0, 4.0 * 4 * se);
+  EXPECT_NEAR(factors.factor(0, light), 1.6, 1.6 * 4 * se);
+  EXPECT_EQ(factors.factorsOfLength(0, 2)[camera.slot()], factors.factor(0, camera));
+  EXPECT_EQ(factors.factor(0, never), 1.f);
+  EXPECT_EQ(factors.factor(0, constant), kVarianceAwareMaxFactor);
+}
+
+TEST(VarianceAwareFactors, RegionsLieInOneWorkItemAndCoverTheFilm) {
+  for (const auto& [w, h] : {std::pair{64, 48}, std::pair{13, 7}, std::pair{300, 17}}) {
+    const std::vector<PassTile> tiles = passTiles(w, h);
+    const VarianceAwareFactors factors(w, h, tiles, 4);
+    std::vector<int> itemOfRegion(static_cast<size_t>(factors.regions()), -1);
+    for (size_t i = 0; i < tiles.size(); ++i)
+      for (int y = tiles[i].y0; y < tiles[i].y1; ++y)
+        for (int x = tiles[i].x0; x < tiles[i].x1; ++x) {
+          const int r = factors.regionOf(Vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f));
+          ASSERT_GE(r, 0);
+          ASSERT_LT(r, factors.regions());
+          int& item = itemOfRegion[static_cast<size_t>(r)];
+          EXPECT_TRUE(item == -1 || item == static_cast<int>(i)) << w << "x" << h << " region " << r;
+          item = static_cast<int>(i);
+        }
+    EXPECT_TRUE(std::all_of(itemOfRegion.begin(), itemOfRegion.end(), [](int i) { return i >= 0; }));
+    EXPECT_EQ(factors.regionOf(Vec2(-0.5f, 1.f)), -1);
+    EXPECT_EQ(factors.regionOf(Vec2(static_cast<float>(w), 0.f)), -1);
+  }
+}
+
+// A bundled scene; the environment scene under its sky map, as `pathlab render --environment`.
+Scene bundled(const std::string& name) {
+  const std::string source = PATHLAB_SOURCE_DIR;
+  LoadOptions load;
+  if (name == "environment")
+    load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
+  return Scene(loadGltf(source + "/assets/" + name + ".gltf", load));
+}
+
+// On the Cornell box every pixel's camera techniques take one sample a pass (stratified by
+// pixel), while light tracing's splats land where they may: the factors favour next-event
+// estimation (1, 2) over light tracing (2, 1) for direct light, as the paper's BPT results show.
+// And they change the image (the same seed under balance gives other bits).
+TEST(VarianceAwareMis, FavoursThePixelStratifiedTechniquesOnTheCornellBox) {
+  const Scene scene = bundled("cornell-box");
+  RenderSettings s;
+  s.width = 48;
+  s.height = 48;
+  s.maxLength = 4;
+  s.integrator = IntegratorKind::Bpt;
+  s.mis.heuristic = MisHeuristic::VarianceAware;
+  RenderSession session(scene, s);
+  for (int p = 0; p < 64; ++p) ASSERT_TRUE(session.renderPass());
+  const VarianceAwareFactors* factors = session.varianceAwareFactors();
+  ASSERT_NE(factors, nullptr);
+  std::vector<float> nee, lt;
+  for (int r = 0; r < factors->regions(); ++r) {
+    nee.push_back(factors->factor(r, Technique{1, 2}));
+    lt.push_back(factors->factor(r, Technique{2, 1}));
+  }
+  auto median = [](std::vector<float> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  EXPECT_GT(median(nee), 3.f * median(lt)) << "median factor (1,2) " << median(nee) << ", (2,1) " << median(lt);
+  RenderSettings balance = s;
+  balance.mis.heuristic = MisHeuristic::Balance;
+  RenderSession reference(scene, balance);
+  for (int p = 0; p < 64; ++p) ASSERT_TRUE(reference.renderPass());
+  EXPECT_NE(session.image().rgb, reference.image().rgb);
+}
+
+// Unbiased on every bundled scene: the variance-aware estimate agrees region by region with the
+// balance heuristic's (other seeds), and with the path tracer's where it samples every path in a
+// short render (the scenes' comments in bpt_agreement_test.cpp say where it does not: caustics,
+// fog's spot, the door's gap, the point lamp of many-lights). Pixels that see an emitter or a delta
+// surface directly are left out as there.
+struct SceneCase {
+  const char* name;
+  int width, height, maxLength, passes, ptPasses;
+  int cells = 3;  // regions a side
+};
+
+void expectAgreement(const SceneCase& c) {
+  const Scene scene = bundled(c.name);
+  RenderSettings base;
+  base.width = c.width;
+  base.height = c.height;
+  base.maxLength = c.maxLength;
+  test::PixelLabels grid = test::gridLabels(base.width, base.height, c.cells, c.cells);
+  grid = test::withoutSeenDirectly(scene, base, grid, test::emitterOrDelta, 16);
+  const uint64_t seed = 1000 * test::testSeedBase() + 701;
+  std::vector<test::EstimatorSpec> estimators = {
+      test::estimatorSpec("variance-aware", base, IntegratorKind::Bpt, MisHeuristic::VarianceAware, seed, c.passes),
+      test::estimatorSpec("balance", base, IntegratorKind::Bpt, MisHeuristic::Balance, seed + 1, c.passes)};
+  std::vector<test::PairSpec> pairs = {{"variance-aware", "balance"}};
+  if (c.ptPasses > 0) {
+    estimators.push_back(test::estimatorSpec("pt", base, IntegratorKind::Pt, MisHeuristic::Balance, seed + 2, c.ptPasses));
+    pairs.push_back({"variance-aware", "pt"});
+  }
+  const test::AgreementRun run = test::runAgreement(scene, estimators, {grid}, pairs, test::kFamilyAlpha);
+  test::report(run, std::string(c.name) + ", variance-aware MIS");
+  test::expectAgreement(run, std::string(c.name) + ", variance-aware MIS");
+}
+
+TEST(VarianceAwareMis, AgreesOnTheDiffuseScenes) {
+  expectAgreement({"cornell-box", 16, 16, 8, 256, 768});
+  expectAgreement({"bidir-lamp", 15, 15, 8, 192, 768});
+  expectAgreement({"environment", 16, 12, 6, 256, 2048});
+  expectAgreement({"isometric", 16, 16, 6, 256, 512});
+}
+
+TEST(VarianceAwareMis, AgreesOnTheGlossyAndSpecularScenes) {
+  expectAgreement({"cornell-spheres", 16, 16, 8, 512, 3072});
+  expectAgreement({"veach-mis", 24, 16, 8, 512, 0});
+  expectAgreement({"caustic", 16, 16, 8, 768, 0, 2});
+}
+
+TEST(VarianceAwareMis, AgreesInMediaAndHardVisibility) {
+  expectAgreement({"fog", 16, 16, 6, 256, 0});
+  expectAgreement({"fog-lamp", 16, 12, 6, 256, 0});
+  expectAgreement({"door-ajar", 16, 12, 8, 2048, 0, 2});
+  expectAgreement({"many-lights", 15, 10, 6, 1024, 0, 2});
+}
+
+}  // namespace variance_aware_test
+}  // namespace pathlab
