@@ -20,6 +20,8 @@ namespace {
 
 // As render's --spp: a pass index beyond it is no sample a render of pathlab ever takes.
 constexpr uint64_t kMaxSample = kMaxSpp - 1;
+// Under variance-aware MIS, inspecting sample N renders the N passes before it (their factors).
+constexpr uint64_t kMaxVarianceAwareReplay = 4096;
 // A chain's state after --pass N is found by rendering N passes (a mutation a pixel each): a bound
 // that keeps the wait to minutes at the default size.
 constexpr uint64_t kMaxChainPasses = 4096;
@@ -94,6 +96,15 @@ int runInspect(InspectOptions o) {
     throw std::invalid_argument(
         fmt::format("--pixel {},{} is outside the {} x {} image", x, y, settings.width, settings.height));
   RenderSession session(scene, settings);
+  if (!metropolis && settings.mis.heuristic == MisHeuristic::VarianceAware) {
+    // Pass N was weighed with the factors of passes 0 .. N-1: render them first, so the replay
+    // weighs as the render did.
+    if (sample > kMaxVarianceAwareReplay)
+      throw std::invalid_argument(fmt::format("--sample {} under --mis variance-aware would render the {} passes before "
+                                              "it to find their factors: at most {}",
+                                              sample, sample, kMaxVarianceAwareReplay));
+    for (uint64_t p = 0; p < sample; ++p) session.renderPass();
+  }
   const SampleInspection inspection =
       metropolis ? inspectChain(session, *o.chain, o.pass.value_or(0))
                  : inspectSample(session, static_cast<int>(x), static_cast<int>(y), sample);

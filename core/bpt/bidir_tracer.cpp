@@ -266,7 +266,7 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
         tracePath(scene_, camera_, path, walks.traced);
         r.traced = &walks.traced;
         walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
-                                        mergesOnPath(mergePass_, options_.mergeSite));
+                                        mergesOnPath(mergePass_, options_.mergeSite), walks.misFactors);
         r.onPath = &walks.onPath;
       }
     }
@@ -591,6 +591,9 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       const MergePdfs pdfs{f.pdfFwdW, f.pdfRevW};
       const uint32_t start = record.vertex - static_cast<uint32_t>(s - 1);
       float w = 0.f;
+      // Variance-aware MIS: the factors of the merged path's length at the camera sample's pixel.
+      const float* factors =
+          varianceAware_ ? varianceAware_->factorsOfLength(varianceAware_->regionOf(pRaster), x.length()) : nullptr;
       if (enabled) {
         std::optional<float> fast;
         if (partialSums) {
@@ -598,8 +601,6 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
             cameraTerms = mergeCameraTerms(walks.camera, t, walks.cameraSums, misPower_, lightTracingRatio(), terms);
           fast = mergeWeightFromTerms(record.mis, *cameraTerms, pdfs, misPower_, terms, minConnectionDistance_);
         }
-        const float* factors =
-            varianceAware_ ? varianceAware_->factorsOfLength(varianceAware_->regionOf(pRaster), x.length()) : nullptr;
         w = fast ? *fast
                  : mergeWeight(&pass.vertex(start), s, walks.camera.data(), t, pdfs, options_.techniques,
                                options_.mis, lightTracingRatio(), minConnectionDistance_, mis, factors);
@@ -623,7 +624,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
           const MisPath path{&pass.vertex(start), s, walks.camera.data(), t - 1, nullptr, nullptr};
           r.sampleableBy = sampleableWithMerges(path, TechniqueKind::Merge, options_.mergeSite);
         }
-        if (demand.onPath) inspectMerge(pass, record.vertex, s, t, pdfs, walks, r);
+        if (demand.onPath) inspectMerge(pass, record.vertex, s, t, pdfs, factors, walks, r);
         sink.record(r);
       }
       const float imageWeight = shownUnweighted ? 1.f : w;
@@ -634,7 +635,7 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
 }
 
 void BidirTracer::inspectMerge(const MergePass& pass, uint32_t lightVertex, int s, int t, const MergePdfs& pdfs,
-                               Walks& walks, TechniqueResult& r) const {
+                               const float* factors, Walks& walks, TechniqueResult& r) const {
   // Listed on the path the weight was computed on (mergedPathDensities), so that the inspector's
   // densities and weights are the render's.
   const uint32_t start = lightVertex - static_cast<uint32_t>(s - 1);
@@ -647,7 +648,7 @@ void BidirTracer::inspectMerge(const MergePass& pass, uint32_t lightVertex, int 
   tracePath(scene_, camera_, path, walks.traced, &merged.densities);
   r.traced = &walks.traced;
   walks.onPath = techniquesOnMergedPath(scene_, path, merged, options_.techniques, options_.mis, lightTracingRatio(),
-                                        *mergesOnPath(&pass, options_.mergeSite));
+                                        *mergesOnPath(&pass, options_.mergeSite), factors);
   r.onPath = &walks.onPath;
 }
 

@@ -156,7 +156,9 @@ class BidirTracer {
   // The inspector's view of a merge M(s, t) (its vertices, traced path and every technique's
   // density and weight on its merged path) into `r`: out of evaluateMerges' loop, which a render
   // runs without it.
+  // `factors`: variance-aware MIS's, where the merge lands (or null).
   [[gnu::cold]] void inspectMerge(const MergePass& pass, uint32_t lightVertex, int s, int t, const MergePdfs& pdfs,
+                                  const float* factors,
                                   Walks& walks, TechniqueResult& r) const;
   // The merges' part of the partial sums for this pass (its eta and keep probability).
   MergeTerms mergeTerms(const MergePass& pass) const;

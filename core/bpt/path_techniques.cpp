@@ -10,11 +10,15 @@ namespace {
 std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const std::vector<uint8_t>& surface,
                                                    uint64_t sampleable, const TechniqueSet& techniques,
                                                    const MisOptions& options, float minDistance, float lightTracingRatio,
-                                                   const std::optional<MergesOnPath>& merges) {
-  MisOptions balance = options, power = options, uniform = options;
+                                                   const std::optional<MergesOnPath>& merges, const float* factors) {
+  MisOptions balance = options, power = options, uniform = options, varianceAware = options;
   balance.heuristic = MisHeuristic::Balance;
   power.heuristic = MisHeuristic::Power;
   uniform.heuristic = MisHeuristic::Uniform;
+  varianceAware.heuristic = MisHeuristic::VarianceAware;
+  // The same densities with the factors, for the variance-aware weight.
+  PathDensities withFactors = d;
+  withFactors.factors = factors;
   const UsableTechniques usable(d, techniques, minDistance);
   // p_C(s'): the light-side densities before s', the camera-side ones from s' on.
   auto connectionDensity = [&](int sp) {
@@ -28,11 +32,15 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
       x.balance = weightWithMerges(d, surface, y, techniques, balance, lightTracingRatio, minDistance, merges->mis);
       x.power = weightWithMerges(d, surface, y, techniques, power, lightTracingRatio, minDistance, merges->mis);
       x.uniform = weightWithMerges(d, surface, y, techniques, uniform, lightTracingRatio, minDistance, merges->mis);
+      x.varianceAware =
+          weightWithMerges(withFactors, surface, y, techniques, varianceAware, lightTracingRatio, minDistance, merges->mis);
     } else {
       x.balance = weightFromDensities(d, x.s, techniques, balance, lightTracingRatio, minDistance);
       x.power = weightFromDensities(d, x.s, techniques, power, lightTracingRatio, minDistance);
       x.uniform = weightFromDensities(d, x.s, techniques, uniform, lightTracingRatio, minDistance);
+      x.varianceAware = weightFromDensities(withFactors, x.s, techniques, varianceAware, lightTracingRatio, minDistance);
     }
+    x.factor = withFactors.factor(x.technique().slot());
   };
   std::vector<TechniqueOnPath> out;
   for (int sp = 0; sp < d.n; ++sp) {
@@ -90,21 +98,23 @@ std::vector<uint8_t> surfaceVertices(const MisPath& path, int n) {
 
 std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& camera, const MisPath& path,
                                               const TechniqueSet& techniques, const MisOptions& options,
-                                              float lightTracingRatio, const std::optional<MergesOnPath>& merges) {
+                                              float lightTracingRatio, const std::optional<MergesOnPath>& merges,
+                                              const float* factors) {
   const PathDensities d = pathDensities(scene, camera, path);
   const uint64_t sampleable = d.n <= kSampleableBits ? sampleableTechniques(path) : 0;
   return techniquesOnDensities(d, surfaceVertices(path, d.n), sampleable, techniques, options,
-                               minConnectionDistance(scene, options), lightTracingRatio, merges);
+                               minConnectionDistance(scene, options), lightTracingRatio, merges, factors);
 }
 
 std::vector<TechniqueOnPath> techniquesOnMergedPath(const Scene& scene, const MisPath& path, const MergedPath& merged,
                                                     const TechniqueSet& techniques, const MisOptions& options,
-                                                    float lightTracingRatio, const MergesOnPath& merges) {
+                                                    float lightTracingRatio, const MergesOnPath& merges,
+                                                    const float* factors) {
   // Which techniques can sample it at all is a property of its vertices' kinds (delta lobes,
   // surfaces), the same on the merged path as on the connection C(s, t - 1) through y(s-1).
   const uint64_t sampleable = path.s + path.t <= kSampleableBits ? sampleableTechniques(path) : 0;
   return techniquesOnDensities(merged.densities, merged.surface, sampleable, techniques, options,
-                               minConnectionDistance(scene, options), lightTracingRatio, merges);
+                               minConnectionDistance(scene, options), lightTracingRatio, merges, factors);
 }
 
 void tracePath(const Scene& scene, const Camera& camera, const MisPath& path, TracedPath& out,

@@ -23,11 +23,13 @@ struct MergesOnPath {
 // Every technique of the path's length for the path `path` forms, in slot order (Technique::slot:
 // the connections by s', then, with `merges`, the merges M(s', n + 1 - s') by s'); `options` gives
 // beta for the power heuristic and the minimum connection. With `merges` every weight is the one
-// over connections and merges together (weightWithMerges) on the path `path` forms.
+// over connections and merges together (weightWithMerges) on the path `path` forms. `factors`:
+// variance-aware MIS's factors of the path's length where it lands (PathDensities::factors).
 std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& camera, const MisPath& path,
                                               const TechniqueSet& techniques, const MisOptions& options,
                                               float lightTracingRatio = 1.f,
-                                              const std::optional<MergesOnPath>& merges = std::nullopt);
+                                              const std::optional<MergesOnPath>& merges = std::nullopt,
+                                              const float* factors = nullptr);
 
 // A merge's path as its weight sees it (mergedPathDensities): the densities, and which vertices
 // lie on surfaces.
@@ -41,7 +43,8 @@ struct MergedPath {
 // C(s, t - 1) through the same vertices (for which techniques can sample it at all).
 std::vector<TechniqueOnPath> techniquesOnMergedPath(const Scene& scene, const MisPath& path, const MergedPath& merged,
                                                     const TechniqueSet& techniques, const MisOptions& options,
-                                                    float lightTracingRatio, const MergesOnPath& merges);
+                                                    float lightTracingRatio, const MergesOnPath& merges,
+                                                    const float* factors = nullptr);
 
 // The full path `path` forms, light end first, with both densities of every vertex (TracedPath),
 // into `out` (its storage reused); `densities`: those instead of the path's own (a merged path).

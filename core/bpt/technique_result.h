@@ -37,6 +37,10 @@ struct TechniqueOnPath {
   // (times the light-tracing sample ratio for t' = 1), power with p^beta, uniform 1 / count.
   bool counted = false;
   double balance = 0.0, power = 0.0, uniform = 0.0;  // MIS weights among the enabled techniques
+  // Variance-aware MIS (variance_aware_mis.h): the factor c that multiplied this technique's count
+  // where the path lands, and the weight with every technique's factor (the balance weight when
+  // no factors were given: all 1).
+  double factor = 1.0, varianceAware = 0.0;
 };
 
 // The full path a technique formed, light end first (x_0 on the light ... x_{k} at the camera), as

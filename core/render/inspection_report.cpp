@@ -36,11 +36,13 @@ std::string techniqueName(TechniqueKind kind, int s, int t) {
 nlohmann::json rgb(Spectrum s) { return {s.r, s.g, s.b}; }
 
 // The path a technique formed, under every technique of its length (the seed's "one path, every
-// technique"): the density each would sample it with, the edge it connects, its weights.
-void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>& every) {
+// technique"): the density each would sample it with, the edge it connects, its weights; under
+// variance-aware MIS also each technique's factor where the path lands and its weight with them.
+void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>& every, bool varianceAware) {
   if (every.empty()) return;
-  out << fmt::format("{:>12}  this path under every technique: {:>11} {:>9} {:>9} {:>9}  {}\n", "", "p_A(x)",
-                     "balance", "power", "uniform", "connects");
+  out << fmt::format("{:>12}  this path under every technique: {:>11} {:>9} {:>9} {:>9}{}  {}\n", "", "p_A(x)",
+                     "balance", "power", "uniform",
+                     varianceAware ? fmt::format(" {:>9} {:>9}", "factor", "var-aware") : std::string(), "connects");
   for (const TechniqueOnPath& x : every) {
     const std::string name = techniqueName(x.kind, x.s, x.t);
     const bool merge = x.kind == TechniqueKind::Merge;
@@ -58,8 +60,10 @@ void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>
       out << fmt::format("{:>12}  {:>32} {:>11}  cannot: {}\n", "", name, "0", why);
       continue;
     }
-    out << fmt::format("{:>12}  {:>32} {:>11.4e} {:>9.4f} {:>9.4f} {:>9.4f}  {}{}\n", "", name, x.pdfA, x.balance,
-                       x.power, x.uniform, edge, x.enabled ? "" : "  (disabled)");
+    out << fmt::format("{:>12}  {:>32} {:>11.4e} {:>9.4f} {:>9.4f} {:>9.4f}{}  {}{}\n", "", name, x.pdfA, x.balance,
+                       x.power, x.uniform,
+                       varianceAware ? fmt::format(" {:>9.4g} {:>9.4f}", x.factor, x.varianceAware) : std::string(), edge,
+                       x.enabled ? "" : "  (disabled)");
   }
 }
 
@@ -149,7 +153,7 @@ void printInspection(std::ostream& out, const RenderSettings& settings, const Sa
                        t.blocked() ? "blocked" : isBlack(t.unweighted) ? "zero" : t.inImage ? "" : "not in the image");
     if (t.kind == TechniqueKind::Merge) printMerged(out, t.merged);
     if (paths && i < trace.paths.size()) printPath(out, trace.paths[i]);
-    if (i < trace.onPath.size() && (paths || !t.blocked())) printTechniquesOnPath(out, trace.onPath[i]);
+    if (i < trace.onPath.size() && (paths || !t.blocked())) printTechniquesOnPath(out, trace.onPath[i], settings.mis.heuristic == MisHeuristic::VarianceAware);
   }
 }
 
@@ -244,12 +248,21 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
                              {"counted", x.counted},
                              {"connectionEdge", x.connectionEdge},
                              {"mergedVertex", x.mergedVertex},
-                             {"weights", {{"balance", x.balance}, {"power", x.power}, {"uniform", x.uniform}}}});
+                             {"factor", x.factor},
+                             {"weights",
+                              {{"balance", x.balance},
+                               {"power", x.power},
+                               {"uniform", x.uniform},
+                               {"variance-aware", x.varianceAware}}}});
     t["densities"] = densities;
     // This technique's own weights under each heuristic (its entry of `densities`).
     if (i < trace.onPath.size() && static_cast<size_t>(r.technique().slot()) < trace.onPath[i].size()) {
       const TechniqueOnPath& own = trace.onPath[i][static_cast<size_t>(r.technique().slot())];
-      t["weights"] = {{"balance", own.balance}, {"power", own.power}, {"uniform", own.uniform}};
+      t["weights"] = {{"balance", own.balance},
+                      {"power", own.power},
+                      {"uniform", own.uniform},
+                      {"variance-aware", own.varianceAware}};
+      t["factor"] = own.factor;
     }
     techniques.push_back(t);
   }

@@ -138,6 +138,33 @@ expect_error "chain past the last" "past the last chain" inspect "$BOX" --integr
 expect_error "absurd --pass" "more than 4096 passes" inspect "$BOX" --integrator mlt --chain 1 --pass 99999
 expect_error "no pixel" "give the pixel to inspect" inspect "$BOX"
 
+# Variance-aware MIS: sample 12 is replayed with the factors of passes 0..11 (rendered first), so
+# each record's weight is its variance-aware weight, the path's variance-aware weights over the
+# counted techniques sum to one, and the factors (not all 1 after the pilot passes) are shown.
+if "$PATHLAB" inspect "$BOX" --mis variance-aware --pixel 30,40 --sample 12 --width 64 --height 64 --max-length 4 \
+     --json "$TMP/va.json" --force >"$TMP/out" 2>"$TMP/err" </dev/null && grep -q "var-aware" "$TMP/out" &&
+   python3 - "$TMP/va.json" >"$TMP/py" 2>&1 <<'PY'
+import json, math, sys
+j = json.load(open(sys.argv[1]))
+factors, weighed = [], 0
+for r in j["techniques"]:
+    if not r.get("densities") or "weights" not in r:
+        continue
+    assert math.isclose(r["weight"], r["weights"]["variance-aware"], rel_tol=1e-5, abs_tol=1e-7), r["weights"]
+    total = sum(x["weights"]["variance-aware"] for x in r["densities"] if x["counted"])
+    assert math.isclose(total, 1.0, rel_tol=1e-5), total
+    factors += [x["factor"] for x in r["densities"] if x["possible"]]
+    weighed += 1
+assert weighed >= 3, weighed
+assert any(abs(f - 1) > 0.05 for f in factors), factors
+PY
+then ok; else fail "inspect --mis variance-aware: $(cat "$TMP/err" "$TMP/py" 2>/dev/null | tail -5)"; fi
+expect_error "variance-aware sample too far" "at most 4096" inspect "$BOX" --mis variance-aware --pixel 1,1 --sample 5000
+expect_error "variance-aware with mlt" "--mis variance-aware needs the bpt or lt integrator" render "$BOX" \
+  --integrator mlt --mis variance-aware -o "$TMP/x.exr"
+expect_error "variance-aware with pt" "weighs the bidirectional techniques" render "$BOX" --integrator pt \
+  --mis variance-aware -o "$TMP/x.exr"
+
 # Not overwritten without --force; with it, it is.
 expect_error "existing JSON" "exists" inspect "$BOX" --pixel 1,1 --json "$TMP/balance.json"
 "$PATHLAB" inspect "$VEACH" --pixel 100,100 --json "$TMP/balance.json" --force >/dev/null 2>&1 && ok || fail "--force"
