@@ -24,8 +24,6 @@ struct BidirTracer::Walks {
   std::vector<double> densityRatios;     // TechniqueResult::densityRatios, when an output wants them
   std::vector<TechniqueOnPath> onPath;   // TechniqueResult::onPath (replay)
   TracedPath traced;                     // TechniqueResult::traced (replay)
-  // Variance-aware MIS: the factors of the weighed path's length at its pixel (null: all 1).
-  const float* misFactors = nullptr;
 };
 
 const char* connectStrategyName(ConnectStrategy c) { return c == ConnectStrategy::Endpoints ? "endpoints" : "all"; }
@@ -69,10 +67,6 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
   if (options_.mis.heuristic == MisHeuristic::Off) {
     misEvaluation_ = MisEvaluation::Constant;
     offWeights_ = misOffWeights(options_.techniques, options_.maxLength);
-  } else if (options_.mis.heuristic == MisHeuristic::VarianceAware) {
-    // Per-pixel factors of every technique: the explicit weights (the partial sums cannot carry a
-    // factor per technique of a length they do not know yet).
-    misEvaluation_ = MisEvaluation::Explicit;
   } else {
     misEvaluation_ = options_.techniques.containsAllUpTo(options_.maxLength) ? MisEvaluation::PartialSums
                                                                             : MisEvaluation::Explicit;
@@ -88,7 +82,10 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
     const bool allConnections = options_.techniques.containsAllUpTo(options_.maxLength);
     const bool allMerges = options_.techniques.containsAllUpTo(options_.maxLength, TechniqueFamilies::Merges);
     connectionsInSums_ = allConnections ? 1.0 : 0.0;
-    if (misEvaluation_ != MisEvaluation::Constant && options_.mis.heuristic != MisHeuristic::VarianceAware)
+    // Variance-aware factors reach the partial sums of connections only (mis_partial_sums.h).
+    if (misEvaluation_ != MisEvaluation::Constant && options_.mis.heuristic == MisHeuristic::VarianceAware)
+      misEvaluation_ = MisEvaluation::Explicit;
+    else if (misEvaluation_ != MisEvaluation::Constant)
       misEvaluation_ = allMerges && (allConnections || !anyConnection) && options_.mergeSite == MergeSite::Every
                            ? MisEvaluation::PartialSums
                            : MisEvaluation::Explicit;
@@ -127,16 +124,16 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
 // instructions per sample (callgrind).
 template <bool kRecords>
 [[gnu::always_inline]] inline float BidirTracer::weight(const MisPath& path, const Connection& c, const Walks& walks,
-                                                        Counters& counters) const {
+                                                        const float* factors, Counters& counters) const {
   const float ratio = lightTracingRatio();
   const int s = path.s, t = path.t;
   if (kRecords && merges_) {
-    if (!mergePass_) return misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio, walks.misFactors);
+    if (!mergePass_) return misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio, factors);
     const MergeMis merge{mergePass_->eta(), options_.mergeSite == MergeSite::FirstNonSpecular, mergePass_->nonCaustic};
     if (options_.checkMis) {
       ++counters.misPartitionChecks;
       const double sum = weightSumWithMerges(scene_, camera_, path, options_.techniques, options_.mis, ratio,
-                                             minConnectionDistance_, merge, walks.misFactors);
+                                             minConnectionDistance_, merge, factors);
       if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
     }
     if (misEvaluation_ == MisEvaluation::PartialSums) {
@@ -150,7 +147,7 @@ template <bool kRecords>
       if (fast) return *fast;
     }
     return weightWithMerges(scene_, camera_, path, Technique{s, t}, options_.techniques, options_.mis, ratio,
-                            minConnectionDistance_, merge, walks.misFactors);
+                            minConnectionDistance_, merge, factors);
   }
   if (kRecords && misEvaluation_ == MisEvaluation::Constant) return offWeights_[static_cast<size_t>(s + t - 1)];
   // The partial sums decline (nullopt) a path with a near-coincident connection: misWeight then
@@ -161,15 +158,15 @@ template <bool kRecords>
   if (!kRecords || misEvaluation_ == MisEvaluation::PartialSums)
     fast = s >= 2 && t >= 2
                ? misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2, walks.lightSums,
-                                   walks.cameraSums, misPower_, ratio, minConnectionDistance_)
+                                   walks.cameraSums, misPower_, ratio, minConnectionDistance_, factors)
                : misWeightFromSums(scene_, camera_, path, walks.lightSums, walks.cameraSums, misPower_, ratio,
-                                   minConnectionDistance_);
+                                   minConnectionDistance_, factors);
   const float w =
-      fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio, walks.misFactors);
+      fast ? *fast : misWeight(scene_, camera_, path, options_.techniques, options_.mis, ratio, factors);
   if (kRecords && options_.checkMis) {
     // Under MIS off a path some enabled technique cannot sample fails here: that is its bias.
     ++counters.misPartitionChecks;
-    const double sum = misWeightSum(scene_, camera_, path, options_.techniques, options_.mis, ratio, walks.misFactors);
+    const double sum = misWeightSum(scene_, camera_, path, options_.techniques, options_.mis, ratio, factors);
     if (!(std::abs(sum - 1.0) < 1e-3)) ++counters.misPartitionFailures;
   }
   return w;
@@ -246,11 +243,12 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
                                                                   use.inImage && !options_.checkMis &&
                                                                   !demand.onPath && !demand.everyContribution));
   // Whether the weighed result is used; false leaves it zero (and traces no shadow ray).
+  // Variance-aware MIS: the factors where the path lands (a splat's pixel for t = 1), or null.
+  const float* factors = nullptr;
   auto weigh = [&] {
-    // Variance-aware MIS: the factors where the path lands (a splat's pixel for t = 1).
     if (varianceAware_)
-      walks.misFactors = varianceAware_->factorsOfLength(varianceAware_->regionOf(t == 1 ? c.pRaster : pRaster), s + t - 1);
-    if (use.enabled) w = weight<kRecords>(path, c, walks, counters);
+      factors = varianceAware_->factorsOfLength(varianceAware_->regionOf(t == 1 ? c.pRaster : pRaster), s + t - 1);
+    if (use.enabled) w = weight<kRecords>(path, c, walks, factors, counters);
     imageWeight = !use.inImage ? 0.f : use.unweightedInImage ? 1.f : w;
     if (!(imageWeight > 0.f) && !use.inPyramid && !demand.everyContribution) {
       w = 0.f;
@@ -266,7 +264,7 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
         tracePath(scene_, camera_, path, walks.traced);
         r.traced = &walks.traced;
         walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
-                                        mergesOnPath(mergePass_, options_.mergeSite), walks.misFactors);
+                                        mergesOnPath(mergePass_, options_.mergeSite), factors);
         r.onPath = &walks.onPath;
       }
     }
@@ -333,7 +331,7 @@ int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Rng& rng, Wa
     if (mergePass_)
       accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, mergeTerms(*mergePass_));
     else
-      accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums);
+      accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, {}, varianceAware_ != nullptr);
   }
   return nt;
 }
@@ -342,7 +340,8 @@ template <class Rng>
 int BidirTracer::walkLight(int vertices, Rng& rng, Walks& walks, Counters& counters) const {
   if (vertices <= 0) return 0;
   const int ns = generateLightSubpath(scene_, rng, WalkOptions{vertices, options_.russianRoulette}, walks.light, counters);
-  if (ns > 0 && misEvaluation_ == MisEvaluation::PartialSums) accumulateLightSums(walks.light, misPower_, walks.lightSums);
+  if (ns > 0 && misEvaluation_ == MisEvaluation::PartialSums)
+    accumulateLightSums(walks.light, misPower_, walks.lightSums, {}, varianceAware_ != nullptr);
   return ns;
 }
 

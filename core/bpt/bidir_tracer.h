@@ -143,7 +143,9 @@ class BidirTracer {
   // The MIS weight of technique (s, t) on the connection just formed (misEvaluation_); kRecords as
   // evaluate's (false: the image-only route, whose preconditions fix the partial sums).
   template <bool kRecords>
-  float weight(const MisPath& path, const Connection& c, const Walks& walks, Counters& counters) const;
+  // `factors`: variance-aware MIS's where the path lands (null: all 1).
+  float weight(const MisPath& path, const Connection& c, const Walks& walks, const float* factors,
+               Counters& counters) const;
   // The sample's light subpath from the merge pass into walks.light; its vertex count.
   int storedLightSubpath(const SampleId& id, Walks& walks) const;
   // The merges of the sample's camera subpath (nt vertices) with the pass's light vertices.

@@ -30,7 +30,7 @@ void accumulateShortestEdges(const PathVertex* path, int count, float* shortestE
 // sum[0 .. count] of a light subpath (sum[count] when withLast).
 template <bool kMerges>
 void lightSums(const PathVertex* path, int count, const MisPower& power, const MergeTerms& m, double* sum,
-               bool withLast) {
+               bool withLast, double* steps = nullptr, double* counts = nullptr) {
   double left = 0.0;
   sum[0] = left;
   const int last = withLast ? count : count - 1;
@@ -57,17 +57,24 @@ void lightSums(const PathVertex* path, int count, const MisPower& power, const M
     }
     left = power(r) * (w + left);
     sum[i + 1] = left;
+    if (steps) steps[i] = power(r), counts[i] = w;
   }
 }
 
 }  // namespace
 
-void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisSums& sums, const MergeTerms& merges) {
+void accumulateLightSums(const Subpath& path, const MisPower& power, SubpathMisSums& sums, const MergeTerms& merges,
+                         bool steps) {
   sums.sum.resize(static_cast<size_t>(path.count) + 1);
-  if (merges.merges || merges.connections != 1.0)
+  if (steps) {
+    sums.step.resize(static_cast<size_t>(path.count));
+    sums.count.resize(static_cast<size_t>(path.count));
+    lightSums<false>(path.data(), path.count, power, merges, sums.sum.data(), true, sums.step.data(), sums.count.data());
+  } else if (merges.merges || merges.connections != 1.0) {
     lightSums<true>(path.data(), path.count, power, merges, sums.sum.data(), true);
-  else
+  } else {
     lightSums<false>(path.data(), path.count, power, merges, sums.sum.data(), true);
+  }
   sums.shortestEdge2.resize(static_cast<size_t>(std::max(path.count, 1)));
   accumulateShortestEdges(path.data(), path.count, sums.shortestEdge2.data());
 }
@@ -83,7 +90,7 @@ namespace {
 
 template <bool kMerges>
 void cameraSums(const Subpath& path, const MisPower& power, float lightTracingRatio, const MergeTerms& m,
-                SubpathMisSums& sums) {
+                SubpathMisSums& sums, bool steps = false) {
   sums.sum.resize(static_cast<size_t>(std::max(path.count, 1)) + 1);
   // No technique has t' = 0: the prefixes of zero and one camera vertex have nothing to sum.
   double right = 0.0;
@@ -104,6 +111,7 @@ void cameraSums(const Subpath& path, const MisPower& power, float lightTracingRa
     }
     right = power(ratio(v.pdfRevA, v.pdfFwdA)) * (w + right);
     sums.sum[static_cast<size_t>(j) + 1] = right;
+    if (steps) sums.step[static_cast<size_t>(j)] = power(ratio(v.pdfRevA, v.pdfFwdA)), sums.count[static_cast<size_t>(j)] = w;
   }
   sums.shortestEdge2.resize(static_cast<size_t>(std::max(path.count, 1)));
   accumulateShortestEdges(path.data(), path.count, sums.shortestEdge2.data());
@@ -112,8 +120,12 @@ void cameraSums(const Subpath& path, const MisPower& power, float lightTracingRa
 }  // namespace
 
 void accumulateCameraSums(const Subpath& path, const MisPower& power, float lightTracingRatio, SubpathMisSums& sums,
-                          const MergeTerms& merges) {
-  if (merges.merges || merges.connections != 1.0)
+                          const MergeTerms& merges, bool steps) {
+  if (steps) {
+    sums.step.assign(static_cast<size_t>(std::max(path.count, 1)), 0.0);
+    sums.count.assign(static_cast<size_t>(std::max(path.count, 1)), 0.0);
+    cameraSums<false>(path, power, lightTracingRatio, merges, sums, true);
+  } else if (merges.merges || merges.connections != 1.0)
     cameraSums<true>(path, power, lightTracingRatio, merges, sums);
   else
     cameraSums<false>(path, power, lightTracingRatio, merges, sums);
@@ -140,13 +152,24 @@ namespace {
 // Inline into each, so that the interior one (s, t >= 2 known) loses the branches of s <= 1.
 // lightSum / cameraSum: SubpathMisSums::sum of each side. kMerges: the sums and the weight count
 // the merges (MergeTerms). A merge's weight has its own entry point (mergeWeightFromTerms).
-template <bool kMerges>
+// kFactors: variance-aware MIS, each technique's count times factors[s'] (connections only), the
+// sums beyond the connection's two patched steps summed again from the walks' steps (SubpathMisSums).
+template <bool kMerges, bool kFactors = false>
 [[gnu::always_inline]] inline std::optional<float> weightFromSums(const Scene& scene, const MisPath& path,
                                                                   const ConnectionEnds& e, const ConnectionDensities& c,
                                                                   const double* lightSum, const double* cameraSum,
                                                                   const MisPower& power, float lightTracingRatio,
-                                                                  const MergeTerms& m) {
+                                                                  const MergeTerms& m,
+                                                                  const SubpathMisSums* lightAll = nullptr,
+                                                                  const SubpathMisSums* cameraAll = nullptr,
+                                                                  const float* factors = nullptr) {
+  static_assert(!(kMerges && kFactors), "variance-aware weights with merges are the explicit ones");
   const int s = path.s, t = path.t;
+  // The factor of technique s' of this path's length (one without factors).
+  auto factor = [&](int sp) -> double {
+    if constexpr (kFactors) return static_cast<double>(factors[sp]);
+    else return 1.0;
+  };
   const PathVertex& pt = *e.pt;
   // x0's density under technique s' = 1 over its density as a light subpath's origin, for paths
   // of three or more vertices (mis.h PathDensities::x0Nee): what moving between s' = 1 and 2
@@ -190,7 +213,14 @@ template <bool kMerges>
       double w = usable ? connections : 0.0;
       if constexpr (kMerges)
         if (s >= 4) w += merge(s - 2, path.lightPath[s - 3], path.lightPath[s - 3].pdfRevA, path.lightPath[s - 4].isDelta);
-      beyond = power(r) * (w + lightSum[s - 2]);
+      if constexpr (kFactors) {
+        // left(s - 2) with the factors: technique s' = i's count enters at the light vertex x_i.
+        double sum = 0.0;
+        for (int i = 0; i < s - 2; ++i) sum = lightAll->step[static_cast<size_t>(i)] * (factor(i) * lightAll->count[static_cast<size_t>(i)] + sum);
+        beyond = power(r) * (factor(s - 2) * w + sum);
+      } else {
+        beyond = power(r) * (w + lightSum[s - 2]);
+      }
     }
     // s = 2: the term is technique s' = 1's.
     const bool usable = s == 1 ? canBeHitAsOrigin(*e.qs) : !e.qsMinus->isDelta && (s != 2 || e.qsMinus->pdfNeeA != 0.f);
@@ -202,7 +232,7 @@ template <bool kMerges>
     double w = usable ? connections : 0.0;
     if constexpr (kMerges)
       if (s >= 3) w += merge(s - 1, *e.qsMinus, c.qsMinusFromCamera, path.lightPath[s - 3].isDelta);
-    left = power(r) * (w + beyond);
+    left = power(r) * (factor(s - 1) * w + beyond);
   }
   // Camera side, the mirror image: technique t' weighs the ratios of y(t') .. y(t-1), and the
   // t' = 1 techniques count lightTracingRatio samples (Veach's n_i).
@@ -220,7 +250,15 @@ template <bool kMerges>
       // Technique t' = t - 2's merge merges ptMinus (s' = s + 2 >= 2), after pt (never delta: a
       // connection's end).
       if constexpr (kMerges) w += merge(2, *e.ptMinus, e.ptMinus->pdfFwdA, false);
-      beyond = power(r) * (w + cameraSum[t - 2]);
+      if constexpr (kFactors) {
+        // Its mirror: technique t' = j (s' = n - j) enters at the camera vertex y(j), j >= 1.
+        double sum = 0.0;
+        for (int j = 1; j < t - 2; ++j)
+          sum = cameraAll->step[static_cast<size_t>(j)] * (factor(n - j) * cameraAll->count[static_cast<size_t>(j)] + sum);
+        beyond = power(r) * (factor(s + 2) * w + sum);
+      } else {
+        beyond = power(r) * (w + cameraSum[t - 2]);
+      }
     }
     // Technique t' = t - 1 connects pt and its predecessor; no lens point connects to a light at
     // infinity (the path environment -> camera, s = 0, t = 2).
@@ -234,11 +272,11 @@ template <bool kMerges>
     double w = usable ? count(t - 1) * connections : 0.0;
     // Technique t' = t - 1's merge merges pt (s' = s + 1: not x0, s >= 1), after qs.
     if constexpr (kMerges) w += merge(s + 1, pt, pt.pdfFwdA, false);
-    right = power(r) * (w + beyond);
+    right = power(r) * (factor(s + 1) * w + beyond);
   }
   // Veach eq. 10.9 relative to C(s, t)'s own (n_s p_s)^beta, and with merges the merge at qs
   // (M(s, t + 1), whose density is C(s, t)'s times eta pFromCamera(qs)).
-  const double own = t == 1 ? lightTracingCount : 1.0;
+  const double own = (t == 1 ? lightTracingCount : 1.0) * factor(s);
   double sum = own + left + right;
   if constexpr (kMerges)
     sum = own * m.connections + (e.qs && e.qsMinus ? merge(s, *e.qs, c.qsFromCamera, e.qsMinus->isDelta) : 0.0) +
@@ -252,11 +290,16 @@ template <bool kMerges>
 
 std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
-                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance,
+                                       const float* factors) {
   const ConnectionEnds e = connectionEnds(path);
   if (hasShortEdge(path.s, path.t, e.qs ? edgeLength2(*e.qs, *e.pt) : kNoEdge, lightSums.shortestEdge2.data(),
                    cameraSums.shortestEdge2.data(), minConnectionDistance))
     return std::nullopt;
+  if (factors)
+    return weightFromSums<false, true>(scene, path, e, connectionDensities(scene, camera, path, e), lightSums.sum.data(),
+                                       cameraSums.sum.data(), power, lightTracingRatio, MergeTerms{}, &lightSums,
+                                       &cameraSums, factors);
   return weightFromSums<false>(scene, path, e, connectionDensities(scene, camera, path, e), lightSums.sum.data(),
                                cameraSums.sum.data(), power, lightTracingRatio, MergeTerms{});
 }
@@ -275,11 +318,11 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
 
 namespace {
 
-template <bool kMerges>
+template <bool kMerges, bool kFactors = false>
 [[gnu::always_inline]] inline std::optional<float> interiorWeight(
     const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath, int t, const ConnectionPdfs& pdfs,
     float connectionLength2, const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums, const MisPower& power,
-    float lightTracingRatio, float minConnectionDistance, const MergeTerms& merges) {
+    float lightTracingRatio, float minConnectionDistance, const MergeTerms& merges, const float* factors = nullptr) {
   assert(s >= 2 && t >= 2);
   if (s < 2 || t < 2) __builtin_unreachable();  // lets the compiler drop weightFromSums' cases s, t <= 1
   if (hasShortEdge(s, t, connectionLength2, lightSums.shortestEdge2.data(), cameraSums.shortestEdge2.data(),
@@ -291,8 +334,9 @@ template <bool kMerges>
   e.qs = &lightPath[s - 1];
   e.pt = &cameraPath[t - 1];
   e.ptMinus = &cameraPath[t - 2];
-  return weightFromSums<kMerges>(scene, path, e, evaluatedConnectionDensities(*e.qs, *e.pt, pdfs, true, t),
-                                 lightSums.sum.data(), cameraSums.sum.data(), power, lightTracingRatio, merges);
+  return weightFromSums<kMerges, kFactors>(scene, path, e, evaluatedConnectionDensities(*e.qs, *e.pt, pdfs, true, t),
+                                           lightSums.sum.data(), cameraSums.sum.data(), power, lightTracingRatio,
+                                           merges, &lightSums, &cameraSums, factors);
 }
 
 }  // namespace
@@ -300,7 +344,12 @@ template <bool kMerges>
 std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
                                        int t, const ConnectionPdfs& pdfs, float connectionLength2,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
-                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance) {
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance,
+                                       const float* factors) {
+  if (factors)
+    return interiorWeight<false, true>(scene, lightPath, s, cameraPath, t, pdfs, connectionLength2, lightSums,
+                                       cameraSums, power, lightTracingRatio, minConnectionDistance, MergeTerms{},
+                                       factors);
   return interiorWeight<false>(scene, lightPath, s, cameraPath, t, pdfs, connectionLength2, lightSums, cameraSums,
                                power, lightTracingRatio, minConnectionDistance, MergeTerms{});
 }

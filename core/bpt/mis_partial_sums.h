@@ -70,28 +70,40 @@ inline bool mergeableVertex(const PathVertex& v) { return v.type == VertexType::
 // Per subpath: sum[i] is the partial sum of the prefix of i vertices (left(i) on the light side,
 // its mirror on the camera side), shortestEdge2[i] the squared length of the shortest edge among
 // vertices 0..i (infinite for one vertex).
+//
+// Variance-aware MIS (variance_aware_mis.h) multiplies each technique's count by a factor of the
+// path's length, which a walk does not know yet: with `steps`, the recursion's two parts per vertex
+// are kept too, count[i] = w(s' = i) (light side; t' = i on the camera side) and step[i] = T(r_i),
+// so that a connection sums left(s - 2) = step[s-3] (c count[s-3] + step[s-4] (...)) again with the
+// factors c of its length, in O(s) multiply-adds (connections only: with merges the weights are the
+// explicit ones).
 struct SubpathMisSums {
   std::vector<double> sum;
   std::vector<float> shortestEdge2;
+  std::vector<double> step, count;  // only when accumulated with `steps`
 };
 
+// `steps`: keep SubpathMisSums::step and ::count (variance-aware MIS; no merges).
 void accumulateLightSums(const Subpath& lightPath, const MisPower& power, SubpathMisSums& sums,
-                         const MergeTerms& merges = {});
+                         const MergeTerms& merges = {}, bool steps = false);
 // The same on `count` stored vertices (a merge pass's light subpath): sum[i] and shortestEdge2[i]
 // for i < count written to sum[i], shortestEdge2[i] (no sum[count]).
 void accumulateLightSums(const PathVertex* lightPath, int count, const MisPower& power, double* sum,
                          float* shortestEdge2, const MergeTerms& merges = {});
 // lightTracingRatio: the sample count of the t' = 1 techniques (bidir_tracer.h).
 void accumulateCameraSums(const Subpath& cameraPath, const MisPower& power, float lightTracingRatio,
-                          SubpathMisSums& sums, const MergeTerms& merges = {});
+                          SubpathMisSums& sums, const MergeTerms& merges = {}, bool steps = false);
 
 // The weight of technique (path.s, path.t) among all techniques of its length, from the sums of
 // the subpaths path.lightPath and path.cameraPath point into. nullopt where the sums cannot give
 // it and misWeight must: an edge shorter than minConnectionDistance (MisOptions::minConnection),
 // or a sum that overflowed.
+// `factors`: variance-aware MIS's factors of the path's length by slot (PathDensities::factors),
+// read with the sums' steps; null: every factor 1.
 std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
-                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance);
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance,
+                                       const float* factors = nullptr);
 // The same among the connections and merges `merges` enables (sums accumulated with them).
 std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera, const MisPath& path,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
@@ -105,7 +117,8 @@ std::optional<float> misWeightFromSums(const Scene& scene, const Camera& camera,
 std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
                                        int t, const ConnectionPdfs& pdfs, float connectionLength2,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,
-                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance);
+                                       const MisPower& power, float lightTracingRatio, float minConnectionDistance,
+                                       const float* factors = nullptr);
 std::optional<float> misWeightInterior(const Scene& scene, const Subpath& lightPath, int s, const Subpath& cameraPath,
                                        int t, const ConnectionPdfs& pdfs, float connectionLength2,
                                        const SubpathMisSums& lightSums, const SubpathMisSums& cameraSums,

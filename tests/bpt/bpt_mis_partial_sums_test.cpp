@@ -37,7 +37,11 @@ Tally compare(const Scene& scene, const Camera& camera, int maxLength, float lig
   const MisOptions options[] = {{MisHeuristic::Balance, 2.f, minConnection},
                                 {MisHeuristic::Power, 2.f, minConnection},
                                 {MisHeuristic::Power, 1.37f, minConnection},
-                                {MisHeuristic::Uniform, 2.f, minConnection}};
+                                {MisHeuristic::Uniform, 2.f, minConnection},
+                                {MisHeuristic::VarianceAware, 2.f, minConnection}};
+  // Variance-aware: a factor per technique of each length (by slot), log-uniform over 1e-2..1e2,
+  // drawn afresh for every sample; the sums then keep their steps (SubpathMisSums::step).
+  std::vector<std::vector<float>> factors(static_cast<size_t>(maxLength) + 1);
   const TechniqueSet all = TechniqueSet::all();
   const float minDistance = minConnection * scene.bounds().radius;
   for (int sample = 0; sample < samples; ++sample) {
@@ -45,10 +49,15 @@ Tally compare(const Scene& scene, const Camera& camera, int maxLength, float lig
     const int nt = generateCameraSubpath(scene, camera, pRaster, rng.next2D(), rng, WalkOptions{maxLength + 1, true, scene.mediumAt(camera.position())}, cp,
                                          counters);
     const int ns = generateLightSubpath(scene, rng, WalkOptions{maxLength, true}, lp, counters);
+    for (int k = 1; k <= maxLength; ++k) {
+      factors[static_cast<size_t>(k)].resize(static_cast<size_t>(2 * k));
+      for (float& c : factors[static_cast<size_t>(k)]) c = std::pow(10.f, -2.f + 4.f * rng.next1D());
+    }
     for (const MisOptions& o : options) {
       const MisPower power(o);
-      accumulateCameraSums(cp, power, lightTracingRatio, cameraSums);
-      accumulateLightSums(lp, power, lightSums);
+      const bool varianceAware = o.heuristic == MisHeuristic::VarianceAware;
+      accumulateCameraSums(cp, power, lightTracingRatio, cameraSums, {}, varianceAware);
+      accumulateLightSums(lp, power, lightSums, {}, varianceAware);
       for (int t = 1; t <= nt; ++t)
         for (int s = 0; s <= std::max(ns, 1) && s + t - 1 <= maxLength; ++s) {
           if (s + t < 2 || (s > ns && !(s == 1 && t >= 2))) continue;
@@ -56,14 +65,15 @@ Tally compare(const Scene& scene, const Camera& camera, int maxLength, float lig
           Connection c;
           if (!formConnection(scene, camera, lp, s, cp, t, connectionRng, c)) continue;
           const MisPath path{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-          const float explicitWeight = misWeight(scene, camera, path, all, o, lightTracingRatio);
+          const float* f = varianceAware ? factors[static_cast<size_t>(s + t - 1)].data() : nullptr;
+          const float explicitWeight = misWeight(scene, camera, path, all, o, lightTracingRatio, f);
           const std::optional<float> fast =
-              misWeightFromSums(scene, camera, path, lightSums, cameraSums, power, lightTracingRatio, minDistance);
+              misWeightFromSums(scene, camera, path, lightSums, cameraSums, power, lightTracingRatio, minDistance, f);
           if (s >= 2 && t >= 2) {
             // The tracer's image-only path weighs interior techniques with misWeightInterior: the same answer, bit
             // for bit, declining where this one declines.
             const std::optional<float> interior = misWeightInterior(scene, lp, s, cp, t, c.pdfs, c.edgeLength2, lightSums,
-                                                                    cameraSums, power, lightTracingRatio, minDistance);
+                                                                    cameraSums, power, lightTracingRatio, minDistance, f);
             ++tally.interior;
             EXPECT_EQ(interior.has_value(), fast.has_value()) << name << " (" << s << "," << t << ")";
             if (interior && fast) {
