@@ -1,7 +1,10 @@
 // The picked sample replayed (and the brightest of the first n found), and the overlay of its selected path.
 #include "ui/inspect/path_inspector.h"
 
+#include "core/bpt/variance_aware_mis.h"
 #include "core/math/frame.h"
+
+#include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
@@ -76,6 +79,15 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
   if (settings.integrator == IntegratorKind::Mlt) {
     // A pixel's value is the chains' visits, not independent samples of its own to replay.
     state.error = "Metropolis has no per-pixel samples to replay: switch to bpt or lt to inspect one";
+    return false;
+  }
+  if (settings.mis.heuristic == MisHeuristic::VarianceAware && state.sample >= kVarianceAwarePilotPasses) {
+    // Pass N was weighed with factors from passes 0 .. N-1, which a replay here does not have.
+    state.error = fmt::format(
+        "variance-aware MIS weighs sample {} with the factors of the passes before it, which a replay here does not "
+        "have: inspect samples 0-{} (the balance heuristic's pilot passes) here, or this one with `pathlab inspect "
+        "--mis variance-aware --sample {}`",
+        state.sample, kVarianceAwarePilotPasses - 1, state.sample);
     return false;
   }
   const Vec2i p = *state.pixel;

@@ -520,7 +520,8 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("1 / n_k for every enabled technique of length k, whatever the path (Veach's naive\n"
                         "combination): biased where a technique cannot sample a path (the status says where)");
-    ImGui::SameLine();
+    // Its own line: the panel is narrow.
+    ImGui::SetCursorPosX(ImGui::GetCursorPosX() + ImGui::CalcTextSize("MIS").x + ImGui::GetStyle().ItemSpacing.x);
     ImGui::BeginDisabled(edited.integrator == IntegratorKind::Mlt);
     ImGui::RadioButton("variance-aware", &heuristic, static_cast<int>(MisHeuristic::VarianceAware));
     ImGui::EndDisabled();
