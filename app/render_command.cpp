@@ -259,6 +259,10 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
     throw std::runtime_error("render needs an output image (-o OUT) or --replay X,Y,SAMPLE");
   if (!o.replay.empty() && job.size() > 1)
     throw std::runtime_error("--replay recomputes one sample: run it as one process, without mpirun");
+  // Each rank renders every N-th pass: its factors would come from its own passes only.
+  if (settings.mis.heuristic == MisHeuristic::VarianceAware && job.size() > 1)
+    throw std::runtime_error("--mis variance-aware estimates its factors from one process's passes: run it as one "
+                             "process, without mpirun");
   // A too large --width x --height is refused before any work.
   checkRequestedPixels(o);
   if (settings.integrator != IntegratorKind::Pt) {

@@ -45,6 +45,16 @@ inline constexpr int kVarianceAwarePilotPasses = 4;
 // cells).
 inline constexpr int kVarianceAwareCell = 8;
 inline constexpr uint64_t kVarianceAwareBytes = uint64_t{128} << 20;
+// The passes the factors learn from: every one of the first kVarianceAwareEveryPassUpTo, then one
+// in kVarianceAwareStride. A learning pass takes the kernel's recording route (every contribution's
+// record) and weighs each connection before its shadow ray; the others render as the balance
+// heuristic does but for the factors in the weights. Which passes learn is fixed in advance, so
+// the factors still depend on earlier passes only.
+inline constexpr uint64_t kVarianceAwareEveryPassUpTo = 32;
+inline constexpr uint64_t kVarianceAwareStride = 8;
+inline constexpr bool varianceAwareLearnsFrom(uint64_t pass) {
+  return pass < kVarianceAwareEveryPassUpTo || pass % kVarianceAwareStride == 0;
+}
 // The factors are clamped to [1 / kVarianceAwareMaxFactor, kVarianceAwareMaxFactor]: a technique
 // never vanishes from the weights, and a region whose estimate did not vary yet (V = 0) does not
 // take every weight for one technique.
@@ -73,7 +83,7 @@ class VarianceAwareFactors {
     return factors_.data() + static_cast<size_t>(region) * techniques_ + Technique::firstIndexOfLength(k);
   }
   float factor(int region, Technique x) const;
-  // Passes whose sums are in.
+  // Learning passes whose sums are in (varianceAwareLearnsFrom).
   uint64_t passes() const { return passes_; }
 
   // One contributed technique result of the pass: its unweighted contribution's luminance, where

@@ -212,7 +212,7 @@ void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer*
                                std::vector<VarianceAwareFactors::Splat>* factorSplats, Counters& c) {
   SampleTargets targets{&film_, pyramid_.get(), nullptr, {}};
   targets.splats = splats;
-  if (varianceAware_) targets.varianceAware = varianceAware_.get(), targets.varianceAwareSplats = factorSplats;
+  if (varianceAware_ && factorSplats) targets.varianceAware = varianceAware_.get(), targets.varianceAwareSplats = factorSplats;
   targets.check = threadChecks_ ? &threadChecks_->sums.local() : nullptr;
   if (outlierTally_) targets.outlierTally = outlierTally_.get(), targets.outliers = &outlierTally_->local();
   for (int y = tile.y0; y < tile.y1; ++y)
@@ -324,6 +324,8 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   if (bidirTracer_ && tileSplats_.size() < inFlight)
     tileSplats_.resize(inFlight, SplatBuffer(settings_.width, settings_.height));
   if (varianceAware_ && factorSplats_.size() < inFlight) factorSplats_.resize(inFlight);
+  // Variance-aware MIS: whether this pass's contributions go into the factors' sums.
+  const bool learning = varianceAware_ && varianceAwareLearnsFrom(passes_.load(std::memory_order_relaxed));
   size_t next = 0;
   bool cancelled = false;  // both only touched by the pipeline's first stage, one item at a time
   tbb::parallel_pipeline(
@@ -342,7 +344,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
                                            [&](size_t i) {
                                              SplatBuffer* splats = bidirTracer_ ? &tileSplats_[i % inFlight] : nullptr;
                                              renderTile(tiles_[i], pass, splats,
-                                                        varianceAware_ ? &factorSplats_[i % inFlight] : nullptr,
+                                                        learning ? &factorSplats_[i % inFlight] : nullptr,
                                                         local.local());
                                              return i;
                                            }) &
@@ -350,7 +352,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
           tbb::make_filter<size_t, void>(bidirTracer_ ? tbb::filter_mode::serial_in_order : tbb::filter_mode::parallel,
                                          [&](size_t i) {
                                            if (bidirTracer_) tileSplats_[i % inFlight].addTo(splatSums_.get(), film_, pyramid_.get());
-                                           if (varianceAware_) varianceAware_->addSplats(factorSplats_[i % inFlight]);
+                                           if (learning) varianceAware_->addSplats(factorSplats_[i % inFlight]);
                                          }));
   Counters passCounters;
   for (const Counters& c : local) passCounters += c;
@@ -379,7 +381,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
       pyramid_->finishPass(static_cast<double>(film_.pixelCount()) /
                            static_cast<double>(lightSubpathsPerPass(film_.pixelCount())));
   }
-  if (varianceAware_) {
+  if (learning) {
     // The next pass weighs with factors that include this one (one camera sample a pixel).
     if (cancelled) {
       varianceAware_->discardPass();

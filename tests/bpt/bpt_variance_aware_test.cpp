@@ -105,6 +105,8 @@ TEST(VarianceAwareMis, FavoursThePixelStratifiedTechniquesOnTheCornellBox) {
   for (int p = 0; p < 64; ++p) ASSERT_TRUE(session.renderPass());
   const VarianceAwareFactors* factors = session.varianceAwareFactors();
   ASSERT_NE(factors, nullptr);
+  // Every one of the first 32 passes taught the factors, then one in 8 (passes 32, 40, 48, 56).
+  EXPECT_EQ(factors->passes(), 36u);
   std::vector<float> nee, lt;
   for (int r = 0; r < factors->regions(); ++r) {
     nee.push_back(factors->factor(r, Technique{1, 2}));

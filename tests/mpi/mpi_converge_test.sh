@@ -76,6 +76,16 @@ mpirun2 "$PATHLAB" converge "$BOX" -o "$TMP/mlt" --width 16 --height 12 --thread
 [ "$(grep -c "^pathlab: .*configuration 'mlt': Metropolis runs over MPI ranks in .pathlab render. only" "$TMP/err")" -eq 1 ] &&
   ok || fail "converge mlt under 2 ranks: $(cat "$TMP/err")"
 [ -e "$TMP/mlt" ] && fail "converge mlt under 2 ranks left $TMP/mlt"
+# Variance-aware MIS estimates its factors from one process's passes: refused the same way, by
+# converge and by render.
+mpirun2 "$PATHLAB" converge "$BOX" -o "$TMP/va" --width 16 --height 12 --threads 1 --configs "bpt:mis=variance-aware" \
+  --spp 2 >/dev/null 2>"$TMP/err" </dev/null && fail "converge variance-aware under 2 ranks: exit code 0"
+[ "$(grep -c "variance-aware MIS estimates its factors from one process" "$TMP/err")" -eq 1 ] &&
+  ok || fail "converge variance-aware under 2 ranks: $(cat "$TMP/err")"
+mpirun2 "$PATHLAB" render "$BOX" -o "$TMP/va.exr" --width 16 --height 12 --threads 1 --mis variance-aware --spp 2 \
+  >/dev/null 2>"$TMP/err" </dev/null && fail "render variance-aware under 2 ranks: exit code 0"
+[ "$(grep -c "variance-aware estimates its factors from one process" "$TMP/err")" -eq 1 ] && [ ! -e "$TMP/va.exr" ] &&
+  ok || fail "render variance-aware under 2 ranks: $(cat "$TMP/err")"
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -42,6 +42,19 @@ def test_image_equals_the_command_lines_bit_for_bit(tmp_path, scene, kwargs, opt
     assert np.array_equal(image, expected), f"max difference {np.abs(image - expected).max()}"
 
 
+def test_variance_aware_mis_equals_the_command_line_past_its_pilot_passes(tmp_path):
+    # 7 passes: the last 3 weighed with factors estimated from the passes before them.
+    out = tmp_path / "va.pfm"
+    scene = scene_path("cornell-box.gltf")
+    done = run_cli("render", scene, "--spp", "7", "-o", str(out), "--force", "--width", "32", "--height", "32",
+                   "--mis", "variance-aware")
+    assert done.returncode == 0, done.stderr
+    image = pathlab.Renderer(pathlab.load(scene), pathlab.Settings(width=32, height=32, mis="variance-aware")).render(spp=7)
+    assert np.array_equal(image, read_pfm(out))
+    balance = pathlab.Renderer(pathlab.load(scene), pathlab.Settings(width=32, height=32)).render(spp=7)
+    assert not np.array_equal(image, balance)
+
+
 def test_passes_accumulate_as_one_render(box):
     # 2 passes then 3 more: the image of a 5-pass render, and the array owns its pixels.
     settings = pathlab.Settings(width=24, height=24, seed=2)
