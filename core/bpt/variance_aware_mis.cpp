@@ -5,62 +5,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace pathlab {
 
 namespace {
-
-// The regions of `tiles` cut into cells of `cell` pixels: each tile's cells, row by row.
-uint64_t countRegions(const std::vector<PassTile>& tiles, int cell) {
-  uint64_t n = 0;
-  for (const PassTile& t : tiles) {
-    if (t.pixels() <= 0) continue;
-    const uint64_t columns = static_cast<uint64_t>((t.x1 - 1) / cell - t.x0 / cell + 1);
-    const uint64_t rows = static_cast<uint64_t>((t.y1 - 1) / cell - t.y0 / cell + 1);
-    n += columns * rows;
-  }
-  return n;
-}
-
 // Per region and technique: five doubles (the pass's two sums, the three over passes) and the factor.
 constexpr uint64_t kBytesPerSlot = 5 * sizeof(double) + sizeof(float);
+}  // namespace
 
-uint64_t tableBytes(int width, int height, int maxLength, int cell) {
-  const uint64_t regions = countRegions(passTiles(width, height), cell);
+uint64_t VarianceAwareFactors::bytesFor(int width, int height, uint64_t regions, int maxLength) {
   return regions * Technique::countUpTo(maxLength) * kBytesPerSlot +
          static_cast<uint64_t>(width) * static_cast<uint64_t>(height) * sizeof(int32_t);
 }
 
-}  // namespace
-
-int VarianceAwareFactors::cellFor(int width, int height, int maxLength) {
-  int cell = kVarianceAwareCell;
-  while (cell < std::max(width, height) && tableBytes(width, height, maxLength, cell) > kVarianceAwareBytes) cell *= 2;
-  return cell;
-}
-
-uint64_t VarianceAwareFactors::bytesFor(int width, int height, int maxLength) {
-  return tableBytes(width, height, maxLength, cellFor(width, height, maxLength));
-}
-
-VarianceAwareFactors::VarianceAwareFactors(int width, int height, const std::vector<PassTile>& tiles, int maxLength)
+VarianceAwareFactors::VarianceAwareFactors(int width, int height, std::vector<int32_t> regionOfPixel, int regions,
+                                           int maxLength)
     : width_(width),
       height_(height),
       maxLength_(maxLength),
-      cell_(cellFor(width, height, maxLength)),
-      techniques_(Technique::countUpTo(maxLength)) {
-  regionOfPixel_.assign(static_cast<size_t>(width) * static_cast<size_t>(height), -1);
-  for (const PassTile& t : tiles) {
-    if (t.pixels() <= 0) continue;
-    const int cx0 = t.x0 / cell_, cx1 = (t.x1 - 1) / cell_, cy0 = t.y0 / cell_, cy1 = (t.y1 - 1) / cell_;
-    const int first = regions_;
-    const int columns = cx1 - cx0 + 1;
-    for (int y = t.y0; y < t.y1; ++y)
-      for (int x = t.x0; x < t.x1; ++x)
-        regionOfPixel_[static_cast<size_t>(y) * static_cast<size_t>(width) + static_cast<size_t>(x)] =
-            first + (y / cell_ - cy0) * columns + (x / cell_ - cx0);
-    regions_ += columns * (cy1 - cy0 + 1);
-  }
+      techniques_(Technique::countUpTo(maxLength)),
+      regions_(regions),
+      regionOfPixel_(std::move(regionOfPixel)) {
   regionPixels_.assign(static_cast<size_t>(regions_), 0.0);
   for (const int32_t r : regionOfPixel_)
     if (r >= 0) regionPixels_[static_cast<size_t>(r)] += 1.0;

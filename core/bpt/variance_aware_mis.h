@@ -30,7 +30,6 @@
 #pragma once
 
 #include "core/math/types.h"
-#include "core/render/pass_tiles.h"
 #include "core/sampling/technique.h"
 
 #include <cstdint>
@@ -62,14 +61,12 @@ inline constexpr float kVarianceAwareMaxFactor = 1000.f;
 
 class VarianceAwareFactors {
  public:
-  // Regions: the kVarianceAwareCell cells of the image cut along `tiles` (the pass's work items),
-  // so that each region lies in one work item. Techniques up to maxLength, both families.
-  VarianceAwareFactors(int width, int height, const std::vector<PassTile>& tiles, int maxLength);
-  // The cell size the tables use for this image and length, and the bytes they then take (at
-  // most about kVarianceAwareBytes, unless even the coarsest cells exceed it).
-  static int cellFor(int width, int height, int maxLength);
-  static uint64_t bytesFor(int width, int height, int maxLength);
-  int cell() const { return cell_; }
+  // regionOfPixel: each pixel's region, 0 .. regions - 1, row-major (the render session's cells cut
+  // along its work items, core/render/variance_aware_regions.h, so that each region lies in one
+  // work item). Techniques up to maxLength, both families.
+  VarianceAwareFactors(int width, int height, std::vector<int32_t> regionOfPixel, int regions, int maxLength);
+  // Bytes the tables take for `regions` regions of a width x height image.
+  static uint64_t bytesFor(int width, int height, uint64_t regions, int maxLength);
 
   int regions() const { return regions_; }
   int maxLength() const { return maxLength_; }
@@ -107,7 +104,7 @@ class VarianceAwareFactors {
 
  private:
   size_t slot(int region, Technique x) const { return static_cast<size_t>(region) * techniques_ + x.index(); }
-  int width_, height_, maxLength_, cell_;
+  int width_, height_, maxLength_;
   size_t techniques_;  // Technique::countUpTo(maxLength): both families
   int regions_ = 0;
   std::vector<int32_t> regionOfPixel_;

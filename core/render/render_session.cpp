@@ -4,6 +4,7 @@
 
 #include "core/counters/technique_timer.h"
 #include "core/merge/room.h"
+#include "core/render/variance_aware_regions.h"
 
 #include <tbb/global_control.h>
 
@@ -100,7 +101,11 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength,
                                                 settings.techniqueMaps, pyramidFamilies(settings), settings.varianceMaps);
   if (bidirTracer_ && !metropolis_ && settings.mis.heuristic == MisHeuristic::VarianceAware) {
-    varianceAware_ = std::make_unique<VarianceAwareFactors>(settings.width, settings.height, tiles_, settings.maxLength);
+    VarianceAwareRegions regions = varianceAwareRegions(settings.width, settings.height, tiles_,
+                                                        varianceAwareCell(settings.width, settings.height, settings.maxLength));
+    varianceAware_ = std::make_unique<VarianceAwareFactors>(settings.width, settings.height,
+                                                            std::move(regions.regionOfPixel), regions.count,
+                                                            settings.maxLength);
     bidirTracer_->setVarianceAwareFactors(varianceAware_.get());
   }
   if (bidirTracer_ && settings.checkTechniques) {

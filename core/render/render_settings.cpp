@@ -4,7 +4,7 @@
 
 #include "core/bpt/merge_pass.h"
 #include "core/bpt/mis_off.h"
-#include "core/bpt/variance_aware_mis.h"
+#include "core/render/variance_aware_regions.h"
 #include "core/bpt/path_vertex.h"
 #include "core/film/technique_films.h"
 #include "core/math/types.h"
@@ -172,7 +172,7 @@ void validateSettings(const RenderSettings& s) {
   if (s.mis.heuristic == MisHeuristic::VarianceAware) {
     if (!bidirectional)
       throw std::invalid_argument("--mis variance-aware weighs the bidirectional techniques: use bpt, lt, vcm, bpm or ppm");
-    const uint64_t bytes = VarianceAwareFactors::bytesFor(s.width, s.height, s.maxLength);
+    const uint64_t bytes = varianceAwareBytes(s.width, s.height, s.maxLength);
     if (bytes > kMaxVarianceAwareBytes)
       throw std::invalid_argument(fmt::format(
           "--mis variance-aware at {} x {} with maximum length {} keeps {:.1f} GiB of factors (at most {} GiB): lower "

@@ -15,6 +15,7 @@
 #   SUITE_MAX_LENGTH [10] maximum path length in edges
 #   SUITE_REF_SPP [1024]  samples per pixel of a reference (bpt, the binary BIN)
 #   SUITE_REFS    [${XDG_CACHE_HOME:-$HOME/.cache}/pathlab/references]  the reference cache
+#   REF_SEED      [20261207]  the references' seed (never the configurations', 0)
 #   SUITE_ARGS    []      more `pathlab converge` options for both binaries, e.g. "--threads 1 --clock cpu"
 #   BASE_ARGS     [$SUITE_ARGS]  options of the BASE_BIN runs (e.g. "--no-rr" against the same binary)
 set -euo pipefail
@@ -37,13 +38,17 @@ budget=(--time "$SUITE_TIME")
 [ -n "$SUITE_SPP" ] && budget=(--spp "$SUITE_SPP")
 
 # A reference is keyed by the scene file's content and the image's settings, so an edited scene
-# gets a new one; the estimator's changes do not (every estimator has the same expectation).
+# gets a new one; the estimator's changes do not (every estimator has the same expectation). Its
+# seed is not the configurations' (converge's default 0): with the same seed a bpt configuration
+# would draw the reference's own first samples, and its error would be measured against itself
+# (sessions before 25 did; the 1024-spp bpt rows of a scene then read near zero).
+REF_SEED=${REF_SEED:-20261207}
 reference() {
   local scene=$1 hash ref
   hash=$(sha256sum "$SRC/assets/$scene.gltf" | cut -c1-12)
-  ref="$SUITE_REFS/$scene-$hash-w$SUITE_WIDTH-l$SUITE_MAX_LENGTH-spp$SUITE_REF_SPP.exr"
+  ref="$SUITE_REFS/$scene-$hash-w$SUITE_WIDTH-l$SUITE_MAX_LENGTH-spp$SUITE_REF_SPP-seed$REF_SEED.exr"
   if [ ! -f "$ref" ]; then
-    "$BIN" render "$SRC/assets/$scene.gltf" -o "$ref.tmp.exr" --spp "$SUITE_REF_SPP" --width "$SUITE_WIDTH" \
+    "$BIN" render "$SRC/assets/$scene.gltf" -o "$ref.tmp.exr" --spp "$SUITE_REF_SPP" --width "$SUITE_WIDTH" --seed "$REF_SEED" \
       --max-length "$SUITE_MAX_LENGTH" --force 2>"$OUT/reference-$scene.log" </dev/null
     mv "$ref.tmp.exr" "$ref"
   fi

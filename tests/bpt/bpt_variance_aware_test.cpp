@@ -6,6 +6,7 @@
 // image at any thread count in render_reproducible_test.cpp.
 #include "core/bpt/variance_aware_mis.h"
 #include "core/render/render_session.h"
+#include "core/render/variance_aware_regions.h"
 #include "core/lights/environment_file.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/agreement.h"
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 namespace pathlab {
 namespace variance_aware_test {
@@ -23,8 +25,8 @@ namespace variance_aware_test {
 // One region (an 8 x 8 image), one technique per family of contribution: c = E[X^2] / Var[X] for
 // independent samples X, whatever their mean.
 TEST(VarianceAwareFactors, AreTheSecondMomentOverTheVarianceOfIndependentSamples) {
-  const std::vector<PassTile> tiles = passTiles(8, 8);
-  VarianceAwareFactors factors(8, 8, tiles, 3);
+  VarianceAwareRegions regions = varianceAwareRegions(8, 8, passTiles(8, 8), kVarianceAwareCell);
+  VarianceAwareFactors factors(8, 8, std::move(regions.regionOfPixel), regions.count, 3);
   ASSERT_EQ(factors.regions(), 1);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<float> uniform(0.f, 1.f);
@@ -62,7 +64,9 @@ TEST(VarianceAwareFactors, AreTheSecondMomentOverTheVarianceOfIndependentSamples
 TEST(VarianceAwareFactors, RegionsLieInOneWorkItemAndCoverTheFilm) {
   for (const auto& [w, h] : {std::pair{64, 48}, std::pair{13, 7}, std::pair{300, 17}}) {
     const std::vector<PassTile> tiles = passTiles(w, h);
-    const VarianceAwareFactors factors(w, h, tiles, 4);
+    VarianceAwareRegions regions = varianceAwareRegions(w, h, tiles, varianceAwareCell(w, h, 4));
+    EXPECT_EQ(regions.cell, kVarianceAwareCell);
+    const VarianceAwareFactors factors(w, h, std::move(regions.regionOfPixel), regions.count, 4);
     std::vector<int> itemOfRegion(static_cast<size_t>(factors.regions()), -1);
     for (size_t i = 0; i < tiles.size(); ++i)
       for (int y = tiles[i].y0; y < tiles[i].y1; ++y)
@@ -81,6 +85,14 @@ TEST(VarianceAwareFactors, RegionsLieInOneWorkItemAndCoverTheFilm) {
 }
 
 // A bundled scene; the environment scene under its sky map, as `pathlab render --environment`.
+// A large image at a long length takes coarser cells, so the tables stay near their budget.
+TEST(VarianceAwareFactors, CellsGrowWithTheImageToKeepTheTablesInBudget) {
+  EXPECT_EQ(varianceAwareCell(640, 480, 10), kVarianceAwareCell);
+  const int cell = varianceAwareCell(3840, 2160, 10);
+  EXPECT_GT(cell, kVarianceAwareCell);
+  EXPECT_LE(varianceAwareBytes(3840, 2160, 10), kVarianceAwareBytes + uint64_t{3840} * 2160 * sizeof(int32_t));
+}
+
 Scene bundled(const std::string& name) {
   const std::string source = PATHLAB_SOURCE_DIR;
   LoadOptions load;
