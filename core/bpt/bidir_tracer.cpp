@@ -558,6 +558,8 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
   const SinkDemand& demand = sink.demand();
   const std::optional<Isolation>& isolate = options_.isolate;
   const bool firstNonSpecularOnly = options_.mergeSite == MergeSite::FirstNonSpecular;
+  // Variance-aware MIS: the camera sample's region, where every merge of it lands.
+  const int factorRegion = varianceAware_ ? varianceAware_->regionOf(pRaster) : -1;
   for (int t = 2; t <= nt; ++t) {
     // Progressive photon mapping: nothing beyond the first vertex that is not a delta scatter.
     if (firstNonSpecularOnly && t >= 3 && !walks.camera[t - 2].isDelta) break;
@@ -590,9 +592,8 @@ void BidirTracer::evaluateMerges(int nt, Vec2 pRaster, int pyramidLength, Walks&
       const MergePdfs pdfs{f.pdfFwdW, f.pdfRevW};
       const uint32_t start = record.vertex - static_cast<uint32_t>(s - 1);
       float w = 0.f;
-      // Variance-aware MIS: the factors of the merged path's length at the camera sample's pixel.
-      const float* factors =
-          varianceAware_ ? varianceAware_->factorsOfLength(varianceAware_->regionOf(pRaster), x.length()) : nullptr;
+      // Variance-aware MIS: the factors of the merged path's length there.
+      const float* factors = varianceAware_ ? varianceAware_->factorsOfLength(factorRegion, x.length()) : nullptr;
       if (enabled) {
         std::optional<float> fast;
         if (partialSums) {

@@ -55,9 +55,10 @@ void lightSums(const PathVertex* path, int count, const MisPower& power, const M
       if (m.merges && i >= 2 && mergeableVertex(path[i - 1]))
         w += mergeTerm(power, m, path[i - 1].pdfRevA, path[i - 2].isDelta);
     }
-    left = power(r) * (w + left);
+    const double step = power(r);
+    left = step * (w + left);
     sum[i + 1] = left;
-    if (steps) steps[i] = power(r), counts[i] = w;
+    if (steps) steps[i] = step, counts[i] = w;
   }
 }
 
@@ -109,9 +110,10 @@ void cameraSums(const Subpath& path, const MisPower& power, float lightTracingRa
       if (m.merges && mergeableVertex(v))
         w += mergeTerm(power, m, v.pdfFwdA, j + 1 < path.count && path[j + 1].isDelta);
     }
-    right = power(ratio(v.pdfRevA, v.pdfFwdA)) * (w + right);
+    const double step = power(ratio(v.pdfRevA, v.pdfFwdA));
+    right = step * (w + right);
     sums.sum[static_cast<size_t>(j) + 1] = right;
-    if (steps) sums.step[static_cast<size_t>(j)] = power(ratio(v.pdfRevA, v.pdfFwdA)), sums.count[static_cast<size_t>(j)] = w;
+    if (steps) sums.step[static_cast<size_t>(j)] = step, sums.count[static_cast<size_t>(j)] = w;
   }
   sums.shortestEdge2.resize(static_cast<size_t>(std::max(path.count, 1)));
   accumulateShortestEdges(path.data(), path.count, sums.shortestEdge2.data());

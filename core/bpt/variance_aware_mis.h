@@ -25,7 +25,7 @@
 //
 // Every sum is deterministic: the camera contributions of a region come from the one work item
 // that holds it, in its samples' order; the splats are added by the render session in the work
-// items' fixed order (PassSplats). The same seed gives the same factors, so the same image, at any
+// items' fixed order (RenderSession::renderPass). The same seed gives the same factors, so the same image, at any
 // thread count.
 #pragma once
 
