@@ -7,6 +7,7 @@
 #include "core/camera/image_size.h"
 #include "core/io/text_file.h"
 #include "core/render/inspection_report.h"
+#include "core/render/outlier_replay.h"
 #include "core/render/render_session.h"
 #include "core/render/sample_inspection.h"
 #include "core/sampling/technique_label.h"
@@ -25,47 +26,10 @@ namespace {
 constexpr uint64_t kMaxOutlierSpp = 1 << 16;
 constexpr int kMaxOutliers = 1000;
 
-// One outlier replayed: its record in the sample's trace and what its path's densities say.
-struct ReplayedOutlier {
-  Outlier o;
-  SampleInspection inspection;
-  int record = -1;              // index into inspection.trace.records (-1: not found again)
-  double densityRatio = 0.0;    // p of the technique that sampled it / the largest counted p
-  Technique best;               // the technique of that largest p
-  double shareOfPixel = 0.0;    // of the pixel it landed in, in the image
+// One outlier replayed (core/render/outlier_replay.h) and its share of the pixel it landed in.
+struct ListedOutlier : ReplayedOutlier {
+  double shareOfPixel = 0.0;
 };
-
-ReplayedOutlier replay(const RenderSession& session, const Outlier& o, const Image& image, uint64_t spp) {
-  ReplayedOutlier r;
-  r.o = o;
-  r.inspection = inspectSample(session, o.id.x, o.id.y, o.id.sample);
-  // Its record: the same technique, and (a merge may contribute several times) the same value.
-  double closest = INFINITY;
-  const std::vector<TechniqueResult>& records = r.inspection.trace.records;
-  for (size_t i = 0; i < records.size(); ++i) {
-    const TechniqueResult& t = records[i];
-    if (t.technique().index() != o.technique.index() || t.outcome != TechniqueOutcome::Contributed) continue;
-    const double d = std::abs(static_cast<double>(luminance(t.unweighted * t.imageWeight)) - o.luminance);
-    if (d < closest) closest = d, r.record = static_cast<int>(i);
-  }
-  if (r.record >= 0 && static_cast<size_t>(r.record) < r.inspection.trace.onPath.size()) {
-    const std::vector<TechniqueOnPath>& every = r.inspection.trace.onPath[static_cast<size_t>(r.record)];
-    const size_t slot = static_cast<size_t>(o.technique.slot());
-    double best = 0.0;
-    for (const TechniqueOnPath& x : every)
-      if (x.counted && x.pdfA > best) best = x.pdfA, r.best = x.technique();
-    if (slot < every.size() && best > 0.0) r.densityRatio = every[slot].pdfA / best;
-  }
-  // Its share of the pixel it landed in: a camera sample adds v / spp to its pixel, and so does a
-  // splat (the film divides splats by the light subpaths, one a pixel a pass).
-  const int px = static_cast<int>(std::floor(o.pRaster.x)), py = static_cast<int>(std::floor(o.pRaster.y));
-  if (px >= 0 && py >= 0 && px < image.width && py < image.height) {
-    const Vec3 c = image.at(px, py);
-    const double pixel = luminance(Spectrum(c.x, c.y, c.z));
-    if (pixel > 0.0) r.shareOfPixel = static_cast<double>(o.luminance) / static_cast<double>(spp) / pixel;
-  }
-  return r;
-}
 
 nlohmann::json techniqueJson(Technique x) {
   return {{"kind", x.isMerge() ? "merge" : "connection"}, {"s", x.s}, {"t", x.t}};
@@ -117,15 +81,19 @@ int runOutliers(OutliersOptions o) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const Image image = session.image();
-  std::vector<ReplayedOutlier> list;
-  for (const Outlier& x : session.outliers()) list.push_back(replay(session, x, image, o.spp));
+  std::vector<ListedOutlier> list;
+  for (const Outlier& x : session.outliers()) {
+    ListedOutlier l{replayOutlier(session, x)};
+    l.shareOfPixel = outlierShareOfPixel(x, image, o.spp);
+    list.push_back(std::move(l));
+  }
 
   std::cout << fmt::format("the {} brightest weighted contributions of {} x {} x {} spp ({}; {:.1f} s)\n", list.size(),
                            settings.width, settings.height, o.spp, integratorName(settings.integrator), seconds);
   std::cout << fmt::format("{:>4} {:>11} {:>11} {:>9} {:>8} {:>7} {:>11} {:>9} {:>10}  {}\n", "rank", "luminance",
                            "of pixel", "pixel", "sample", "(s,t)", "lands", "weight", "p / best", "best");
   for (size_t i = 0; i < list.size(); ++i) {
-    const ReplayedOutlier& r = list[i];
+    const ListedOutlier& r = list[i];
     const float weight = r.record >= 0 ? r.inspection.trace.records[static_cast<size_t>(r.record)].imageWeight : 0.f;
     std::cout << fmt::format("{:>4} {:>11.4g} {:>10.1f}% {:>9} {:>8} {:>7} {:>11} {:>9.4f} {:>10.3g}  {}\n", i + 1,
                              r.o.luminance, 100.0 * r.shareOfPixel, fmt::format("{},{}", r.o.id.x, r.o.id.y),
@@ -148,7 +116,7 @@ int runOutliers(OutliersOptions o) {
     j["beta"] = settings.mis.beta;
     j["lightTracingSampleRatio"] = lightTracingRatio();
     nlohmann::json outliers = nlohmann::json::array();
-    for (const ReplayedOutlier& r : list) {
+    for (const ListedOutlier& r : list) {
       nlohmann::json x;
       x["luminance"] = r.o.luminance;
       x["value"] = {r.o.value.r, r.o.value.g, r.o.value.b};

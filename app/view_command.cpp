@@ -45,6 +45,10 @@ void addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--compare", v.compare,
                   "Side by side with a second estimator B, as a converge CONFIG (e.g. pt, bpt:mis=power, "
                   "lt); each side renders on half of the threads");
+  cmd->add_option("--outliers", v.outliers,
+                  "Open the outlier list: the N brightest weighted contributions of the image's passes, a click "
+                  "opening one in the path inspector")
+      ->check(CLI::Range(1, ui::kMaxViewerOutliers));
   cmd->add_option("--technique-map", v.techniqueMap,
                   "Show a technique map over the image: dominant, dominant:K, share:S,T or cannot:S,T");
   cmd->add_flag("--hide-ui", v.hideUi, "Start with the panels hidden (Tab shows them)");

@@ -263,6 +263,7 @@ class FrameLoop {
     const float fbScale = io.DisplaySize.x > 0.f ? static_cast<float>(fb.x) / io.DisplaySize.x : 1.f;
     viewer_.setFrameTime(stats_.ms.empty() ? 0.0 : stats_.ms.back());
     if (const EnvironmentEdit edit = inputAt(script_, frame_ - 1).environment; !edit.empty()) viewer_.editEnvironment(edit);
+    if (const std::optional<int> row = inputAt(script_, frame_ - 1).openOutlier) viewer_.openOutlierRow(*row - 1);
     viewer_.buildFrame(fb, fbScale, dropped);
     ImGui::Render();
     glViewport(0, 0, fb.x, fb.y);

@@ -44,6 +44,10 @@ Viewer::Viewer(const ViewerOptions& options, std::shared_ptr<const Scene> scene,
   ui_.showUi = !options.hideUi;
   grid_.zMap = options.zMap;
   if (!options.techniqueMap.empty()) maps_ = parseMapView(options.techniqueMap);
+  if (options.outliers > 0) {
+    outliers_.on = true;
+    outliers_.count = options.outliers;
+  }
   if (options.pyramidLength > 0) {
     pyramid_.show = true;
     pyramid_.length = options.pyramidLength;
@@ -183,6 +187,8 @@ void Viewer::drawOverImages() {
   drawChainDensity(fbScale);
   inspect_.drawOverlays(scene(), shownSettings(), toImGui(a().rect.origin, fbScale), toImGui(a().rect.size, fbScale),
                         fbScale, ui_.scale);
+  drawOutlierMarkers(outliers_, toImGui(a().rect.origin, fbScale), toImGui(a().rect.size, fbScale),
+                     shownSettings(), ui_.scale);
 }
 
 void Viewer::fitEstimatorToFrame(std::optional<float> aspect, float framebufferScale) {
@@ -271,6 +277,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
   if (ImGui::CollapsingHeader("Path inspector and 3D view",
                               inspect_.inspector.on || inspect_.view3d.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawInspectorSection(inspect_.inspector, inspect_.view3d, requests);
+  if (ImGui::CollapsingHeader("Outliers (fireflies)", outliers_.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+    drawOutlierSection(outliers_, estimator_.settings, a().snapshot(), requests);
   if (ImGui::CollapsingHeader("Compare A | B", compare_.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawCompareSection(compare_, b().snapshot(), b().refused(), requests);
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
@@ -298,6 +306,7 @@ void Viewer::carryOut(const PanelRequests& requests) {
   if (requests.rescanScenes) scenes_.refreshFiles();
   if (requests.returnToReferenceView) returnToReferenceView();
   if (requests.exportErrorCsv) exportErrorCsv();
+  if (requests.openOutlier) openOutlierRow(*requests.openOutlier);
   if (requests.compareConfig && applyCompareConfig(compare_, *requests.compareConfig, renderSettings(estimator_)))
     showMessage("B: " + describe(compareRenderSettings(compare_.b, renderSettings(estimator_))));
 }
@@ -310,6 +319,8 @@ bool Viewer::pollImage() {
   }
   const bool techniques = techniqueImages_.update(a().renderer(), pyramid_, maps_, display_, forceRefresh_);
   const bool image = sides_.poll(forceRefresh_);
+  outliers_.hold = inspect_.inspector.on && inspect_.inspector.pinned && *inspect_.inspector.pinned == outliers_.list.settings;
+  const bool outliers = outliers_.on && a().running() && updateOutlierList(outliers_, a().renderer(), scene());
   forceRefresh_ = false;
   bool reference = false;
   if (reference_.errors->referenceVersion() != reference_.uploadedVersion) {
@@ -319,7 +330,7 @@ bool Viewer::pollImage() {
   }
   // New points arrive on the render thread; the plot redraws when they do.
   const bool points = convergence_.show && reference_.errors->version() != convergence_.seriesVersion;
-  return image || techniques || reference || points;
+  return image || techniques || reference || points || outliers;
 }
 
 void Viewer::applySettings() {
@@ -328,7 +339,8 @@ void Viewer::applySettings() {
 
 void Viewer::syncRenderers() {
   // The technique table that per-technique timing feeds is shown with the convergence panel.
-  sides_.sync(run_.userPaused, run_.targetSpp, ui_.showUi && convergence_.show);
+  sides_.sync(run_.userPaused, run_.targetSpp, ui_.showUi && convergence_.show,
+              outliers_.on && outlierFinderProblem(estimator_.settings).empty() ? outliers_.count : 0);
 }
 
 void Viewer::waitForPyramid(double seconds) {

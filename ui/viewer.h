@@ -58,6 +58,10 @@ class Viewer {
   const RenderLane& a() const { return sides_.a(); }
   const RenderLane& b() const { return sides_.b(); }
 
+  // Row `row` (from 0) of the outlier list in the path inspector and the 3D view (a click on it,
+  // the script's outlier=K); a message when there is no such row.
+  void openOutlierRow(int row);
+
   // Headless screenshots: waits (up to `seconds`) until the thumbnails of the current generation's
   // newest pass are published, when the pyramid is shown.
   void waitForPyramid(double seconds);
@@ -108,6 +112,7 @@ class Viewer {
   MapView maps_;
   CompareState compare_;
   InspectorController inspect_;  // the path inspector and the 3D view
+  OutlierListState outliers_;
   UiState ui_;
   EstimatorWarning warning_;  // of the shown image's settings
 

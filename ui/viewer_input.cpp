@@ -2,6 +2,8 @@
 // while a widget wants the mouse or the keyboard.
 #include "ui/viewer.h"
 
+#include "core/sampling/technique_label.h"
+
 #include "ui/estimator/technique_grid.h"
 #include "ui/record/save_images.h"
 
@@ -21,6 +23,21 @@ void Viewer::handleShortcuts() {
     if (s.ctrl != io.KeyCtrl) continue;
     if (ImGui::IsKeyPressed(s.key, false)) perform(s.action);
   }
+}
+
+void Viewer::openOutlierRow(int row) {
+  if (row < 0 || row >= static_cast<int>(outliers_.rows.size())) {
+    showMessage(outliers_.rows.empty() ? "the outlier list is empty (Outliers section: find the brightest contributions)"
+                                       : fmt::format("the outlier list has no row {}", row + 1),
+                true);
+    return;
+  }
+  const Outlier& o = outliers_.rows[static_cast<size_t>(row)].o;
+  openOutlier(inspect_.inspector, o, outliers_.list.settings);
+  outliers_.opened = row;
+  if (!inspect_.view3d.on) perform(Action::ToggleView3D);
+  showMessage(fmt::format("outlier {}: {} of pixel {},{} sample {}", row + 1, techniqueLabel(o.technique), o.id.x,
+                          o.id.y, o.id.sample));
 }
 
 void Viewer::perform(Action action) {
@@ -167,6 +184,9 @@ void Viewer::handleCamera(float framebufferScale) {
   if (inspect_.inspector.on && ImGui::IsMouseReleased(0) && ui_.pressOverImage && glm::length(mouse - ui_.pressAt) < 4.f &&
       imageSize().x > 0 && imageSize().y > 0) {
     inspect_.inspector.pick = (mouse - Vec2(imageOrigin())) / Vec2(imageSize());
+    // A pixel of the image shown, not of an outlier's render.
+    inspect_.inspector.pinned.reset();
+    inspect_.inspector.pinnedShown.reset();
     inspect_.inspector.sample = 0;
   }
   // The 3D view has a camera of its own: drags and the wheel over it move only that camera.

@@ -3,6 +3,7 @@
 
 #include "ui/lane/compare.h"
 #include "ui/estimator/technique_map_view.h"
+#include "ui/inspect/outlier_list.h"
 
 #include <stdexcept>
 
@@ -15,6 +16,10 @@ void checkViewerOptions(const ViewerOptions& o) {
       throw std::runtime_error("--technique-map needs the bidirectional tracer (--integrator bpt or lt)");
   }
   if (!o.compare.empty()) compareEstimator(o.compare, o.settings);
+  if (o.outliers > 0) {
+    if (const std::string problem = outlierFinderProblem(o.settings); !problem.empty())
+      throw std::runtime_error("--outliers: " + problem);
+  }
 }
 
 }  // namespace pathlab::ui

@@ -14,6 +14,10 @@
 
 namespace pathlab::ui {
 
+// The outlier list's rows (ui/inspect/outlier_list.h): by default, and at most.
+inline constexpr int kDefaultViewerOutliers = 10;
+inline constexpr int kMaxViewerOutliers = 100;
+
 struct ViewerOptions {
   std::string scene;
   LoadOptions load;  // for this scene and every scene opened from the viewer
@@ -30,6 +34,7 @@ struct ViewerOptions {
   int pyramidLength = 0; // > 0: open the technique pyramid up to this length
   // The A/B comparison's side B (a converge CONFIG, ui/lane/compare.h): starts side by side.
   std::string compare;
+  int outliers = 0;  // > 0: start with the outlier list on, keeping this many (ui/inspect/outlier_list.h)
   std::string techniqueMap;  // start showing this technique map (ui/estimator/technique_map_view.h: parseMapView)
   float renderScale = 1.f;  // render resolution relative to the image area: 1, 0.5 or 0.25
   // Headless: draw offscreen through EGL. frames > 0: close after that many drawn frames (then

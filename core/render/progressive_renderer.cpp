@@ -57,6 +57,7 @@ struct ProgressiveRenderer::State {
   int thumbnailSide = 128;
   std::atomic<bool> cancel{false};
   bool timing = false;
+  int outlierCount = 0;
   std::shared_ptr<const PassObserver> observer;
 
   uint64_t version = 0;
@@ -65,6 +66,8 @@ struct ProgressiveRenderer::State {
   uint64_t thumbnailsVersion = 0;
   TechniqueLuminance maps;
   uint64_t mapsVersion = 0;
+  OutlierList outliers;
+  uint64_t outliersVersion = 0;
 
   tbb::task_arena arena;
   std::thread worker;
@@ -82,6 +85,8 @@ void ProgressiveRenderer::State::run() {
   Clock::time_point start;
   int side = 128;
   bool timed = false;
+  int wantedOutliers = 0;
+  uint64_t outliersFrom = 0;  // the pass the session's outlier finder started at
   std::shared_ptr<const PassObserver> observe;
   double renderSeconds = 0.0;  // sum of the pass durations of this generation
 
@@ -135,11 +140,14 @@ void ProgressiveRenderer::State::run() {
         renderSeconds = 0.0;
         thumbnails.clear();
         maps = TechniqueLuminance{};
+        outliers = OutlierList{};
         ++mapsVersion;
         ++thumbnailsVersion;
+        ++outliersVersion;
       }
       side = thumbnailSide;
       timed = timing;
+      wantedOutliers = outlierCount;
       observe = observer;
     }
 
@@ -157,6 +165,13 @@ void ProgressiveRenderer::State::run() {
       session = std::make_unique<RenderSession>(*sc, set);
       // The viewer's 3D view draws a few chains as they move (MltSummary::watched).
       if (Metropolis* m = session->metropolis()) m->setWatchedChains(kViewerWatchedChains);
+    }
+    // The outlier finder starts (again) between passes when its count changed; a cancelled pass
+    // leaves the tally with part of a pass, but its generation is dropped with it.
+    const int finderCount = session->outliersAvailable() ? wantedOutliers : 0;
+    if (finderCount != session->outlierCount()) {
+      session->setOutlierCount(finderCount);
+      outliersFrom = session->passes();
     }
     if (!runPass(*session)) continue;
     Counters counters = previewCounters;
@@ -181,6 +196,14 @@ void ProgressiveRenderer::State::run() {
       if (generation == gen) {
         thumbnails = std::move(thumbs);
         ++thumbnailsVersion;
+      }
+    }
+    if (finderCount > 0) {
+      OutlierList list{session->outliers(), gen, outliersFrom, session->passes(), set};
+      std::lock_guard lock(mutex);
+      if (generation == gen) {
+        outliers = std::move(list);
+        ++outliersVersion;
       }
     }
     if ((set.techniqueMaps || set.varianceMaps) && session->hasPyramid()) {
@@ -285,6 +308,22 @@ void ProgressiveRenderer::setThumbnailSide(int side) {
 void ProgressiveRenderer::setTiming(bool on) {
   std::lock_guard lock(state_->mutex);
   state_->timing = on;
+}
+
+void ProgressiveRenderer::setOutlierCount(int count) {
+  {
+    std::lock_guard lock(state_->mutex);
+    state_->outlierCount = std::max(0, count);
+  }
+  state_->wake.notify_all();
+}
+
+bool ProgressiveRenderer::outliers(OutlierList& out, uint64_t& version) const {
+  std::lock_guard lock(state_->mutex);
+  if (state_->outliersVersion <= version) return false;
+  out = state_->outliers;
+  version = state_->outliersVersion;
+  return true;
 }
 
 void ProgressiveRenderer::setPassObserver(PassObserver observer) {

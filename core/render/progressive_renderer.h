@@ -14,6 +14,7 @@
 #include "core/maps/technique_maps.h"
 #include "core/counters/counters.h"
 #include "core/mlt/metropolis.h"
+#include "core/render/outliers.h"
 #include "core/render/render_settings.h"
 #include "core/scene/scene.h"
 
@@ -40,6 +41,15 @@ struct RenderSnapshot {
   std::shared_ptr<const CheckReport> check;
   // The Metropolis chains' normalisation and acceptance after the last full pass (Mlt), else null.
   std::shared_ptr<const MltSummary> mlt;
+};
+
+// The outlier finder's list over the current generation's full passes (ProgressiveRenderer::outliers).
+struct OutlierList {
+  std::vector<Outlier> top;  // brightest first
+  uint64_t generation = 0;
+  uint64_t firstPass = 0;    // the passes it covers: firstPass .. passes - 1 (the finder starts between passes)
+  uint64_t passes = 0;
+  RenderSettings settings;   // what they were rendered with: a replay of one (replayOutlier) takes these
 };
 
 // What the pass observer sees after every full-resolution pass, on the render thread.
@@ -91,6 +101,16 @@ class ProgressiveRenderer {
   // every full pass like the thumbnails; the viewer colours whichever map is chosen from them, so
   // changing the map never restarts the image.
   bool techniqueMaps(TechniqueLuminance& out, uint64_t& version) const;
+
+  // The outlier finder (RenderSession::setOutlierCount): keep the `count` brightest weighted
+  // contributions of the full passes from the next one on (0: off, the default). No new
+  // generation: the image is the same, its samples take the kernel's recording route (slower).
+  // A change of count starts the list again; each new generation starts it at its first pass.
+  // Settings without independent bidirectional samples (pt, mlt) publish no list.
+  void setOutlierCount(int count);
+  // The list after the newest full pass that kept one; false when there is none or nothing newer
+  // than `version` (updated on success).
+  bool outliers(OutlierList& out, uint64_t& version) const;
 
   // Per-technique timing (BidirTracer::setTiming) from the next pass on; no new generation.
   void setTiming(bool on);

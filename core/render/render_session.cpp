@@ -154,7 +154,7 @@ Image RenderSession::techniqueImage(Technique x, bool unweighted) const {
 }
 
 void RenderSession::setOutlierCount(int count) {
-  if (count > 0 && (!bidirTracer_ || metropolis_))
+  if (count > 0 && !outliersAvailable())
     throw std::invalid_argument("the outlier finder needs independent bidirectional samples (bpt, lt, vcm, bpm, ppm)");
   outlierTally_ = count > 0 ? std::make_unique<OutlierTally>(count) : nullptr;
 }

@@ -65,6 +65,9 @@ class RenderSession {
   // same; the samples take the kernel's recording route. Between passes only; bpt, lt and the
   // merging integrators.
   void setOutlierCount(int count);
+  // Whether the settings have samples the outlier finder can rank (bpt, lt and the merging integrators).
+  bool outliersAvailable() const { return bidirTracer_ && !metropolis_; }
+  int outlierCount() const { return outlierTally_ ? outlierTally_->count() : 0; }
   // The brightest contributions so far, brightest first.
   std::vector<Outlier> outliers() const;
 

@@ -77,6 +77,14 @@ struct RenderSettings {
   bool operator==(const RenderSettings&) const = default;
 };
 
+// Whether a and b render the same view with the same estimator, at possibly different resolutions
+// (the viewer's image follows its area of the window: a panel that opens resizes it).
+inline bool sameExceptSize(RenderSettings a, const RenderSettings& b) {
+  a.width = b.width;
+  a.height = b.height;
+  return a == b;
+}
+
 inline constexpr int kMaxPyramidLength = 8;
 inline constexpr float kMaxMergeRadius = 0.5f;  // of the scene's bounding radius
 // The default first radius at 512 x 512 pixels (SmallVCM's radius at its default image size),

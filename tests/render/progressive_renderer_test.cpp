@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 namespace pathlab {
 namespace {
 
@@ -170,6 +173,69 @@ TEST(ProgressiveRenderer, PausedRendersNothingNew) {
   EXPECT_FALSE(renderer.snapshot(b));
   renderer.setPaused(false);
   EXPECT_TRUE(renderer.waitForSpp(a.samplesPerPixel + 1, 60.0));
+}
+
+// The outlier finder in the viewer's renderer (issue 34): the list it publishes after a full pass
+// is the one a standalone render keeps over the same passes (the finder starts between passes, at
+// list.firstPass); a new generation starts with an empty list; the path tracer publishes none.
+OutlierList settledOutliers(const ProgressiveRenderer& r, uint64_t passes) {
+  OutlierList list;
+  uint64_t version = 0;
+  const uint64_t generation = r.generation();
+  for (int i = 0; i < 6000 && (list.passes < passes || list.generation != generation); ++i) {
+    if (!r.outliers(list, version)) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return list;
+}
+
+TEST(ProgressiveRenderer, PublishesTheOutliersOfAStandaloneRender) {
+  const RenderSettings settings = small(IntegratorKind::Bpt, 7);
+  ProgressiveRenderer renderer(sharedCornellBox(), settings, 2);
+  renderer.setOutlierCount(6);
+  renderer.setTargetSpp(5);
+  const OutlierList list = settledOutliers(renderer, 5);
+  ASSERT_EQ(list.passes, 5u);
+  ASSERT_LT(list.firstPass, 5u);
+  EXPECT_EQ(list.settings, settings);
+  EXPECT_EQ(list.generation, renderer.generation());
+  RenderSession session(*sharedCornellBox(), settings);
+  for (uint64_t i = 0; i < list.firstPass; ++i) session.renderPass();
+  session.setOutlierCount(6);
+  for (uint64_t i = list.firstPass; i < 5; ++i) session.renderPass();
+  const std::vector<Outlier> expected = session.outliers();
+  ASSERT_EQ(list.top.size(), expected.size());
+  ASSERT_EQ(expected.size(), 6u);
+  for (size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(list.top[i].luminance, expected[i].luminance) << i;
+    EXPECT_EQ(list.top[i].id.x, expected[i].id.x) << i;
+    EXPECT_EQ(list.top[i].id.y, expected[i].id.y) << i;
+    EXPECT_EQ(list.top[i].id.sample, expected[i].id.sample) << i;
+    EXPECT_EQ(list.top[i].technique.index(), expected[i].technique.index()) << i;
+  }
+
+  // A new generation: an empty list first, then its own from its first pass.
+  RenderSettings other = settings;
+  other.seed = 8;
+  renderer.setTargetSpp(2);
+  ASSERT_TRUE(renderer.setSettings(other));
+  const OutlierList next = settledOutliers(renderer, 2);
+  EXPECT_EQ(next.generation, renderer.generation());
+  EXPECT_EQ(next.firstPass, 0u);
+  EXPECT_EQ(next.settings, other);
+  EXPECT_FALSE(next.top.empty());
+}
+
+TEST(ProgressiveRenderer, ThePathTracerPublishesNoOutliers) {
+  ProgressiveRenderer renderer(sharedCornellBox(), small(IntegratorKind::Pt, 9), 2);
+  renderer.setOutlierCount(4);
+  renderer.setTargetSpp(2);
+  ASSERT_TRUE(renderer.waitForSpp(2, 60.0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  OutlierList list;
+  uint64_t version = 0;
+  renderer.outliers(list, version);
+  EXPECT_TRUE(list.top.empty());
+  EXPECT_EQ(list.passes, 0u);
 }
 
 }  // namespace

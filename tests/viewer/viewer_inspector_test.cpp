@@ -177,4 +177,21 @@ TEST(ViewerInspector, ExportsTheSampleAsJsonAndThe3DViewAsPng) {
   EXPECT_LT(difference / (3.0 * view3d.width * view3d.height), 3.0);
 }
 
+// The outlier list (issue 34): --outliers rings each of the brightest contributions on the image
+// (magenta); opening the first (what a click on its row does) draws its sample's paths over the
+// image and opens the 3D view beside it.
+TEST(ViewerInspector, TheOutlierListMarksTheFirefliesAndOpensOne) {
+  const std::string bpt = "--integrator bpt";
+  const InspectorRun plain = view("outliers-none", "6:wait=2", kInspectorTmp, bpt);
+  const InspectorRun marked = view("outliers", "6:wait=2", kInspectorTmp, bpt + " --outliers 5");
+  const InspectorRun opened = view("outliers-open", "6:wait=2;8:outlier=1;14:wait=2", kInspectorTmp, bpt + " --outliers 5");
+  const int before = pixelsNear(plain.png, plain.image, 255, 60, 220);
+  const int rings = pixelsNear(marked.png, marked.image, 255, 60, 220);
+  EXPECT_LT(before, 10);
+  EXPECT_GT(rings, before + 60) << before << " " << rings;
+  EXPECT_LT(pathPixels(marked.png, marked.image), 30);  // nothing opened
+  ASSERT_GT(opened.view3d.x1, opened.view3d.x0) << opened.err;
+  EXPECT_GT(pathPixels(opened.png, opened.image), 300) << opened.err;
+}
+
 }  // namespace

@@ -85,6 +85,13 @@ std::vector<InputEvent> parseInputScript(const std::string& script) {
         throw bad(strength ? "expected strength=S with S a non-negative number" : "expected rotation=DEG");
       e.kind = InputEvent::Kind::Environment;
       (strength ? e.environment.strength : e.environment.rotationDegrees) = v;
+    } else if (action.rfind("outlier=", 0) == 0) {
+      int row = 0;
+      char tail;
+      if (std::sscanf(action.c_str() + 8, "%d%c", &row, &tail) != 1 || row < 1 || row > 100000)
+        throw bad("expected outlier=K with K a row of the outlier list, from 1");
+      e.kind = InputEvent::Kind::Outlier;
+      e.row = row;
     } else if (action.rfind("drop=", 0) == 0) {
       e.kind = InputEvent::Kind::Drop;
       e.path = action.substr(5);
@@ -134,6 +141,8 @@ FrameInput inputAt(const std::vector<InputEvent>& events, int frame) {
     const int step = frame - e.frame;
     if (e.kind == InputEvent::Kind::Wait) {
       if (step == 0) in.waitSpp = e.spp;
+    } else if (e.kind == InputEvent::Kind::Outlier) {
+      if (step == 0) in.openOutlier = e.row;
     } else if (e.kind == InputEvent::Kind::Resize) {
       if (step == 0) in.resize = Vec2i(e.to);
     } else if (e.kind == InputEvent::Kind::Drop) {

@@ -7,7 +7,8 @@
 // with the path inspector on it picks the pixel), "FRAME:drop=PATH" (a file dropped on the window),
 // "FRAME:resize=W,H" (the window resized), "FRAME:environment=SPEC" (FILE.exr, FILE.hdr, R,G,B or
 // none), "FRAME:strength=S" and "FRAME:rotation=DEG" (what the Environment section's fields and
-// sliders set), "FRAME:light-sampler=auto|power|bvh" (its next-event lights) or "FRAME:wait=SPP" (that frame waits until the current
+// sliders set), "FRAME:light-sampler=auto|power|bvh" (its next-event lights), "FRAME:outlier=K"
+// (row K, from 1, of the outlier list opened, as a click on it does) or "FRAME:wait=SPP" (that frame waits until the current
 // image has SPP samples per pixel: scripts that compare configurations run the same on a loaded
 // machine). NAME is a
 // key of the shortcut table ("3", "M", "Space", "F1", "Ctrl+S", "PageDown", "]") or a fly key
@@ -27,7 +28,7 @@
 namespace pathlab::ui {
 
 struct InputEvent {
-  enum class Kind { Key, Drag, Drop, Resize, Wait, Environment } kind = Kind::Key;
+  enum class Kind { Key, Drag, Drop, Resize, Wait, Environment, Outlier } kind = Kind::Key;
   int frame = 0;
   int key = 0;        // GLFW key code
   bool ctrl = false;  // Key: with Ctrl
@@ -36,6 +37,7 @@ struct InputEvent {
   Vec2 from{0.f}, to{0.f};  // Drag; Resize: `to` is the size
   std::string path;   // Drop
   uint64_t spp = 0;   // Wait
+  int row = 0;        // Outlier: from 1
   EnvironmentEdit environment;
 };
 
@@ -52,6 +54,7 @@ struct FrameInput {
   std::vector<std::string> dropped;
   std::optional<Vec2i> resize;
   std::optional<uint64_t> waitSpp;
+  std::optional<int> openOutlier;  // the outlier list's row, from 1
   EnvironmentEdit environment;
 };
 

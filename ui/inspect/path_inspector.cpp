@@ -3,11 +3,13 @@
 
 #include "core/bpt/variance_aware_mis.h"
 #include "core/math/frame.h"
+#include "core/render/outlier_replay.h"
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace pathlab::ui {
 
@@ -59,7 +61,12 @@ void addSubpath(InspectorOverlay& overlay, const Camera& camera, const std::vect
 
 }  // namespace
 
-bool refreshInspection(PathInspectorState& state, const Scene& scene, const RenderSettings& settings) {
+bool refreshInspection(PathInspectorState& state, const Scene& scene, const RenderSettings& shown) {
+  if (state.pinned) {
+    if (!state.pinnedShown) state.pinnedShown = shown;
+    else if (!sameExceptSize(*state.pinnedShown, shown)) state.pinned.reset(), state.pinnedShown.reset();
+  }
+  const RenderSettings& settings = state.pinned ? *state.pinned : shown;
   if (!state.on || !state.pick || settings.width <= 0 || settings.height <= 0) return false;
   state.pixel = Vec2i(std::clamp(static_cast<int>(state.pick->x * static_cast<float>(settings.width)), 0, settings.width - 1),
                       std::clamp(static_cast<int>(state.pick->y * static_cast<float>(settings.height)), 0, settings.height - 1));
@@ -72,6 +79,7 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
   state.inspectedScene = &scene;
   state.result.reset();
   state.selected = -1;
+  const std::optional<Outlier> focus = std::exchange(state.focus, std::nullopt);
   if (settings.integrator == IntegratorKind::Pt) {
     state.error = "the path tracer has no (s,t) techniques to inspect: switch to bpt or lt (I)";
     return false;
@@ -101,6 +109,9 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
     const float l = luminance(records[i].unweighted * records[i].weight);
     if (l > best) best = l, state.selected = static_cast<int>(i);
   }
+  // An outlier opened from the list: its own record, found as `pathlab outliers` finds it.
+  if (focus && focus->id.x == p.x && focus->id.y == p.y && focus->id.sample == state.sample)
+    if (const int record = outlierRecord(state.result->trace, *focus); record >= 0) state.selected = record;
   return true;
 }
 

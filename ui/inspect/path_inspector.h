@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/camera/camera.h"
+#include "core/render/outliers.h"
 #include "core/render/render_settings.h"
 #include "core/render/sample_inspection.h"
 #include "core/scene/scene.h"
@@ -25,6 +26,14 @@ struct PathInspectorState {
   std::optional<Vec2i> pixel;  // the picked pixel of the inspected image (raster, from the top left)
   uint64_t sample = 0;         // its sample (pass) index
   int selected = -1;           // the highlighted technique: an index into the trace's records
+  // An outlier to select when its sample is replayed (the outlier list's row opened), else the
+  // technique that gave the sample most is; the next replay consumes it.
+  std::optional<Outlier> focus;
+  // The render an opened outlier came from: its sample replays with these settings rather than the
+  // shown image's, since opening the inspector and the 3D view resizes the image (a new generation
+  // whose pixels and passes are others). Released by a pick on the image, or when the shown
+  // settings change in more than their size (pinnedShown: as they were when it was pinned).
+  std::optional<RenderSettings> pinned, pinnedShown;
   std::optional<SampleInspection> result;
   // What `result` was replayed with: a change of the pixel, sample, settings or scene replays.
   std::optional<Vec2i> inspectedPixel;
@@ -35,9 +44,10 @@ struct PathInspectorState {
 };
 
 // Replays the picked pixel's sample if anything it depends on changed (the path tracer has no
-// techniques to show: `error` says so); returns whether it replayed. `settings`: those of the image
-// shown; the pixel is the one under `pick` in its raster.
-bool refreshInspection(PathInspectorState& state, const Scene& scene, const RenderSettings& settings);
+// techniques to show: `error` says so); returns whether it replayed. `shown`: the settings of the
+// image shown, which the replay takes unless an outlier's are pinned; the pixel is the one under
+// `pick` in the raster of the settings taken.
+bool refreshInspection(PathInspectorState& state, const Scene& scene, const RenderSettings& shown);
 
 // The sample of `pixel` among 0 .. n-1 that gave the most light (the luminance of its camera-side
 // estimate plus its weighted t = 1 splats, wherever they land): a firefly hunt.

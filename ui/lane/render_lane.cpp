@@ -36,6 +36,7 @@ void RenderLane::start(const std::shared_ptr<const Scene>& scene, const RenderSe
   renderer_->setThumbnailSide(how.thumbnailSide);
   observe(how.errors);
   pausedApplied_ = timingApplied_ = false;
+  outliersApplied_ = 0;
   targetApplied_ = how.targetSpp;
   // The new renderer counts generations and versions from the start again.
   snapshot_ = RenderSnapshot{};
@@ -67,12 +68,14 @@ void RenderLane::setScene(const std::shared_ptr<const Scene>& scene, const Rende
   }
 }
 
-void RenderLane::sync(bool userPaused, uint64_t targetSpp, bool timing) {
+void RenderLane::sync(bool userPaused, uint64_t targetSpp, bool timing, int outliers) {
   const bool paused = userPaused || idle_;
   if (paused != pausedApplied_) renderer_->setPaused(pausedApplied_ = paused);
   if (targetSpp != targetApplied_) renderer_->setTargetSpp(targetApplied_ = targetSpp);
   // Per-technique timing costs two clock reads a connection: only while its table is shown.
   if (timing != timingApplied_) renderer_->setTiming(timingApplied_ = timing);
+  // The outlier finder sends every sample down the recording route: only while its list is shown.
+  if (outliers != outliersApplied_) renderer_->setOutlierCount(outliersApplied_ = outliers);
 }
 
 bool RenderLane::poll(bool force) {
@@ -99,6 +102,7 @@ void swapRenderers(RenderLane& a, RenderLane& b, const std::shared_ptr<ErrorTrac
   std::swap(a.idle_, b.idle_);
   std::swap(a.pausedApplied_, b.pausedApplied_);
   std::swap(a.timingApplied_, b.timingApplied_);
+  std::swap(a.outliersApplied_, b.outliersApplied_);
   std::swap(a.targetApplied_, b.targetApplied_);
   std::swap(a.view_, b.view_);
   std::swap(a.snapshot_, b.snapshot_);

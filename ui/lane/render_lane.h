@@ -54,8 +54,9 @@ class RenderLane {
   bool apply(const RenderSettings& wanted);
   // Another scene with `settings`; refused() says why it was not taken.
   void setScene(const std::shared_ptr<const Scene>& scene, const RenderSettings& settings);
-  // Pause (the user's, or idle), the sample target and per-technique timing, as they change.
-  void sync(bool userPaused, uint64_t targetSpp, bool timing);
+  // Pause (the user's, or idle), the sample target, per-technique timing and the outlier finder's
+  // count (ProgressiveRenderer::setOutlierCount, 0: off), as they change.
+  void sync(bool userPaused, uint64_t targetSpp, bool timing, int outliers = 0);
   // Takes the newest snapshot into the view when one is due (or `force`): true when one was.
   bool poll(bool force);
   // Draws the image into `rect` (nothing while idle); drawn() says where it went.
@@ -71,6 +72,7 @@ class RenderLane {
   std::string refused_;
   bool idle_ = false;
   bool pausedApplied_ = false, timingApplied_ = false;
+  int outliersApplied_ = 0;
   uint64_t targetApplied_ = 0;
   std::unique_ptr<ImageView> view_;
   RenderSnapshot snapshot_;

@@ -32,10 +32,10 @@ bool Sides::apply(const RenderSettings& settingsA, const RenderSettings& setting
   return taken;
 }
 
-void Sides::sync(bool userPaused, uint64_t targetSpp, bool timingA) {
+void Sides::sync(bool userPaused, uint64_t targetSpp, bool timingA, int outliersA) {
   // B pauses with the user, or when it enables no technique; not when only A has none.
   for (RenderLane* lane : {&a(), &b()})
-    if (lane->running()) lane->sync(userPaused, targetSpp, lane == &a() && timingA);
+    if (lane->running()) lane->sync(userPaused, targetSpp, lane == &a() && timingA, lane == &a() ? outliersA : 0);
 }
 
 bool Sides::poll(bool force) {

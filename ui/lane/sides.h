@@ -39,8 +39,9 @@ class Sides {
   void swap() { swapRenderers(a(), b(), errors_); }
   // Each running side its settings: true when one took them (a new generation).
   bool apply(const RenderSettings& settingsA, const RenderSettings& settingsB);
-  // Pause (the user's, or a side's idling), the sample target; per-technique timing on A only.
-  void sync(bool userPaused, uint64_t targetSpp, bool timingA);
+  // Pause (the user's, or a side's idling), the sample target; per-technique timing and the
+  // outlier finder's count on A only.
+  void sync(bool userPaused, uint64_t targetSpp, bool timingA, int outliersA = 0);
   // The newest snapshots due (B first); true when one arrived.
   bool poll(bool force);
   // The error view's reference in both sides' image views.

@@ -7,6 +7,7 @@
 #include "ui/estimator/estimator_state.h"
 #include "ui/estimator/technique_map_view.h"
 #include "ui/input/shortcuts.h"
+#include "ui/inspect/outlier_list.h"
 #include "ui/inspect/path_inspector.h"
 #include "ui/inspect/view3d.h"
 #include "ui/lane/compare.h"
@@ -30,6 +31,7 @@ struct PanelRequests {
   bool returnToReferenceView = false;
   bool exportErrorCsv = false;
   std::optional<std::string> compareConfig;  // side B's CONFIG typed in the compare section
+  std::optional<int> openOutlier;            // a row of the outlier list clicked
 };
 
 // An area of the window in ImGui coordinates.
@@ -73,6 +75,16 @@ void drawOverlayShapes(ImDrawList* draw, const InspectorOverlay& overlay, ImVec2
 // The picked sample's techniques and its selected path under every technique, in a window of its own
 // at `rect` (below the image).
 void drawInspectorWindow(PathInspectorState& state, PanelRect rect, PanelRequests& requests);
+// The outliers section (panel_outliers.cpp): on / off, how many, the list (a click asks for the row's
+// sample in the inspector: requests.openOutlier); `edited`: the settings the panels ask for, to
+// say why the finder cannot run with them; `shown`: the image shown (is the list of its generation).
+void drawOutlierSection(OutlierListState& state, const RenderSettings& edited, const RenderSnapshot& shown,
+                        PanelRequests& requests);
+// A ring where each outlier landed, numbered, over the image (origin and size in ImGui
+// coordinates, `shown` its settings); nothing when the list's render is not of the same view and
+// estimator (sameExceptSize).
+void drawOutlierMarkers(const OutlierListState& state, ImVec2 origin, ImVec2 size, const RenderSettings& shown,
+                        float uiScale);
 // The 3D view (panel_view3d.cpp): the raster's texture (OpenGL's rows, bottom first) at origin,
 // size, the overlay over it (its raster coordinates span `raster`) and a caption.
 void drawView3DWindow(void* texture, const InspectorOverlay& overlay, ImVec2 origin, ImVec2 size, Vec2i raster,
