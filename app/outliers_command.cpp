@@ -31,10 +31,6 @@ struct ListedOutlier : ReplayedOutlier {
   double shareOfPixel = 0.0;
 };
 
-nlohmann::json techniqueJson(Technique x) {
-  return {{"kind", x.isMerge() ? "merge" : "connection"}, {"s", x.s}, {"t", x.t}};
-}
-
 }  // namespace
 
 void addOutliersCommand(CLI::App& app, OutliersOptions& o) {
@@ -116,23 +112,7 @@ int runOutliers(OutliersOptions o) {
     j["beta"] = settings.mis.beta;
     j["lightTracingSampleRatio"] = lightTracingRatio();
     nlohmann::json outliers = nlohmann::json::array();
-    for (const ListedOutlier& r : list) {
-      nlohmann::json x;
-      x["luminance"] = r.o.luminance;
-      x["value"] = {r.o.value.r, r.o.value.g, r.o.value.b};
-      x["pixel"] = {r.o.id.x, r.o.id.y};
-      x["sample"] = r.o.id.sample;
-      x["technique"] = techniqueJson(r.o.technique);
-      x["raster"] = {r.o.pRaster.x, r.o.pRaster.y};
-      x["shareOfPixel"] = r.shareOfPixel;
-      x["densityRatio"] = r.densityRatio;
-      x["bestTechnique"] = techniqueJson(r.best);
-      // The technique's record as `inspect --json` writes it: its path, vertex densities, the path
-      // under every technique of its length and its weights.
-      if (r.record >= 0)
-        x["record"] = inspectionJson(settings, r.inspection)["techniques"][static_cast<size_t>(r.record)];
-      outliers.push_back(x);
-    }
+    for (const ListedOutlier& r : list) outliers.push_back(outlierJson(settings, r, r.shareOfPixel));
     j["outliers"] = outliers;
     writeTextAtomically(o.json, j.dump(2) + "\n");
     std::cerr << "wrote " << o.json << "\n";

@@ -1,9 +1,10 @@
-// pathlab.inspect and Renderer.technique_maps.
+// pathlab.inspect, Renderer.technique_maps, Renderer.variance_maps and Renderer.outliers.
 #include "app/python/analysis.h"
 
 #include "app/python/arguments.h"
 #include "core/maps/technique_maps.h"
 #include "core/render/inspection_report.h"
+#include "core/render/outlier_replay.h"
 #include "core/render/sample_inspection.h"
 #include "core/render/technique_luminance.h"
 
@@ -105,6 +106,40 @@ py::dict techniqueMapsOf(const Renderer& r) {
   out["cannot_sample"] = cannot;
   if (covers(lum.families, TechniqueKind::Merge))
     out["merges_share"] = ownedArray(familyShareMap(lum, TechniqueKind::Merge), {lum.height, lum.width});
+  return out;
+}
+
+py::dict varianceMapsOf(const Renderer& r) {
+  if (!r.settings().varianceMaps)
+    throw Error("variance_maps: the renderer keeps no variance maps (Settings(variance_maps=L) keeps those up to length L)");
+  const int length = r.varianceMapLength();
+  const TechniqueLuminance lum = techniqueLuminance(r.session("variance_maps"), length);
+  py::dict out;
+  py::list techniques;
+  for (size_t i = 0; i < Technique::countUpTo(length); ++i) techniques.append(techniqueKey(Technique::fromIndex(i)));
+  out["techniques"] = techniques;
+  py::dict variance;
+  for (const Technique x : techniquesUpTo(length, lum.families)) {
+    std::vector<float> v = lum.variance[x.index()];
+    variance[techniqueKey(x)] = ownedArray(std::move(v), {lum.height, lum.width});
+  }
+  out["variance"] = variance;
+  DominantMap m = dominantVarianceMap(lum);
+  std::vector<int32_t> index(m.technique.begin(), m.technique.end());
+  out["dominant"] = ownedArray(std::move(index), {m.height, m.width});
+  out["dominant_share"] = ownedArray(std::move(m.share), {m.height, m.width});
+  return out;
+}
+
+py::list outliersOf(const Renderer& r) {
+  const RenderSession& session = r.session("outliers");
+  const Image image = session.image();
+  py::list out;
+  const py::object loads = py::module_::import("json").attr("loads");
+  for (const Outlier& o : session.outliers()) {
+    const ReplayedOutlier replayed = replayOutlier(session, o);
+    out.append(loads(outlierJson(session.settings(), replayed, outlierShareOfPixel(o, image, session.passes())).dump()));
+  }
   return out;
 }
 

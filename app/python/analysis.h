@@ -22,6 +22,12 @@ pybind11::object check(const LoadedScene& scene, const PySettings& settings, con
 
 // Renderer.technique_maps(): with Settings(technique_maps=L), the maps up to length L.
 pybind11::dict techniqueMapsOf(const Renderer& r);
+// Renderer.variance_maps(): with Settings(variance_maps=L), each technique's variance of a pass's
+// estimate per pixel and the technique with the most (render --variance-maps' images as arrays).
+pybind11::dict varianceMapsOf(const Renderer& r);
+// Renderer.outliers(): the brightest contributions kept since find_outliers, each replayed, as
+// the entries of `pathlab outliers --json`.
+pybind11::list outliersOf(const Renderer& r);
 
 // The technique's key in the module's dicts: (s, t), or ("M", s, t) for a merge.
 pybind11::object techniqueKey(Technique x);

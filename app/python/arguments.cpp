@@ -65,6 +65,7 @@ constexpr Argument kSettingsArguments[] = {
     {"inject_bias", "--inject-bias", Kind::String},
     {"pyramid", "--pyramid", Kind::Int},
     {"technique_maps", "--technique-maps", Kind::Int},
+    {"variance_maps", "--variance-maps", Kind::Int},
     {"check_mis", "--check-mis", Kind::Flag},
     {"threads", "--threads", Kind::Int},
 };

@@ -143,6 +143,18 @@ PYBIND11_MODULE(pathlab, m) {
            "(height, width) index into 'techniques', -1 no light, -2 a tie}, 'dominant_share', 'share' {key: the "
            "technique's share of the image, -1 where it is black}, 'cannot_sample' {key: the fraction of its "
            "length's image it cannot sample, -1 where black}, and with merges 'merges_share'")
+      .def("variance_maps", &varianceMapsOf,
+           "With Settings(variance_maps=L): 'techniques' (the keys in index order), 'variance' {key: float32 "
+           "(height, width), the technique's variance of one pass's estimate of each pixel (luminance)}, "
+           "'dominant' (int32 index into 'techniques' of the technique with the most variance, -1 none, -2 a tie) "
+           "and 'dominant_share' (its share of the techniques' variance)")
+      .def("find_outliers", &Renderer::findOutliers, py::arg("top") = 10,
+           "Keeps the `top` brightest weighted contributions of the passes from the next one on (0: stops; "
+           "bpt, lt, vcm, bpm, ppm), as `pathlab outliers` does; outliers() lists them")
+      .def("outliers", &outliersOf,
+           "The contributions find_outliers keeps, brightest first, each replayed: the entries of `pathlab "
+           "outliers --json` (luminance, value, pixel, sample, technique, raster, shareOfPixel, densityRatio, "
+           "bestTechnique, record)")
       .def("counters", &countersOf, "Samples, rays, discarded samples, and per technique and walk the counters of "
                                     "`render --stats`")
       .def_property_readonly("spp", &Renderer::samplesPerPixel, "Passes (samples per pixel) rendered so far")

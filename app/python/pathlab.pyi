@@ -89,6 +89,7 @@ class Settings:
         inject_bias: Optional[str] = None,
         pyramid: Optional[int] = None,
         technique_maps: Optional[int] = None,
+        variance_maps: Optional[int] = None,
         check_mis: bool = False,
         threads: Optional[int] = None,
     ) -> None:
@@ -164,8 +165,8 @@ class Renderer:
         image of every pass so far. The GIL is released meanwhile; progress(spp, seconds) is called
         after each pass. Ctrl+C raises KeyboardInterrupt after the pass in progress, and cancel()
         (from any thread) makes render() return then: every pass is kept. One render at a time
-        per renderer; image(), pyramid(), counters() and technique_maps() are refused while a
-        pass runs (call them from the progress callback, or after render returns)."""
+        per renderer; image(), pyramid(), counters(), technique_maps(), variance_maps() and
+        outliers() are refused while a pass runs (call them from the progress callback, or after render returns)."""
     def cancel(self) -> None:
         """Stops render() after the pass in progress (safe from any thread); called while no
         render runs, it stops the next one at once."""
@@ -178,6 +179,18 @@ class Renderer:
         'dominant_share', 'share' {key: the technique's share of the image, -1 where black},
         'cannot_sample' {key: the fraction of its length's image it cannot sample, -1 where black},
         and with merges 'merges_share'."""
+    def variance_maps(self) -> dict:
+        """With Settings(variance_maps=L): 'techniques' (keys in index order), 'variance' {key:
+        float32 (height, width), the technique's variance of one pass's estimate of each pixel
+        (luminance)}, 'dominant' (int32 index into 'techniques' of the technique with the most
+        variance, -1 none, -2 a tie) and 'dominant_share' (its share of the techniques' variance)."""
+    def find_outliers(self, top: int = 10) -> None:
+        """Keeps the `top` brightest weighted contributions of the passes from the next one on (0
+        stops; bpt, lt, vcm, bpm, ppm), as `pathlab outliers` does. Refused while render() runs."""
+    def outliers(self) -> list[dict]:
+        """What find_outliers kept, brightest first, each replayed: the entries of `pathlab outliers
+        --json` (luminance, value, pixel, sample, technique, raster, shareOfPixel, densityRatio,
+        bestTechnique, record)."""
     def counters(self) -> dict:
         """spp, seconds, camera_samples, rays, shadow_rays, discarded {nan, inf, negative}, and per
         technique (key (s, t) or ("M", s, t)) and walk: tried, zero, blocked, contributed, discarded, rays."""

@@ -128,6 +128,16 @@ Renderer::Renderer(const LoadedScene& scene, const PySettings& settings) : scene
   warnAbout(*scene_.scene, session_->settings());
 }
 
+void Renderer::findOutliers(const py::object& top) {
+  const int count = static_cast<int>(intArgument(top, "find_outliers: top", 0, 1000));
+  if (rendering_.load()) throw Error("find_outliers: a render is running; call it before render() or after it returns");
+  try {
+    session_->setOutlierCount(count);
+  } catch (const std::exception& e) {
+    throw Error(fmt::format("find_outliers: {}", e.what()));
+  }
+}
+
 const RenderSession& Renderer::session(const char* what) const {
   if (passRunning_.load())
     throw Error(fmt::format("{}: a pass is being rendered; ask between passes (in the progress callback) or after "

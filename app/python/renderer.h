@@ -102,6 +102,10 @@ class Renderer {
   const RenderSession& session(const char* what) const;
   int width() const { return settings().width; }
   int techniqueMapLength() const { return options_.techniqueMaps; }
+  int varianceMapLength() const { return options_.varianceMaps; }
+  // The outlier finder (RenderSession::setOutlierCount) from the next pass on: refused while a pass
+  // runs, and for settings without independent bidirectional samples.
+  void findOutliers(const pybind11::object& top);
   int height() const { return settings().height; }
 
  private:

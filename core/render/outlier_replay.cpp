@@ -1,6 +1,8 @@
 // An outlier's sample replayed, its record found, its density against the best.
 #include "core/render/outlier_replay.h"
 
+#include "core/render/inspection_report.h"
+
 #include <cmath>
 
 namespace pathlab {
@@ -39,6 +41,29 @@ double outlierShareOfPixel(const Outlier& o, const Image& image, uint64_t spp) {
   const Vec3 c = image.at(px, py);
   const double pixel = luminance(Spectrum(c.x, c.y, c.z));
   return pixel > 0.0 ? static_cast<double>(o.luminance) / static_cast<double>(spp) / pixel : 0.0;
+}
+
+namespace {
+nlohmann::json techniqueJson(Technique x) {
+  return {{"kind", x.isMerge() ? "merge" : "connection"}, {"s", x.s}, {"t", x.t}};
+}
+}  // namespace
+
+nlohmann::json outlierJson(const RenderSettings& settings, const ReplayedOutlier& r, double shareOfPixel) {
+  nlohmann::json x;
+  x["luminance"] = r.o.luminance;
+  x["value"] = {r.o.value.r, r.o.value.g, r.o.value.b};
+  x["pixel"] = {r.o.id.x, r.o.id.y};
+  x["sample"] = r.o.id.sample;
+  x["technique"] = techniqueJson(r.o.technique);
+  x["raster"] = {r.o.pRaster.x, r.o.pRaster.y};
+  x["shareOfPixel"] = shareOfPixel;
+  x["densityRatio"] = r.densityRatio;
+  x["bestTechnique"] = techniqueJson(r.best);
+  // The technique's record as `inspect --json` writes it: its path, vertex densities, the path
+  // under every technique of its length and its weights.
+  if (r.record >= 0) x["record"] = inspectionJson(settings, r.inspection)["techniques"][static_cast<size_t>(r.record)];
+  return x;
 }
 
 }  // namespace pathlab

@@ -5,7 +5,10 @@
 // the viewer's outlier list both read it.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include "core/image/image.h"
+#include "core/render/render_settings.h"
 #include "core/render/outliers.h"
 #include "core/render/sample_inspection.h"
 
@@ -31,5 +34,10 @@ ReplayedOutlier replayOutlier(const RenderSession& session, const Outlier& o);
 // sample adds its value / spp to its pixel, and so does a splat (the film divides the splats by
 // the light subpaths, one a pixel a pass). 0 when the pixel is black or off the image.
 double outlierShareOfPixel(const Outlier& o, const Image& image, uint64_t spp);
+
+// One entry of the list `pathlab outliers --json` writes (and Python's Renderer.outliers()):
+// luminance, value, pixel, sample, technique, raster, shareOfPixel, densityRatio, bestTechnique,
+// and record, the technique's record as `inspect --json` writes it. `settings`: the render's.
+nlohmann::json outlierJson(const RenderSettings& settings, const ReplayedOutlier& r, double shareOfPixel);
 
 }  // namespace pathlab

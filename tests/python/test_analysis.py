@@ -103,3 +103,74 @@ def test_check_refuses_what_check_does_not_take(box):
     with pytest.raises(pathlab.Error) as e:
         pathlab.check(box, pathlab.Settings(), blocks="4")
     assert "blocks: expected an int, got str" in str(e.value)
+
+
+@pytest.mark.parametrize("integrator", ["bpt", "vcm"])
+def test_outliers_equal_the_command_lines_json(tmp_path, integrator):
+    scene = scene_path("cornell-spheres.gltf")
+    out = tmp_path / "outliers.json"
+    done = run_cli("outliers", scene, "--spp", "6", "--top", "5", "--width", "32", "--height", "32",
+                   "--max-length", "5", "--integrator", integrator, "--json", str(out), "--force")
+    assert done.returncode == 0, done.stderr
+    r = pathlab.Renderer(pathlab.load(scene),
+                         pathlab.Settings(width=32, height=32, max_length=5, integrator=integrator))
+    r.find_outliers(5)
+    r.render(spp=6)
+    got = r.outliers()
+    assert len(got) == 5
+    assert [o["luminance"] for o in got] == sorted((o["luminance"] for o in got), reverse=True)
+    assert got == json.loads(out.read_text())["outliers"]
+
+
+def test_outliers_are_refused_where_the_command_line_refuses_them(box):
+    r = pathlab.Renderer(box, pathlab.Settings(width=8, height=8, integrator="pt"))
+    with pytest.raises(pathlab.Error) as e:
+        r.find_outliers(3)
+    assert "find_outliers" in str(e.value) and "bidirectional" in str(e.value)
+    r = pathlab.Renderer(box, pathlab.Settings(width=8, height=8))
+    with pytest.raises(pathlab.Error):
+        r.find_outliers(-1)
+    assert r.outliers() == []  # none kept without find_outliers
+
+
+def test_variance_maps_are_the_variance_of_the_passes_estimates(box):
+    """Each technique's map against the brute force: the sample variance, over the passes, of
+    each pass's estimate, recovered from the pyramid's running means (luminance, as the maps)."""
+    r = pathlab.Renderer(box, pathlab.Settings(width=16, height=16, max_length=3, variance_maps=3, seed=5))
+    passes = 10
+    estimates, previous = {}, {}
+    for p in range(1, passes + 1):
+        r.render(spp=1)
+        for key, (weighted, _) in r.pyramid(max_length=3).items():
+            mean = weighted.astype(np.float64)
+            one = p * mean - (p - 1) * previous.get(key, 0.0)  # this pass's estimate
+            previous[key] = mean
+            luminance = one @ np.array([0.2126, 0.7152, 0.0722])
+            estimates.setdefault(key, []).append(luminance)
+    maps = r.variance_maps()
+    checked = 0
+    for key, v in maps["variance"].items():
+        brute = np.var(np.stack(estimates[key]), axis=0, ddof=1)
+        assert v.shape == brute.shape and v.dtype == np.float32
+        np.testing.assert_allclose(v, brute, rtol=2e-3, atol=1e-6 * max(brute.max(), 1e-12))
+        checked += brute.max() > 0
+    assert checked >= 4  # most techniques of the box vary
+    # 'techniques' lists merges too (index order); the box's bpt keeps none: zero variance.
+    zero = np.zeros_like(maps["variance"][(0, 2)])
+    variances = np.stack([maps["variance"].get(k, zero) for k in maps["techniques"]])
+    dominant, share = maps["dominant"], maps["dominant_share"]
+    varies = dominant >= 0
+    assert varies.sum() > 0.5 * varies.size
+    for y, x in zip(*np.nonzero(varies)):
+        assert variances[dominant[y, x], y, x] == pytest.approx(variances[:, y, x].max(), rel=1e-5)
+        assert share[y, x] == pytest.approx(variances[:, y, x].max() / variances[:, y, x].sum(), rel=1e-4)
+
+
+def test_variance_maps_need_the_settings(box):
+    r = pathlab.Renderer(box, pathlab.Settings(width=8, height=8))
+    with pytest.raises(pathlab.Error) as e:
+        r.variance_maps()
+    assert "variance_maps=L" in str(e.value)
+    with pytest.raises(pathlab.Error) as e:
+        pathlab.Settings(integrator="pt", variance_maps=2)
+    assert "variance_maps" in str(e.value) and "bidirectional" in str(e.value)
