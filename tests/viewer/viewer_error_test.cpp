@@ -134,6 +134,7 @@ void writePfm(const std::string& path, int w, int h, const std::vector<float>& r
 }
 
 TEST(ViewerError, BrokenReferencesAreOneLine) {
+  std::filesystem::create_directories(kErrorTmp);  // this test may be the file's first to run
   const std::string nan = kErrorTmp + "/nan.pfm";
   std::vector<float> rgb(3 * 8 * 6, 0.5f);
   rgb[7] = std::numeric_limits<float>::quiet_NaN();

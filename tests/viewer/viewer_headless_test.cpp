@@ -50,10 +50,14 @@ TEST(ViewerHeadless, ScreenshotHasTheWindowSizeAndShowsPanelsAndImage) {
 
 TEST(ViewerHeadless, TechniquePresetsChangeTheImageNotThePanelLayout) {
   const std::string presets = kTmp + "/presets.json";
+  // The file first, in a directory that may not exist yet: under ctest -j2 this test can be the
+  // first of the file to run (runView makes the directory only when it runs).
+  std::filesystem::create_directories(kTmp);
   std::ofstream(presets) << R"({"presets": [{"name": "all", "maxLength": 4},
                                             {"name": "emitters only", "techniques": "0,2", "maxLength": 4}]})";
   const std::string a = kTmp + "/preset-all.png", b = kTmp + "/preset-emitters.png";
-  ASSERT_EQ(runView(kBox + kFast + "--frames 6 --headless --hide-ui --presets " + presets + " --preset all --screenshot " + a).exitCode, 0);
+  const ViewRun all = runView(kBox + kFast + "--frames 6 --headless --hide-ui --presets " + presets + " --preset all --screenshot " + a);
+  ASSERT_EQ(all.exitCode, 0) << all.err;
   const ViewRun r = runView(kBox + kFast + "--frames 6 --headless --hide-ui --presets " + presets + " --preset 'emitters only' --screenshot " + b);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const Png pa = readPng(a), pb = readPng(b);
@@ -157,6 +161,7 @@ TEST(ViewerHeadless, ScreenshotsLeaveOutTheNoticeOfTheLastOne) {
 
 TEST(ViewerHeadless, KeepsAnExistingScreenshotWithoutForce) {
   const std::string out = kTmp + "/existing.png";
+  std::filesystem::create_directories(kTmp);  // this test may be the file's first to run
   std::ofstream(out) << "precious";
   const ViewRun r = runView(kBox + " --headless --frames 2 --screenshot " + out);
   EXPECT_EQ(r.exitCode, 1);
