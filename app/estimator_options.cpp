@@ -79,6 +79,11 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "Connections shorter than this fraction of the scene's bounding radius are left to the techniques "
                   "that sample that edge, when one is enabled (0: off)")
       ->check(CLI::Range(0.f, kMaxMinConnection));
+  cmd->add_option("--light-paths", s.lightPaths,
+                  "bpt: light subpaths per pass as a fraction of the camera samples (each camera sample walks one "
+                  "with this probability; light tracing and the connections beyond next-event estimation count it "
+                  "in every MIS weight)")
+      ->check(CLI::Range(kMinLightPaths, 1.f));
   cmd->add_option("--techniques", o.techniques,
                   "Enabled techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all (connections), MS,T | m=K | "
                   "m=all (merges; 'all;m=all' is vertex connection and merging)");

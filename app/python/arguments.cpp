@@ -45,6 +45,7 @@ constexpr Argument kSettingsArguments[] = {
     {"beta", "--beta", Kind::Float},
     {"connect", "--connect", Kind::String},
     {"min_connection", "--min-connection", Kind::Float},
+    {"light_paths", "--light-paths", Kind::Float},
     {"techniques", "--techniques", Kind::Techniques},
     {"isolate", "--isolate", Kind::Isolation},
     {"unweighted", "--unweighted", Kind::Flag},

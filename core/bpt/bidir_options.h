@@ -60,6 +60,7 @@ struct BidirOptions {
   ConnectStrategy connect = ConnectStrategy::All;
   std::optional<BiasInjection> injectBias;
   MergeSite mergeSite = MergeSite::Every;
+  float lightPaths = 1.f;  // light subpaths per camera sample (core/bpt/light_paths.h)
 };
 
 }  // namespace pathlab

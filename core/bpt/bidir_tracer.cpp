@@ -91,6 +91,10 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
                            : MisEvaluation::Explicit;
   }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
+  if (options_.lightPaths < 1.f) {
+    lightPathCounts_ = lightPathCounts(options_.maxLength, options_.lightPaths);
+    lightPathScale_ = 1.f / options_.lightPaths;
+  }
   // The image-only route's preconditions that settings decide: the partial sums, no media, and nothing that
   // changes a result's weight or contribution (isolation, the MIS check, an injected bias).
   imageOnlyPath_ = misEvaluation_ == MisEvaluation::PartialSums && !merges_ && !scene.hasMedia() && !options_.checkMis &&
@@ -248,6 +252,8 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
   auto weigh = [&] {
     if (varianceAware_)
       factors = varianceAware_->factorsOfLength(varianceAware_->regionOf(t == 1 ? c.pRaster : pRaster), s + t - 1);
+    else
+      factors = lightPathCountsOfLength(s + t - 1);  // null at --light-paths 1
     if (use.enabled) w = weight<kRecords>(path, c, walks, factors, counters);
     imageWeight = !use.inImage ? 0.f : use.unweightedInImage ? 1.f : w;
     if (!(imageWeight > 0.f) && !use.inPyramid && !demand.everyContribution) {
@@ -264,7 +270,8 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
         tracePath(scene_, camera_, path, walks.traced);
         r.traced = &walks.traced;
         walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
-                                        mergesOnPath(mergePass_, options_.mergeSite), factors);
+                                        mergesOnPath(mergePass_, options_.mergeSite),
+                                        varianceAware_ ? factors : nullptr, lightPathCountsOfLength(s + t - 1));
         r.onPath = &walks.onPath;
       }
     }
@@ -285,6 +292,9 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
   tally.contributed();
 
   Spectrum L = c.L;
+  // A technique that walks the light subpath had one on a fraction F of the camera samples: each
+  // contribution stands for 1 / F of them (light_paths.h).
+  if (lightPathScale_ != 1.f && lightWalkNeeded(s, t)) L *= lightPathScale_;
   if (options_.injectBias && options_.injectBias->technique() == Technique{s, t})
     L *= options_.injectBias->factor;  // a deliberately wrong technique (BiasInjection)
   // The one check of a contribution: NaN, Inf and negative values are dropped one technique at a
@@ -331,7 +341,7 @@ int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Rng& rng, Wa
     if (mergePass_)
       accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, mergeTerms(*mergePass_));
     else
-      accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, {}, varianceAware_ != nullptr);
+      accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, {}, countsInWeights());
   }
   return nt;
 }
@@ -341,7 +351,7 @@ int BidirTracer::walkLight(int vertices, Rng& rng, Walks& walks, Counters& count
   if (vertices <= 0) return 0;
   const int ns = generateLightSubpath(scene_, rng, WalkOptions{vertices, options_.russianRoulette}, walks.light, counters);
   if (ns > 0 && misEvaluation_ == MisEvaluation::PartialSums)
-    accumulateLightSums(walks.light, misPower_, walks.lightSums, {}, varianceAware_ != nullptr);
+    accumulateLightSums(walks.light, misPower_, walks.lightSums, {}, countsInWeights());
   return ns;
 }
 
@@ -407,7 +417,11 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Rng& cameraRng, Rng& lightRng
   const uint64_t cameraRays = counters.rays, cameraEnd = timed ? ticks() : 0;
   // With merges the pass already walked this pixel's light subpath (from the same stream) and
   // stored it: the connections take it from there.
-  const int ns = mergePass_ ? storedLightSubpath(sink.id(), walks) : walkLight(lightVerticesNeeded_, lightRng, walks, counters);
+  // --light-paths F: the light walk (and every technique that needs it) on a fraction F of the
+  // camera samples (light_paths.h).
+  const int ns = mergePass_                                                ? storedLightSubpath(sink.id(), walks)
+                 : walksLightSubpath(connectionKey, options_.lightPaths) ? walkLight(lightVerticesNeeded_, lightRng, walks, counters)
+                                                                          : 0;
   counters.cameraWalk.rays += cameraRays - raysBefore;
   counters.lightWalk.rays += counters.rays - cameraRays;
   if (timed) {

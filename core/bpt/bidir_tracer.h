@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/bpt/bidir_options.h"
+#include "core/bpt/light_paths.h"
 #include "core/bpt/mis.h"
 #include "core/bpt/merge_mis.h"
 #include "core/bpt/merge_pass.h"
@@ -164,7 +165,7 @@ class BidirTracer {
                                   Walks& walks, TechniqueResult& r) const;
   // The merges' part of the partial sums for this pass (its eta and keep probability).
   MergeTerms mergeTerms(const MergePass& pass) const;
-  bool lightWalkNeeded(int s, int t) const { return s >= 1 && !(s == 1 && t >= 2); }  // NEE draws its own
+  bool lightWalkNeeded(int s, int t) const { return usesLightSubpath(s, t); }  // NEE draws its own
 
   const Scene& scene_;
   const Camera& camera_;
@@ -183,6 +184,16 @@ class BidirTracer {
   double connectionsInSums_ = 1.0;  // MergeTerms::connections: every connection enabled, or none
   const MergePass* mergePass_ = nullptr;
   const VarianceAwareFactors* varianceAware_ = nullptr;
+  // --light-paths F < 1 (light_paths.h): each technique's samples per camera sample by
+  // Technique::index (empty at F = 1), and 1 / F, the light-walk techniques' contribution scale.
+  std::vector<float> lightPathCounts_;
+  float lightPathScale_ = 1.f;
+  const float* lightPathCountsOfLength(int k) const {
+    return lightPathCounts_.empty() ? nullptr : lightPathCounts_.data() + Technique::firstIndexOfLength(k);
+  }
+  // Whether the walks keep each vertex's step and count for weights with per-technique counts
+  // (SubpathMisSums::step): variance-aware factors or light-path counts.
+  bool countsInWeights() const { return varianceAware_ != nullptr || !lightPathCounts_.empty(); }
 };
 
 extern template void BidirTracer::sample(Vec2, Vec2, Pcg32&, Pcg32&, SampleSink&, Counters&) const;

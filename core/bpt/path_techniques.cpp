@@ -10,15 +10,19 @@ namespace {
 std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const std::vector<uint8_t>& surface,
                                                    uint64_t sampleable, const TechniqueSet& techniques,
                                                    const MisOptions& options, float minDistance, float lightTracingRatio,
-                                                   const std::optional<MergesOnPath>& merges, const float* factors) {
+                                                   const std::optional<MergesOnPath>& merges, const float* factors,
+                                                   const float* counts = nullptr) {
   MisOptions balance = options, power = options, uniform = options, varianceAware = options;
   balance.heuristic = MisHeuristic::Balance;
   power.heuristic = MisHeuristic::Power;
   uniform.heuristic = MisHeuristic::Uniform;
   varianceAware.heuristic = MisHeuristic::VarianceAware;
-  // The same densities with the factors, for the variance-aware weight.
+  // The same densities with the factors, for the variance-aware weight. Sample counts other than
+  // one (--light-paths) multiply every heuristic's n_i alike, through the same slot.
+  PathDensities withCounts = d;
+  withCounts.factors = counts;
   PathDensities withFactors = d;
-  withFactors.factors = factors;
+  withFactors.factors = factors ? factors : counts;
   const UsableTechniques usable(d, techniques, minDistance);
   // p_C(s'): the light-side densities before s', the camera-side ones from s' on.
   auto connectionDensity = [&](int sp) {
@@ -35,12 +39,12 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
       x.varianceAware =
           weightWithMerges(withFactors, surface, y, techniques, varianceAware, lightTracingRatio, minDistance, merges->mis);
     } else {
-      x.balance = weightFromDensities(d, x.s, techniques, balance, lightTracingRatio, minDistance);
-      x.power = weightFromDensities(d, x.s, techniques, power, lightTracingRatio, minDistance);
-      x.uniform = weightFromDensities(d, x.s, techniques, uniform, lightTracingRatio, minDistance);
+      x.balance = weightFromDensities(withCounts, x.s, techniques, balance, lightTracingRatio, minDistance);
+      x.power = weightFromDensities(withCounts, x.s, techniques, power, lightTracingRatio, minDistance);
+      x.uniform = weightFromDensities(withCounts, x.s, techniques, uniform, lightTracingRatio, minDistance);
       x.varianceAware = weightFromDensities(withFactors, x.s, techniques, varianceAware, lightTracingRatio, minDistance);
     }
-    x.factor = withFactors.factor(x.technique().slot());
+    x.factor = factors ? withFactors.factor(x.technique().slot()) : 1.0;
   };
   std::vector<TechniqueOnPath> out;
   for (int sp = 0; sp < d.n; ++sp) {
@@ -99,11 +103,11 @@ std::vector<uint8_t> surfaceVertices(const MisPath& path, int n) {
 std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& camera, const MisPath& path,
                                               const TechniqueSet& techniques, const MisOptions& options,
                                               float lightTracingRatio, const std::optional<MergesOnPath>& merges,
-                                              const float* factors) {
+                                              const float* factors, const float* counts) {
   const PathDensities d = pathDensities(scene, camera, path);
   const uint64_t sampleable = d.n <= kSampleableBits ? sampleableTechniques(path) : 0;
   return techniquesOnDensities(d, surfaceVertices(path, d.n), sampleable, techniques, options,
-                               minConnectionDistance(scene, options), lightTracingRatio, merges, factors);
+                               minConnectionDistance(scene, options), lightTracingRatio, merges, factors, counts);
 }
 
 std::vector<TechniqueOnPath> techniquesOnMergedPath(const Scene& scene, const MisPath& path, const MergedPath& merged,

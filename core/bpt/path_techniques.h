@@ -24,12 +24,14 @@ struct MergesOnPath {
 // the connections by s', then, with `merges`, the merges M(s', n + 1 - s') by s'); `options` gives
 // beta for the power heuristic and the minimum connection. With `merges` every weight is the one
 // over connections and merges together (weightWithMerges) on the path `path` forms. `factors`:
-// variance-aware MIS's factors of the path's length where it lands (PathDensities::factors).
+// variance-aware MIS's factors of the path's length where it lands (PathDensities::factors), in
+// its weight only; `counts`: each technique's samples per camera sample (--light-paths,
+// core/bpt/light_paths.h), in every heuristic's weight (null: one each). Not both.
 std::vector<TechniqueOnPath> techniquesOnPath(const Scene& scene, const Camera& camera, const MisPath& path,
                                               const TechniqueSet& techniques, const MisOptions& options,
                                               float lightTracingRatio = 1.f,
                                               const std::optional<MergesOnPath>& merges = std::nullopt,
-                                              const float* factors = nullptr);
+                                              const float* factors = nullptr, const float* counts = nullptr);
 
 // A merge's path as its weight sees it (mergedPathDensities): the densities, and which vertices
 // lie on surfaces.

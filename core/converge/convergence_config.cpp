@@ -15,11 +15,11 @@ namespace {
 
 // vcm and bpm are bpt with a technique set of their own, as on the command line.
 constexpr std::array<std::string_view, 6> kIntegrators = {"bpt", "pt", "lt", "vcm", "bpm", "mlt"};
-constexpr std::array<std::string_view, 16> kKeys = {
+constexpr std::array<std::string_view, 17> kKeys = {
     "mis",        "beta",         "min-connection",     "techniques",      "max-length",
     "connect",    "radius",       "radius-alpha",       "noncaustic-photons", "medium-sampling",
     "mlt-variant", "chains",      "bootstrap",          "large-step",      "sigma",
-    "mlt-direct"};
+    "mlt-direct", "light-paths"};
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -144,13 +144,15 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
         s.mlt.sigma = parseNumber<float>(config, key, value);
       } else if (key == "mlt-direct") {
         s.mlt.directLength = parseNumber<int>(config, key, value);
+      } else if (key == "light-paths") {
+        s.lightPaths = parseNumber<float>(config, key, value);  // validateSettings checks the range and integrator
       } else if (key == "max-length") {
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");
       } else {
         fail(config, fmt::format("unknown key '{}' (mis, beta, min-connection, techniques, max-length, connect, radius, "
                                   "radius-alpha, noncaustic-photons, medium-sampling, mlt-variant, chains, bootstrap, "
-                                  "large-step, sigma, mlt-direct)",
+                                  "large-step, sigma, mlt-direct, light-paths)",
                                   key));
       }
     }

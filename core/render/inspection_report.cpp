@@ -189,6 +189,10 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
   // samples of technique s per camera sample): light subpaths per camera sample for the t = 1
   // techniques. With 1 it drops out of every weight.
   j["lightTracingSampleRatio"] = lightTracingRatio();
+  // --light-paths F (core/bpt/light_paths.h): the techniques that walk a light subpath (t = 1 and
+  // s >= 2) draw F samples per camera sample, so their n_s is F in every weight (times the ratio
+  // above for t = 1).
+  j["lightPaths"] = settings.lightPaths;
   // The merges' sample count (Georgiev et al. 2012 eq. 11): every light subpath of the pass serves
   // every camera sample, so a merge's p is multiplied by N, the pass's light subpaths, in every
   // weight (eta = pi r^2 N, merge_mis.h).

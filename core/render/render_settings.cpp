@@ -93,8 +93,8 @@ TechniqueFamilies pyramidFamilies(const RenderSettings& settings) {
 }
 
 BidirOptions bidirOptions(const RenderSettings& s) {
-  return BidirOptions{s.maxLength,     s.russianRoulette, enabledTechniques(s), s.mis,       s.isolate,
-                      s.pyramidLength, s.checkMis,        s.connect,           s.injectBias, s.mergeSite};
+  return BidirOptions{s.maxLength, s.russianRoulette, enabledTechniques(s), s.mis,       s.isolate,   s.pyramidLength,
+                      s.checkMis,  s.connect,         s.injectBias,         s.mergeSite, s.lightPaths};
 }
 
 PathTracerOptions pathTracerOptions(const RenderSettings& s) {
@@ -178,6 +178,21 @@ void validateSettings(const RenderSettings& s) {
           "--mis variance-aware at {} x {} with maximum length {} keeps {:.1f} GiB of factors (at most {} GiB): lower "
           "--max-length or the image size",
           s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxVarianceAwareBytes >> 30));
+  }
+  if (s.lightPaths != 1.f) {
+    if (!(s.lightPaths >= kMinLightPaths && s.lightPaths <= 1.f))
+      throw std::invalid_argument(fmt::format("--light-paths {} is outside [{}, 1]", s.lightPaths, kMinLightPaths));
+    if (s.integrator != IntegratorKind::Bpt)
+      throw std::invalid_argument(fmt::format("--light-paths samples light subpaths for some of a bidirectional "
+                                              "tracer's camera samples: use bpt, not {}",
+                                              integratorName(s.integrator)));
+    if (covers(enabledTechniques(s).families(), TechniqueKind::Merge))
+      throw std::invalid_argument("--light-paths: merging techniques need every pixel's light subpath (vcm, bpm, ppm "
+                                  "take --light-paths 1)");
+    if (s.connect == ConnectStrategy::Endpoints)
+      throw std::invalid_argument("--light-paths needs path reuse (--connect all), not naive BPT");
+    if (s.mis.heuristic == MisHeuristic::VarianceAware)
+      throw std::invalid_argument("--light-paths is not combined with --mis variance-aware yet: take one of them");
   }
   if (s.integrator == IntegratorKind::Mlt) {
     // Metropolis over the connections: each chain state is one path of one technique (MMLT) or a

@@ -64,6 +64,11 @@ struct RenderSettings {
   // Progressive photon mapping (Hachisuka, Ogaki and Jensen 2008) among the merges: a camera
   // subpath merges only at its first vertex that is not a delta scatter (MergeSite).
   MergeSite mergeSite = MergeSite::Every;
+  // Bpt only: light subpaths per pass as a fraction of its camera samples, (0, 1] (efficiency-aware
+  // sampling, Grittmann et al. 2022). Each camera sample walks a light subpath with this
+  // probability; the techniques that need one (t = 1, and s >= 2) then count this many samples in
+  // every MIS weight and their contributions are divided by it (core/bpt/light_paths.h).
+  float lightPaths = 1.f;
   // Mlt only: the chains (core/mlt/mlt_options.h). A pass is one mutation per pixel on average.
   MltOptions mlt;
   // Check on every path that the MIS weights of the enabled techniques able to produce it sum to
@@ -86,6 +91,9 @@ inline bool sameExceptSize(RenderSettings a, const RenderSettings& b) {
 }
 
 inline constexpr int kMaxPyramidLength = 8;
+// The fewest light subpaths per camera sample (--light-paths): below, a technique's contributions
+// would be divided by more than a thousand.
+inline constexpr float kMinLightPaths = 0.001f;
 inline constexpr float kMaxMergeRadius = 0.5f;  // of the scene's bounding radius
 // The default first radius at 512 x 512 pixels (SmallVCM's radius at its default image size),
 // scaled by 512 / sqrt(width x height) elsewhere: see firstMergeRadius.

@@ -11,7 +11,7 @@ namespace {
 
 const std::string kMergeControlsTmp = std::string(PATHLAB_TEST_TMP) + "/viewer_merge_controls";
 const std::string kMergeControlsScene = std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-spheres.gltf";
-// 800 x 700: the ppm box is at (18, 535) under the radius sliders.
+// 800 x 700: the ppm box is at (18, 560) under the radius sliders.
 const std::string kMergeControlsRun =
     " --width 800 --height 700 --render-scale 0.25 --spp 2 --threads 2 --force --headless --frames 30 ";
 
@@ -25,7 +25,7 @@ TEST(ViewerMergeControls, TickingPpmMergesOnlyAtTheFirstNonSpecularVertex) {
   // PPM's technique set merging everywhere, then the box ticked; Tab hides the panels so that
   // the image has a --hide-ui run's size.
   pathlab::test::CommandRun r = runMergeControlsView(
-      "--techniques 's=0;m=all' --script '4:wait=2;5:click=18,535;12:key=Tab' --screenshot " + ticked);
+      "--techniques 's=0;m=all' --script '4:wait=2;5:click=18,560;12:key=Tab' --screenshot " + ticked);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   r = runMergeControlsView("--hide-ui --integrator ppm --screenshot " + ppm);
   ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -142,6 +142,7 @@ std::string describe(const RenderSettings& s) {
                        s.mergeSite == MergeSite::FirstNonSpecular ? " at the first non-specular camera vertex (ppm)" : "",
                        s.mergeNonCaustic ? fmt::format(", non-caustic photons {:g}", *s.mergeNonCaustic) : "");
   if (s.connect != ConnectStrategy::All) out += fmt::format(", connect {}", connectStrategyName(s.connect));
+  if (s.lightPaths != 1.f) out += fmt::format(", light paths {:g}", s.lightPaths);
   if (s.integrator == IntegratorKind::Mlt) {
     // What decides the chains (the A | B lanes of two Metropolis settings differ in these).
     const MltOptions& m = s.mlt;

@@ -549,6 +549,19 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
     ImGui::SetTooltip("connections shorter than this fraction of the scene's radius are left to the techniques\n"
                       "that sample that edge (1/d^2 near corners); unbiased at any value, 0 turns it off.\n"
                       "Uniform weights gain most; balance and power barely notice.");
+  // Efficiency-aware sampling's first knob (core/bpt/light_paths.h): path reuse's bpt only.
+  const bool lightPathsApply = edited.integrator == IntegratorKind::Bpt && edited.connect == ConnectStrategy::All &&
+                               edited.mis.heuristic != MisHeuristic::VarianceAware &&
+                               !covers(enabledTechniques(edited).families(), TechniqueKind::Merge);
+  ImGui::BeginDisabled(!lightPathsApply);
+  ImGui::SliderFloat("light paths", &edited.lightPaths, 0.01f, 1.f, "%.3f", ImGuiSliderFlags_Logarithmic);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("light subpaths per camera sample: each camera sample walks one with this probability.\n"
+                      "Light tracing and the connections beyond next-event estimation count it in every MIS\n"
+                      "weight and are divided by it: unbiased at any value, cheaper below 1 where they help little.\n"
+                      "bpt with path reuse only (not merges, naive BPT or variance-aware MIS).");
+  edited.lightPaths = lightPathsApply ? std::clamp(edited.lightPaths, kMinLightPaths, 1.f) : 1.f;
 
   // Mode
   int mode = static_cast<int>(estimator.mode);
