@@ -319,7 +319,8 @@ bool Viewer::pollImage() {
   }
   const bool techniques = techniqueImages_.update(a().renderer(), pyramid_, maps_, display_, forceRefresh_);
   const bool image = sides_.poll(forceRefresh_);
-  outliers_.hold = inspect_.inspector.on && inspect_.inspector.pinned && *inspect_.inspector.pinned == outliers_.list.settings;
+  const PathInspectorState& inspector = inspect_.inspector;
+  outliers_.hold = inspector.on && inspector.pinned && *inspector.pinned == outliers_.list.settings;
   const bool outliers = outliers_.on && a().running() && updateOutlierList(outliers_, a().renderer(), scene());
   forceRefresh_ = false;
   bool reference = false;

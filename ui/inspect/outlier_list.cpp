@@ -36,13 +36,15 @@ std::string outlierRatioProblem(const OutlierList& list, const Outlier& o) {
 }
 
 int replayOutlierRows(OutlierListState& state, const Scene& scene, int replays) {
-  std::unique_ptr<const RenderSession> session;  // made once, for the first row that needs it
   int done = 0;
   for (OutlierRow& row : state.rows) {
     if (done >= replays) break;
     if (row.replayed || !outlierRatioProblem(state.list, row.o).empty()) continue;
-    if (!session) session = std::make_unique<const RenderSession>(scene, state.list.settings);
-    const ReplayedOutlier r = replayOutlier(*session, row.o);
+    if (!state.replayer || state.replayerScene != &scene || !(state.replayer->settings() == state.list.settings)) {
+      state.replayer = std::make_shared<const RenderSession>(scene, state.list.settings);
+      state.replayerScene = &scene;
+    }
+    const ReplayedOutlier r = replayOutlier(*state.replayer, row.o);
     row.replayed = true;
     row.densityRatio = r.densityRatio;
     row.best = r.best;

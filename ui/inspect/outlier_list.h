@@ -8,6 +8,7 @@
 #include "ui/inspect/path_inspector.h"
 #include "ui/viewer_options.h"  // kDefaultViewerOutliers, kMaxViewerOutliers
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,10 @@ struct OutlierListState {
   // list's settings (PathInspectorState::pinned): exploring a list, row after row, is not undone
   // by the new generation that opening the inspector started. Set by the viewer every frame.
   bool hold = false;
+  // The session rows are replayed in (its settings the list's, its scene `replayerScene`), kept
+  // from one list to the next: making one allocates a film.
+  std::shared_ptr<const RenderSession> replayer;
+  const Scene* replayerScene = nullptr;
 };
 
 // Why the outlier finder cannot rank these settings' samples ("" when it can): the path tracer

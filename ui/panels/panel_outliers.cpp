@@ -32,7 +32,8 @@ void drawOutlierSection(OutlierListState& state, const RenderSettings& edited, c
   }
   const OutlierList& list = state.list;
   if (state.rows.empty()) {
-    ImGui::TextDisabled("waiting for a full pass ...");
+    // The finder starts between passes: none come while paused or at the sample target.
+    ImGui::TextDisabled("the list comes with the next full pass (none while paused or at 'stop at spp')");
     ImGui::PopID();
     return;
   }
