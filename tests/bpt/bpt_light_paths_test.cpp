@@ -5,10 +5,8 @@
 // agrees region by region with F = 1 and with the path tracer where that samples every path); and
 // F < 1 really walks fewer light subpaths and changes the image.
 #include "core/bpt/light_paths.h"
-#include "core/lights/environment_file.h"
 #include "core/render/render_session.h"
 #include "core/render/sample_inspection.h"
-#include "core/scene/gltf_loader.h"
 #include "tests/support/agreement.h"
 #include "tests/support/test_scenes.h"
 
@@ -41,13 +39,6 @@ TEST(LightPaths, WalksWithTheProbabilityAsked) {
   EXPECT_TRUE(walksLightSubpath(7, 1.f));
 }
 
-Scene bundled(const std::string& name) {
-  const std::string source = PATHLAB_SOURCE_DIR;
-  LoadOptions load;
-  if (name == "environment")
-    load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
-  return Scene(loadGltf(source + "/assets/" + name + ".gltf", load));
-}
 
 RenderSettings boxSettings(float lightPaths) {
   RenderSettings s;
@@ -60,7 +51,7 @@ RenderSettings boxSettings(float lightPaths) {
 }
 
 TEST(LightPaths, EveryPathsWeightsSumToOne) {
-  const Scene scene = bundled("cornell-spheres");
+  const Scene scene = test::bundledScene("cornell-spheres");
   for (const MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power}) {
     RenderSettings s = boxSettings(0.3f);
     s.mis.heuristic = h;
@@ -73,7 +64,7 @@ TEST(LightPaths, EveryPathsWeightsSumToOne) {
 }
 
 TEST(LightPaths, FewerLightWalksAndAnotherImage) {
-  const Scene scene = bundled("cornell-box");
+  const Scene scene = test::bundledScene("cornell-box");
   RenderSession all(scene, boxSettings(1.f)), some(scene, boxSettings(0.25f));
   for (int p = 0; p < 8; ++p) ASSERT_TRUE(all.renderPass() && some.renderPass());
   const double ratio = static_cast<double>(some.counters().lightWalk.rays) / static_cast<double>(all.counters().lightWalk.rays);
@@ -86,7 +77,7 @@ TEST(LightPaths, FewerLightWalksAndAnotherImage) {
 // weight is its path's balance weight with F samples for the light-walk techniques, as the
 // inspector lists it, and not the weight with one sample each.
 TEST(LightPaths, TheWeightsCountTheLightPaths) {
-  const Scene scene = bundled("cornell-box");
+  const Scene scene = test::bundledScene("cornell-box");
   const RenderSession session(scene, boxSettings(0.2f));
   int checked = 0, differs = 0;
   for (int x = 4; x < 24; x += 5)
@@ -113,35 +104,9 @@ TEST(LightPaths, TheWeightsCountTheLightPaths) {
 
 // Unbiased on every bundled scene, as bpt_variance_aware_test.cpp tests variance-aware MIS: F = 0.25
 // against F = 1 (another seed) everywhere, and against the path tracer where it samples every path
-// in a short render. Pixels that see an emitter or a delta surface directly are left out.
-struct SceneCase {
-  const char* name;
-  int width, height, maxLength, passes, ptPasses;
-  int cells = 3;  // regions a side
-};
-
-void expectAgreement(const SceneCase& c) {
-  const Scene scene = bundled(c.name);
-  RenderSettings base;
-  base.width = c.width;
-  base.height = c.height;
-  base.maxLength = c.maxLength;
-  test::PixelLabels grid = test::gridLabels(base.width, base.height, c.cells, c.cells);
-  grid = test::withoutSeenDirectly(scene, base, grid, test::emitterOrDelta, 16);
-  const uint64_t seed = 1000 * test::testSeedBase() + 811;
-  test::EstimatorSpec quarter =
-      test::estimatorSpec("light-paths 0.25", base, IntegratorKind::Bpt, MisHeuristic::Balance, seed, c.passes);
-  quarter.settings.lightPaths = 0.25f;
-  std::vector<test::EstimatorSpec> estimators = {
-      quarter, test::estimatorSpec("light-paths 1", base, IntegratorKind::Bpt, MisHeuristic::Balance, seed + 1, c.passes)};
-  std::vector<test::PairSpec> pairs = {{"light-paths 0.25", "light-paths 1"}};
-  if (c.ptPasses > 0) {
-    estimators.push_back(test::estimatorSpec("pt", base, IntegratorKind::Pt, MisHeuristic::Balance, seed + 2, c.ptPasses));
-    pairs.push_back({"light-paths 0.25", "pt"});
-  }
-  const test::AgreementRun run = test::runAgreement(scene, estimators, {grid}, pairs, test::kFamilyAlpha);
-  test::report(run, std::string(c.name) + ", --light-paths 0.25");
-  test::expectAgreement(run, std::string(c.name) + ", --light-paths 0.25");
+// in a short render (test::expectBundledAgreement).
+void expectAgreement(const test::BundledCase& c) {
+  test::expectBundledAgreement(c, "light-paths 0.25", [](RenderSettings& s) { s.lightPaths = 0.25f; }, 811);
 }
 
 TEST(LightPaths, AgreesOnTheDiffuseScenes) {

@@ -7,8 +7,6 @@
 #include "core/bpt/variance_aware_mis.h"
 #include "core/render/render_session.h"
 #include "core/render/variance_aware_regions.h"
-#include "core/lights/environment_file.h"
-#include "core/scene/gltf_loader.h"
 #include "tests/support/agreement.h"
 #include "tests/support/test_scenes.h"
 
@@ -84,7 +82,6 @@ TEST(VarianceAwareFactors, RegionsLieInOneWorkItemAndCoverTheFilm) {
   }
 }
 
-// A bundled scene; the environment scene under its sky map, as `pathlab render --environment`.
 // A large image at a long length takes coarser cells, so the tables stay near their budget.
 TEST(VarianceAwareFactors, CellsGrowWithTheImageToKeepTheTablesInBudget) {
   EXPECT_EQ(varianceAwareCell(640, 480, 10), kVarianceAwareCell);
@@ -93,20 +90,12 @@ TEST(VarianceAwareFactors, CellsGrowWithTheImageToKeepTheTablesInBudget) {
   EXPECT_LE(varianceAwareBytes(3840, 2160, 10), kVarianceAwareBytes + uint64_t{3840} * 2160 * sizeof(int32_t));
 }
 
-Scene bundled(const std::string& name) {
-  const std::string source = PATHLAB_SOURCE_DIR;
-  LoadOptions load;
-  if (name == "environment")
-    load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
-  return Scene(loadGltf(source + "/assets/" + name + ".gltf", load));
-}
-
 // On the Cornell box every pixel's camera techniques take one sample a pass (stratified by
 // pixel), while light tracing's splats land where they may: the factors favour next-event
 // estimation (1, 2) over light tracing (2, 1) for direct light, as the paper's BPT results show.
 // And they change the image (the same seed under balance gives other bits).
 TEST(VarianceAwareMis, FavoursThePixelStratifiedTechniquesOnTheCornellBox) {
-  const Scene scene = bundled("cornell-box");
+  const Scene scene = test::bundledScene("cornell-box");
   RenderSettings s;
   s.width = 48;
   s.height = 48;
@@ -141,32 +130,9 @@ TEST(VarianceAwareMis, FavoursThePixelStratifiedTechniquesOnTheCornellBox) {
 // short render (the scenes' comments in bpt_agreement_test.cpp say where it does not: caustics,
 // fog's spot, the door's gap, the point lamp of many-lights). Pixels that see an emitter or a delta
 // surface directly are left out as there.
-struct SceneCase {
-  const char* name;
-  int width, height, maxLength, passes, ptPasses;
-  int cells = 3;  // regions a side
-};
-
-void expectAgreement(const SceneCase& c) {
-  const Scene scene = bundled(c.name);
-  RenderSettings base;
-  base.width = c.width;
-  base.height = c.height;
-  base.maxLength = c.maxLength;
-  test::PixelLabels grid = test::gridLabels(base.width, base.height, c.cells, c.cells);
-  grid = test::withoutSeenDirectly(scene, base, grid, test::emitterOrDelta, 16);
-  const uint64_t seed = 1000 * test::testSeedBase() + 701;
-  std::vector<test::EstimatorSpec> estimators = {
-      test::estimatorSpec("variance-aware", base, IntegratorKind::Bpt, MisHeuristic::VarianceAware, seed, c.passes),
-      test::estimatorSpec("balance", base, IntegratorKind::Bpt, MisHeuristic::Balance, seed + 1, c.passes)};
-  std::vector<test::PairSpec> pairs = {{"variance-aware", "balance"}};
-  if (c.ptPasses > 0) {
-    estimators.push_back(test::estimatorSpec("pt", base, IntegratorKind::Pt, MisHeuristic::Balance, seed + 2, c.ptPasses));
-    pairs.push_back({"variance-aware", "pt"});
-  }
-  const test::AgreementRun run = test::runAgreement(scene, estimators, {grid}, pairs, test::kFamilyAlpha);
-  test::report(run, std::string(c.name) + ", variance-aware MIS");
-  test::expectAgreement(run, std::string(c.name) + ", variance-aware MIS");
+void expectAgreement(const test::BundledCase& c) {
+  test::expectBundledAgreement(
+      c, "variance-aware", [](RenderSettings& s) { s.mis.heuristic = MisHeuristic::VarianceAware; }, 701);
 }
 
 TEST(VarianceAwareMis, AgreesOnTheDiffuseScenes) {

@@ -1,6 +1,9 @@
 // Renders every estimator once, then runs the pairwise region z-tests.
 #include "tests/support/agreement.h"
 
+#include "core/lights/environment_file.h"
+#include "core/scene/gltf_loader.h"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +12,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 namespace pathlab::test {
@@ -106,6 +110,38 @@ void report(const AgreementRun& run, const std::string& what) {
   std::string times;
   for (double t : run.seconds) times += " " + std::to_string(t).substr(0, 5);
   std::cout << what << ": seconds" << times << "\n" << run.summary();
+}
+
+Scene bundledScene(const std::string& name) {
+  const std::string source = PATHLAB_SOURCE_DIR;
+  LoadOptions load;
+  if (name == "environment")
+    load.environment = std::make_shared<EnvironmentDesc>(readEnvironment(source + "/assets/sky.hdr"));
+  return Scene(loadGltf(source + "/assets/" + name + ".gltf", load));
+}
+
+void expectBundledAgreement(const BundledCase& c, const std::string& name,
+                            const std::function<void(RenderSettings&)>& configure, uint64_t seedSalt) {
+  const Scene scene = bundledScene(c.name);
+  RenderSettings base;
+  base.width = c.width;
+  base.height = c.height;
+  base.maxLength = c.maxLength;
+  PixelLabels grid = gridLabels(base.width, base.height, c.cells, c.cells);
+  grid = withoutSeenDirectly(scene, base, grid, emitterOrDelta, 16);
+  const uint64_t seed = 1000 * testSeedBase() + seedSalt;
+  EstimatorSpec tested = estimatorSpec(name, base, IntegratorKind::Bpt, MisHeuristic::Balance, seed, c.passes);
+  configure(tested.settings);
+  std::vector<EstimatorSpec> estimators = {
+      tested, estimatorSpec("balance", base, IntegratorKind::Bpt, MisHeuristic::Balance, seed + 1, c.passes)};
+  std::vector<PairSpec> pairs = {{name, "balance"}};
+  if (c.ptPasses > 0) {
+    estimators.push_back(estimatorSpec("pt", base, IntegratorKind::Pt, MisHeuristic::Balance, seed + 2, c.ptPasses));
+    pairs.push_back({name, "pt"});
+  }
+  const AgreementRun run = runAgreement(scene, estimators, {grid}, pairs, kFamilyAlpha);
+  report(run, std::string(c.name) + ", " + name);
+  expectAgreement(run, std::string(c.name) + ", " + name);
 }
 
 }  // namespace pathlab::test

@@ -4,6 +4,7 @@
 
 #include "tests/support/region_estimate.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -63,5 +64,23 @@ uint64_t testSeedBase();
 
 // gtest expectations on a run: every pair within the threshold, enough power, nothing discarded.
 void expectAgreement(const AgreementRun& run, const std::string& what);
+
+// A bundled scene, assets/NAME.gltf (environment.gltf lit by assets/sky.hdr, as it is shown).
+Scene bundledScene(const std::string& name);
+
+// One bundled scene's case for a bidirectional estimator's agreement: its image, maximum length,
+// passes, the path tracer's passes (0: the path tracer misses some of its paths in a short render:
+// caustics, fog's spot, the door's gap, a point lamp) and regions a side.
+struct BundledCase {
+  const char* name;
+  int width, height, maxLength, passes, ptPasses;
+  int cells = 3;
+};
+// The estimator `name` (bpt under the balance heuristic, then `configure`) against bpt under the
+// balance heuristic (another seed) and, with ptPasses, the path tracer, region by region, pixels
+// that see an emitter or a delta surface directly left out; gtest expectations. `seedSalt` keeps
+// each test's seeds its own.
+void expectBundledAgreement(const BundledCase& c, const std::string& name,
+                            const std::function<void(RenderSettings&)>& configure, uint64_t seedSalt);
 
 }  // namespace pathlab::test
