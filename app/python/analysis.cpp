@@ -75,6 +75,15 @@ py::object check(const LoadedScene& scene, const PySettings& settings, const py:
   return py::module_::import("json").attr("loads")(json.dump());
 }
 
+namespace {
+// Every technique's key up to `length`, in index order (the maps' 'techniques').
+py::list techniqueKeys(int length) {
+  py::list keys;
+  for (size_t i = 0; i < Technique::countUpTo(length); ++i) keys.append(techniqueKey(Technique::fromIndex(i)));
+  return keys;
+}
+}  // namespace
+
 py::dict techniqueMapsOf(const Renderer& r) {
   const RenderSettings& s = r.settings();
   if (!s.techniqueMaps)
@@ -82,9 +91,7 @@ py::dict techniqueMapsOf(const Renderer& r) {
   const int length = r.techniqueMapLength();
   const TechniqueLuminance lum = techniqueLuminance(r.session("technique_maps"), length);
   py::dict out;
-  py::list techniques;
-  for (size_t i = 0; i < Technique::countUpTo(length); ++i) techniques.append(techniqueKey(Technique::fromIndex(i)));
-  out["techniques"] = techniques;
+  out["techniques"] = techniqueKeys(length);
   // The dominant technique of every length together (key None) and of each length k.
   py::dict dominant, dominantShare;
   for (int k = 0; k <= length; ++k) {
@@ -115,9 +122,7 @@ py::dict varianceMapsOf(const Renderer& r) {
   const int length = r.varianceMapLength();
   const TechniqueLuminance lum = techniqueLuminance(r.session("variance_maps"), length);
   py::dict out;
-  py::list techniques;
-  for (size_t i = 0; i < Technique::countUpTo(length); ++i) techniques.append(techniqueKey(Technique::fromIndex(i)));
-  out["techniques"] = techniques;
+  out["techniques"] = techniqueKeys(length);
   py::dict variance;
   for (const Technique x : techniquesUpTo(length, lum.families)) {
     std::vector<float> v = lum.variance[x.index()];
