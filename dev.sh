@@ -11,7 +11,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(g++ make cmake pkg-config python3
   libembree-dev libtbb-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libtinyexr-dev
-  libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libopenvdb-dev
   libglfw3-dev libimgui-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri fonts-dejavu-core xvfb xauth
   clang libclang-rt-14-dev
   libopenmpi-dev openmpi-bin

@@ -10,6 +10,7 @@ void addCommands(CLI::App& app, CliOptions& o) {
   addCheckCommand(app, o.check);
   addInspectCommand(app, o.inspect);
   addOutliersCommand(app, o.outliers);
+  addMakeVolumeCommand(app, o.makeVolume);
   requireFiniteNumbers(app);
 }
 

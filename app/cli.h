@@ -6,6 +6,7 @@
 #include "app/converge_command.h"
 #include "app/finite_numbers.h"
 #include "app/inspect_command.h"
+#include "app/make_volume_command.h"
 #include "app/outliers_command.h"
 #include "app/render_command.h"
 #include "app/view_command.h"
@@ -21,6 +22,7 @@ struct CliOptions {
   CheckCommandOptions check;
   InspectOptions inspect;
   OutliersOptions outliers;
+  MakeVolumeOptions makeVolume;
 };
 
 // Registers every subcommand on `app`, then requireFiniteNumbers.

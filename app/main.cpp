@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("check")) return pathlab::app::runCheck(options.check);
     if (app.got_subcommand("inspect")) return pathlab::app::runInspect(options.inspect);
     if (app.got_subcommand("outliers")) return pathlab::app::runOutliers(options.outliers);
+    if (app.got_subcommand("make-volume")) return pathlab::app::runMakeVolume(options.makeVolume);
   } catch (const pathlab::app::JobStopped& e) {
     // Every rank stops together (Job::agree); the leader's line says why.
     if (*e.what()) std::cerr << "pathlab: " << e.what() << "\n";

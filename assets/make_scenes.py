@@ -382,7 +382,7 @@ class GltfBuilder:
     def add_material(self, name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=1.0, *,
                      lambertian=False, glass=False, emission=None, double_sided=False,
                      base_color_texture=None, metallic_roughness_texture=None,
-                     emissive_texture=None, ior=None, volume=None, scatter=None):
+                     emissive_texture=None, ior=None, volume=None, scatter=None, grid=None):
         """emission is the radiance Le (any magnitude): stored as a factor with max component 1
         times KHR_materials_emissive_strength."""
         pbr = {"baseColorFactor": list(base_color) + [1.0]}
@@ -414,6 +414,10 @@ class GltfBuilder:
             # (multiscatterColor, scatterAnisotropy): the KHR_materials_volume_scatter draft.
             color, g = scatter
             ext["KHR_materials_volume_scatter"] = {"multiscatterColor": list(color), "scatterAnisotropy": g}
+        if grid is not None:
+            # (uri, densityScale): PATHLAB_materials_volume_grid, the grid named "density".
+            uri, scale = grid
+            ext["PATHLAB_materials_volume_grid"] = {"uri": uri, "grid": "density", "densityScale": scale}
         if ext:
             mat["extensions"] = ext
             self.used.update(ext)
@@ -852,6 +856,74 @@ def fog_lamp():
     return b
 
 
+def smoke():
+    """A plume of smoke rising from the floor of a grey room (issue 35): a heterogeneous medium whose
+    density is the OpenVDB grid smoke.vdb (`pathlab make-volume smoke assets/smoke.vdb`: its voxel
+    centres fill the unit cube), placed by its node's transform in a 1.2 x 1.8 x 1.2 m box whose
+    index-matched boundary bounds the medium. Lit by a warm ceiling panel to one side and a cool
+    point light low on the other, so both the plume's lit side and its self-shadowing show."""
+    b = GltfBuilder()
+    wall = b.add_material("wall", (0.5, 0.5, 0.5), lambertian=True)
+    floor = b.add_material("floor", (0.35, 0.33, 0.3), lambertian=True)
+    panel = b.add_material("panel", (0.0, 0.0, 0.0), lambertian=True, emission=(6.0, 5.2, 4.2))
+    # At density 1: sigma_t = -ln(0.05) / 0.1 m = 30 per metre, grey-white (albedo about 0.95),
+    # forward scattering; the grid's densities (at most 1, mostly far less) scale it point by point.
+    smoke_boundary = b.add_material("smoke", (1.0, 1.0, 1.0), roughness=0.0, glass=True, ior=1.0,
+                                    volume=((0.05, 0.05, 0.05), 0.1),
+                                    scatter=((0.8, 0.8, 0.8), 0.4), grid=("smoke.vdb", 1.0))
+    nodes = []
+
+    def part(name, geom, material):
+        nodes.append(b.add_node(name, b.add_geom(geom, material, name)))
+
+    # Room 4 x 3 x 4 m.
+    half, height = 2.0, 3.0
+    part("floor", rect((0.0, 0.0, 0.0), (0.0, 1.0, 0.0), half, half), floor)
+    part("ceiling", rect((0.0, height, 0.0), (0.0, -1.0, 0.0), half, half), wall)
+    part("walls", merged(*(rect((half * sx, 0.5 * height, half * sz), (-sx, 0.0, -sz), half, 0.5 * height)
+                           for sx, sz in ((1, 0), (-1, 0), (0, 1), (0, -1)))), wall)
+    part("panel", rect((-1.0, height - 0.001, 0.3), (0.0, -1.0, 0.0), 0.4, 0.4), panel)
+    # The smoke's box: the unit cube, scaled and lifted 1 cm off the floor by its node.
+    cube = b.add_geom(box((0.0, 0.0, 0.0), (0.5, 0.5, 0.5)), smoke_boundary, "smokeVolume")
+    nodes.append(b.add_node("smokeVolume", cube, translation=(0.0, 0.91, 0.0), scale=(1.2, 1.8, 1.2)))
+    rim = b.add_light("rim", "point", 3.0, (0.6, 0.75, 1.0))
+    nodes.append(b.add_node("rim", light=rim, translation=(1.4, 0.5, 1.0)))  # outside the view
+    nodes.append(b.add_camera_node((0.0, 1.05, 1.95), (0.0, 0.95, 0.0), 1.0))
+    b.add_scene("smoke", nodes)
+    return b
+
+
+def grid_fog(kind):
+    """A 2 m closed room (grey walls, a ceiling panel, a small block on the floor) filled with fog
+    of sigma_t 1 per metre at density 1 and albedo 0.8 (issue 35's tests): kind "homogeneous" is
+    that fog; "constant" the same fog as a density grid of 1 everywhere (constant.vdb, which the
+    tests write with `makeProceduralVolume`); "ramp" a density rising linearly with height
+    (ramp.vdb, density z + 1 in the grid's unit cube: 0.5 at the floor, 1.5 at the ceiling)."""
+    b = GltfBuilder()
+    wall = b.add_material("wall", (0.6, 0.6, 0.6), lambertian=True)
+    panel = b.add_material("panel", (0.0, 0.0, 0.0), lambertian=True, emission=(4.0, 4.0, 4.0))
+    grid = None if kind == "homogeneous" else (kind + ".vdb", 1.0)
+    fog_boundary = b.add_material("fog", (1.0, 1.0, 1.0), roughness=0.0, glass=True, ior=1.0,
+                                  volume=((math.exp(-1.0),) * 3, 1.0),
+                                  scatter=((0.5, 0.5, 0.5), 0.3), grid=grid)
+    nodes = []
+
+    def part(name, geom, material):
+        nodes.append(b.add_node(name, b.add_geom(geom, material, name)))
+
+    part("room", box((0.0, 1.0, 0.0), (1.0, 1.0, 1.0), inward=True), wall)
+    part("panel", rect((0.0, 1.999, 0.0), (0.0, -1.0, 0.0), 0.3, 0.3), panel)
+    part("block", box((0.3, 0.2, -0.2), (0.2, 0.19, 0.2)), wall)
+    # The fog's box, 1 cm inside the walls: the unit cube (the grid's) scaled by its node, its
+    # "up" the grid's z (rotated so the ramp rises with the room's y).
+    cube = b.add_geom(box((0.0, 0.0, 0.0), (0.5, 0.5, 0.5)), fog_boundary, "fogVolume")
+    nodes.append(b.add_node("fogVolume", cube, translation=(0.0, 1.0, 0.0), scale=(1.98, 1.98, 1.98),
+                            rotation=quat_axis_angle((1.0, 0.0, 0.0), -math.pi / 2.0)))
+    nodes.append(b.add_camera_node((0.0, 1.0, 0.9), (0.0, 0.8, -1.0), 1.1))
+    b.add_scene("grid-fog-" + kind, nodes)
+    return b
+
+
 def door_ajar():
     """Veach's "door ajar" (Veach and Guibas 1997, fig. 5), in pathlab's own measurements: two
     rooms joined by a doorway whose door stands open by 3 degrees. The lamp hangs in the back
@@ -1247,6 +1319,7 @@ def main():
     write(ASSETS / "fog-lamp.gltf", fog_lamp().gltf_bytes())
     write(ASSETS / "isometric.gltf", isometric().gltf_bytes())
     write(ASSETS / "door-ajar.gltf", door_ajar().gltf_bytes())
+    write(ASSETS / "smoke.gltf", smoke().gltf_bytes())
     write(ASSETS / "many-lights.gltf", many_lights().gltf_bytes())
     write(ASSETS / "environment.gltf",
           environment_objects((1.2, 1.1, 2.6), (0.0, 0.3, 0.0), 0.75, 1.5).gltf_bytes())
@@ -1256,6 +1329,8 @@ def main():
     write(TESTS / "environment.gltf",
           environment_objects((0.0, 2.4, 1.3), (0.0, 0.2, 0.0), 0.8, 1.0).gltf_bytes())
     write(TESTS / "furnace.gltf", furnace().gltf_bytes())
+    for kind in ("homogeneous", "constant", "ramp"):
+        write(TESTS / ("grid-fog-" + kind + ".gltf"), grid_fog(kind).gltf_bytes())
     write(TESTS / "square-light.gltf", square_light().gltf_bytes())
     write(TESTS / "punctual.gltf", punctual().gltf_bytes())
     h = hierarchy()

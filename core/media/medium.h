@@ -8,9 +8,27 @@
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
+#include <string>
 
 namespace pathlab {
+
+struct VolumeGrid;  // volume_grid.h
+
+// The PATHLAB_materials_volume_grid extension of a volume material (issue 35, README): a float
+// density grid of an OpenVDB file scaling the medium's coefficients point by point,
+// sigma_t(x) = density(x) densityScale sigma_t (KHR_materials_volume's), and sigma_s alike.
+struct VolumeGridRef {
+  std::string uri;                 // the .vdb, relative to the glTF file
+  std::string grid = "density";    // the grid's name in it
+  float densityScale = 1.f;
+  // Set by the loader: the world transform of the node(s) that instance the material's meshes
+  // (index space -> grid transform -> node transform -> world), and the grid it read.
+  bool placed = false;
+  Mat4 nodeToWorld{1.f};
+  std::shared_ptr<const VolumeGrid> data;
+};
 
 // glTF's parameters of a closed volume (a material with KHR_materials_volume and transmission).
 struct VolumeDesc {
@@ -19,6 +37,7 @@ struct VolumeDesc {
   bool scatters = false;              // KHR_materials_volume_scatter present
   Spectrum multiscatterColor{0.f};    // its multiscatterColor (default 0: the draft's)
   float anisotropy = 0.f;             // its scatterAnisotropy, the HG g
+  std::optional<VolumeGridRef> grid;  // PATHLAB_materials_volume_grid: heterogeneous
 };
 
 struct HomogeneousMedium {

@@ -184,7 +184,10 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
     const MediaStep step = traceStep(scene_, ray, medium, rng, counters);
     // Technique B on this edge's first segment: its vertex would be the path's edges-th, then an
     // edge to the light.
-    if (equiangular && medium >= 0 && edges < maxLength_ && scene_.medium(medium).scatters())
+    // Not in a heterogeneous medium: the weights need distance sampling's density there, which
+    // delta tracking does not give in closed form (volume_grid.h).
+    if (equiangular && medium >= 0 && edges < maxLength_ && scene_.medium(medium).scatters() &&
+        !scene_.mediumGrid(medium))
       L += beta * sampleEquiangularDirect(ray, medium, step.firstSegment, rng, counters);
     beta *= step.weight;  // one in vacuum
     if (step.kind == MediaStepKind::Absorbed) break;
@@ -193,7 +196,7 @@ Spectrum PathTracer::Li(const Ray& cameraRay, Pcg32& rng, Counters& counters, in
       // over its density is one, so the throughput is unchanged (sigma_s T / pdf is in weight).
       if (edges >= maxLength_) break;
       MediumVertexSegment segment;
-      if (equiangular && step.firstSegmentT >= 0.f)
+      if (equiangular && step.firstSegmentT >= 0.f && !scene_.mediumGrid(medium))
         segment = {ray, step.firstSegment, step.firstSegmentT, distancePdf(scene_.medium(medium), step.firstSegmentT)};
       // The step may have crossed index-matched boundaries into another medium.
       medium = step.medium;

@@ -4,10 +4,14 @@
 
 #include "core/scene/gltf_internal.h"
 
+#include "core/io/vdb_file.h"
+#include "core/media/volume_grid.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <new>
 #include <set>
@@ -23,7 +27,8 @@ namespace {
 const std::set<std::string> kSupportedExtensions = {
     "KHR_lights_punctual",    "KHR_materials_emissive_strength", "KHR_materials_ior",
     "KHR_materials_specular", "KHR_materials_transmission",      "KHR_mesh_quantization",
-    "KHR_texture_transform",  "KHR_materials_volume",            "KHR_materials_volume_scatter"};
+    "KHR_texture_transform",  "KHR_materials_volume",            "KHR_materials_volume_scatter",
+    "PATHLAB_materials_volume_grid"};
 
 void checkExtensions(const tinygltf::Model& model, Warnings& warnings) {
   std::string unsupported;
@@ -115,6 +120,7 @@ class SceneBuilder {
   void addCamera(int nodeIndex, const glm::dmat4& world);
   void addLight(int nodeIndex, const glm::dmat4& world);
   int defaultMaterial();
+  void placeVolumeGrid(int nodeIndex, int material, const glm::dmat4& world);
 
   const tinygltf::Model& model_;
   SceneDesc& desc_;
@@ -149,6 +155,42 @@ int SceneBuilder::defaultMaterial() {
     defaultMaterial_ = int(desc_.materials.size()) - 1;
   }
   return defaultMaterial_;
+}
+
+// A material's density grid lies in the space of the node that instances its meshes: one
+// transform per material (a medium is the material's, wherever its meshes are).
+void SceneBuilder::placeVolumeGrid(int nodeIndex, int material, const glm::dmat4& world) {
+  Material& m = desc_.materials[size_t(material)];
+  if (!m.volume || !m.volume->grid) return;
+  VolumeGridRef& ref = *m.volume->grid;
+  const Mat4 placement(world);
+  if (ref.placed && ref.nodeToWorld != placement)
+    throw LoadError(nodeLabel(model_, nodeIndex) + ": material " + std::to_string(material) + quotedName(m.name) +
+                    " has a density grid (PATHLAB_materials_volume_grid) and is instanced by nodes with different"
+                    " transforms; give each placement a material of its own");
+  ref.placed = true;
+  ref.nodeToWorld = placement;
+}
+
+// Reads every placed density grid, next to the glTF file (core/io/vdb_file.h).
+void loadVolumeGrids(SceneDesc& desc, Warnings& warnings) {
+  const std::filesystem::path dir = std::filesystem::path(desc.path).parent_path();
+  for (size_t i = 0; i < desc.materials.size(); ++i) {
+    Material& m = desc.materials[i];
+    if (!m.volume || !m.volume->grid) continue;
+    VolumeGridRef& ref = *m.volume->grid;
+    const std::string label = "material " + std::to_string(i) + quotedName(m.name) + ": PATHLAB_materials_volume_grid";
+    if (!ref.placed) continue;  // no node instances it: nothing to read
+    if (m.transmissionFactor <= 0.f) continue;  // an opaque surface bounds no medium
+    const std::string path = (dir / ref.uri).string();
+    try {
+      VdbDensity vdb = readDensityVdb(path, ref.grid, ref.densityScale);
+      if (vdb.grid.voxelCount() == 0) warnings.add(label, ref.uri + ": grid '" + ref.grid + "' has no active voxel; the medium is empty");
+      ref.data = std::make_shared<const VolumeGrid>(std::move(vdb.grid), ref.nodeToWorld * vdb.indexToWorld);
+    } catch (const VdbError& e) {
+      throw LoadError(label + ": " + e.what());
+    }
+  }
 }
 
 void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
@@ -205,6 +247,7 @@ void SceneBuilder::addMesh(int nodeIndex, const glm::dmat4& world) {
         }
       }
     }
+    placeVolumeGrid(nodeIndex, material, world);
     TriangleMesh out;
     out.name = local.name;
     out.material = material;
@@ -353,6 +396,7 @@ SceneDesc load(const std::string& path, const LoadOptions& options) {
   desc.path = path;
   convertMaterials(model, desc, warnings);
   SceneBuilder(model, desc, warnings).build(visits);
+  loadVolumeGrids(desc, warnings);
   addEnvironment(options, desc, warnings);
   desc.lightSelection = options.lightSelection;
   checkScene(desc, options.requireEmitter);

@@ -69,7 +69,33 @@ class MaterialReader {
     }
     if (m.transmissionFactor <= 0.f)
       warnings_.add(label_, "KHR_materials_volume without transmission bounds no medium (the surface is opaque)");
+    v.grid = readVolumeGrid(g);
     m.volume = v;
+  }
+
+  // PATHLAB_materials_volume_grid (README, "Heterogeneous media"): {"uri", "grid", "densityScale"}.
+  // The grid itself is read once the nodes have placed it (gltf_loader.cpp, loadVolumeGrids).
+  std::optional<VolumeGridRef> readVolumeGrid(const tinygltf::Material& g) {
+    const tinygltf::Value* e = findExtension(g.extensions, "PATHLAB_materials_volume_grid");
+    if (!e) return std::nullopt;
+    const std::string what = label_ + ": PATHLAB_materials_volume_grid";
+    auto text = [&](const char* key, const char* fallback) {
+      if (!e->Has(key)) {
+        if (fallback) return std::string(fallback);
+        throw LoadError(what + " has no " + key);
+      }
+      const tinygltf::Value& v = e->Get(key);
+      if (!v.IsString() || v.Get<std::string>().empty()) throw LoadError(what + ": " + key + " is not a non-empty string");
+      return v.Get<std::string>();
+    };
+    VolumeGridRef ref;
+    ref.uri = text("uri", nullptr);
+    if (ref.uri.rfind("data:", 0) == 0) throw LoadError(what + ": uri must name a .vdb file, not a data URI");
+    ref.grid = text("grid", "density");
+    ref.densityScale = number(*e, "densityScale", 1.f);
+    if (!(ref.densityScale >= 0.f && ref.densityScale <= 1e6f))
+      throw LoadError(what + ": densityScale " + formatNumber(ref.densityScale) + " is outside [0, 1e6]");
+    return ref;
   }
 
  private:

@@ -1,6 +1,8 @@
 // The walk's step through media and index-matched boundaries.
 #include "core/scene/media_step.h"
 
+#include "core/media/volume_grid.h"
+
 namespace pathlab {
 
 namespace {
@@ -19,9 +21,19 @@ MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Rng& rng, C
     if (crossing == 0) step.firstSegment = tMax;
     if (medium >= 0) {
       const HomogeneousMedium& m = scene.medium(medium);
-      if (m.scatters()) {
-        const float uChannel = rng.next1D(), u = rng.next1D();
-        const DistanceSample ds = sampleDistance(m, tMax, uChannel, u);
+      const VolumeGrid* grid = scene.mediumGrid(medium);
+      if (grid && !m.scatters()) {
+        step.weight *= ratioTrack(m, *grid, ray.o, ray.d, tMax, rng);  // absorbs only
+      } else if (m.scatters()) {
+        // A heterogeneous medium: delta tracking against its majorant grid (volume_grid.h);
+        // a homogeneous one: the closed-form distance sampling.
+        DistanceSample ds;
+        if (grid) {
+          ds = deltaTrack(m, *grid, ray.o, ray.d, tMax, rng);
+        } else {
+          const float uChannel = rng.next1D(), u = rng.next1D();
+          ds = sampleDistance(m, tMax, uChannel, u);
+        }
         step.weight *= ds.weight;
         if (ds.scattered) {
           step.kind = isBlack(step.weight) ? MediaStepKind::Absorbed : MediaStepKind::Medium;

@@ -7,10 +7,13 @@
 #include "core/scene/gltf_loader.h"
 #include "core/scene/normal_map.h"
 #include "core/scene/ray_log.h"
+#include "core/math/rng.h"
+#include "core/media/volume_grid.h"
 
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <atomic>
 #include <limits>
@@ -335,15 +338,31 @@ Spectrum Scene::transmittanceToInfinity(const Vec3& p, const Vec3& n, const Vec3
   return transmittanceAlong(offsetRayOrigin(p, e, n, dir), dir, nullptr, medium);
 }
 
+// The transmittance of medium `medium` along o + t dir, t in [0, distance): closed form in a
+// homogeneous medium; ratio tracking's estimate in a heterogeneous one (volume_grid.h), its random
+// numbers from a hash of the segment, so that the same connection always gets the same estimate
+// (a replayed sample, the inspector's and MLT's re-evaluations) and different segments independent
+// ones.
+Spectrum Scene::segmentTransmittance(int medium, const Vec3& o, const Vec3& dir, float distance) const {
+  const HomogeneousMedium& m = media_[medium];
+  const VolumeGrid* grid = media_.grid(medium);
+  if (!grid) return m.transmittance(distance);
+  auto bits = [](float x) { return uint64_t(std::bit_cast<uint32_t>(x)); };
+  const uint64_t key = mixBits(bits(o.x) ^ (bits(o.y) << 21) ^ (bits(o.z) << 42)) ^
+                       mixBits(bits(dir.x) ^ (bits(dir.y) << 21) ^ (bits(dir.z) << 42) ^ 0x5bd1e995ULL);
+  Pcg32 rng(key, mixBits(key ^ bits(distance)));
+  return ratioTrack(m, *grid, o, dir, distance, rng);
+}
+
 Spectrum Scene::transmittanceAlong(Vec3 o, const Vec3& dir, const Vec3* end, int medium) const {
   Spectrum T(1.f);
   for (int crossing = 0; crossing < kMaxBoundaryCrossings; ++crossing) {
     const float distance = end ? glm::length(*end - o) : std::numeric_limits<float>::infinity();
     // As in `visible`: no promise about hits exactly at the far end.
     const std::optional<SurfaceHit> hit = intersect(Ray{o, dir, end ? distance * (1.f - 1e-4f) : distance});
-    if (!hit) return medium >= 0 ? T * media_[medium].transmittance(distance) : T;
+    if (!hit) return medium >= 0 ? T * segmentTransmittance(medium, o, dir, distance) : T;
     if (!hit->indexMatched) return Spectrum(0.f);
-    if (medium >= 0) T *= media_[medium].transmittance(hit->t);
+    if (medium >= 0) T *= segmentTransmittance(medium, o, dir, hit->t);
     if (isBlack(T)) return T;
     medium = hit->media.toward(hit->ng, dir);
     o = offsetRayOrigin(hit->p, hit->pError, hit->ng, dir);

@@ -39,6 +39,9 @@ class Scene {
   // and the estimators take their surface-only paths.
   bool hasMedia() const { return !media_.empty(); }
   const HomogeneousMedium& medium(int i) const { return media_[i]; }
+  // Medium i's density grid (issue 35), nullptr when it is homogeneous: then medium(i) holds its
+  // coefficients at density 1.
+  const VolumeGrid* mediumGrid(int i) const { return media_.grid(i); }
   const SceneMedia& media() const { return media_; }
   // The innermost medium containing p (-1: none); a test against every volume's triangles, for
   // set-up (a camera's position), not per sample.
@@ -103,6 +106,7 @@ class Scene {
   Vec3 boundsMin_{0.f}, boundsMax_{0.f};
   // Both transmittances: from o along dir to *end (nullptr: to infinity), starting in `medium`.
   Spectrum transmittanceAlong(Vec3 o, const Vec3& dir, const Vec3* end, int medium) const;
+  Spectrum segmentTransmittance(int medium, const Vec3& o, const Vec3& dir, float distance) const;
   struct EmbreeState;
   std::unique_ptr<EmbreeState> embree_;  // after desc_: its filters read the meshes
   mutable std::atomic<RayLog*> rayLog_{nullptr};

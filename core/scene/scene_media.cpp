@@ -27,6 +27,8 @@ SceneMedia::SceneMedia(const SceneDesc& desc) {
     if (!medium.isVacuum()) {
       v.medium = static_cast<int>(media_.size());
       media_.push_back(medium);
+      grids_.push_back(m.volume->grid ? m.volume->grid->data : nullptr);
+      if (grids_.back()) heterogeneous_ = true;
     }
     v.lo = Vec3(std::numeric_limits<float>::max());
     v.hi = Vec3(-std::numeric_limits<float>::max());

@@ -1,4 +1,4 @@
-// Which homogeneous medium fills which part of a scene (issue 16): built once from the scene's
+// Which medium (homogeneous, or scaled by a density grid) fills which part of a scene (issue 16): built once from the scene's
 // meshes. A closed mesh whose material has KHR_materials_volume (thickness > 0) and transmission
 // bounds a medium; volumes may nest (fog around a milky sphere) but not overlap. Every mesh gets a
 // MediumInterface: the medium on the side its geometric normals point to (outside) and on the
@@ -7,11 +7,13 @@
 #pragma once
 
 #include "core/media/medium.h"
+#include "core/media/volume_grid.h"
 #include "core/math/medium_interface.h"
 #include "core/scene/crossing_grid.h"
 #include "core/scene/scene_desc.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace pathlab {
@@ -24,6 +26,10 @@ class SceneMedia {
   bool empty() const { return media_.empty(); }
   const std::vector<HomogeneousMedium>& media() const { return media_; }
   const HomogeneousMedium& operator[](int i) const { return media_[static_cast<size_t>(i)]; }
+  // Medium i's density grid (PATHLAB_materials_volume_grid), its coefficients then those at
+  // density 1; nullptr for a homogeneous medium.
+  const VolumeGrid* grid(int i) const { return grids_[static_cast<size_t>(i)].get(); }
+  bool hasHeterogeneous() const { return heterogeneous_; }
   const MediumInterface& mesh(size_t m) const { return meshes_[m]; }
   // An index-matched boundary (ior 1, smooth, fully transmissive): rays pass straight through it
   // and only the medium changes; it is never a path vertex.
@@ -45,6 +51,8 @@ class SceneMedia {
   const Volume* innermost(const Vec3& p, int excludeMaterial) const;
 
   std::vector<HomogeneousMedium> media_;
+  std::vector<std::shared_ptr<const VolumeGrid>> grids_;  // per medium; null: homogeneous
+  bool heterogeneous_ = false;
   std::vector<Volume> volumes_;
   std::vector<MediumInterface> meshes_;
   std::vector<uint8_t> indexMatched_;
