@@ -53,7 +53,8 @@ std::string layoutProblem(const std::vector<unsigned char>& b) {
     if (version < 213) return "OpenVDB file version " + std::to_string(version) + " is older than pathlab reads (213)";
     take(8);  // library major and minor version
     const bool offsets = b[take(1)] != 0;
-    if (version >= 220) take(36);  // uuid
+    if (version >= 220 && version < 222) take(1);  // whole-file compression flag
+    take(version >= 218 ? 36 : 16);                // uuid: ASCII from 218, bytes before
     const uint32_t metadata = u32();
     for (uint32_t i = 0; i < metadata; ++i) {
       text();  // name
@@ -66,7 +67,7 @@ std::string layoutProblem(const std::vector<unsigned char>& b) {
     for (uint32_t i = 0; i < grids; ++i) {
       text();  // unique name
       text();  // type
-      text();  // instance parent
+      if (version >= 216) text();  // instance parent
       const int64_t gridPos = i64(), blockPos = i64(), endPos = i64();
       if (!(gridPos >= 0 && gridPos <= blockPos && blockPos <= endPos && endPos <= int64_t(b.size())))
         return "grid " + std::to_string(i) + " lies outside the file (truncated?)";

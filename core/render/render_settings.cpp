@@ -115,9 +115,19 @@ std::string misOffWarning(const Scene& scene, const RenderSettings& s) {
 
 std::string mediumSamplingWarning(const Scene& scene, const RenderSettings& s) {
   if (!s.mediumSampling) return "";
-  for (const HomogeneousMedium& m : scene.media().media())
-    if (m.scatters()) return "";
-  return fmt::format("--medium-sampling {} changes nothing here: no medium in the scene scatters",
+  bool scatters = false;
+  const std::vector<HomogeneousMedium>& media = scene.media().media();
+  for (size_t i = 0; i < media.size(); ++i) {
+    if (!media[i].scatters()) continue;
+    scatters = true;
+    if (!scene.mediumGrid(int(i))) return "";  // equiangular sampling can place vertices here
+  }
+  if (!scatters)
+    return fmt::format("--medium-sampling {} changes nothing here: no medium in the scene scatters",
+                       mediumSamplingName(*s.mediumSampling));
+  // Only heterogeneous media scatter: equiangular sampling declines them (volume_grid.h).
+  return fmt::format("--medium-sampling {} changes nothing here: every scattering medium is a density grid, "
+                     "where the path tracer samples distances only",
                      mediumSamplingName(*s.mediumSampling));
 }
 

@@ -164,8 +164,9 @@ class Scene;
 // The one-line warning of MIS off (mis_off.h) for these settings in this scene: which lengths are
 // biased and why; "" for any other heuristic, the path tracer, or an unbiased scene.
 std::string misOffWarning(const Scene& scene, const RenderSettings& settings);
-// When --medium-sampling is given for a scene in which no medium scatters: it changes nothing
-// there, and a user comparing the modes should know. Empty otherwise.
+// When --medium-sampling is given for a scene in which no medium scatters, or in which only
+// density grids do (equiangular sampling declines them): it changes nothing there, and a user
+// comparing the modes should know. Empty otherwise.
 std::string mediumSamplingWarning(const Scene& scene, const RenderSettings& settings);
 
 // Throws std::invalid_argument with a one-line message naming the setting when the settings

@@ -1,7 +1,7 @@
 // One step of a random walk (the bidirectional walks and the path tracer share it): from a ray in
 // a known medium to what it meets next, a surface, a scattering event in a medium, or nothing. In a
 // scene with media (issue 16) it samples the distance in every medium it crosses (pbrt-v3
-// HomogeneousMedium::Sample, spectral MIS over the channels) and passes straight through
+// HomogeneousMedium::Sample, spectral MIS over the channels; delta tracking in a density grid) and passes straight through
 // index-matched boundaries, which change only the medium; in a scene without, it is one ray cast.
 #pragma once
 
@@ -32,8 +32,10 @@ struct MediaStep {
 };
 
 // Traces `ray` starting in `medium` (-1: none) in a scene with media, counting each ray it casts in
-// counters.rays. Consumes two random numbers per medium segment it samples a distance in (none in
-// vacuum, and none in a purely absorbing medium, whose transmittance is applied as a weight).
+// counters.rays. Consumes two random numbers per homogeneous medium segment it samples a distance
+// in (none in vacuum, and none in a purely absorbing homogeneous medium, whose transmittance is
+// applied as a weight); in a heterogeneous medium (a density grid) delta tracking, or ratio
+// tracking when it only absorbs, draws as many as its tentative collisions need.
 // Rng: Pcg32, or a primary-sample stream (core/sampling/primary_samples.h) for Metropolis.
 template <class Rng>
 MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Rng& rng, Counters& counters);

@@ -73,6 +73,20 @@ else fail "medium sampling warning: $(cat "$TMP/err")"; fi
 if "$PATHLAB" render "$SRC/assets/fog-lamp.gltf" -o "$TMP/ms2.pfm" --spp 1 --width 16 --height 12 --integrator pt \
   --medium-sampling equiangular 2>"$TMP/err" && ! grep -q "changes nothing" "$TMP/err"; then ok
 else fail "medium sampling warned in fog: $(cat "$TMP/err")"; fi
+# ...and where only density grids scatter (equiangular sampling declines them): the other warning.
+if "$PATHLAB" render "$SRC/assets/smoke.gltf" -o "$TMP/ms3.pfm" --spp 1 --width 16 --height 12 --integrator pt \
+  --medium-sampling mis 2>"$TMP/err" && [ "$(grep -c "every scattering medium is a density grid" "$TMP/err")" -eq 1 ]; then ok
+else fail "medium sampling warning in smoke: $(cat "$TMP/err")"; fi
+# make-volume: writes a grid the loader reads, refuses to overwrite without --force, and refuses
+# an unknown kind and an absurd resolution in one line each.
+if "$PATHLAB" make-volume ramp "$TMP/ramp.vdb" --resolution 8 >/dev/null && [ -s "$TMP/ramp.vdb" ] &&
+  ! "$PATHLAB" make-volume ramp "$TMP/ramp.vdb" --resolution 8 2>"$TMP/err" && grep -q "file exists" "$TMP/err" &&
+  "$PATHLAB" make-volume constant "$TMP/ramp.vdb" --resolution 8 --force >/dev/null; then ok
+else fail "make-volume: $(cat "$TMP/err")"; fi
+if ! "$PATHLAB" make-volume cloud "$TMP/c.vdb" 2>"$TMP/err" && [ "$(wc -l < "$TMP/err")" -eq 1 ] &&
+  ! "$PATHLAB" make-volume smoke "$TMP/c.vdb" --resolution 100000 2>"$TMP/err2" && [ "$(wc -l < "$TMP/err2")" -eq 1 ] &&
+  [ ! -e "$TMP/c.vdb" ]; then ok
+else fail "make-volume refusals: $(cat "$TMP/err" "$TMP/err2")"; fi
 
 # --replay prints one sample technique by technique; bad requests are one-line errors.
 if "$PATHLAB" render "$BOX" --replay 5,6,2 --width 16 --height 12 --max-length 3 >"$TMP/replay" 2>"$TMP/err" &&
