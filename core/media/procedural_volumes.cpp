@@ -50,8 +50,6 @@ const char* proceduralVolumeName(ProceduralVolume v) {
   return "?";
 }
 
-std::vector<std::string> proceduralVolumeNames() { return {"smoke", "constant", "ramp"}; }
-
 bool parseProceduralVolume(const std::string& name, ProceduralVolume& out) {
   for (ProceduralVolume v : {ProceduralVolume::Smoke, ProceduralVolume::Constant, ProceduralVolume::Ramp})
     if (name == proceduralVolumeName(v)) {

@@ -16,7 +16,6 @@ enum class ProceduralVolume { Smoke, Constant, Ramp };
 // "smoke", "constant", "ramp"; and the inverse (false for an unknown name).
 const char* proceduralVolumeName(ProceduralVolume v);
 bool parseProceduralVolume(const std::string& name, ProceduralVolume& out);
-std::vector<std::string> proceduralVolumeNames();
 
 // smoke: a rising plume, a column that widens and thins with height, its edge broken by
 // octaves of value noise (deterministic in `seed`); densities in [0, 1].
