@@ -7,11 +7,14 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/io/Stream.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <sstream>
+#include <streambuf>
 #include <unistd.h>
 
 namespace pathlab {
@@ -46,7 +49,11 @@ std::string layoutProblem(const std::vector<unsigned char>& b) {
     std::memcpy(&v, &b[take(8)], 8);
     return v;
   };
-  auto text = [&] { take(u32()); };
+  auto text = [&] {
+    const uint32_t n = u32();
+    take(n);
+    return n;
+  };
   try {
     if (i64() != 0x56444220) return "no VDB magic number";
     const uint32_t version = u32();
@@ -67,9 +74,12 @@ std::string layoutProblem(const std::vector<unsigned char>& b) {
     for (uint32_t i = 0; i < grids; ++i) {
       text();  // unique name
       text();  // type
-      if (version >= 216) text();  // instance parent
+      const bool instance = version >= 216 && text() > 0;  // instance parent: shares its tree
       const int64_t gridPos = i64(), blockPos = i64(), endPos = i64();
-      if (!(gridPos >= 0 && gridPos <= blockPos && blockPos <= endPos && endPos <= int64_t(b.size())))
+      // An instance has no tree block of its own (OpenVDB leaves blockPos 0).
+      const bool blockInside = instance ? blockPos == 0 || (gridPos <= blockPos && blockPos <= endPos)
+                                        : gridPos <= blockPos && blockPos <= endPos;
+      if (!(gridPos >= int64_t(at) && blockInside && gridPos <= endPos && endPos <= int64_t(b.size())))
         return "grid " + std::to_string(i) + " lies outside the file (truncated?)";
       at = size_t(endPos);
     }
@@ -78,6 +88,26 @@ std::string layoutProblem(const std::vector<unsigned char>& b) {
   }
   return "";
 }
+
+// The file's bytes as a read-only stream buffer, without a copy.
+class BytesBuffer : public std::streambuf {
+ public:
+  explicit BytesBuffer(std::vector<unsigned char>& bytes) {
+    char* begin = reinterpret_cast<char*>(bytes.data());
+    setg(begin, begin, begin + bytes.size());
+  }
+
+ protected:
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
+    const off_type base = dir == std::ios_base::beg ? 0 : dir == std::ios_base::cur ? gptr() - eback() : egptr() - eback();
+    return seekpos(pos_type(base + off), std::ios_base::in);
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode) override {
+    if (off_type(pos) < 0 || off_type(pos) > egptr() - eback()) return pos_type(off_type(-1));
+    setg(eback(), eback() + off_type(pos), egptr());
+    return pos;
+  }
+};
 
 openvdb::GridPtrVecPtr readGrids(const std::string& path) {
   std::vector<unsigned char> bytes;
@@ -90,11 +120,13 @@ openvdb::GridPtrVecPtr readGrids(const std::string& path) {
     throw VdbError(path + ": not a readable OpenVDB file (" + problem + ")");
   initializeOnce();
   try {
-    std::istringstream in(std::string(bytes.begin(), bytes.end()), std::ios::binary);
-    // A read past the end throws at once: OpenVDB does not check its reads, and a truncated file
-    // otherwise hands it uninitialised lengths (a cut file took 70 s and 11 GB before failing).
+    BytesBuffer buffer(bytes);
+    std::istream in(&buffer);
+    // A read past the end throws at once: OpenVDB does not check its reads.
     in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
-    openvdb::io::Stream stream(in);
+    // delayLoad off: read the grids from the stream now (on, OpenVDB copies the stream into a
+    // temporary file to map it).
+    openvdb::io::Stream stream(in, /*delayLoad=*/false);
     return stream.getGrids();
   } catch (const std::exception& e) {
     throw VdbError(path + ": not a readable OpenVDB file (" + e.what() + ")");
@@ -120,19 +152,29 @@ VdbDensity densify(const std::string& path, const GridT& grid, float scale) {
   const openvdb::Mat4d m = grid.transform().baseMap()->getAffineMap()->getMat4();
   // OpenVDB maps row vectors (p' = p M, translation in row 3); glm column vectors with the
   // translation in column 3: the same numbers, m[i][j] = M(i, j).
+  glm::dmat4 indexToWorld(1.0);
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) out.indexToWorld[i][j] = static_cast<float>(m(i, j));
+    for (int j = 0; j < 4; ++j) indexToWorld[i][j] = m(i, j);
+  out.indexToWorld = Mat4(indexToWorld);
   const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
   if (box.empty()) return out;  // no active voxel: a medium with nothing in it
-  const openvdb::Coord dim = box.dim();
-  const double voxels = double(dim.x()) * double(dim.y()) * double(dim.z());
-  if (voxels > double(kMaxDensityVoxels))
-    throw VdbError(label + " spans " + std::to_string(dim.x()) + " x " + std::to_string(dim.y()) + " x " +
-                   std::to_string(dim.z()) + " voxels, more than pathlab densifies (" +
-                   std::to_string(kMaxDensityVoxels) + ")");
+  // Index coordinates beyond 2^24 have no sub-voxel precision in float, and spans beyond 2^31
+  // overflow OpenVDB's Int32 dimensions.
+  constexpr int64_t kMaxCoordinate = int64_t(1) << 24;
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(int64_t(box.min()[a])) > kMaxCoordinate || std::abs(int64_t(box.max()[a])) > kMaxCoordinate)
+      throw VdbError(label + " has active voxels beyond index " + std::to_string(kMaxCoordinate) + " from the origin");
+  const int64_t dx = int64_t(box.max().x()) - box.min().x() + 1, dy = int64_t(box.max().y()) - box.min().y() + 1,
+                dz = int64_t(box.max().z()) - box.min().z() + 1;
+  if (double(dx) * double(dy) * double(dz) > double(kMaxDensityVoxels))
+    throw VdbError(label + " spans " + std::to_string(dx) + " x " + std::to_string(dy) + " x " + std::to_string(dz) +
+                   " voxels, more than pathlab densifies (" + std::to_string(kMaxDensityVoxels) + ")");
   DensityGrid& g = out.grid;
-  g.origin = glm::ivec3(box.min().x(), box.min().y(), box.min().z());
-  g.size = glm::ivec3(dim.x(), dim.y(), dim.z());
+  // The stored block starts at index 0: its first voxel's index is folded into the transform
+  // (composed in double), so that index-space positions stay small and precise in float.
+  const openvdb::Coord first = box.min();
+  g.origin = glm::ivec3(0);
+  g.size = glm::ivec3(int(dx), int(dy), int(dz));
   g.values.assign(g.voxelCount(), 0.f);
   size_t nan = 0, negative = 0, huge = 0;
   for (auto it = grid.cbeginValueOn(); it; ++it) {
@@ -145,8 +187,8 @@ VdbDensity densify(const std::string& path, const GridT& grid, float scale) {
     for (int z = b.min().z(); z <= b.max().z(); ++z)
       for (int y = b.min().y(); y <= b.max().y(); ++y)
         for (int x = b.min().x(); x <= b.max().x(); ++x)
-          g.values[(size_t(z - g.origin.z) * size_t(g.size.y) + size_t(y - g.origin.y)) * size_t(g.size.x) +
-                   size_t(x - g.origin.x)] = float(v);
+          g.values[(size_t(z - first.z()) * size_t(g.size.y) + size_t(y - first.y())) * size_t(g.size.x) +
+                   size_t(x - first.x())] = float(v);
   }
   auto refuse = [&](size_t n, const char* what) {
     if (n > 0)
@@ -158,6 +200,7 @@ VdbDensity densify(const std::string& path, const GridT& grid, float scale) {
   std::ostringstream limit;
   limit << "huge (above " << kMaxDensityValue << ")";
   refuse(huge, limit.str().c_str());
+  out.indexToWorld = Mat4(indexToWorld * glm::translate(glm::dmat4(1.0), glm::dvec3(first.x(), first.y(), first.z())));
   return out;
 }
 

@@ -3,12 +3,39 @@
 
 #include "core/media/volume_grid.h"
 
+#include <bit>
+#include <type_traits>
+
 namespace pathlab {
 
 namespace {
 // A ray crossing more boundaries than this without meeting anything (a numerical loop along
 // coplanar boundary triangles) is dropped: a finite walk, at the cost of one path.
 constexpr int kMaxStepCrossings = 64;
+}  // namespace
+
+namespace {
+
+// Tracking's random numbers. A walk's own Pcg32 serves directly; a Metropolis chain's primary
+// sample stream gives two coordinates that seed a Pcg32 for the segment instead: tracking draws
+// as many numbers as it meets tentative collisions, and a chain's state would otherwise grow by
+// that many coordinates (and every mutation with it).
+template <class Rng>
+Pcg32 trackingRng(Rng& rng) {
+  const uint64_t a = std::bit_cast<uint32_t>(rng.next1D()), b = std::bit_cast<uint32_t>(rng.next1D());
+  return Pcg32(mixBits(a << 32 | b), mixBits(b ^ 0x9e3779b97f4a7c15ULL));
+}
+
+template <class Rng, class Track>
+auto withTrackingRng(Rng& rng, Track&& track) {
+  if constexpr (std::is_same_v<Rng, Pcg32>) {
+    return track(rng);
+  } else {
+    Pcg32 local = trackingRng(rng);
+    return track(local);
+  }
+}
+
 }  // namespace
 
 template <class Rng>
@@ -23,13 +50,14 @@ MediaStep traceThroughMedia(const Scene& scene, Ray ray, int medium, Rng& rng, C
       const HomogeneousMedium& m = scene.medium(medium);
       const VolumeGrid* grid = scene.mediumGrid(medium);
       if (grid && !m.scatters()) {
-        step.weight *= ratioTrack(m, *grid, ray.o, ray.d, tMax, rng);  // absorbs only
+        // Absorbs only.
+        step.weight *= withTrackingRng(rng, [&](auto& r) { return ratioTrack(m, *grid, ray.o, ray.d, tMax, r); });
       } else if (m.scatters()) {
         // A heterogeneous medium: delta tracking against its majorant grid (volume_grid.h);
         // a homogeneous one: the closed-form distance sampling.
         DistanceSample ds;
         if (grid) {
-          ds = deltaTrack(m, *grid, ray.o, ray.d, tMax, rng);
+          ds = withTrackingRng(rng, [&](auto& r) { return deltaTrack(m, *grid, ray.o, ray.d, tMax, r); });
         } else {
           const float uChannel = rng.next1D(), u = rng.next1D();
           ds = sampleDistance(m, tMax, uChannel, u);

@@ -347,10 +347,9 @@ Spectrum Scene::segmentTransmittance(int medium, const Vec3& o, const Vec3& dir,
   const HomogeneousMedium& m = media_[medium];
   const VolumeGrid* grid = media_.grid(medium);
   if (!grid) return m.transmittance(distance);
-  auto bits = [](float x) { return uint64_t(std::bit_cast<uint32_t>(x)); };
-  const uint64_t key = mixBits(bits(o.x) ^ (bits(o.y) << 21) ^ (bits(o.z) << 42)) ^
-                       mixBits(bits(dir.x) ^ (bits(dir.y) << 21) ^ (bits(dir.z) << 42) ^ 0x5bd1e995ULL);
-  Pcg32 rng(key, mixBits(key ^ bits(distance)));
+  uint64_t key = 0x5bd1e995ULL;
+  for (const float x : {o.x, o.y, o.z, dir.x, dir.y, dir.z, distance}) key = mixBits(key ^ std::bit_cast<uint32_t>(x));
+  Pcg32 rng(key, mixBits(key ^ 0x9e3779b97f4a7c15ULL));
   return ratioTrack(m, *grid, o, dir, distance, rng);
 }
 

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 #include <vector>
@@ -57,20 +58,33 @@ TEST(MajorantGrid, BoundsTheFieldAlongEveryRay) {
   const MajorantGrid majorant(g);
   const Vec3 lo = Vec3(g.origin) - 1.f, hi = Vec3(g.origin + g.size);
   int checked = 0;
-  for (int ray = 0; ray < 2000; ++ray) {
-    const Vec3 a = lo - 4.f + (hi - lo + 8.f) * Vec3(rng.next1D(), rng.next1D(), rng.next1D());
-    const Vec3 b = lo - 4.f + (hi - lo + 8.f) * Vec3(rng.next1D(), rng.next1D(), rng.next1D());
+  // Random chords, axis-aligned rays (zero direction components, both signs) and rays starting on
+  // a cell face (the lattice's corner is lo, cells 8 voxels a side).
+  auto makeRay = [&](int ray, Vec3& a, Vec3& b) {
+    a = lo - 4.f + (hi - lo + 8.f) * Vec3(rng.next1D(), rng.next1D(), rng.next1D());
+    b = lo - 4.f + (hi - lo + 8.f) * Vec3(rng.next1D(), rng.next1D(), rng.next1D());
+    if (ray % 4 == 1) {  // along one axis
+      const int axis = ray / 4 % 3;
+      for (int c = 0; c < 3; ++c)
+        if (c != axis) b[c] = a[c];
+    } else if (ray % 4 == 2) {  // from a cell face
+      const int axis = ray / 4 % 3;
+      a[axis] = lo[axis] + float(MajorantGrid::kCellVoxels * (ray / 12 % 4));
+    }
+  };
+  for (int ray = 0; ray < 3000; ++ray) {
+    Vec3 a, b;
+    makeRay(ray, a, b);
     const float length = glm::length(b - a);
     if (!(length > 0.f)) continue;
     const Vec3 d = (b - a) / length;
-    float covered = 0.f, last = -1.f;
+    std::vector<std::pair<float, float>> visited;
     majorant.traverse(a, d, 0.f, length, [&](float t0, float t1, float m) {
       EXPECT_LT(t0, t1);
-      if (last >= 0.f) {
-        EXPECT_NEAR(t0, last, 1e-4f * length);
+      if (!visited.empty()) {
+        EXPECT_NEAR(t0, visited.back().second, 1e-4f * length);
       }
-      last = t1;
-      covered += t1 - t0;
+      visited.emplace_back(t0, t1);
       for (int i = 0; i < 8; ++i) {
         const float t = t0 + (t1 - t0) * rng.next1D();
         const float v = g.lookup(a + t * d);
@@ -79,13 +93,15 @@ TEST(MajorantGrid, BoundsTheFieldAlongEveryRay) {
       }
       return true;
     });
-    // The field's support along the ray, by fine sampling: every non-zero sample was visited.
-    for (int i = 0; i < 64; ++i) {
-      const float t = length * (float(i) + 0.5f) / 64.f;
-      const Vec3 p = a + t * d;
-      if (g.lookup(p) > 0.f) {
-        EXPECT_GT(covered, 0.f) << "ray " << ray << " has density but no segment";
-      }
+    // The field's support along the ray, by fine sampling: every non-zero sample lies in a
+    // visited segment (a traversal that starts late or stops early fails here).
+    for (int i = 0; i < 256; ++i) {
+      const float t = length * (float(i) + 0.5f) / 256.f;
+      if (!(g.lookup(a + t * d) > 0.f)) continue;
+      const bool inside = std::any_of(visited.begin(), visited.end(), [&](const auto& s) {
+        return t >= s.first - 1e-4f * length && t <= s.second + 1e-4f * length;
+      });
+      EXPECT_TRUE(inside) << "ray " << ray << ": density at t " << t << " outside every visited segment";
     }
   }
   EXPECT_GT(checked, 10000);
