@@ -217,13 +217,6 @@ VdbDensity readDensityVdb(const std::string& path, const std::string& gridName, 
   throw VdbError(path + ": no grid named '" + gridName + "' (the file has " + names(*grids) + ")");
 }
 
-std::vector<std::string> vdbGridNames(const std::string& path) {
-  std::vector<std::string> out;
-  const openvdb::GridPtrVecPtr grids = readGrids(path);  // held: *readGrids() would dangle in the loop
-  for (const auto& g : *grids) out.push_back(g->getName());
-  return out;
-}
-
 void writeDensityVdb(const std::string& path, const std::string& gridName, const DensityGrid& grid, float voxelSize,
                      const Vec3& origin) {
   initializeOnce();

@@ -32,9 +32,6 @@ struct VdbDensity {
 // core/io/guarded_file.h), multiplied by `scale`.
 VdbDensity readDensityVdb(const std::string& path, const std::string& gridName, float scale = 1.f);
 
-// The grid names in the file, for messages and `pathlab make-volume --list`.
-std::vector<std::string> vdbGridNames(const std::string& path);
-
 // Writes `grid` as the float grid `gridName` with voxel size `voxelSize` and voxel (0, 0, 0) of the
 // index space at world point `origin`, written to a temporary file beside `path` and renamed over
 // it. Voxels of value 0 are left inactive (the background).

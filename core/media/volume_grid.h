@@ -34,11 +34,10 @@ struct VolumeGrid {
   DensityGrid density;         // densityScale already applied
   MajorantGrid majorant;       // of density
   Mat4 worldToIndex{1.f};      // (node x grid transform)^-1
-  float maxDensity = 0.f;
 
   VolumeGrid() = default;
   VolumeGrid(DensityGrid d, const Mat4& indexToWorld)
-      : density(std::move(d)), majorant(density), worldToIndex(glm::inverse(indexToWorld)), maxDensity(density.maxValue()) {}
+      : density(std::move(d)), majorant(density), worldToIndex(glm::inverse(indexToWorld)) {}
 
   Vec3 toIndex(const Vec3& p) const { return Vec3(worldToIndex * Vec4(p, 1.f)); }
   Vec3 toIndexDirection(const Vec3& d) const { return Mat3(worldToIndex) * d; }
