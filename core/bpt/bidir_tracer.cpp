@@ -2,6 +2,7 @@
 #include "core/bpt/bidir_tracer.h"
 
 #include "core/bpt/connect.h"
+#include "core/bpt/equiangular_technique.h"
 #include "core/bpt/merge_sampleable.h"
 #include "core/bpt/mis_off.h"
 #include "core/bpt/path_techniques.h"
@@ -21,6 +22,7 @@ struct BidirTracer::Walks {
   LightSubpath light;
   SubpathMisSums cameraSums, lightSums;  // MisEvaluation::PartialSums only
   Connection connection;                 // scratch reused by every technique
+  std::vector<PathVertex> equiangularCamera;  // E(1, t)'s camera prefix, its own vertex last
   std::vector<double> densityRatios;     // TechniqueResult::densityRatios, when an output wants them
   std::vector<TechniqueOnPath> onPath;   // TechniqueResult::onPath (replay)
   TracedPath traced;                     // TechniqueResult::traced (replay)
@@ -57,16 +59,39 @@ Pcg32 connectionStream(uint64_t connectionKey, int s, int t) {
              : Pcg32::unseeded();
 }
 
+// E(1, n-1) can sample the path x0 x1 x2 ... of a connection (equiangular_technique.h).
+bool equiangularCanSampleAt(const Scene& scene, const MisPath& path) {
+  const int s = path.s, n = s + path.t;
+  if (n < 3) return false;
+  auto vertex = [&](int i) -> const PathVertex& { return i < s ? lightVertex(path, i) : cameraVertex(path, n - 1 - i); };
+  return vertex(1).type == VertexType::Medium && equiangularFactor(scene, vertex(0), vertex(1), vertex(2)) > 0.0;
+}
+
+// E(1, t)'s light point and vertex, from a stream of its own keyed as connectionStream's and
+// salted apart from C(1, t)'s.
+constexpr uint64_t kEquiangularSalt = 0xD6E8FEB86659FD93ull;
+Pcg32 equiangularStream(uint64_t connectionKey, int t) {
+  const uint64_t key = connectionKey ^ kEquiangularSalt;
+  return Pcg32(mixBits(key ^ (uint64_t{1} << 32 | static_cast<uint64_t>(t))), key);
+}
+
 }  // namespace
 
 BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOptions& options)
     : scene_(scene), camera_(camera), options_(options), misPower_(options.mis) {
   options_.pyramidLength = std::min(options_.pyramidLength, options_.maxLength);
+  // The equiangular family runs with path reuse and without merges, where the scene has a medium
+  // it can sample; elsewhere no weight counts it (validateSettings refuses asking for it there).
+  const bool anyMerge = covers(options_.techniques.families(), TechniqueKind::Merge) ||
+                        (options_.isolate && options_.isolate->kind == TechniqueKind::Merge);
+  equiangular_ = options_.mis.mediumSampling != MediumSampling::Distance && !anyMerge &&
+                 options_.connect == ConnectStrategy::All && hasEquiangularMedium(scene);
+  if (!equiangular_) options_.mis.mediumSampling = MediumSampling::Distance;
   // MIS off weighs by length alone: a table, never the partial sums. Otherwise the partial sums
   // weigh every technique of a path's length: exact only when all are enabled.
   if (options_.mis.heuristic == MisHeuristic::Off) {
     misEvaluation_ = MisEvaluation::Constant;
-    offWeights_ = misOffWeights(options_.techniques, options_.maxLength);
+    offWeights_ = misOffWeights(options_.techniques, options_.maxLength, options_.mis.mediumSampling);
   } else {
     misEvaluation_ = options_.techniques.containsAllUpTo(options_.maxLength) ? MisEvaluation::PartialSums
                                                                             : MisEvaluation::Explicit;
@@ -115,6 +140,8 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
         cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, x.t);
         lightVerticesNeeded_ = std::max(lightVerticesNeeded_, x.s);
       }
+  // E(1, t) places its vertex on the ray z(t-2) shoots: the walk must shoot it.
+  if (equiangular_) cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, options_.maxLength);
   if (options_.isolate && options_.isolate->kind == TechniqueKind::Merge) {
     cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, options_.isolate->t);
     lightVerticesNeeded_ = std::max(lightVerticesNeeded_, options_.isolate->s);
@@ -158,8 +185,9 @@ template <bool kRecords>
   // applies MisOptions::minConnection. An interior connection (s, t >= 2, about half of a
   // Cornell-box sample's) takes the sums' form without their dispatch on s and t, the same bits
   // (MisPartialSums.* in the tests).
+  // The partial sums know no equiangular technique: a path E can sample takes the explicit weight.
   std::optional<float> fast;
-  if (!kRecords || misEvaluation_ == MisEvaluation::PartialSums)
+  if (!kRecords || (misEvaluation_ == MisEvaluation::PartialSums && !(equiangular_ && equiangularCanSampleAt(scene_, path))))
     fast = s >= 2 && t >= 2
                ? misWeightInterior(scene_, walks.light, s, walks.camera, t, c.pdfs, c.edgeLength2, walks.lightSums,
                                    walks.cameraSums, misPower_, ratio, minConnectionDistance_, factors)
@@ -336,7 +364,8 @@ template <bool kRecords>
 template <class Rng>
 int BidirTracer::walkCamera(Vec2 pRaster, Vec2 uLens, int vertices, Rng& rng, Walks& walks, Counters& counters) const {
   const int nt = generateCameraSubpath(scene_, camera_, pRaster, uLens, rng,
-                                       WalkOptions{vertices, options_.russianRoulette, cameraMedium_}, walks.camera, counters);
+                                       WalkOptions{vertices, options_.russianRoulette, cameraMedium_, equiangular_},
+                                       walks.camera, counters);
   if (misEvaluation_ == MisEvaluation::PartialSums) {
     if (mergePass_)
       accumulateCameraSums(walks.camera, misPower_, lightTracingRatio(), walks.cameraSums, mergeTerms(*mergePass_));
@@ -457,7 +486,40 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Rng& cameraRng, Rng& lightRng
         evaluate<false>(timed, s, t, use, pRaster, connectionKey, walks, sink, counters);
       }
     }
+  if (equiangular_ && !options_.isolate) evaluateEquiangular(pRaster, connectionKey, walks, sink, counters);
   if (mergePass_) evaluateMerges(timed, nt, pRaster, pyramidLength, walks, sink, counters);
+}
+
+void BidirTracer::evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, Walks& walks, SampleSink& sink,
+                                      Counters& counters) const {
+  const CameraSubpath& camera = walks.camera;
+  // E(1, t) needs the ray z(t-2) shot, not z(t-1): t up to one past the recorded rays.
+  const int last = std::min(camera.rayCount + 1, options_.maxLength);
+  std::vector<PathVertex>& prefix = walks.equiangularCamera;
+  if (prefix.size() < static_cast<size_t>(last)) prefix.resize(static_cast<size_t>(last));
+  Connection& c = walks.connection;
+  for (int t = 2; t <= last; ++t) {
+    // E's path: the light sample, the camera prefix z(0) .. z(t-2), then x (prefix holds the
+    // vertices before z(t-2) from the previous t already: one copy per t).
+    prefix[static_cast<size_t>(t - 2)] = camera[t - 2];
+    Pcg32 rng = equiangularStream(connectionKey, t);
+    PathVertex& x = prefix[static_cast<size_t>(t - 1)];
+    if (!formEquiangularConnection(scene_, camera, t, rng, x, c, counters)) continue;
+    const MisPath path{&c.sampled, 1, prefix.data(), t, &c.sampled, &c.pdfs};
+    const float* factors = varianceAware_ ? varianceAware_->factorsOfLength(varianceAware_->regionOf(pRaster), t)
+                                          : lightPathCountsOfLength(t);
+    const float w = equiangularMisWeight(scene_, camera_, path, options_.techniques, options_.mis,
+                                         lightTracingRatio(), factors);
+    if (!(w > 0.f)) continue;
+    ++counters.shadowRays;
+    const Spectrum T = transmittance(scene_, c.shadowRay);
+    if (isBlack(T)) continue;
+    const Spectrum L = c.L * T * w;
+    if (!isValidContribution(L) || !sink.toImage(t, pRaster, L)) {
+      countDiscarded(L, counters);
+      counters.noteDiscard(DiscardExample{sink.id().x, sink.id().y, sink.id().sample, 1, t, L});
+    }
+  }
 }
 
 template void BidirTracer::sample(Vec2, Vec2, Pcg32&, Pcg32&, SampleSink&, Counters&) const;

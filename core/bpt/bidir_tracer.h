@@ -147,6 +147,10 @@ class BidirTracer {
   // `factors`: variance-aware MIS's where the path lands (null: all 1).
   float weight(const MisPath& path, const Connection& c, const Walks& walks, const float* factors,
                Counters& counters) const;
+  // The equiangular techniques E(1, t) of the sample's camera subpath (equiangular_technique.h),
+  // into the image. Not (yet) in the pyramid, the records or the tallies.
+  void evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, Walks& walks, SampleSink& sink,
+                           Counters& counters) const;
   // The sample's light subpath from the merge pass into walks.light; its vertex count.
   int storedLightSubpath(const SampleId& id, Walks& walks) const;
   // The merges of the sample's camera subpath (nt vertices) with the pass's light vertices.
@@ -181,6 +185,9 @@ class BidirTracer {
   bool imageOnlyPath_ = false;     // the image-only route's preconditions that the settings decide
   bool imageOnlyPathOff_ = false;  // setImageOnlyPath(false)
   bool merges_ = false;
+  // The equiangular family is sampled: options_.mis.mediumSampling is not Distance (it is reset to
+  // Distance where E cannot run: no homogeneous scattering medium, merges, naive BPT).
+  bool equiangular_ = false;
   double connectionsInSums_ = 1.0;  // MergeTerms::connections: every connection enabled, or none
   const MergePass* mergePass_ = nullptr;
   const VarianceAwareFactors* varianceAware_ = nullptr;

@@ -92,6 +92,9 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
     v.p = cs->pLens;
     v.beta = cs->We / cs->pdfW;
     v.isDeltaPosition = camera.isPinhole();
+    // The camera's medium, as the walk's lens vertex has it: the equiangular technique's weights
+    // ask in which medium a ray from the lens starts (equiangular_technique.h).
+    if (cameraPath.count > 0) v.media = cameraPath[0].media;
     c.hasSampled = true;
     return true;
   }

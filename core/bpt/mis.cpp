@@ -2,6 +2,7 @@
 // ratios p_i / p_s outward from the connection (Veach 1997, sec. 10.3).
 #include "core/bpt/mis.h"
 
+#include "core/bpt/equiangular_technique.h"
 #include "core/bsdf/bsdf.h"
 #include "core/media/phase_function.h"
 
@@ -193,6 +194,11 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
                               : pdfNeeOrigin(scene, x0, vertex(1));
     d.neeRefused = d.x0Nee == 0.0;
   }
+  d.equiangular = 0.0;
+  if (n >= 3) {
+    const double f = equiangularFactor(scene, vertex(0), vertex(1), vertex(2));
+    if (f > 0.0) d.equiangular = f * remap0(d.pFromCamera[1]) / remap0(d.pFromLight[1]);
+  }
 }
 
 uint64_t sampleableTechniques(const MisPath& path) {
@@ -233,8 +239,9 @@ void techniqueDensityRatios(const Scene& scene, const Camera& camera, const MisP
   }
 }
 
-UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance)
-    : d_(d), techniques_(techniques) {
+UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance,
+                                   MediumSampling mediumSampling)
+    : d_(d), techniques_(techniques), medium_(mediumSampling) {
   const float min2 = minConnectionDistance * minConnectionDistance;
   if (!(min2 > 0.f)) return;
   bool anyShort = false;
@@ -245,10 +252,12 @@ UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& t
   minDistance2_ = min2;
   for (int sp = 0; sp < d.n; ++sp)
     if (enabledAndPossible(sp) && !shortConnection(sp)) return;
+  if (equiangularPossible() && !shortConnection(1)) return;
   minDistance2_ = 0.f;
 }
 
 bool UsableTechniques::enabledAndPossible(int sp) const {
+  if (sp == 1 && medium_ == MediumSampling::Equiangular && d_.equiangular > 0.0) return false;  // E in its place
   return techniques_.contains(sp, d_.n - sp) && techniquePossible(d_, sp);
 }
 
@@ -259,9 +268,13 @@ bool UsableTechniques::shortConnection(int sp) const {
 
 bool UsableTechniques::operator()(int sp) const { return enabledAndPossible(sp) && !shortConnection(sp); }
 
-int techniquesEnabledOfLength(const TechniqueSet& techniques, int k) {
+// E joins x0 and x1 as C(1, n-1) does.
+bool UsableTechniques::equiangular() const { return equiangularPossible() && !shortConnection(1); }
+
+int techniquesEnabledOfLength(const TechniqueSet& techniques, int k, MediumSampling mediumSampling) {
   int count = 0;
   for (int s = 0; s <= k; ++s) count += techniques.contains(s, k + 1 - s) ? 1 : 0;
+  if (mediumSampling != MediumSampling::Distance && k >= 2) ++count;
   return count;
 }
 
@@ -269,23 +282,27 @@ float minConnectionDistance(const Scene& scene, const MisOptions& options) {
   return options.minConnection * scene.bounds().radius;
 }
 
-// Weight of technique s among the usable ones for the path whose densities are d (mis.h).
+// Weight of technique s (or of E(1, n-1), ofEquiangular) among the usable ones for the path whose
+// densities are d (mis.h).
 double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& techniques, const MisOptions& options,
-                           float lightTracingRatio, float minDistance) {
+                           float lightTracingRatio, float minDistance, bool ofEquiangular) {
   const int n = d.n;
   if (options.heuristic == MisHeuristic::Off) {
     // Veach 1997 sec. 9.1 (naive combination): 1 / n_k for every enabled technique of length
     // k = n - 1, whether or not the others can produce this path; no short-connection exclusion
     // (the weight does not look at the path). Zero where (s, t) itself cannot form the path.
-    if (!techniques.contains(s, n - s) || !techniquePossible(d, s)) return 0.0;
-    return 1.0 / static_cast<double>(techniquesEnabledOfLength(techniques, n - 1));
+    if (ofEquiangular ? !(options.mediumSampling != MediumSampling::Distance && d.equiangular > 0.0)
+                      : !techniques.contains(s, n - s) || !techniquePossible(d, s))
+      return 0.0;
+    return 1.0 / static_cast<double>(techniquesEnabledOfLength(techniques, n - 1, options.mediumSampling));
   }
-  const UsableTechniques usable(d, techniques, minDistance);
-  if (!usable(s)) return 0.0;
+  const UsableTechniques usable(d, techniques, minDistance, options.mediumSampling);
+  if (ofEquiangular ? !usable.equiangular() : !usable(s)) return 0.0;
+  const bool equiangular = usable.equiangular();
 
   if (options.heuristic == MisHeuristic::Uniform) {
     // 1 / (number of enabled techniques able to produce this path), counted.
-    int count = 0;
+    int count = equiangular ? 1 : 0;
     for (int sp = 0; sp < n; ++sp) count += usable(sp) ? 1 : 0;
     return 1.0 / static_cast<double>(count);
   }
@@ -296,23 +313,29 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
   // count (lightTracingRatio for t' = 1, else 1). The ratios come from Veach eq. 10.10:
   //   p_{i+1} / p_i = pFromLight(x_i) / pFromCamera(x_i),
   // walked outward from i = s so that no p_i is formed on its own (ratioToLight, ratioToCamera:
-  // with x0's next-event density for i + 1 = 1).
-  // Variance-aware: the balance heuristic with each n_i times its factor c_i (variance_aware_mis.h).
+  // with x0's next-event density for i + 1 = 1). E(1, n-1), one sample per camera sample, has
+  // p_E = p_2 d.equiangular; its own weight walks from s = 2.
+  // Variance-aware: the balance heuristic with each n_i times its factor c_i (variance_aware_mis.h;
+  // E's factor is one).
   const double beta = options.heuristic == MisHeuristic::Power ? static_cast<double>(options.beta) : 1.0;
   auto count = [&](int sp) { return ((n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0) * d.factor(sp); };
-  const double own = count(s);
+  const int from = ofEquiangular ? 2 : s;
+  const double own = ofEquiangular ? d.equiangular : count(s);
   auto term = [beta](double x) { return beta == 1.0 ? x : beta == 2.0 ? x * x : std::pow(x, beta); };
-  double sum = 1.0;  // the technique itself, relative to (n_s p_s)^beta
-  double r = 1.0;
-  for (int sp = s + 1; sp < n; ++sp) {  // more light vertices: x(sp-1) moves to the light side
+  double sum = ofEquiangular ? (usable(2) ? term(count(2) / own) : 0.0) : 1.0;  // the walk's start
+  double r = 1.0, r2 = 1.0;  // r2 = p_2 / p_from
+  for (int sp = from + 1; sp < n; ++sp) {  // more light vertices: x(sp-1) moves to the light side
     r *= ratioToLight(d, sp);
+    if (sp == 2) r2 = r;
     if (usable(sp)) sum += term(r * count(sp) / own);
   }
   r = 1.0;
-  for (int sp = s - 1; sp >= 0; --sp) {  // fewer light vertices: x(sp) moves to the camera side
+  for (int sp = from - 1; sp >= 0; --sp) {  // fewer light vertices: x(sp) moves to the camera side
     r *= ratioToCamera(d, sp);
+    if (sp == 2) r2 = r;
     if (usable(sp)) sum += term(r * count(sp) / own);
   }
+  if (equiangular) sum += term(r2 * d.equiangular / own);  // one for E itself
   return 1.0 / sum;
 }
 
@@ -340,7 +363,19 @@ double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& pat
   double sum = 0.0;
   for (int sp = 0; sp < d.n; ++sp)
     sum += weightFromDensities(d, sp, techniques, options, lightTracingRatio, minDistance);
-  return sum;
+  return sum + weightFromDensities(d, 1, techniques, options, lightTracingRatio, minDistance, true);
+}
+
+float equiangularMisWeight(const Scene& scene, const Camera& camera, const MisPath& path,
+                           const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio,
+                           const float* factors) {
+  if (options.mediumSampling == MediumSampling::Distance || path.s != 1 || path.t < 2) return 0.f;
+  thread_local PathDensities d;
+  pathDensities(scene, camera, path, d);
+  d.factors = factors;
+  const double w = weightFromDensities(d, 1, techniques, options, lightTracingRatio,
+                                       minConnectionDistance(scene, options), true);
+  return std::isfinite(w) ? static_cast<float>(w) : 0.f;
 }
 
 }  // namespace pathlab

@@ -103,6 +103,13 @@ float misWeight(const Scene& scene, const Camera& camera, const MisPath& path, c
 double misWeightSum(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
                     const MisOptions& options, float lightTracingRatio = 1.f, const float* factors = nullptr);
 
+// The weight of the equiangular technique E(1, t) for its own sample: `path` holds E's light
+// sample (s = 1, `sampled`) and the camera prefix with E's vertex last (t vertices). Zero when
+// options.mediumSampling is Distance or E cannot sample the path.
+float equiangularMisWeight(const Scene& scene, const Camera& camera, const MisPath& path,
+                           const TechniqueSet& techniques, const MisOptions& options, float lightTracingRatio = 1.f,
+                           const float* factors = nullptr);
+
 // The densities of the whole path x0 .. x(n-1) (n = s + t, x0 on the light, x(n-1) the camera)
 // after the connection: pFromLight[i] / pFromCamera[i] are the area densities of x_i sampled from
 // the light / camera side, as misWeight sees them. Exposed for the tests' brute-force oracle.
@@ -128,6 +135,11 @@ struct PathDensities {
   // (every factor 1) under the other heuristics. Set by the weights' callers; pathDensities leaves it null.
   const float* factors = nullptr;
   double factor(int slot) const { return factors ? static_cast<double>(factors[slot]) : 1.0; }
+  // The equiangular technique E(1, n-1) (equiangular_technique.h): its density over that of
+  // C(2, n-2), p_E / p_2 = [x0's density with its light chosen from x2 / pFromLight(x0)]
+  // pFromCamera(x1) p_e / (pFromLight(x1) p_d); 0 where E cannot sample the path. Formed against
+  // p_2 rather than p_1 so that a light BVH refusing x0 for x1 (x0Nee = 0) leaves it finite.
+  double equiangular = 0.0;
 };
 // The density of x_i as technique s' samples it from the light side (i < s'): x0 by next-event
 // estimation for s' = 1, by the light subpath otherwise.
@@ -160,8 +172,9 @@ void pathDensities(const Scene& scene, const Camera& camera, const MisPath& path
 
 // The weight misWeight gives technique s' of the path whose densities are d (minDistance in scene
 // units, minConnectionDistance), for the path inspector's "one path, every technique".
+// ofEquiangular: the weight of E(1, n-1) instead (s is then ignored), over the same set.
 double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& techniques, const MisOptions& options,
-                           float lightTracingRatio, float minDistance);
+                           float lightTracingRatio, float minDistance, bool ofEquiangular = false);
 
 // Whether technique s' (t' = n - s') can produce a path with these delta flags. Inline: the
 // weights ask it for every technique of every connection.
@@ -198,21 +211,29 @@ void techniqueDensityRatios(const Scene& scene, const Camera& camera, const MisP
 // connection edge is shorter than minConnectionDistance when an enabled possible technique with a
 // longer (or no) connection edge remains (MisOptions::minConnection). The set depends on the
 // path alone, so the weights over it still sum to one and the estimate stays unbiased.
+// With the equiangular family (mediumSampling not Distance) E(1, n-1) is one of them where it can
+// sample the path, its connection edge that of C(1, n-1); under MediumSampling::Equiangular
+// C(1, n-1) is not, on those paths.
 class UsableTechniques {
  public:
-  UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance);
+  UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance,
+                   MediumSampling mediumSampling = MediumSampling::Distance);
   bool operator()(int sPrime) const;
+  bool equiangular() const;  // E(1, n-1)
 
  private:
   const PathDensities& d_;
   const TechniqueSet& techniques_;
+  MediumSampling medium_;
   float minDistance2_ = 0.f;  // 0 when nothing is excluded for this path
+  bool equiangularPossible() const { return medium_ != MediumSampling::Distance && d_.equiangular > 0.0; }
   bool enabledAndPossible(int sPrime) const;
   bool shortConnection(int sPrime) const;
 };
 
-// n_k: the enabled techniques of length k, which MisHeuristic::Off weighs 1 / n_k each.
-int techniquesEnabledOfLength(const TechniqueSet& techniques, int k);
+// n_k: the enabled techniques of length k, which MisHeuristic::Off weighs 1 / n_k each; with the
+// equiangular family, E(1, k) counts at every k >= 2.
+int techniquesEnabledOfLength(const TechniqueSet& techniques, int k, MediumSampling mediumSampling = MediumSampling::Distance);
 
 // MisOptions::minConnection in scene units.
 float minConnectionDistance(const Scene& scene, const MisOptions& options);

@@ -9,10 +9,10 @@
 
 namespace pathlab {
 
-std::vector<float> misOffWeights(const TechniqueSet& techniques, int maxLength) {
+std::vector<float> misOffWeights(const TechniqueSet& techniques, int maxLength, MediumSampling mediumSampling) {
   std::vector<float> weights(static_cast<size_t>(std::max(maxLength, 0) + 1), 0.f);
   for (int k = 1; k <= maxLength; ++k) {
-    const int n = techniquesEnabledOfLength(techniques, k);
+    const int n = techniquesEnabledOfLength(techniques, k, mediumSampling);
     weights[static_cast<size_t>(k)] = n > 0 ? 1.f / static_cast<float>(n) : 0.f;
   }
   return weights;

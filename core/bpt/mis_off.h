@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/bpt/technique_set.h"
+#include "core/media/medium_sampling.h"
 #include "core/scene/scene.h"
 
 #include <string>
@@ -12,7 +13,9 @@ namespace pathlab {
 
 // weights[k] = 1 / n_k for k = 1..maxLength (0 where no technique of length k is enabled);
 // weights[0] is unused. Built once per settings change: the weight never depends on the path.
-std::vector<float> misOffWeights(const TechniqueSet& techniques, int maxLength);
+// With the equiangular family (mediumSampling not Distance) E(1, k) counts in n_k for k >= 2.
+std::vector<float> misOffWeights(const TechniqueSet& techniques, int maxLength,
+                                 MediumSampling mediumSampling = MediumSampling::Distance);
 
 // The naive combination estimates sum_x f(x) c(x) / n_k for a path x of length k, where c(x)
 // counts the enabled techniques able to sample x: biased exactly where 0 < c(x) < n_k for some

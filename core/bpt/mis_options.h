@@ -1,6 +1,8 @@
 // The choice of MIS heuristic for bidirectional path tracing (a plain setting, no logic).
 #pragma once
 
+#include "core/media/medium_sampling.h"
+
 #include <optional>
 #include <string_view>
 
@@ -28,6 +30,10 @@ struct MisOptions {
   // variance unless its weight vanishes there; balance and power weights nearly do, uniform ones
   // do not. 0 turns the exclusion off.
   float minConnection = kDefaultMinConnection;
+  // The equiangular technique family E(1, k) (core/bpt/equiangular_technique.h): left out
+  // (Distance), weighted beside the connections (Mis), or in place of C(1, k) on every path it can
+  // sample (Equiangular: C(1, k) is then unusable there, a rule on the path alone).
+  MediumSampling mediumSampling = MediumSampling::Distance;
   bool operator==(const MisOptions&) const = default;
 };
 

@@ -55,8 +55,16 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     }
     return false;
   };
+  if (options.recordRays && path.rays.size() < static_cast<size_t>(options.maxVertices))
+    path.rays.resize(static_cast<size_t>(options.maxVertices));
+  path.rayCount = 0;
   while (path.count < options.maxVertices) {
     const MediaStep step = traceStep(scene, ray, medium, rng, counters);
+    if (options.recordRays) {
+      // The ray from the last vertex: one per vertex, in order (nothing shoots two).
+      path.rays[static_cast<size_t>(path.count - 1)] = WalkRay{ray.d, beta, pdfFwdW, step.firstSegment, medium};
+      path.rayCount = path.count;
+    }
     beta *= step.weight;  // one in vacuum
     if (step.kind == MediaStepKind::Absorbed) break;
     const bool inMedium = step.kind == MediaStepKind::Medium;

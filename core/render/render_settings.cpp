@@ -93,7 +93,9 @@ TechniqueFamilies pyramidFamilies(const RenderSettings& settings) {
 }
 
 BidirOptions bidirOptions(const RenderSettings& s) {
-  return BidirOptions{s.maxLength, s.russianRoulette, enabledTechniques(s), s.mis,       s.isolate,   s.pyramidLength,
+  MisOptions mis = s.mis;
+  mis.mediumSampling = mediumSampling(s);  // the equiangular family E(1, k) (bpt)
+  return BidirOptions{s.maxLength, s.russianRoulette, enabledTechniques(s), mis,         s.isolate,   s.pyramidLength,
                       s.checkMis,  s.connect,         s.injectBias,         s.mergeSite, s.lightPaths};
 }
 
@@ -155,10 +157,22 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument(fmt::format("maximum path length {} is more than the {} edges the {} integrator supports",
                                             s.maxLength, kMaxBidirectionalLength, integratorName(s.integrator)));
   if (bidirectional) s.techniques.checkFits(s.maxLength);  // throws naming the problem
-  if (bidirectional && mediumSampling(s) != MediumSampling::Distance)
-    throw std::invalid_argument(fmt::format("--medium-sampling {}: only the path tracer (--integrator pt) has equiangular "
-                                            "sampling so far; the {} integrator samples distances",
-                                            mediumSamplingName(mediumSampling(s)), integratorName(s.integrator)));
+  if (bidirectional && mediumSampling(s) != MediumSampling::Distance) {
+    // The equiangular family E(1, k) runs in bpt with path reuse; the merges' weights and
+    // Metropolis's technique choice do not count it yet.
+    if (s.integrator != IntegratorKind::Bpt)
+      throw std::invalid_argument(fmt::format("--medium-sampling {}: the {} integrator samples distances; equiangular "
+                                              "sampling is in pt and bpt so far",
+                                              mediumSamplingName(mediumSampling(s)), integratorName(s.integrator)));
+    if (covers(enabledTechniques(s).families(), TechniqueKind::Merge))
+      throw std::invalid_argument(fmt::format("--medium-sampling {}: the merging techniques' weights do not count the "
+                                              "equiangular technique yet; use --medium-sampling distance with merges",
+                                              mediumSamplingName(mediumSampling(s))));
+    if (s.connect == ConnectStrategy::Endpoints)
+      throw std::invalid_argument(fmt::format("--medium-sampling {}: the equiangular technique needs path reuse "
+                                              "(--connect all), not naive BPT",
+                                              mediumSamplingName(mediumSampling(s))));
+  }
   if (bidirectional && covers(enabledTechniques(s).families(), TechniqueKind::Merge)) {
     // Vertex merging: light subpaths of the whole pass, merged at surfaces with path reuse.
     if (s.mergeRadius && !(*s.mergeRadius > 0.f && *s.mergeRadius <= kMaxMergeRadius))
