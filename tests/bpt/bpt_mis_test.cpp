@@ -102,46 +102,90 @@ FullPath densities(const Scene& scene, const Camera& camera, std::vector<PathVer
   return f;
 }
 
+// The equiangular technique E(1, n-1) (issue 35) from its definition: x0's density with its light
+// chosen from x2, then x1 placed on the ray from x2 by Kulla and Fajardo's density on the unbounded
+// ray toward x0, D / ((pi/2 - theta_a) (D^2 + (t - delta)^2)), in place of distance sampling's
+// mean over the channels of sigma_t exp(-sigma_t t); everything else as C(1, n-1). 0 where E
+// cannot sample the path: x1 not in a homogeneous scattering medium, the ray from x2 not starting
+// in it, x0 at infinity.
+double oracleEquiangularDensity(const Scene& scene, const FullPath& f) {
+  const int n = static_cast<int>(f.x.size());
+  if (n < 3) return 0.0;
+  const PathVertex &x0 = f.x[0], &x1 = f.x[1], &x2 = f.x[2];
+  if (x1.type != VertexType::Medium || x0.isInfinite) return 0.0;
+  const int m = x1.media.inside;
+  if (m < 0 || scene.mediumGrid(m) || !scene.medium(m).scatters()) return 0.0;
+  const glm::dvec3 o(x2.p), c(x0.p), e = glm::dvec3(x1.p) - o;
+  const double t = glm::length(e);
+  const glm::dvec3 d = e / t;
+  // The medium the ray from x2 starts in; the camera's from where it is.
+  const int start = x2.type == VertexType::Camera ? scene.mediumAt(x2.p) : x2.media.toward(x2.ng, Vec3(d));
+  if (start != m) return 0.0;
+  const double delta = glm::dot(c - o, d), D = glm::length(o + delta * d - c);
+  const double pe = D / ((3.14159265358979 / 2 - std::atan(-delta / D)) * (D * D + (t - delta) * (t - delta)));
+  const Spectrum sigmaT = scene.medium(m).sigmaT;
+  double pd = 0.0;
+  for (int k = 0; k < 3; ++k) pd += sigmaT[k] * std::exp(-sigmaT[k] * t) / 3.0;
+  const Light& light = scene.lights()[static_cast<size_t>(x0.light)];
+  const double x0Density = scene.lights().pmfNee(LightSampleContext{x2.p, Vec3(0.f)}, x0.light) *
+                           light.pdfLe(x0.p, x0.ng, Vec3(0, 0, 1)).pdfPosA;
+  double p = x0Density * f.pE[1] * pe / pd;
+  for (int i = 2; i < n - 1; ++i) p *= f.pE[static_cast<size_t>(i)];
+  return p;
+}
+
 // Brute force: p_s' = prod_{i < s'} pL_i * prod_{i >= s'} pE_i, then the heuristic directly, over
 // the enabled techniques able to produce the path, less those whose connection edge
 // x(s'-1) -- x(s') is shorter than minDistance while a technique without a short one remains.
+// With o.mediumSampling not Distance, weight n (the last) is E(1, n-1)'s (pEquiangular, 0 where it
+// cannot sample the path), which joins x0 and x1 as C(1, n-1) does and under Equiangular replaces it.
 std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled, const MisOptions& o,
-                                  double minDistance) {
+                                  double minDistance, double pEquiangular = 0.0) {
   const int n = static_cast<int>(f.x.size());
-  std::vector<double> p(static_cast<size_t>(n), 0.0), w(static_cast<size_t>(n), 0.0);
+  std::vector<double> p(static_cast<size_t>(n + 1), 0.0), w(static_cast<size_t>(n + 1), 0.0);
+  const bool equiangular = o.mediumSampling != MediumSampling::Distance && pEquiangular > 0.0;
   const bool x0Hittable = !f.x[0].isDeltaPosition && !f.x[0].isDeltaDirection;
   // No lens point connects to the environment: (1, 1) cannot form the path environment -> camera.
   const bool lensToInfinity = n == 2 && f.x[0].isInfinite;
   auto candidate = [&](int sp) {
+    if (sp == n) return equiangular;
+    if (sp == 1 && equiangular && o.mediumSampling == MediumSampling::Equiangular) return false;
     return enabled.contains(sp, n - sp) && (sp != 0 || x0Hittable) && !(sp == 1 && lensToInfinity) &&
            !(sp == n - 1 && f.orthographic);
   };
   auto shortEdge = [&](int sp) {
-    return sp >= 1 && glm::distance(f.x[static_cast<size_t>(sp - 1)].p, f.x[static_cast<size_t>(sp)].p) < minDistance;
+    const int e = sp == n ? 1 : sp;  // E's connection edge is C(1, n-1)'s
+    return e >= 1 && glm::distance(f.x[static_cast<size_t>(e - 1)].p, f.x[static_cast<size_t>(e)].p) < minDistance;
   };
   bool longRemains = false;
-  for (int sp = 0; sp < n; ++sp) longRemains |= candidate(sp) && !shortEdge(sp);
+  for (int sp = 0; sp <= n; ++sp) longRemains |= candidate(sp) && !shortEdge(sp);
   double sum = 0.0;
   int count = 0;
-  for (int sp = 0; sp < n; ++sp) {
+  for (int sp = 0; sp <= n; ++sp) {
     if (!candidate(sp) || (longRemains && shortEdge(sp))) continue;
     double prod = 1.0;
-    for (int i = 0; i < n - 1; ++i)
-      prod *= i == 0 && sp == 1 ? f.pLNee : i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)];
+    if (sp == n)
+      prod = pEquiangular;
+    else
+      for (int i = 0; i < n - 1; ++i)
+        prod *= i == 0 && sp == 1 ? f.pLNee : i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)];
     const double b = o.heuristic == MisHeuristic::Power ? o.beta : 1.0;
     p[static_cast<size_t>(sp)] = std::pow(prod, b);
     sum += p[static_cast<size_t>(sp)];
     ++count;
   }
-  for (int sp = 0; sp < n; ++sp)
+  for (int sp = 0; sp <= n; ++sp)
     if (p[static_cast<size_t>(sp)] > 0.0)
       w[static_cast<size_t>(sp)] = o.heuristic == MisHeuristic::Uniform ? 1.0 / count : p[static_cast<size_t>(sp)] / sum;
   return w;
 }
 
-// Technique s' of the full path, in the form the walks would have stored it.
+// Technique s' of the full path, in the form the walks would have stored it; `equiangular`: also
+// E(1, n-1)'s weight as that view sees it.
+double equiangularWeightSeenBy(const Scene& scene, const Camera& camera, const MisPath& view, const TechniqueSet& enabled,
+                               const MisOptions& o);
 float fastWeight(const Scene& scene, const Camera& camera, const FullPath& f, int sp, const TechniqueSet& enabled,
-                 const MisOptions& o) {
+                 const MisOptions& o, double* equiangular = nullptr) {
   const int n = static_cast<int>(f.x.size());
   std::vector<PathVertex> light, cam;
   for (int i = 0; i < sp; ++i) {
@@ -157,7 +201,17 @@ float fastWeight(const Scene& scene, const Camera& camera, const FullPath& f, in
     v.pdfRevA = static_cast<float>(f.pL[static_cast<size_t>(i)]);
     cam.push_back(v);
   }
-  return misWeight(scene, camera, MisPath{light.data(), sp, cam.data(), n - sp, nullptr}, enabled, o, lightTracingRatio());
+  const MisPath view{light.data(), sp, cam.data(), n - sp, nullptr};
+  if (equiangular) *equiangular = equiangularWeightSeenBy(scene, camera, view, enabled, o);
+  return misWeight(scene, camera, view, enabled, o, lightTracingRatio());
+}
+
+// E(1, n-1)'s weight as the view of technique s' of the same path sees it (its densities), which
+// must not depend on s'.
+double equiangularWeightSeenBy(const Scene& scene, const Camera& camera, const MisPath& view, const TechniqueSet& enabled,
+                               const MisOptions& o) {
+  const PathDensities d = pathDensities(scene, camera, view);
+  return weightFromDensities(d, 1, enabled, o, lightTracingRatio(), minConnectionDistance(scene, o), true);
 }
 
 SceneDesc furnace() {
@@ -242,23 +296,29 @@ void forEachConnectedPath(const Scene& scene, const Camera& camera, int maxLengt
 // minConnection: MisOptions::minConnection. The default leaves out a connection only at a corner;
 // a large value makes short connections common, the fallback (no long one left) included.
 // cameraDesc: the camera seeing the scene (none: the scene's own).
+// mediumSampling: with the equiangular family (not Distance), its technique E(1, n-1) is weighed
+// too, from the real view and from every technique's (its weight and the sum).
 void checkPartition(const Scene& scene, int maxLength, const char* name, float minConnection = kDefaultMinConnection,
-                    const std::optional<CameraDesc>& cameraDesc = std::nullopt) {
+                    const std::optional<CameraDesc>& cameraDesc = std::nullopt,
+                    MediumSampling mediumSampling = MediumSampling::Distance) {
   const Camera camera(cameraDesc.value_or(scene.cameraDesc()), 8, 8);
   Pcg32 rng(1234, 5);
-  int checked = 0, shortExcluded = 0;
+  int checked = 0, shortExcluded = 0, equiangularPaths = 0;
   forEachConnectedPath(scene, camera, maxLength, 400, rng, [&](int s, int t, const Connection& c,
                                                           const std::vector<PathVertex>& x, const LightSubpath& lp,
                                                           const CameraSubpath& cp) {
     const int n = s + t;
     const FullPath f = densities(scene, camera, x);
     for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
-      const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, minConnection};
+      const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, minConnection, mediumSampling};
+      const double pEquiangular = mediumSampling != MediumSampling::Distance ? oracleEquiangularDensity(scene, f) : 0.0;
+      equiangularPaths += pEquiangular > 0.0;
       TechniqueSet enabled = TechniqueSet::all();
       if (rng.next1D() < 0.7f)
         for (int sp = 0; sp < n; ++sp)
           if (sp != s && rng.next1D() < 0.4f) enabled.disable({sp, n - sp}, maxLength);
-      const std::vector<double> oracle = oracleWeights(f, enabled, o, minConnection * scene.bounds().radius);
+      const std::vector<double> oracle =
+          oracleWeights(f, enabled, o, minConnection * scene.bounds().radius, pEquiangular);
       shortExcluded += [&] {
         int excluded = 0;
         for (int sp = 0; sp < n; ++sp)
@@ -280,9 +340,14 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
                         std::to_string(f.pE[size_t(i)]);
                return out;
              }();
-      double sum = 0.0;
+      // E's weight, from the real view and below from every technique's.
+      EXPECT_NEAR(equiangularWeightSeenBy(scene, camera, real, enabled, o), oracle[static_cast<size_t>(n)], 1e-4)
+          << name << " E(1," << n - 1 << ") seen by (" << s << "," << t << ") " << misHeuristicName(h);
+      double sum = oracle[static_cast<size_t>(n)];
       for (int sp = 0; sp < n; ++sp) {
-        const float w = fastWeight(scene, camera, f, sp, enabled, o);
+        double wE = 0.0;
+        const float w = fastWeight(scene, camera, f, sp, enabled, o, &wE);
+        EXPECT_NEAR(wE, oracle[static_cast<size_t>(n)], 1e-4) << name << " E(1," << n - 1 << ") seen by s'=" << sp;
         EXPECT_NEAR(w, oracle[static_cast<size_t>(sp)], 1e-4) << name << " s'=" << sp << " of (" << s << "," << t << ")"
             << " light " << static_cast<int>(scene.lights()[static_cast<size_t>(f.x[0].light)].type()) << " pL0 " << f.pL[0]
             << " pLNee " << f.pLNee << " real x0Nee " << pathDensities(scene, camera, real).x0Nee << " real pL0 "
@@ -294,6 +359,9 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
     }
   });
   EXPECT_GT(checked, 100) << name;
+  if (mediumSampling != MediumSampling::Distance) {
+    EXPECT_GT(equiangularPaths, 100) << name;
+  }
   // A large minConnection must actually have left techniques out, or the case is untested.
   if (minConnection >= 0.1f) {
     EXPECT_GT(shortExcluded, 20) << name;
@@ -360,6 +428,22 @@ TEST(BptMis, PartitionOfUnityManyLightsByBvh) {
 // Medium vertices (issue 16) anywhere on the path: densities in the volume measure, no cosine.
 TEST(BptMis, PartitionOfUnityFoggyFurnace) {
   checkPartition(Scene(test::foggyFurnace(0.5f, 1.f, 1.5f, 0.4f)), 5, "foggy furnace");
+}
+// The equiangular technique E(1, k) (issue 35) beside the connections and in place of C(1, k), in
+// the fog-lamp scene (a point light and two area lights in fog) and the foggy furnace; and with
+// next-event estimation by a light BVH, where E chooses x0's light from x2 and C(1, k) from x1.
+TEST(BptMis, PartitionOfUnityWithTheEquiangularTechnique) {
+  SceneDesc lamp = loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/fog-lamp.gltf");
+  for (const MediumSampling m : {MediumSampling::Mis, MediumSampling::Equiangular}) {
+    checkPartition(Scene(SceneDesc(lamp)), 4, "fog lamp", kDefaultMinConnection, std::nullopt, m);
+    checkPartition(Scene(test::foggyFurnace(0.5f, 1.f, 1.5f, 0.4f)), 4, "foggy furnace", kDefaultMinConnection,
+                   std::nullopt, m);
+  }
+  lamp.lightSelection = LightSelection::Bvh;
+  const Scene byBvh(std::move(lamp));
+  ASSERT_TRUE(byBvh.lights().neeByContext());
+  checkPartition(byBvh, 4, "fog lamp by BVH", kDefaultMinConnection, std::nullopt, MediumSampling::Mis);
+  checkPartition(byBvh, 4, "fog lamp by BVH, short", 0.3f, std::nullopt, MediumSampling::Mis);
 }
 TEST(BptMis, PartitionOfUnitySquareEmitter) { checkPartition(Scene(squareEmitter()), 4, "square"); }
 TEST(BptMis, PartitionOfUnityPointLight) { checkPartition(Scene(pointLight()), 4, "point"); }

@@ -58,9 +58,12 @@ expect_error "render --radius 0" "--radius" render "$BOX" -o "$TMP/x.png" --inte
 expect_error "render --noncaustic-photons 0" "--noncaustic-photons" render "$BOX" -o "$TMP/x.png" --integrator vcm --noncaustic-photons 0
 expect_error "converge vcm:noncaustic-photons=2" "noncaustic-photons 2" converge "$BOX" -o "$TMP/conv" --configs "vcm:noncaustic-photons=2" --spp 2
 expect_error "render --medium-sampling sideways" "--medium-sampling" render "$BOX" -o "$TMP/x.png" --medium-sampling sideways
-expect_error "render bpt --medium-sampling mis" "only the path tracer" render "$BOX" -o "$TMP/x.png" --integrator bpt --medium-sampling mis
+expect_error "render lt --medium-sampling mis" "the lt integrator samples distances" render "$BOX" -o "$TMP/x.png" --integrator lt --medium-sampling mis
+expect_error "render vcm --medium-sampling mis" "merging techniques' weights do not count" render "$BOX" -o "$TMP/x.png" --integrator vcm --medium-sampling mis
+expect_error "render mlt --medium-sampling mis" "the mlt integrator samples distances" render "$BOX" -o "$TMP/x.png" --integrator mlt --medium-sampling mis
+expect_error "render naive bpt --medium-sampling mis" "needs path reuse" render "$BOX" -o "$TMP/x.png" --connect endpoints --medium-sampling mis
 expect_error "converge medium-sampling=x" "unknown medium sampling 'x'" converge "$BOX" -o "$TMP/conv" --configs "pt:medium-sampling=x" --spp 2
-expect_error "converge bpt:medium-sampling=equiangular" "only the path tracer" converge "$BOX" -o "$TMP/conv" --configs "bpt:medium-sampling=equiangular" --spp 2
+expect_error "converge lt:medium-sampling=equiangular" "the lt integrator samples distances" converge "$BOX" -o "$TMP/conv" --configs "lt:medium-sampling=equiangular" --spp 2
 # Metropolis (issue 33): its options apply to mlt only, in range; what needs independent samples per
 # pixel is refused with it.
 expect_error "render --chains without mlt" "--chains applies to --integrator mlt" render "$BOX" -o "$TMP/x.png" --chains 10

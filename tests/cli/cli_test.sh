@@ -73,6 +73,10 @@ else fail "medium sampling warning: $(cat "$TMP/err")"; fi
 if "$PATHLAB" render "$SRC/assets/fog-lamp.gltf" -o "$TMP/ms2.pfm" --spp 1 --width 16 --height 12 --integrator pt \
   --medium-sampling equiangular 2>"$TMP/err" && ! grep -q "changes nothing" "$TMP/err"; then ok
 else fail "medium sampling warned in fog: $(cat "$TMP/err")"; fi
+# bpt samples with its equiangular technique family on request (issue 35).
+if "$PATHLAB" render "$SRC/assets/fog-lamp.gltf" -o "$TMP/ms4.pfm" --spp 1 --width 16 --height 12 --integrator bpt \
+  --medium-sampling mis 2>"$TMP/err" && ! grep -q "changes nothing" "$TMP/err"; then ok
+else fail "bpt --medium-sampling mis in fog: $(cat "$TMP/err")"; fi
 # ...and where only density grids scatter (equiangular sampling declines them): the other warning.
 if "$PATHLAB" render "$SRC/assets/smoke.gltf" -o "$TMP/ms3.pfm" --spp 1 --width 16 --height 12 --integrator pt \
   --medium-sampling mis 2>"$TMP/err" && [ "$(grep -c "every scattering medium is a density grid" "$TMP/err")" -eq 1 ]; then ok

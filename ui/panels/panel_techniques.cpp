@@ -471,26 +471,36 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   if (ImGui::SliderInt("max length", &maxLength, 1, 32)) setMaxLength(estimator, maxLength);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("maximum path length in edges: 1 shows emitters, 2 adds direct light");
 
-  // Media (issue 35): how the path tracer places the medium vertex it connects to a light.
-  if (edited.integrator == IntegratorKind::Pt) {
+  // Media (issue 35): how the path tracer places the medium vertex it connects to a light; in bpt
+  // (path reuse, no merges) whether the equiangular technique family E(1, k) joins the connections.
+  const bool pt = edited.integrator == IntegratorKind::Pt;
+  const bool equiangularBpt = edited.integrator == IntegratorKind::Bpt && edited.connect == ConnectStrategy::All &&
+                              !covers(enabledTechniques(edited).families(), TechniqueKind::Merge);
+  if (pt || equiangularBpt) {
     const MediumSampling now = mediumSampling(edited);
     int m = static_cast<int>(now);
     ImGui::TextUnformatted("in media");
     ImGui::SameLine();
     ImGui::RadioButton("distance", &m, static_cast<int>(MediumSampling::Distance));
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the vertex placed along the transmittance (--medium-sampling distance)");
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(pt ? "the vertex placed along the transmittance (--medium-sampling distance)"
+                           : "the connections alone: every medium vertex placed along the transmittance (bpt's default)");
     ImGui::SameLine();
     ImGui::RadioButton("equiangular", &m, static_cast<int>(MediumSampling::Equiangular));
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("the vertex placed toward a point on a light, density 1 / distance^2 (Kulla and Fajardo 2012)");
+      ImGui::SetTooltip(pt ? "the vertex placed toward a point on a light, density 1 / distance^2 (Kulla and Fajardo 2012)"
+                           : "E(1,k) in place of C(1,k) on every path it can sample: the camera vertex next to the\n"
+                             "light placed toward a point on it (Kulla and Fajardo 2012)");
     ImGui::SameLine();
     ImGui::RadioButton("MIS##medium", &m, static_cast<int>(MediumSampling::Mis));
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("both, weighted by the power heuristic: the path tracer's default. Scenes with scattering\n"
-                        "media only; the same image every way, the noise around lights differs");
+      ImGui::SetTooltip(pt ? "both, weighted by the power heuristic: the path tracer's default. Scenes with scattering\n"
+                             "media only; the same image every way, the noise around lights differs"
+                           : "the equiangular techniques E(1,k) beside the connections, in the same MIS weights.\n"
+                             "Scenes with homogeneous scattering media only; not yet in the pyramid or the maps");
     if (m != static_cast<int>(now)) edited.mediumSampling = static_cast<MediumSampling>(m);
   } else if (edited.mediumSampling && *edited.mediumSampling != MediumSampling::Distance) {
-    edited.mediumSampling.reset();  // the bidirectional integrators sample distances only, so far
+    edited.mediumSampling.reset();  // lt, mlt, merges and naive BPT sample distances only, so far
   }
 
   const bool bidirectional = edited.integrator != IntegratorKind::Pt;
