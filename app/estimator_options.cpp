@@ -105,9 +105,10 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
            if (!m) throw CLI::ValidationError("--medium-sampling", "'" + name + "' is not distance, equiangular or mis");
            s.mediumSampling = m;
          },
-         "In media, how the path tracer places the scattering vertex it connects to a light: distance (along the "
+         "In media, how the scattering vertex that connects to a light is placed: distance (along the "
          "transmittance), equiangular (toward the light point, Kulla and Fajardo 2012) or mis (both; the path tracer's "
-         "default)")
+         "default). bpt: its equiangular techniques E(1,k) beside the connections (mis) or in place of C(1,k) "
+         "(equiangular); distance is its default")
       ->type_name("distance|equiangular|mis");
   auto* isolate = cmd->add_option("--isolate", o.isolate,
                                   "Show technique S,T (or merge MS,T) alone: its MIS-weighted share (or with --unweighted its own estimate)");

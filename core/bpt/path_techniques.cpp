@@ -23,7 +23,7 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
   withCounts.factors = counts;
   PathDensities withFactors = d;
   withFactors.factors = factors ? factors : counts;
-  const UsableTechniques usable(d, techniques, minDistance);
+  const UsableTechniques usable(d, techniques, minDistance, options.mediumSampling);
   // p_C(s'): the light-side densities before s', the camera-side ones from s' on.
   auto connectionDensity = [&](int sp) {
     double p = 1.0;
