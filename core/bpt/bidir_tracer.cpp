@@ -140,8 +140,6 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
         cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, x.t);
         lightVerticesNeeded_ = std::max(lightVerticesNeeded_, x.s);
       }
-  // E(1, t) places its vertex on the ray z(t-2) shoots: the walk must shoot it.
-  if (equiangular_) cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, options_.maxLength);
   if (options_.isolate && options_.isolate->kind == TechniqueKind::Merge) {
     cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, options_.isolate->t);
     lightVerticesNeeded_ = std::max(lightVerticesNeeded_, options_.isolate->s);
@@ -502,6 +500,8 @@ void BidirTracer::evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, Walk
     // E's path: the light sample, the camera prefix z(0) .. z(t-2), then x (prefix holds the
     // vertices before z(t-2) from the previous t already: one copy per t).
     prefix[static_cast<size_t>(t - 2)] = camera[t - 2];
+    // E(1, t) follows C(1, t)'s switch (the walk shot the ray z(t-2) for it).
+    if (!options_.techniques.contains(1, t)) continue;
     Pcg32 rng = equiangularStream(connectionKey, t);
     PathVertex& x = prefix[static_cast<size_t>(t - 1)];
     if (!formEquiangularConnection(scene_, camera, t, rng, x, c, counters)) continue;

@@ -271,10 +271,14 @@ bool UsableTechniques::operator()(int sp) const { return enabledAndPossible(sp) 
 // E joins x0 and x1 as C(1, n-1) does.
 bool UsableTechniques::equiangular() const { return equiangularPossible() && !shortConnection(1); }
 
+bool UsableTechniques::equiangularPossible() const {
+  return medium_ != MediumSampling::Distance && d_.equiangular > 0.0 && techniques_.contains(1, d_.n - 1);
+}
+
 int techniquesEnabledOfLength(const TechniqueSet& techniques, int k, MediumSampling mediumSampling) {
   int count = 0;
   for (int s = 0; s <= k; ++s) count += techniques.contains(s, k + 1 - s) ? 1 : 0;
-  if (mediumSampling != MediumSampling::Distance && k >= 2) ++count;
+  if (mediumSampling != MediumSampling::Distance && k >= 2 && techniques.contains(1, k)) ++count;
   return count;
 }
 
@@ -291,7 +295,8 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
     // Veach 1997 sec. 9.1 (naive combination): 1 / n_k for every enabled technique of length
     // k = n - 1, whether or not the others can produce this path; no short-connection exclusion
     // (the weight does not look at the path). Zero where (s, t) itself cannot form the path.
-    if (ofEquiangular ? !(options.mediumSampling != MediumSampling::Distance && d.equiangular > 0.0)
+    if (ofEquiangular ? !(options.mediumSampling != MediumSampling::Distance && d.equiangular > 0.0 &&
+                          techniques.contains(1, n - 1))
                       : !techniques.contains(s, n - s) || !techniquePossible(d, s))
       return 0.0;
     return 1.0 / static_cast<double>(techniquesEnabledOfLength(techniques, n - 1, options.mediumSampling));

@@ -212,8 +212,9 @@ void techniqueDensityRatios(const Scene& scene, const Camera& camera, const MisP
 // longer (or no) connection edge remains (MisOptions::minConnection). The set depends on the
 // path alone, so the weights over it still sum to one and the estimate stays unbiased.
 // With the equiangular family (mediumSampling not Distance) E(1, n-1) is one of them where it can
-// sample the path, its connection edge that of C(1, n-1); under MediumSampling::Equiangular
-// C(1, n-1) is not, on those paths.
+// sample the path and C(1, n-1) is enabled (E follows that switch: it is not in the TechniqueSet
+// yet), its connection edge that of C(1, n-1); under MediumSampling::Equiangular C(1, n-1) is
+// not, on those paths.
 class UsableTechniques {
  public:
   UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance,
@@ -226,13 +227,13 @@ class UsableTechniques {
   const TechniqueSet& techniques_;
   MediumSampling medium_;
   float minDistance2_ = 0.f;  // 0 when nothing is excluded for this path
-  bool equiangularPossible() const { return medium_ != MediumSampling::Distance && d_.equiangular > 0.0; }
+  bool equiangularPossible() const;
   bool enabledAndPossible(int sPrime) const;
   bool shortConnection(int sPrime) const;
 };
 
 // n_k: the enabled techniques of length k, which MisHeuristic::Off weighs 1 / n_k each; with the
-// equiangular family, E(1, k) counts at every k >= 2.
+// equiangular family, E(1, k) counts at every k >= 2 where C(1, k) is enabled.
 int techniquesEnabledOfLength(const TechniqueSet& techniques, int k, MediumSampling mediumSampling = MediumSampling::Distance);
 
 // MisOptions::minConnection in scene units.

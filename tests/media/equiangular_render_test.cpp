@@ -49,7 +49,13 @@ TEST(EquiangularRender, FogLampIsTheSameImageUnderEveryMediumSamplingPtAndBpt) {
       bptWith("bpt subset mis", MediumSampling::Mis, MisHeuristic::Balance, true, seed + 5, 512),
       bptWith("bpt distance", MediumSampling::Distance, MisHeuristic::Balance, false, seed + 6, 512),
       bptWith("bpt mis", MediumSampling::Mis, MisHeuristic::Balance, false, seed + 7, 512),
-      bptWith("bpt equiangular", MediumSampling::Equiangular, MisHeuristic::Power, false, seed + 8, 512)};
+      bptWith("bpt equiangular", MediumSampling::Equiangular, MisHeuristic::Power, false, seed + 8, 512),
+      // E(1, k) follows C(1, k)'s switch: here only E(1, 2) runs, and no weight counts E(1, 3) or E(1, 4).
+      [&] {
+        test::EstimatorSpec e = bptWith("bpt some mis", MediumSampling::Mis, MisHeuristic::Balance, false, seed + 9, 512);
+        e.settings.techniques = TechniqueSet::parse("s=0;s=2;s=3;t=1;1,2");
+        return e;
+      }()};
   const test::PixelLabels grid = test::gridLabels(base.width, base.height, 3, 3);
   const auto run = test::runAgreement(scene, estimators, {grid},
                                       {{"pt equiangular", "pt distance"},
@@ -61,7 +67,8 @@ TEST(EquiangularRender, FogLampIsTheSameImageUnderEveryMediumSamplingPtAndBpt) {
                                        {"bpt", "bpt subset mis"},
                                        {"bpt mis", "bpt distance"},
                                        {"bpt equiangular", "bpt distance"},
-                                       {"bpt equiangular", "bpt mis"}},
+                                       {"bpt equiangular", "bpt mis"},
+                                       {"bpt some mis", "bpt distance"}},
                                       test::kFamilyAlpha);
   test::report(run, "fog lamp: medium sampling");
   test::expectAgreement(run, "fog lamp: medium sampling");
