@@ -135,6 +135,18 @@ TEST(EstimatorState, DescriptionNamesTheEstimator) {
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques s=0;k=2, MIS power (beta 2), BIAS INJECTED: (1,2) x 1.05");
 }
 
+// bpt's equiangular techniques (issue 35): the two lanes of the fog preset say which is which.
+TEST(EstimatorState, DescriptionNamesTheEquiangularTechniques) {
+  RenderSettings s;
+  s.integrator = IntegratorKind::Bpt;
+  s.maxLength = 5;
+  EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS balance");
+  s.mediumSampling = MediumSampling::Mis;
+  EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS balance, equiangular E(1,k) beside C(1,k)");
+  s.mediumSampling = MediumSampling::Equiangular;
+  EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS balance, equiangular E(1,k) in place of C(1,k)");
+}
+
 // With merges the line names the radius, its schedule and where the camera subpath merges, so a
 // screenshot of a ppm render says it is one (the integrator's radio says bpt).
 TEST(EstimatorState, DescriptionNamesTheMergeRadiusAndSite) {
