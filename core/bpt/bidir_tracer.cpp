@@ -123,7 +123,7 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
   // The image-only route's preconditions that settings decide: the partial sums, no media, and nothing that
   // changes a result's weight or contribution (isolation, the MIS check, an injected bias).
   imageOnlyPath_ = misEvaluation_ == MisEvaluation::PartialSums && !merges_ && !scene.hasMedia() && !options_.checkMis &&
-                      !options_.isolate && !options_.injectBias;
+                      !options_.isolate && !options_.injectBias && !equiangular_;  // its sums know no E(1, k)
   cameraMedium_ = scene.mediumAt(camera.position());
   // The walks need t camera vertices and s light vertices for technique (s, t), except that s = 1
   // with t >= 2 samples its light vertex afresh (next-event estimation).
@@ -484,6 +484,8 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Rng& cameraRng, Rng& lightRng
         evaluate<false>(timed, s, t, use, pRaster, connectionKey, walks, sink, counters);
       }
     }
+  // An isolated technique is the image alone (E is not one yet: its share is missing there, as any
+  // other technique's).
   if (equiangular_ && !options_.isolate) evaluateEquiangular(pRaster, connectionKey, walks, sink, counters);
   if (mergePass_) evaluateMerges(timed, nt, pRaster, pyramidLength, walks, sink, counters);
 }

@@ -54,7 +54,7 @@ std::string quotedList(const std::vector<std::string>& names) {
 }  // namespace
 
 MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int maxLength, bool pinhole,
-                      bool orthographic) {
+                      bool orthographic, MediumSampling mediumSampling) {
   MisOffBias bias;
   std::vector<bool> biased(static_cast<size_t>(std::max(maxLength, 0) + 1), false);
   auto note = [&](const std::vector<int>& lengths, const std::string& why) {
@@ -111,6 +111,15 @@ MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int ma
     for (int k = 1; k <= maxLength; ++k)
       if (splits(techniques, k, {k})) lengths.push_back(k);
     note(lengths, "t = 1 cannot connect to the orthographic camera (a delta direction)");
+  }
+
+  // bpt's equiangular techniques (issue 35): E(1, k) counts in n_k wherever C(1, k) is enabled but
+  // samples only the paths whose vertex next to the light lies in a homogeneous scattering medium.
+  if (mediumSampling != MediumSampling::Distance) {
+    std::vector<int> lengths;
+    for (int k = 2; k <= maxLength; ++k)
+      if (techniques.contains(1, k)) lengths.push_back(k);
+    note(lengths, "E(1,k) samples only paths whose vertex next to the light is in a homogeneous scattering medium");
   }
 
   for (int k = 1; k <= maxLength; ++k)

@@ -61,6 +61,23 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
     }
     out.push_back(x);
   }
+  // E(1, n-1) where it is on and can sample the path: p_E = p_C(2) d.equiangular.
+  if (!merges && options.mediumSampling != MediumSampling::Distance && d.equiangular > 0.0) {
+    TechniqueOnPath x;
+    x.s = 1;
+    x.t = d.n - 1;
+    x.equiangular = true;
+    x.possible = true;
+    x.enabled = techniques.contains(1, d.n - 1);
+    x.connectionEdge = 0;
+    x.counted = usable.equiangular();
+    x.pdfA = connectionDensity(2) * d.equiangular;
+    x.balance = weightFromDensities(withCounts, 1, techniques, balance, lightTracingRatio, minDistance, true);
+    x.power = weightFromDensities(withCounts, 1, techniques, power, lightTracingRatio, minDistance, true);
+    x.uniform = weightFromDensities(withCounts, 1, techniques, uniform, lightTracingRatio, minDistance, true);
+    x.varianceAware = weightFromDensities(withFactors, 1, techniques, varianceAware, lightTracingRatio, minDistance, true);
+    out.push_back(x);
+  }
   if (!merges) return out;
   // M(s', n + 1 - s'), s' = 2 .. n - 1: the connection C(s')'s density times the acceptance
   // probability pi r^2 pFromCamera(x_{s'-1}) (Georgiev et al. 2012 eq. 10; a zero camera-side

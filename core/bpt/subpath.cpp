@@ -185,6 +185,7 @@ int generateCameraSubpath(const Scene& scene, const Camera& camera, Vec2 pRaster
                           const WalkOptions& options, CameraSubpath& path, Counters& counters) {
   path.setCapacity(options.maxVertices);
   path.count = 0;
+  path.rayCount = 0;  // no ray recorded until the walk shoots one (the walks reuse their buffers)
   if (options.maxVertices < 1) return 0;
   const Ray ray = camera.generateRay(pRaster, uLens);
   const CameraPdf pdf = camera.pdfWe(ray);

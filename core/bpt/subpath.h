@@ -14,11 +14,6 @@
 
 namespace pathlab {
 
-// A subpath in a buffer whose capacity is set once (per thread), so that generating a sample
-// never allocates. Vertex 0 is the camera (CameraSubpath) or the point on the light (LightSubpath).
-// The BSDF of every surface vertex is kept beside it (a medium vertex's phase function is its
-// medium's, looked up): the connections and the walk evaluate it
-// again, and building it (material and texture lookups, frame) is a large part of a sample's cost.
 // The ray a camera walk shot from vertex i, as it left it (WalkOptions::recordRays): what the
 // equiangular technique E(1, i + 2) needs to place its vertex on that ray instead of where
 // distance sampling put z(i+1) (core/bpt/equiangular_technique.h). Recorded before the step, so
@@ -32,6 +27,11 @@ struct WalkRay {
   int medium = -1;      // the medium it starts in
 };
 
+// A subpath in a buffer whose capacity is set once (per thread), so that generating a sample
+// never allocates. Vertex 0 is the camera (CameraSubpath) or the point on the light (LightSubpath).
+// The BSDF of every surface vertex is kept beside it (a medium vertex's phase function is its
+// medium's, looked up): the connections and the walk evaluate it
+// again, and building it (material and texture lookups, frame) is a large part of a sample's cost.
 struct Subpath {
   std::vector<PathVertex> vertices;
   std::vector<Bsdf> bsdfs;  // bsdfs[i] is valid when vertices[i] is a surface vertex

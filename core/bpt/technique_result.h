@@ -41,6 +41,10 @@ struct TechniqueOnPath {
   // where the path lands, and the weight with every technique's factor (the balance weight when
   // no factors were given: all 1).
   double factor = 1.0, varianceAware = 0.0;
+  // The equiangular technique E(1, t) (core/bpt/equiangular_technique.h), listed after the
+  // connections where it is on (bpt --medium-sampling mis|equiangular) and can sample the path:
+  // not a technique of the TechniqueSet yet, so s, t are those of the C(1, t) it follows.
+  bool equiangular = false;
 };
 
 // The full path a technique formed, light end first (x_0 on the light ... x_{k} at the camera), as

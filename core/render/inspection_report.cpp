@@ -44,7 +44,7 @@ void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>
                      "balance", "power", "uniform",
                      varianceAware ? fmt::format(" {:>9} {:>9}", "factor", "var-aware") : std::string(), "connects");
   for (const TechniqueOnPath& x : every) {
-    const std::string name = techniqueName(x.kind, x.s, x.t);
+    const std::string name = x.equiangular ? fmt::format("E({},{}) equiangular", x.s, x.t) : techniqueName(x.kind, x.s, x.t);
     const bool merge = x.kind == TechniqueKind::Merge;
     const std::string edge = merge                   ? fmt::format("merges at x{}", x.mergedVertex)
                              : x.connectionEdge < 0 ? std::string("nothing: hits the emitter")
@@ -243,7 +243,7 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
     nlohmann::json densities = nlohmann::json::array();
     if (i < trace.onPath.size())
       for (const TechniqueOnPath& x : trace.onPath[i])
-        densities.push_back({{"kind", kindName(x.kind)},
+        densities.push_back({{"kind", x.equiangular ? "equiangular" : kindName(x.kind)},
                              {"s", x.s},
                              {"t", x.t},
                              {"pdfA", x.pdfA},

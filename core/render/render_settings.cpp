@@ -2,6 +2,8 @@
 // every front end runs before any work.
 #include "core/render/render_settings.h"
 
+#include "core/bpt/equiangular_technique.h"
+
 #include "core/bpt/merge_pass.h"
 #include "core/bpt/mis_off.h"
 #include "core/render/variance_aware_regions.h"
@@ -112,7 +114,9 @@ std::string misOffWarning(const Scene& scene, const RenderSettings& s) {
   if (s.integrator == IntegratorKind::Pt || s.mis.heuristic != MisHeuristic::Off) return "";
   const bool orthographic = s.camera.value_or(scene.cameraDesc()).orthographic.has_value();
   const bool pinhole = s.lens.apertureRadius == 0.f && !orthographic;
-  return misOffWarning(misOffBias(scene, enabledTechniques(s), s.maxLength, pinhole, orthographic));
+  const bool equiangular = s.integrator == IntegratorKind::Bpt && hasEquiangularMedium(scene);
+  return misOffWarning(misOffBias(scene, enabledTechniques(s), s.maxLength, pinhole, orthographic,
+                                  equiangular ? mediumSampling(s) : MediumSampling::Distance));
 }
 
 std::string mediumSamplingWarning(const Scene& scene, const RenderSettings& s) {
@@ -129,7 +133,7 @@ std::string mediumSamplingWarning(const Scene& scene, const RenderSettings& s) {
                        mediumSamplingName(*s.mediumSampling));
   // Only heterogeneous media scatter: equiangular sampling declines them (volume_grid.h).
   return fmt::format("--medium-sampling {} changes nothing here: every scattering medium is a density grid, "
-                     "where the path tracer samples distances only",
+                     "where only distances are sampled",
                      mediumSamplingName(*s.mediumSampling));
 }
 

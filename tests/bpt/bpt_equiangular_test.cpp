@@ -59,5 +59,23 @@ TEST(BptEquiangular, UnweightedEstimateOfSingleScatteringIsDistanceSamplings) {
   }
 }
 
+// A camera walk that ends before shooting a ray (a film position the camera gives no importance)
+// leaves no recorded ray behind from the buffer's previous walk: E would read it.
+TEST(BptEquiangular, AWalkWithoutARayRecordsNone) {
+  const Scene scene = fogLamp();
+  const Camera camera(scene.cameraDesc(), 64, 48);
+  Counters counters;
+  Pcg32 rng(3, 4);
+  CameraSubpath cp;
+  const WalkOptions walk{4, false, scene.mediumAt(camera.position()), true};
+  generateCameraSubpath(scene, camera, Vec2(30.5f, 20.5f), Vec2(0.5f), rng, walk, cp, counters);
+  ASSERT_GE(cp.rayCount, 1);
+  EXPECT_EQ(generateCameraSubpath(scene, camera, Vec2(-40.f, -40.f), Vec2(0.5f), rng, walk, cp, counters), 1);
+  EXPECT_EQ(cp.rayCount, 0);
+  PathVertex x;
+  Connection c;
+  EXPECT_FALSE(formEquiangularConnection(scene, cp, 2, rng, x, c, counters));
+}
+
 }  // namespace
 }  // namespace pathlab

@@ -106,6 +106,18 @@ TEST(MisOff, BiasReportNamesTheLengthsAndTheReasons) {
     // s = 0 alone: nothing to split.
     EXPECT_FALSE(misOffBias(scene, TechniqueSet::withS(0), 5, true).biased());
   }
+  // bpt's equiangular techniques (issue 35): E(1, k) counts wherever C(1, k) is enabled, k >= 2,
+  // and samples only paths through a medium. The area-lit furnace is otherwise unbiased.
+  {
+    Scene scene(test::furnace(0.5f, 1.f));
+    const MisOffBias b = misOffBias(scene, TechniqueSet::parse("s=0;s=2;1,3;1,4"), 5, true, false, MediumSampling::Mis);
+    EXPECT_EQ(b.lengths, (std::vector<int>{3, 4}));
+    EXPECT_NE(misOffWarning(b).find("E(1,k) samples only paths whose vertex next to the light is in a homogeneous "
+                                    "scattering medium: lengths 3-4"),
+              std::string::npos)
+        << misOffWarning(b);
+    EXPECT_FALSE(misOffBias(scene, TechniqueSet::all(), 5, true, false, MediumSampling::Distance).biased());
+  }
 }
 
 // The predicted bias of a point light: E[off] = sum_k k / (k + 1) I_k (see the top of the file).

@@ -184,7 +184,7 @@ void drawEveryTechnique(PathInspectorState& state) {
       const float barWidth = ImGui::GetContentRegionAvail().x * 0.3f;
       for (const TechniqueOnPath& x : every) {
         const bool merge = x.kind == TechniqueKind::Merge;
-        const std::string name = fmt::format("{}({},{})", merge ? "M" : "", x.s, x.t);
+        const std::string name = fmt::format("{}({},{})", merge ? "M" : x.equiangular ? "E" : "", x.s, x.t);
         ImGui::TextUnformatted(name.c_str());
         ImGui::SameLine(ImGui::GetFontSize() * 4.5f);
         if (!x.possible) {

@@ -157,11 +157,16 @@ void drawPyramidWindow(PyramidView& view, const PyramidImages& images, Estimator
     ImGui::End();
     return;
   }
+  // bpt's equiangular techniques E(1, k) take a share of the weights but have no thumbnail yet.
+  const bool equiangular = estimator.settings.integrator == IntegratorKind::Bpt &&
+                           mediumSampling(estimator.settings) != MediumSampling::Distance;
+  const char* sharesSum = equiangular ? "the shares sum to the image less E(1,k)'s, not shown yet"
+                                      : "the shares sum to the image";
   if (!view.both) {
     ImGui::Checkbox("unweighted", &view.unweighted);
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("weighted: each technique's MIS share (the shares sum to the image)\n"
-                        "unweighted: each technique's own estimate of its whole length");
+      ImGui::SetTooltip("weighted: each technique's MIS share (%s)\n"
+                        "unweighted: each technique's own estimate of its whole length", sharesSum);
   }
   ImGui::Checkbox("own exposure each", &view.ownExposure);
   if (ImGui::IsItemHovered())
@@ -173,7 +178,7 @@ void drawPyramidWindow(PyramidView& view, const PyramidImages& images, Estimator
                                                                      : "rows: length k; columns: s; click to isolate");
   ImGui::PopStyleColor();
   if (view.both) {
-    ImGui::TextWrapped("weighted: MIS shares, they sum to the image");
+    ImGui::TextWrapped("weighted: MIS shares, %s", sharesSum);
     drawPyramid(view, images, estimator, false, uiScale);
     ImGui::TextWrapped("unweighted: each technique alone");
     drawPyramid(view, images, estimator, true, uiScale);
