@@ -52,6 +52,8 @@ std::string seriesLabel(const RenderSettings& s) {
   }
   out += fmt::format(" L{}", s.maxLength);
   if (!s.russianRoulette) out += " no-RR";
+  // Set explicitly only: the A | B lanes of the fog presets differ in it (issue 35).
+  if (s.mediumSampling) out += std::string(" media=") + mediumSamplingName(*s.mediumSampling);
   return out;
 }
 

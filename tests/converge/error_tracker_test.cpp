@@ -233,6 +233,8 @@ TEST(ErrorTracker, MetricsAndTheirMonteCarloRates) {
   s.integrator = IntegratorKind::Pt;
   s.russianRoulette = false;
   EXPECT_EQ(seriesLabel(s), "pt L6 no-RR");
+  s.mediumSampling = MediumSampling::Distance;
+  EXPECT_EQ(seriesLabel(s), "pt L6 no-RR media=distance");
 }
 
 // The observer of a real progressive renderer: points arrive from the render thread, error falls
