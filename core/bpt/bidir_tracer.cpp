@@ -269,7 +269,11 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
   // are blocked. Either order gives the sink the same results.
   const MisPath path{walks.light.data(), s, walks.camera.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
   const bool shortConnection = s >= 1 && c.edgeLength2 < minConnectionDistance_ * minConnectionDistance_;
-  const bool visibilityFirst = !shortConnection && (!kRecords || (misEvaluation_ == MisEvaluation::PartialSums &&
+  // --medium-sampling equiangular: E(1, t) takes over most of C(1, t)'s paths through a medium
+  // vertex, where C(1, t)'s weight is zero: weigh before tracing its shadow ray.
+  const bool takenOverByE = equiangular_ && s == 1 && options_.mis.mediumSampling == MediumSampling::Equiangular &&
+                            walks.camera[t - 1].type == VertexType::Medium;
+  const bool visibilityFirst = !shortConnection && !takenOverByE && (!kRecords || (misEvaluation_ == MisEvaluation::PartialSums &&
                                                                   use.inImage && !options_.checkMis &&
                                                                   !demand.onPath && !demand.everyContribution));
   // Whether the weighed result is used; false leaves it zero (and traces no shadow ray).
