@@ -38,6 +38,26 @@ Spectrum transmittance(const Scene& scene, const ShadowRay& r) {
                       : scene.transmittance(r.a, r.na, r.ea, r.b, r.nb, r.eb, r.medium);
 }
 
+void setLightSampleVertex(const Scene& scene, int li, const LightLiSample& ls, float pmfNee, float pmfPower,
+                          float pmfChosen, PathVertex& v) {
+  const Light& light = scene.lights()[static_cast<size_t>(li)];
+  v = PathVertex{};
+  v.type = VertexType::Light;
+  v.p = ls.pLight;
+  v.pError = ls.pError;
+  v.uv = ls.uv;
+  v.light = li;
+  v.isDeltaPosition = light.isDeltaPosition();
+  v.isDeltaDirection = light.isDeltaDirection();
+  v.isInfinite = light.isInfinite();
+  v.media = scene.lightMedia(li);
+  v.ng = light.type() == LightType::Area ? ls.nLight : (v.isInfinite ? -ls.wi : Vec3(0.f));
+  const EmissionPdf e = light.pdfLe(v.p, v.ng, -ls.wi);
+  v.pdfNeeA = v.isInfinite ? pmfNee * e.pdfDirW : pmfNee * e.pdfPosA;
+  v.pdfFwdA = v.isInfinite ? pmfPower * e.pdfDirW : pmfPower * e.pdfPosA;
+  v.beta = ls.Li / (pmfChosen * ls.pdfW);
+}
+
 template <class Rng>
 bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s, const Subpath& cameraPath,
                     int t, Rng& rng, Connection& c) {
@@ -135,23 +155,8 @@ bool formConnection(const Scene& scene, const Camera& camera, const Subpath& lig
       c.edgeLength2 = glm::dot(pt.p - ls.pLight, pt.p - ls.pLight);
     }
     c.shadowRay.medium = mediumToward(pt, ls.wi);
-    PathVertex& v = c.sampled;
-    v = PathVertex{};
-    v.type = VertexType::Light;
-    v.p = ls.pLight;
-    v.pError = ls.pError;
-    v.uv = ls.uv;
-    v.light = li;
-    v.isDeltaPosition = light.isDeltaPosition();
-    v.isDeltaDirection = light.isDeltaDirection();
-    v.isInfinite = light.isInfinite();
-    v.media = scene.lightMedia(li);
-    v.ng = light.type() == LightType::Area ? ls.nLight : (v.isInfinite ? -ls.wi : Vec3(0.f));
-    const EmissionPdf e = light.pdfLe(v.p, v.ng, -ls.wi);
-    v.pdfNeeA = v.isInfinite ? pmf * e.pdfDirW : pmf * e.pdfPosA;
     const float pmfPower = lights.neeByContext() ? lights.pmf(li) : pmf;
-    v.pdfFwdA = v.isInfinite ? pmfPower * e.pdfDirW : pmfPower * e.pdfPosA;
-    v.beta = ls.Li / (pmf * ls.pdfW);
+    setLightSampleVertex(scene, li, ls, pmf, pmfPower, pmf, c.sampled);
     c.hasSampled = true;
     return true;
   }

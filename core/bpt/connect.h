@@ -127,6 +127,13 @@ inline BsdfEval phaseEval(const Scene& scene, const PathVertex& v, const Vec3& w
 Connection connect(const Scene& scene, const Camera& camera, const Subpath& lightPath, int s,
                    const Subpath& cameraPath, int t, Pcg32& rng, Counters& counters);
 
+// The light vertex of a fresh light sample ls of light li (next-event estimation's, s = 1; the
+// equiangular technique's): its densities as a light subpath's origin chosen by power (pdfFwdA,
+// pmfPower) and as next-event estimation's choice for the vertex it connects to (pdfNeeA,
+// pmfNee), its throughput Li / (pmfChosen pdfW) with the pmf the light was in fact chosen with.
+void setLightSampleVertex(const Scene& scene, int li, const LightLiSample& ls, float pmfNee, float pmfPower,
+                          float pmfChosen, PathVertex& v);
+
 // Emission of light-subpath vertex x0 toward direction `w`, divided by the density with which x0
 // was chosen (light pmf x position pdf): Le / (pmf pdfPosA) or I / pmf; zero for a direction a
 // directional light does not emit in.

@@ -120,22 +120,10 @@ bool formEquiangularConnection(const Scene& scene, const Subpath& cameraPath, in
   c.shadowRay.between(p, Vec3(0.f), Vec3(0.f), ls.pLight, ls.nLight, ls.pError);
   c.shadowRay.medium = m;
   c.edgeLength2 = glm::dot(p - ls.pLight, p - ls.pLight);
-  PathVertex& v = c.sampled;
-  v = PathVertex{};
-  v.type = VertexType::Light;
-  v.p = ls.pLight;
-  v.pError = ls.pError;
-  v.uv = ls.uv;
-  v.light = li;
-  v.isDeltaPosition = light.isDeltaPosition();
-  v.media = scene.lightMedia(li);
-  v.ng = light.type() == LightType::Area ? ls.nLight : Vec3(0.f);
-  const EmissionPdf e = light.pdfLe(v.p, v.ng, -ls.wi);
   // As formConnection's light sample: the origin's density chosen by power (the techniques
   // s' >= 2) and by next-event estimation for x (C(1, t)); the weights form E's own from these.
-  v.pdfFwdA = lights.pmf(li) * e.pdfPosA;
-  v.pdfNeeA = lights.pmfNee(LightSampleContext{p, Vec3(0.f)}, li) * e.pdfPosA;
-  v.beta = ls.Li / (pmf * ls.pdfW);
+  setLightSampleVertex(scene, li, ls, lights.pmfNee(LightSampleContext{p, Vec3(0.f)}, li), lights.pmf(li), pmf,
+                       c.sampled);
   c.hasSampled = true;
   return true;
 }
