@@ -2,6 +2,7 @@
 #include "core/bpt/equiangular_technique.h"
 
 #include "core/media/equiangular.h"
+#include "core/scene/equiangular_choice.h"
 #include "core/media/phase_function.h"
 
 #include <limits>
@@ -59,27 +60,16 @@ bool formEquiangularConnection(const Scene& scene, const Subpath& cameraPath, in
   if (!equiangularMedium(scene, m)) return false;
   const HomogeneousMedium& medium = scene.medium(m);
 
-  // The light and its point, chosen with o as the receiver: x does not exist yet. An area light's
-  // points are uniform in area whoever the receiver, so the point seen from x below is the same.
+  // The light and its point, chosen with o as the receiver (x does not exist yet), then x on the
+  // unbounded ray from o (equiangularFactor's density), past its first surface only where the
+  // medium goes on (an index-matched boundary). A light at infinity: C(1, t) keeps those paths.
   const LightSet& lights = scene.lights();
-  const float uLight = rng.next1D();
-  const Vec2 uPos = rng.next2D();
-  const float uT = rng.next1D();
-  float pmf = 0.f;
-  const int li = lights.sampleNee(LightSampleContext{o.p, Vec3(0.f)}, uLight, &pmf);
-  if (li < 0 || !(pmf > 0.f)) return false;
-  const Light& light = lights[static_cast<size_t>(li)];
-  if (light.isInfinite()) return false;  // no point to aim at: C(1, t) keeps those paths
-  const LightLiSample fromOrigin = light.sampleLi(o.p, uPos);
-  if (!(fromOrigin.dist > 0.f)) return false;
-
-  // x on the unbounded ray from o (equiangularFactor's density), past its first surface only
-  // where the medium goes on (an index-matched boundary).
-  const std::optional<EquiangularSegment> eq = equiangularSegment(o.p, ray.d, kUnbounded, fromOrigin.pLight);
-  if (!eq) return false;
-  const float tx = sampleEquiangular(*eq, uT);
-  const float pdfT = equiangularPdf(*eq, tx);
+  const std::optional<EquiangularChoice> choice = chooseEquiangularVertex(scene, o.p, ray.d, kUnbounded, rng);
+  if (!choice) return false;
+  const int li = choice->light;
+  const float pmf = choice->pmf, tx = choice->t, pdfT = choice->pdfT;
   if (!(tx > 0.f && pdfT > 0.f) || !std::isfinite(tx)) return false;
+  const Light& light = lights[static_cast<size_t>(li)];
   const Vec3 p = o.p + tx * ray.d;
   Spectrum T;
   if (tx <= ray.firstSegment) {
@@ -107,7 +97,7 @@ bool formEquiangularConnection(const Scene& scene, const Subpath& cameraPath, in
   x.areaToPrev = convertDensity(1.f, x, o);
 
   // The connection to the light point, as formConnection's s = 1 with x as pt.
-  const LightLiSample ls = light.sampleLi(p, uPos);
+  const LightLiSample ls = light.sampleLi(p, choice->uPos);  // the same point, seen from x
   if (!(ls.pdfW > 0.f) || isBlack(ls.Li)) return false;
   const BsdfEval ev = phaseEval(scene, x, ls.wi);
   c.pdfs.atCamera = true;

@@ -4,6 +4,7 @@
 // ray carries the transmittance of the media it crosses.
 #include "core/pt/path_tracer.h"
 
+#include "core/scene/equiangular_choice.h"
 #include "core/scene/media_step.h"
 #include "core/media/equiangular.h"
 #include "core/media/phase_function.h"
@@ -122,24 +123,15 @@ Spectrum PathTracer::sampleEquiangularDirect(const Ray& ray, int medium, float t
                                              Counters& counters) const {
   const HomogeneousMedium& m = scene_.medium(medium);
   const LightSet& lights = scene_.lights();
-  const float uLight = rng.next1D();
-  const Vec2 uPos = rng.next2D();
-  const float uT = rng.next1D();
-  float pmf = 0.f;
-  const int li = lights.sampleNee(LightSampleContext{ray.o, Vec3(0.f)}, uLight, &pmf);
-  if (li < 0 || !(pmf > 0.f)) return Spectrum(0.f);
-  const Light& light = lights[static_cast<size_t>(li)];
-  if (light.isInfinite()) return Spectrum(0.f);  // no point to aim at: A and C take those paths
-  // The light point: uniform in area (or the punctual light's position) whoever the receiver.
-  const LightLiSample fromOrigin = light.sampleLi(ray.o, uPos);
-  if (!(fromOrigin.dist > 0.f)) return Spectrum(0.f);
-  const std::optional<EquiangularSegment> eq = equiangularSegment(ray.o, ray.d, tMax, fromOrigin.pLight);
-  if (!eq) return Spectrum(0.f);
-  const float t = sampleEquiangular(*eq, uT);
-  const float pdfT = equiangularPdf(*eq, t), pdfDistance = distancePdf(m, t);
+  // A light at infinity has no point to aim at: A and C take those paths.
+  const std::optional<EquiangularChoice> choice = chooseEquiangularVertex(scene_, ray.o, ray.d, tMax, rng);
+  if (!choice) return Spectrum(0.f);
+  const int li = choice->light;
+  const float pmf = choice->pmf, t = choice->t, pdfT = choice->pdfT, pdfDistance = distancePdf(m, t);
   if (!(pdfT > 0.f && pdfDistance > 0.f)) return Spectrum(0.f);
   const Vec3 x = ray.o + t * ray.d;
-  const LightChoice c{&light, li, pmf, light.sampleLi(x, uPos)};  // the same point, seen from x
+  const Light& light = lights[static_cast<size_t>(li)];
+  const LightChoice c{&light, li, pmf, light.sampleLi(x, choice->uPos)};  // the same point, seen from x
   const LightLiSample& ls = c.ls;
   if (!(ls.pdfW > 0.f) || isBlack(ls.Li)) return Spectrum(0.f);
   const float phase = phaseHG(-ray.d, ls.wi, m.g);
