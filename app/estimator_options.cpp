@@ -85,8 +85,8 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "in every MIS weight)")
       ->check(CLI::Range(kMinLightPaths, 1.f));
   cmd->add_option("--techniques", o.techniques,
-                  "Enabled techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all (connections), MS,T | m=K | "
-                  "m=all (merges; 'all;m=all' is vertex connection and merging)");
+                  "Enabled techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all (connections and the equiangular "
+                  "E(1,t) in fog), E1,T, MS,T | m=K | m=all (merges; 'all;m=all' is vertex connection and merging)");
   cmd->add_option("--radius", s.mergeRadius,
                   "Merging radius of the first pass, a fraction of the scene's bounding radius (default: 0.003 at 512 x 512 "
                   "pixels, times 512 / sqrt(width x height) at other sizes)")
@@ -111,7 +111,7 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
          "(equiangular); distance is its default")
       ->type_name("distance|equiangular|mis");
   auto* isolate = cmd->add_option("--isolate", o.isolate,
-                                  "Show technique S,T (or merge MS,T) alone: its MIS-weighted share (or with --unweighted its own estimate)");
+                                  "Show technique S,T (or merge MS,T, equiangular E1,T) alone: its MIS-weighted share (or with --unweighted its own estimate)");
   cmd->add_flag("--unweighted", o.unweighted,
                 "With --isolate: the technique's unweighted estimate of every path of its length it can sample")
       ->needs(isolate);

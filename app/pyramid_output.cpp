@@ -47,10 +47,13 @@ Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap, floa
   const int w = first->width, h = first->height;
   // Columns: the slots of the longest row, k + 1 connections and, when any merge tile is there,
   // k - 1 merges after them.
-  bool merges = false;
+  // Then, when any E(1, k) tile is there, one column of them.
+  bool merges = false, equiangular = false;
   for (const Technique x : techniquesUpTo(length, TechniqueFamilies::Merges))
     merges = merges || (x.index() < tiles.size() && tiles[x.index()].width > 0);
-  const int columns = merges ? 2 * length : length + 1;
+  for (const Technique x : techniquesUpTo(length, TechniqueFamilies::Equiangular))
+    equiangular = equiangular || (x.index() < tiles.size() && tiles[x.index()].width > 0);
+  const int columns = (merges ? 2 * length : length + 1) + (equiangular ? 1 : 0);
   Image m;
   m.width = columns * w + (columns + 1) * gap;
   m.height = length * h + (length + 1) * gap;
@@ -58,7 +61,7 @@ Image techniqueMosaic(const std::vector<Image>& tiles, int length, int gap, floa
   for (const Technique tx : techniquesUpTo(length, TechniqueFamilies::All)) {
     if (tx.index() >= tiles.size() || tiles[tx.index()].width <= 0) continue;
     const Image& tile = tiles[tx.index()];
-    const int x0 = gap + tx.slot() * (w + gap), y0 = gap + (tx.length() - 1) * (h + gap);
+    const int x0 = gap + mosaicColumn(tx, length, merges) * (w + gap), y0 = gap + (tx.length() - 1) * (h + gap);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const Vec3 v = tile.at(x, y);
@@ -83,7 +86,7 @@ void writePyramid(const std::string& output, const RenderSession& session, float
   const std::filesystem::path out(output);
   for (bool unweighted : {false, true}) {
     std::vector<Image> tiles(Technique::countUpTo(length));
-    for (const Technique x : techniquesUpTo(length, pyramidFamilies(session.settings()))) {
+    for (const Technique x : techniquesUpTo(length, session.pyramidFamilies())) {
       tiles[x.index()] = session.techniqueImage(x, unweighted);
       writeImage(techniquePath(out, x, unweighted), tiles[x.index()], exposure);
     }

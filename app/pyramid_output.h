@@ -17,6 +17,13 @@ std::vector<std::string> pyramidPaths(const std::string& output, int length,
 // Techniques up to `length` (at most the session's pyramid length).
 void writePyramid(const std::string& output, const RenderSession& session, float exposure, int length);
 
+// The mosaic column of technique x among lengths 1..length: its slot (connections by s, then the
+// merges when there are any), the equiangular techniques E(1, k) in one column after the longest
+// row's connections.
+inline int mosaicColumn(Technique x, int length, bool merges) {
+  return x.isEquiangular() ? (merges ? 2 * length : length + 1) : x.slot();
+}
+
 // Tiles of one mosaic by Technique::index() (an empty image: no tile), laid out by length (rows)
 // and Technique::slot() (columns), with a gap of `gap` pixels of value `background`.
 // labelValue > 0: each tile carries "(s,t) k=K" in its corner, drawn at that value.

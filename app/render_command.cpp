@@ -14,6 +14,7 @@
 #include "core/metrics/technique_table.h"
 #include "core/render/inspection_report.h"
 #include "core/render/render_session.h"
+#include "core/sampling/technique_label.h"
 #include "core/scene/gltf_loader.h"
 
 #include <fmt/core.h>
@@ -225,6 +226,17 @@ std::string metropolisSummary(const Metropolis& m, const RenderSettings& s) {
   return out;
 }
 
+// The per-technique files of these families (pyramid, technique and variance maps) are new or
+// --force'd.
+void checkTechniqueOutputs(const RenderOptions& o, int pyramidOutput, TechniqueFamilies families) {
+  if (pyramidOutput > 0)
+    for (const std::string& path : pyramidPaths(o.output, pyramidOutput, families)) checkOutput(path, o.force);
+  if (o.techniqueMaps > 0)
+    for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps, families)) checkOutput(path, o.force);
+  if (o.varianceMaps > 0)
+    for (const std::string& path : varianceMapPaths(o.output, o.varianceMaps, families)) checkOutput(path, o.force);
+}
+
 // Everything a render needs before its first pass.
 struct PreparedRender {
   std::unique_ptr<Scene> scene;
@@ -269,20 +281,15 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
     const TechniqueSet techniques = enabledTechniques(settings);
     for (int k : techniques.uncoveredLengths(settings.maxLength))
       log << fmt::format("pathlab: warning: no enabled technique samples paths of length {}\n", k);
-    if (settings.isolate && !settings.isolate->unweighted &&
-        !techniques.contains(settings.isolate->s, settings.isolate->t))
-      log << fmt::format("pathlab: warning: technique ({},{}) is not enabled, so its weighted share is zero\n",
-                         settings.isolate->s, settings.isolate->t);
+    if (settings.isolate && !settings.isolate->unweighted && !techniques.contains(settings.isolate->technique()))
+      log << fmt::format("pathlab: warning: technique {} is not enabled, so its weighted share is zero\n",
+                         techniqueLabel(settings.isolate->technique()));
   }
   if (!o.replay.empty()) p.replay = parseReplay(o.replay, settings);
   if (!p.replay && job.leader()) {
     checkOutput(o.output, o.force);
-    if (p.pyramidOutput > 0)
-      for (const std::string& path : pyramidPaths(o.output, p.pyramidOutput, pyramidFamilies(settings))) checkOutput(path, o.force);
-    if (o.techniqueMaps > 0)
-      for (const std::string& path : techniqueMapPaths(o.output, o.techniqueMaps, pyramidFamilies(settings))) checkOutput(path, o.force);
-    if (o.varianceMaps > 0)
-      for (const std::string& path : varianceMapPaths(o.output, o.varianceMaps, pyramidFamilies(settings))) checkOutput(path, o.force);
+    checkTechniqueOutputs(o, p.pyramidOutput, without(TechniqueFamilies::Connections | enabledTechniques(settings).families(),
+                                                      TechniqueFamilies::Equiangular));
     if (o.chainDensity)
       for (const char* ext : {".exr", ".png"}) checkOutput(besideOutput(o.output, std::string("-chain-density") + ext), o.force);
   }
@@ -293,6 +300,10 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   sizeRenderForScene(o, scene.cameraDesc());
   if (p.replay) p.replay = parseReplay(o.replay, settings);
   printWarnings(log, scene, settings);
+  // The equiangular techniques' outputs once the scene says they are sampled (a medium they can
+  // sample); the others' were checked before loading it.
+  if (!p.replay && job.leader() && covers(pyramidFamilies(settings, scene), TechniqueKind::Equiangular))
+    checkTechniqueOutputs(o, p.pyramidOutput, TechniqueFamilies::Equiangular);
   const double loadSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
   // This rank's share of the passes (Job::passSchedule): all of them for one process. Before the
   // summary line: settings the scene's camera refuses (light tracing through an orthographic

@@ -50,7 +50,8 @@ Image dominantValues(const DominantMap& m) {
     const int x = m.technique[i];
     const Technique tx = x >= 0 ? Technique::fromIndex(static_cast<size_t>(x)) : Technique{x, x};
     img.rgb[3 * i] = static_cast<float>(tx.s);
-    img.rgb[3 * i + 1] = static_cast<float>(x >= 0 && tx.isMerge() ? -tx.t : tx.t);
+    // A merge as (s, -t), s >= 2; an equiangular technique E(1, t) as (1, -t).
+    img.rgb[3 * i + 1] = static_cast<float>(x >= 0 && (tx.isMerge() || tx.isEquiangular()) ? -tx.t : tx.t);
     img.rgb[3 * i + 2] = m.share[i];
   }
   return img;
@@ -67,7 +68,8 @@ Image labelledMosaic(const std::vector<Image>& tiles, int length, TechniqueFamil
   Image m = techniqueMosaic(tiles, length, kGap, 0.12f);
   const int w = tiles.front().width, h = tiles.front().height;
   for (const Technique x : techniquesUpTo(length, families)) {
-    const int x0 = kGap + x.slot() * (w + kGap) + 3, y0 = kGap + (x.length() - 1) * (h + kGap) + 3;
+    const int x0 = kGap + mosaicColumn(x, length, covers(families, TechniqueKind::Merge)) * (w + kGap) + 3,
+              y0 = kGap + (x.length() - 1) * (h + kGap) + 3;
     const std::string label = techniqueLabel(x);
     drawText(m, x0 + 1, y0 + 1, label, Vec3(0.f));
     drawText(m, x0, y0, label, Vec3(1.f));

@@ -136,7 +136,8 @@ Viewer::FrameLayout Viewer::layOut(Vec2i framebufferSize, float framebufferScale
   l.panelWidth = ui_.showUi ? std::min(380.f * scale, io.DisplaySize.x * 0.45f) : 0.f;
   l.pyramidWidth = ui_.showUi && pyramid_.show ? pyramidPanelWidth(pyramid_, estimator_.settings.maxLength,
                                                                    io.DisplaySize.x - l.panelWidth, l.upper, scale, l.aspect,
-                                                                   techniqueImages_.pyramid.hasMerges())
+                                                                   techniqueImages_.pyramid.hasMerges(),
+                                                                   techniqueImages_.pyramid.hasEquiangular())
                                                : 0.f;
   // The room the panels leave; the image is the largest rectangle of its aspect in it, centred
   // (never cropped: the camera's vertical and horizontal field of view both stay whole).
@@ -273,7 +274,8 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
   if (ImGui::CollapsingHeader("Estimator", ImGuiTreeNodeFlags_DefaultOpen))
     drawEstimatorSection(estimator_, grid_, a().refused(), a().snapshot().counters, a().snapshot().check.get(),
                          a().snapshot().mlt.get(),
-                         MergeRadiusNow{&a().snapshot().settings, a().snapshot().samplesPerPixel, scene().bounds().radius});
+                         MergeRadiusNow{&a().snapshot().settings, a().snapshot().samplesPerPixel, scene().bounds().radius},
+                         sampledFamilies(renderSettings(estimator_), scene()));
   if (ImGui::CollapsingHeader("Path inspector and 3D view",
                               inspect_.inspector.on || inspect_.view3d.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawInspectorSection(inspect_.inspector, inspect_.view3d, requests);
@@ -284,7 +286,7 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen))
     drawDisplaySection(display_, run_, pyramid_, a().snapshot().image);
   if (ImGui::CollapsingHeader("Technique maps", maps_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
-    drawTechniqueMapSection(maps_, estimator_.settings.maxLength, pyramidFamilies(estimator_.settings),
+    drawTechniqueMapSection(maps_, estimator_.settings.maxLength, pyramidFamilies(estimator_.settings, scene()),
                             techniqueImages_.maps.texture.empty());
   if (ImGui::CollapsingHeader("Reference and error", convergence_.show ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawReferenceSection(reference_, convergence_, display_, estimator_.settings, a().snapshot().image, requests);

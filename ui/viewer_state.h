@@ -120,6 +120,7 @@ struct PyramidImages {
   const Texture* texture(Technique x, bool unweighted) const;
   // The renderer publishes merges' thumbnails too (its technique set has merges).
   bool hasMerges() const;
+  bool hasEquiangular() const;
 };
 
 // The technique maps' luminances as the renderer published them, and the texture of the map

@@ -18,6 +18,7 @@ namespace pathlab::python {
 
 py::object techniqueKey(Technique x) {
   if (x.isMerge()) return py::make_tuple("M", x.s, x.t);
+  if (x.isEquiangular()) return py::make_tuple("E", x.s, x.t);
   return py::make_tuple(x.s, x.t);
 }
 

@@ -68,20 +68,27 @@ PYBIND11_MODULE(pathlab, m) {
   });
 
   py::class_<TechniqueSet>(m, "TechniqueSet",
-                           "A set of sampling techniques: connections (s,t) and merges M(s,t), as --techniques SPEC")
+                           "A set of sampling techniques: connections (s,t), merges M(s,t) and equiangular "
+                           "techniques E(1,t), as --techniques SPEC")
       .def(py::init([](const std::string& spec) { return TechniqueSet::parse(spec); }), py::arg("spec") = "all",
-           "Parses SPEC: ';'-separated S,T | s=S | t=T | k=K | all | MS,T | m=K | m=all")
+           "Parses SPEC: ';'-separated S,T | s=S | t=T | k=K | all | E1,T | MS,T | m=K | m=all")
       .def(
           "__contains__",
           [](const TechniqueSet& set, const py::object& key) {
             const bool tuple = py::isinstance<py::tuple>(key);
             const size_t n = tuple ? py::len(key) : 0;
-            const bool merge = n == 3 && py::isinstance<py::str>(key[py::int_(0)]) && key[py::int_(0)].cast<std::string>() == "M";
-            if (!(n == 2 || merge)) throw Error("TechniqueSet: a technique is (s, t) or (\"M\", s, t)");
-            const size_t first = merge ? 1 : 0;
+            const std::string family = n == 3 && py::isinstance<py::str>(key[py::int_(0)])
+                                           ? key[py::int_(0)].cast<std::string>()
+                                           : std::string();
+            const bool merge = family == "M", equiangular = family == "E";
+            if (!(n == 2 || merge || equiangular))
+              throw Error("TechniqueSet: a technique is (s, t), (\"M\", s, t) or (\"E\", 1, t)");
+            const size_t first = merge || equiangular ? 1 : 0;
             const int s = static_cast<int>(intArgument(key[py::int_(first)], "TechniqueSet: s", 0, 1 << 20));
             const int t = static_cast<int>(intArgument(key[py::int_(first + 1)], "TechniqueSet: t", 0, 1 << 20));
-            return merge ? set.contains(Technique::merge(s, t)) : set.contains(s, t);
+            return merge         ? set.contains(Technique::merge(s, t))
+                   : equiangular ? set.contains(Technique{s, t, TechniqueKind::Equiangular})
+                                 : set.contains(s, t);
           },
           py::arg("technique"))
       .def("__str__", &TechniqueSet::toString)

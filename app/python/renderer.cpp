@@ -204,7 +204,7 @@ py::dict pyramidOf(const Renderer& r, const py::object& maxLengthArgument) {
                          ? s.pyramidLength
                          : static_cast<int>(intArgument(maxLengthArgument, "pyramid: max_length", 1, s.pyramidLength));
   py::dict out;
-  for (const Technique x : TechniqueRange(1, length, pyramidFamilies(s)))
+  for (const Technique x : TechniqueRange(1, length, session.pyramidFamilies()))
     out[techniqueKey(x)] = py::make_tuple(toArray(session.techniqueImage(x, false)),
                                           toArray(session.techniqueImage(x, true)));
   return out;

@@ -16,11 +16,11 @@ namespace pathlab {
 struct Isolation {
   int s = 0, t = 1;
   bool unweighted = false;
-  TechniqueKind kind = TechniqueKind::Connection;  // Merge: M(s, t)
+  TechniqueKind kind = TechniqueKind::Connection;  // Merge: M(s, t); Equiangular: E(1, t)
   Technique technique() const { return Technique{s, t, kind}; }
   bool operator==(const Isolation&) const = default;
 };
-// "S,T" or "MS,T" (a merge), weighted; throws std::invalid_argument naming the text otherwise. The
+// "S,T", "MS,T" (a merge) or "E1,T" (an equiangular technique), weighted; throws std::invalid_argument naming the text otherwise. The
 // technique's range is the caller's to check (it depends on the maximum length).
 Isolation parseIsolation(const std::string& text);
 

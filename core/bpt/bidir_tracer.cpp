@@ -67,6 +67,12 @@ bool equiangularCanSampleAt(const Scene& scene, const MisPath& path) {
   return vertex(1).type == VertexType::Medium && equiangularFactor(scene, vertex(0), vertex(1), vertex(2)) > 0.0;
 }
 
+// E(1, k)'s bit in a TechniqueResult::sampleableBy (its slot 2k), none past the mask's 64 bits.
+uint64_t equiangularSlotBit(int k) {
+  const int slot = Technique::equiangular(k).slot();
+  return slot < 64 ? uint64_t{1} << slot : 0;
+}
+
 // E(1, t)'s light point and vertex, from a stream of its own keyed as connectionStream's and
 // salted apart from C(1, t)'s.
 constexpr uint64_t kEquiangularSalt = 0xD6E8FEB86659FD93ull;
@@ -82,10 +88,7 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
   options_.pyramidLength = std::min(options_.pyramidLength, options_.maxLength);
   // The equiangular family runs with path reuse and without merges, where the scene has a medium
   // it can sample; elsewhere no weight counts it (validateSettings refuses asking for it there).
-  const bool anyMerge = covers(options_.techniques.families(), TechniqueKind::Merge) ||
-                        (options_.isolate && options_.isolate->kind == TechniqueKind::Merge);
-  equiangular_ = options_.mis.mediumSampling != MediumSampling::Distance && !anyMerge &&
-                 options_.connect == ConnectStrategy::All && hasEquiangularMedium(scene);
+  equiangular_ = equiangularFamilySampled(scene, options_);
   if (!equiangular_) options_.mis.mediumSampling = MediumSampling::Distance;
   // MIS off weighs by length alone: a table, never the partial sums. Otherwise the partial sums
   // weigh every technique of a path's length: exact only when all are enabled.
@@ -211,6 +214,14 @@ template <bool kRecords>
   const bool isolated = isolate && isolate->technique() == Technique{s, t};
   return TechniqueUse{enabled, isolate ? isolated && (enabled || isolate->unweighted) : enabled,
                       isolated && isolate->unweighted, s + t - 1 <= pyramidLength};
+}
+
+BidirTracer::TechniqueUse BidirTracer::techniqueUse(Technique x, int pyramidLength) const {
+  const bool enabled = options_.techniques.contains(x);
+  const std::optional<Isolation>& isolate = options_.isolate;
+  const bool isolated = isolate && isolate->technique() == x;
+  return TechniqueUse{enabled, isolate ? isolated && (enabled || isolate->unweighted) : enabled,
+                      isolated && isolate->unweighted, x.length() <= pyramidLength};
 }
 
 // Out of line, one function per instance: inlined into the sample loop, its four instances cost
@@ -339,7 +350,9 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
     r.pRaster = pRaster;
     if (demand.sampleable)
       r.sampleableBy = merges_ ? sampleableWithMerges(path, TechniqueKind::Connection, options_.mergeSite)
-                                : sampleableTechniques(path);
+                       : equiangular_ && equiangularCanSampleAt(scene_, path)
+                           ? sampleableTechniques(path) | equiangularSlotBit(s + t - 1)
+                           : sampleableTechniques(path);
     if (demand.densityRatios) {
       walks.densityRatios.resize(static_cast<size_t>(s + t));
       techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
@@ -488,15 +501,14 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Rng& cameraRng, Rng& lightRng
         evaluate<false>(timed, s, t, use, pRaster, connectionKey, walks, sink, counters);
       }
     }
-  // An isolated technique is the image alone (E is not one yet: its share is missing there, as any
-  // other technique's).
-  if (equiangular_ && !options_.isolate) evaluateEquiangular(pRaster, connectionKey, walks, sink, counters);
+  if (equiangular_) evaluateEquiangular(pRaster, connectionKey, pyramidLength, walks, sink, counters);
   if (mergePass_) evaluateMerges(timed, nt, pRaster, pyramidLength, walks, sink, counters);
 }
 
-void BidirTracer::evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, Walks& walks, SampleSink& sink,
-                                      Counters& counters) const {
+void BidirTracer::evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, int pyramidLength, Walks& walks,
+                                      SampleSink& sink, Counters& counters) const {
   const CameraSubpath& camera = walks.camera;
+  const SinkDemand& demand = sink.demand();
   // E(1, t) needs the ray z(t-2) shot, not z(t-1): t up to one past the recorded rays.
   const int last = std::min(camera.rayCount + 1, options_.maxLength);
   std::vector<PathVertex>& prefix = walks.equiangularCamera;
@@ -506,25 +518,69 @@ void BidirTracer::evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, Walk
     // E's path: the light sample, the camera prefix z(0) .. z(t-2), then x (prefix holds the
     // vertices before z(t-2) from the previous t already: one copy per t).
     prefix[static_cast<size_t>(t - 2)] = camera[t - 2];
-    // E(1, t) follows C(1, t)'s switch (the walk shot the ray z(t-2) for it).
-    if (!options_.techniques.contains(1, t)) continue;
+    const Technique e = Technique::equiangular(t);
+    const TechniqueUse use = techniqueUse(e, pyramidLength);
+    if (!use.used()) continue;
+    TechniqueTally<false> tally(counters, e);
+    const bool records = use.inPyramid || demand.records();
+    TechniqueResult r;
+    r.s = 1, r.t = t, r.kind = TechniqueKind::Equiangular;
+    r.pRaster = pRaster, r.inImage = use.inImage, r.inPyramid = use.inPyramid;
+    float w = 0.f, imageWeight = 0.f;
+    auto finishWithout = [&](TechniqueOutcome outcome) {
+      if (outcome == TechniqueOutcome::Blocked) tally.blocked();
+      else tally.zero();
+      if (demand.everyTechnique) {
+        r.outcome = outcome, r.weight = 0.f, r.imageWeight = imageWeight, r.inImage = false;
+        sink.record(r);
+      }
+    };
     Pcg32 rng = equiangularStream(connectionKey, t);
     PathVertex& x = prefix[static_cast<size_t>(t - 1)];
-    if (!formEquiangularConnection(scene_, camera, t, rng, x, c, counters)) continue;
+    if (!formEquiangularConnection(scene_, camera, t, rng, x, c, counters)) {
+      finishWithout(TechniqueOutcome::Zero);
+      continue;
+    }
     const MisPath path{&c.sampled, 1, prefix.data(), t, &c.sampled, &c.pdfs};
     const float* factors = varianceAware_ ? varianceAware_->factorsOfLength(varianceAware_->regionOf(pRaster), t)
                                           : lightPathCountsOfLength(t);
-    const float w = equiangularMisWeight(scene_, camera_, path, options_.techniques, options_.mis,
-                                         lightTracingRatio(), factors);
-    if (!(w > 0.f)) continue;
-    ++counters.shadowRays;
-    const Spectrum T = transmittance(scene_, c.shadowRay);
-    if (isBlack(T)) continue;
-    const Spectrum L = c.L * T * w;
-    if (!isValidContribution(L) || !sink.toImage(t, pRaster, L)) {
-      countDiscarded(L, counters);
-      counters.noteDiscard(DiscardExample{sink.id().x, sink.id().y, sink.id().sample, 1, t, L});
+    if (use.enabled)
+      w = equiangularMisWeight(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(), factors);
+    imageWeight = !use.inImage ? 0.f : use.unweightedInImage ? 1.f : w;
+    if (demand.onPath) {
+      tracePath(scene_, camera_, path, walks.traced);
+      r.traced = &walks.traced;
+      walks.onPath = techniquesOnPath(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(),
+                                      std::nullopt, varianceAware_ ? factors : nullptr, lightPathCountsOfLength(t));
+      r.onPath = &walks.onPath;
     }
+    if (!(imageWeight > 0.f) && !use.inPyramid && !demand.everyContribution) {
+      finishWithout(TechniqueOutcome::Zero);
+      continue;
+    }
+    tally.shadowRay();
+    const Spectrum T = transmittance(scene_, c.shadowRay);
+    if (isBlack(T)) {
+      finishWithout(TechniqueOutcome::Blocked);
+      continue;
+    }
+    tally.contributed();
+    Spectrum L = c.L * T;
+    if (options_.injectBias && options_.injectBias->technique() == e) L *= options_.injectBias->factor;
+    if (!isValidContribution(L)) {
+      tally.discard(L, sink.id());
+      continue;
+    }
+    if (records) {
+      r.outcome = TechniqueOutcome::Contributed;
+      r.unweighted = L, r.weight = w, r.imageWeight = imageWeight;
+      // The connections able to sample E's path, and E itself (its slot 2t).
+      if (demand.sampleable) r.sampleableBy = sampleableTechniques(path) | equiangularSlotBit(t);
+      sink.record(r);
+    }
+    if (!use.inImage) continue;
+    const Spectrum contribution = L * imageWeight;
+    if (!isBlack(contribution) && !sink.toImage(t, pRaster, contribution)) tally.discard(contribution, sink.id());
   }
 }
 

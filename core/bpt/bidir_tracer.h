@@ -119,6 +119,7 @@ class BidirTracer {
     bool used() const { return inImage || inPyramid; }
   };
   TechniqueUse techniqueUse(int s, int t, int pyramidLength) const;
+  TechniqueUse techniqueUse(Technique x, int pyramidLength) const;
   // The one evaluation of technique (s, t): forms the connection, weighs it, traces its shadow ray,
   // reports each outcome to the tally (counts, time), refuses an invalid contribution, and hands
   // the result to the sink: its record when kRecords, its weighted contribution to the image.
@@ -148,8 +149,9 @@ class BidirTracer {
   float weight(const MisPath& path, const Connection& c, const Walks& walks, const float* factors,
                Counters& counters) const;
   // The equiangular techniques E(1, t) of the sample's camera subpath (equiangular_technique.h),
-  // into the image. Not (yet) in the pyramid, the records or the tallies.
-  void evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, Walks& walks, SampleSink& sink,
+  // each as evaluate does a connection: its use (switch, isolation, pyramid), tally, record and
+  // image share.
+  void evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, int pyramidLength, Walks& walks, SampleSink& sink,
                            Counters& counters) const;
   // The sample's light subpath from the merge pass into walks.light; its vertex count.
   int storedLightSubpath(const SampleId& id, Walks& walks) const;

@@ -25,6 +25,13 @@ bool hasEquiangularMedium(const Scene& scene) {
   return false;
 }
 
+bool equiangularFamilySampled(const Scene& scene, const BidirOptions& options) {
+  const bool anyMerge = covers(options.techniques.families(), TechniqueKind::Merge) ||
+                        (options.isolate && options.isolate->kind == TechniqueKind::Merge);
+  return options.mis.mediumSampling != MediumSampling::Distance && !anyMerge &&
+         options.connect == ConnectStrategy::All && hasEquiangularMedium(scene);
+}
+
 double equiangularFactor(const Scene& scene, const PathVertex& x0, const PathVertex& x1, const PathVertex& x2) {
   if (x1.type != VertexType::Medium || x0.light < 0 || x0.isInfinite) return 0.0;
   const int m = x1.media.inside;

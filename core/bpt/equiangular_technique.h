@@ -21,6 +21,7 @@
 //    only where x1's medium is homogeneous, and where the ray leaves x2 in that same medium.
 #pragma once
 
+#include "core/bpt/bidir_options.h"
 #include "core/bpt/connect.h"
 #include "core/bpt/path_vertex.h"
 #include "core/bpt/subpath.h"
@@ -31,6 +32,10 @@ namespace pathlab {
 
 // Whether E can sample anything in this scene: some homogeneous medium scatters.
 bool hasEquiangularMedium(const Scene& scene);
+// Whether the bidirectional tracer samples the family with these options: --medium-sampling not
+// distance, path reuse, no merge enabled or isolated, and a medium E can sample. Elsewhere no
+// weight counts it, no table keeps it (core/render/render_settings.h pyramidFamilies).
+bool equiangularFamilySampled(const Scene& scene, const BidirOptions& options);
 
 // The factor [pmfNee(x0 | x2) / pmf(x0)] p_e(x1) / p_d(x1) of the path x0 x1 x2 ... (pmf: the
 // light subpaths' choice by power); 0 where E cannot sample the path (x1 not in a homogeneous

@@ -23,12 +23,16 @@ int parsePart(std::string_view part, const std::string& text) {
 
 Isolation parseIsolation(const std::string& text) {
   const size_t comma = text.find(',');
-  if (comma == std::string::npos) throw std::invalid_argument("'" + text + "' is not S,T or MS,T");
+  if (comma == std::string::npos) throw std::invalid_argument("'" + text + "' is not S,T, MS,T or E1,T");
   const bool merge = !text.empty() && (text[0] == 'M' || text[0] == 'm');
+  const bool equiangular = !text.empty() && (text[0] == 'E' || text[0] == 'e');
   const std::string_view all(text);
-  const size_t from = merge ? 1 : 0;
-  return Isolation{parsePart(all.substr(from, comma - from), text), parsePart(all.substr(comma + 1), text), false,
-                   merge ? TechniqueKind::Merge : TechniqueKind::Connection};
+  const size_t from = merge || equiangular ? 1 : 0;
+  const Isolation x{parsePart(all.substr(from, comma - from), text), parsePart(all.substr(comma + 1), text), false,
+                    merge ? TechniqueKind::Merge : equiangular ? TechniqueKind::Equiangular : TechniqueKind::Connection};
+  if (equiangular && (x.s != 1 || x.t < 2))
+    throw std::invalid_argument("'" + text + "': an equiangular technique is E1,T with T >= 2");
+  return x;
 }
 
 }  // namespace pathlab

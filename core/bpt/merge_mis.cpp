@@ -39,7 +39,8 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
            mergeableVertex(d, surface, sp - 1) && (onlySite == 0 || sp == onlySite);
   };
   const UsableTechniques usable(d, techniques, minDistance);
-  if (x.length() != length) return 0.0;
+  // The merging integrators weigh connections and merges; no equiangular technique runs beside them.
+  if (x.length() != length || x.isEquiangular()) return 0.0;
   if (options.heuristic == MisHeuristic::Off) {
     // Veach 1997 sec. 9.1, both families: 1 / (enabled techniques of the length), whatever the
     // others can do; zero where x itself cannot form the path.
@@ -47,7 +48,7 @@ double weightWithMerges(const PathDensities& d, std::span<const uint8_t> surface
     if (!possible) return 0.0;
     // At the first non-specular vertex only, the merges of a length are one technique.
     int count = 0, merges = 0;
-    for (const Technique y : techniquesOfLength(length, TechniqueFamilies::All))
+    for (const Technique y : techniquesOfLength(length, TechniqueFamilies::Connections | TechniqueFamilies::Merges))
       (y.isMerge() ? merges : count) += techniques.contains(y) ? 1 : 0;
     count += merge.firstNonSpecularOnly ? std::min(merges, 1) : merges;
     return 1.0 / static_cast<double>(count);
@@ -160,7 +161,7 @@ double weightSumWithMerges(const Scene& scene, const Camera& camera, const MisPa
   PathScratch& p = densitiesOf(scene, camera, path);
   p.d.factors = factors;
   double sum = 0.0;
-  for (const Technique x : techniquesOfLength(p.d.n - 1, TechniqueFamilies::All))
+  for (const Technique x : techniquesOfLength(p.d.n - 1, TechniqueFamilies::Connections | TechniqueFamilies::Merges))
     sum += weightWithMerges(p.d, p.surface, x, techniques, options, lightTracingRatio, minDistance, merge);
   return sum;
 }

@@ -257,7 +257,7 @@ UsableTechniques::UsableTechniques(const PathDensities& d, const TechniqueSet& t
 }
 
 bool UsableTechniques::enabledAndPossible(int sp) const {
-  if (sp == 1 && medium_ == MediumSampling::Equiangular && d_.equiangular > 0.0) return false;  // E in its place
+  if (sp == 1 && medium_ == MediumSampling::Equiangular && equiangularPossible()) return false;  // E in its place
   return techniques_.contains(sp, d_.n - sp) && techniquePossible(d_, sp);
 }
 
@@ -272,13 +272,14 @@ bool UsableTechniques::operator()(int sp) const { return enabledAndPossible(sp) 
 bool UsableTechniques::equiangular() const { return equiangularPossible() && !shortConnection(1); }
 
 bool UsableTechniques::equiangularPossible() const {
-  return medium_ != MediumSampling::Distance && d_.equiangular > 0.0 && techniques_.contains(1, d_.n - 1);
+  return medium_ != MediumSampling::Distance && d_.equiangular > 0.0 &&
+         techniques_.contains(Technique::equiangular(d_.n - 1));
 }
 
 int techniquesEnabledOfLength(const TechniqueSet& techniques, int k, MediumSampling mediumSampling) {
   int count = 0;
   for (int s = 0; s <= k; ++s) count += techniques.contains(s, k + 1 - s) ? 1 : 0;
-  if (mediumSampling != MediumSampling::Distance && k >= 2 && techniques.contains(1, k)) ++count;
+  if (mediumSampling != MediumSampling::Distance && k >= 2 && techniques.contains(Technique::equiangular(k))) ++count;
   return count;
 }
 
@@ -296,7 +297,7 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
     // k = n - 1, whether or not the others can produce this path; no short-connection exclusion
     // (the weight does not look at the path). Zero where (s, t) itself cannot form the path.
     if (ofEquiangular ? !(options.mediumSampling != MediumSampling::Distance && d.equiangular > 0.0 &&
-                          techniques.contains(1, n - 1))
+                          techniques.contains(Technique::equiangular(n - 1)))
                       : !techniques.contains(s, n - s) || !techniquePossible(d, s))
       return 0.0;
     return 1.0 / static_cast<double>(techniquesEnabledOfLength(techniques, n - 1, options.mediumSampling));

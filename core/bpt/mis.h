@@ -212,9 +212,8 @@ void techniqueDensityRatios(const Scene& scene, const Camera& camera, const MisP
 // longer (or no) connection edge remains (MisOptions::minConnection). The set depends on the
 // path alone, so the weights over it still sum to one and the estimate stays unbiased.
 // With the equiangular family (mediumSampling not Distance) E(1, n-1) is one of them where it can
-// sample the path and C(1, n-1) is enabled (E follows that switch: it is not in the TechniqueSet
-// yet), its connection edge that of C(1, n-1); under MediumSampling::Equiangular C(1, n-1) is
-// not, on those paths.
+// sample the path and E(1, n-1) is enabled, its connection edge that of C(1, n-1); under
+// MediumSampling::Equiangular C(1, n-1) is not, on the paths an enabled E(1, n-1) can sample.
 class UsableTechniques {
  public:
   UsableTechniques(const PathDensities& d, const TechniqueSet& techniques, float minConnectionDistance,
@@ -233,7 +232,7 @@ class UsableTechniques {
 };
 
 // n_k: the enabled techniques of length k, which MisHeuristic::Off weighs 1 / n_k each; with the
-// equiangular family, E(1, k) counts at every k >= 2 where C(1, k) is enabled.
+// equiangular family, E(1, k) counts at every k >= 2 where it is enabled.
 int techniquesEnabledOfLength(const TechniqueSet& techniques, int k, MediumSampling mediumSampling = MediumSampling::Distance);
 
 // MisOptions::minConnection in scene units.

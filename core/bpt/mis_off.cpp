@@ -113,12 +113,12 @@ MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int ma
     note(lengths, "t = 1 cannot connect to the orthographic camera (a delta direction)");
   }
 
-  // bpt's equiangular techniques (issue 35): E(1, k) counts in n_k wherever C(1, k) is enabled but
+  // bpt's equiangular techniques (issue 35): E(1, k) counts in n_k wherever it is enabled but
   // samples only the paths whose vertex next to the light lies in a homogeneous scattering medium.
   if (mediumSampling != MediumSampling::Distance) {
     std::vector<int> lengths;
     for (int k = 2; k <= maxLength; ++k)
-      if (techniques.contains(1, k)) lengths.push_back(k);
+      if (techniques.contains(Technique::equiangular(k))) lengths.push_back(k);
     note(lengths, "E(1,k) samples only paths whose vertex next to the light is in a homogeneous scattering medium");
   }
 

@@ -33,7 +33,7 @@ struct MisOffBias {
 };
 //  - an orthographic camera cannot be connected to: t = 1 samples no path.
 //  - bpt's equiangular techniques E(1, k) (mediumSampling not Distance) count at every length
-//    k >= 2 whose C(1, k) is enabled, and sample only paths whose x1 lies in a homogeneous
+//    k >= 2 where it is enabled, and sample only paths whose x1 lies in a homogeneous
 //    scattering medium. (Off weighs them beside C(1, k) under `equiangular` too: the rule "in
 //    place of" looks at the path, which Off does not.)
 MisOffBias misOffBias(const Scene& scene, const TechniqueSet& techniques, int maxLength, bool pinhole,

@@ -32,7 +32,8 @@ struct MisOptions {
   float minConnection = kDefaultMinConnection;
   // The equiangular technique family E(1, k) (core/bpt/equiangular_technique.h): left out
   // (Distance), weighted beside the connections (Mis), or in place of C(1, k) on every path it can
-  // sample (Equiangular: C(1, k) is then unusable there, a rule on the path alone).
+  // sample where E(1, k) is enabled (Equiangular: C(1, k) is then unusable there, a rule on the
+  // path and the technique set alone).
   MediumSampling mediumSampling = MediumSampling::Distance;
   bool operator==(const MisOptions&) const = default;
 };

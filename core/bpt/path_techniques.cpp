@@ -66,9 +66,9 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
     TechniqueOnPath x;
     x.s = 1;
     x.t = d.n - 1;
-    x.equiangular = true;
+    x.kind = TechniqueKind::Equiangular;
     x.possible = true;
-    x.enabled = techniques.contains(1, d.n - 1);
+    x.enabled = techniques.contains(x.technique());
     x.connectionEdge = 0;
     x.counted = usable.equiangular();
     x.pdfA = connectionDensity(2) * d.equiangular;

@@ -21,7 +21,9 @@ struct MergesOnPath {
 };
 
 // Every technique of the path's length for the path `path` forms, in slot order (Technique::slot:
-// the connections by s', then, with `merges`, the merges M(s', n + 1 - s') by s'); `options` gives
+// the connections by s', then, with `merges`, the merges M(s', n + 1 - s') by s', else the
+// equiangular technique E(1, n - 1) where it is sampled and can sample the path; findOnPath
+// finds one); `options` gives
 // beta for the power heuristic and the minimum connection. With `merges` every weight is the one
 // over connections and merges together (weightWithMerges) on the path `path` forms. `factors`:
 // variance-aware MIS's factors of the path's length where it lands (PathDensities::factors), in

@@ -41,11 +41,14 @@ struct TechniqueOnPath {
   // where the path lands, and the weight with every technique's factor (the balance weight when
   // no factors were given: all 1).
   double factor = 1.0, varianceAware = 0.0;
-  // The equiangular technique E(1, t) (core/bpt/equiangular_technique.h), listed after the
-  // connections where it is on (bpt --medium-sampling mis|equiangular) and can sample the path:
-  // not a technique of the TechniqueSet yet, so s, t are those of the C(1, t) it follows.
-  bool equiangular = false;
 };
+
+// The entry of `every` (techniquesOnPath's list) for technique x, or null when it is not listed.
+inline const TechniqueOnPath* findOnPath(const std::vector<TechniqueOnPath>& every, Technique x) {
+  for (const TechniqueOnPath& e : every)
+    if (e.technique() == x) return &e;
+  return nullptr;
+}
 
 // The full path a technique formed, light end first (x_0 on the light ... x_{k} at the camera), as
 // the replay trace keeps it for the path inspector: where each vertex is, what it is, and the

@@ -87,7 +87,7 @@ TechniqueSet TechniqueSet::withT(int t) {
 TechniqueSet TechniqueSet::ofLength(int k) {
   checkRange(k, 1, "k", "k=" + std::to_string(k));
   TechniqueSet set;
-  for (Technique x : techniquesOfLength(k)) setBit(set.listed_, x.index());
+  for (Technique x : techniquesOfLength(k, TechniqueFamilies::Connections | TechniqueFamilies::Equiangular)) setBit(set.listed_, x.index());
   return set;
 }
 
@@ -113,7 +113,7 @@ void TechniqueSet::normalise() {
     forEachBit(listed_, [&](size_t i) {
       if (Technique::fromIndex(i).isMerge()) clearBit(listed_, i);
     });
-  if (all_) {  // every connection: only listed merges remain to say
+  if (all_) {  // every connection and equiangular technique: only listed merges remain to say
     sRule_.clear(), tRule_.clear();
     forEachBit(listed_, [&](size_t i) {
       if (!Technique::fromIndex(i).isMerge()) clearBit(listed_, i);
@@ -166,7 +166,8 @@ void TechniqueSet::disable(const TechniqueSet& group, int maxLength) {
   }
   // A rule cannot have a hole: "all" becomes its connections, listed, when the group takes any
   // connection (merges are never under a rule).
-  if (all_ && covers(group.families(), TechniqueKind::Connection)) *this = upToKeepingMergeRule(maxLength);
+  if (all_ && without(group.families(), TechniqueFamilies::Merges) != TechniqueFamilies{})
+    *this = upToKeepingMergeRule(maxLength);
   forEachBit(group.sRule_, [&](size_t s) { clearBit(sRule_, s); });
   forEachBit(group.tRule_, [&](size_t t) { clearBit(tRule_, t); });
   normalise();
@@ -221,6 +222,10 @@ TechniqueSet operator&(const TechniqueSet& a, const TechniqueSet& b) {
       forEachBit(q.tRule_, [&](size_t t) {
         const Technique x{static_cast<int>(s), static_cast<int>(t)};
         if (x.valid() && x.length() <= kMaxTechniqueLength) setBit(r.listed_, x.index());
+        // ... and, for s = 1, in E(1, T) too.
+        if (const Technique e = Technique::equiangular(static_cast<int>(t));
+            s == 1 && e.valid() && e.length() <= kMaxTechniqueLength)
+          setBit(r.listed_, e.index());
       });
     });
     forEachBit(p.listed_, [&](size_t i) {
@@ -237,8 +242,8 @@ TechniqueSet TechniqueSet::upTo(int maxLength) const {
   TechniqueSet r;
   if (maxLength < 1) return r;
   const size_t end = Technique::countUpTo(maxLength);
-  if (all_)  // every connection, then the listed merges below
-    for (const Technique x : techniquesUpTo(maxLength)) setBit(r.listed_, x.index());
+  if (all_)  // every connection and equiangular technique, then the listed merges below
+    for (const Technique x : techniquesUpTo(maxLength, TechniqueFamilies::Connections | TechniqueFamilies::Equiangular)) setBit(r.listed_, x.index());
   if (allMerges_)
     for (const Technique x : techniquesUpTo(maxLength, TechniqueFamilies::Merges)) setBit(r.listed_, x.index());
   forEachBit(listed_, [&](size_t i) {
@@ -248,10 +253,13 @@ TechniqueSet TechniqueSet::upTo(int maxLength) const {
   forEachBit(sRule_, [&](size_t s) {
     for (int k = std::max(static_cast<int>(s), 1); k <= maxLength; ++k)
       setBit(r.listed_, Technique{static_cast<int>(s), k + 1 - static_cast<int>(s)}.index());
+    if (s == 1)  // E(1, k) beside C(1, k)
+      for (int k = 2; k <= maxLength; ++k) setBit(r.listed_, Technique::equiangular(k).index());
   });
   forEachBit(tRule_, [&](size_t t) {
     for (int k = std::max(static_cast<int>(t) - 1, 1); k <= maxLength; ++k)
       setBit(r.listed_, Technique{k + 1 - static_cast<int>(t), static_cast<int>(t)}.index());
+    if (t >= 2 && static_cast<int>(t) <= maxLength) setBit(r.listed_, Technique::equiangular(static_cast<int>(t)).index());
   });
   trim(r.listed_);
   return r;
@@ -300,12 +308,15 @@ bool TechniqueSet::anyUpTo(int maxLength) const {
 
 bool TechniqueSet::containsAllUpTo(int maxLength, TechniqueFamilies families) const {
   const TechniqueRange range = techniquesUpTo(maxLength, families);
-  if (all_ && families == TechniqueFamilies::Connections) return true;
+  if (all_ && !covers(families, TechniqueKind::Merge)) return true;
   return std::all_of(range.begin(), range.end(), [&](Technique x) { return contains(x); });
 }
 
 TechniqueFamilies TechniqueSet::families() const {
+  // A rule covers connections and (through s = 1 or t >= 2) equiangular techniques.
   unsigned f = (all_ || !sRule_.empty() || !tRule_.empty() ? 1u : 0u) | (allMerges_ ? 2u : 0u);
+  if (all_ || test(sRule_, 1)) f |= 4u;
+  forEachBit(tRule_, [&](size_t t) { f |= t >= 2 ? 4u : 0u; });
   forEachBit(listed_, [&](size_t i) { f |= 1u << static_cast<unsigned>(Technique::fromIndex(i).kind); });
   return static_cast<TechniqueFamilies>(f);
 }
@@ -327,14 +338,14 @@ std::string TechniqueSet::toString() const {
   forEachBit(tRule_, [&](size_t t) { item("t=" + std::to_string(t)); });
   const size_t end = bitEnd(listed_);
   for (int k = 1; end > 0 && k <= Technique::fromIndex(end - 1).length(); ++k) {
-    const TechniqueRange row = techniquesOfLength(k);
+    const TechniqueRange row = techniquesOfLength(k, TechniqueFamilies::Connections | TechniqueFamilies::Equiangular);
     if (std::none_of(row.begin(), row.end(), [&](Technique x) { return test(listed_, x.index()); })) continue;
     if (std::all_of(row.begin(), row.end(), [&](Technique x) { return contains(x); })) {
       item("k=" + std::to_string(k));
       continue;
     }
     for (Technique x : row)
-      if (test(listed_, x.index())) item(std::to_string(x.s) + "," + std::to_string(x.t));
+      if (test(listed_, x.index())) item((x.isEquiangular() ? "E" : "") + std::to_string(x.s) + "," + std::to_string(x.t));
   }
   // Then the merges: "m=all", or by length "m=K" for all of a length's, else "MS,T" one by one.
   if (allMerges_) item("m=all");
@@ -373,19 +384,21 @@ TechniqueSet TechniqueSet::parse(const std::string& spec) {
       checkRange(v, 2, "k", item);
       set |= mergesOfLength(v);
     } else if (const size_t comma = item.find(','); comma != std::string::npos) {
-      const bool merge = item[0] == 'M';
-      const size_t from = merge ? 1 : 0;
+      const bool merge = item[0] == 'M', equiangular = item[0] == 'E';
+      const size_t from = merge || equiangular ? 1 : 0;
       const Technique x{parseInt(item.substr(from, comma - from), item), parseInt(item.substr(comma + 1), item),
-                        merge ? TechniqueKind::Merge : TechniqueKind::Connection};
+                        merge ? TechniqueKind::Merge : equiangular ? TechniqueKind::Equiangular : TechniqueKind::Connection};
       if (merge && (x.s < 2 || x.t < 2))
         throw std::invalid_argument("techniques: '" + item + "': a merge needs s >= 2 and t >= 2");
+      if (equiangular && (x.s != 1 || x.t < 2))
+        throw std::invalid_argument("techniques: '" + item + "': an equiangular technique needs s = 1 and t >= 2");
       if (x.s < 0 || x.t < 1) throw std::invalid_argument("techniques: '" + item + "': need s >= 0 and t >= 1");
       if (!x.valid() || x.length() > kMaxTechniqueLength)
         throw std::invalid_argument("techniques: '" + item + "' is not a technique of length 1.." +
                                     std::to_string(kMaxTechniqueLength));
       set.enable(x);
     } else {
-      throw std::invalid_argument("techniques: '" + item + "' is not S,T, MS,T, s=S, t=T, k=K, m=K, m=all or all");
+      throw std::invalid_argument("techniques: '" + item + "' is not S,T, MS,T, E1,T, s=S, t=T, k=K, m=K, m=all or all");
     }
     if (end == spec.size()) break;
   }

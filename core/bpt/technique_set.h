@@ -20,7 +20,10 @@ namespace pathlab {
 // techniques that no longer fit, ui/estimator/technique_grid.h, since a listed technique longer than the
 // maximum is refused by validateSettings.)
 //
-// The rules "all", "s=S" and "t=T" name connections ("all" is every connection, what bpt samples);
+// The rules "all", "s=S", "t=T" and "k=K" name connections and the equiangular techniques E(1, t),
+// which have one light vertex and stand beside C(1, t) ("all" is every one of them, what bpt
+// samples; E(1, t) is sampled only where --medium-sampling and the scene's media allow, see
+// sampledFamilies in core/render/render_settings.h), and "E1,T" lists one;
 // "m=all" is every merge at every length (with "all": vertex connection and merging), and merges
 // are otherwise listed ("MS,T", or "m=K" for every merge of length K).
 //
@@ -35,7 +38,7 @@ class TechniqueSet {
   static TechniqueSet all();
   static TechniqueSet withS(int s);       // s = S at every length (S >= 0)
   static TechniqueSet withT(int t);       // t = T at every length (T >= 1)
-  static TechniqueSet ofLength(int k);    // the k + 1 connections of length k (k >= 1)
+  static TechniqueSet ofLength(int k);    // the k + 1 connections of length k and E(1, k) (k >= 1)
   static TechniqueSet mergesOfLength(int k);  // the k - 1 merges of length k (k >= 2)
   static TechniqueSet allMerges();            // every merge of every length ("m=all")
   // The path tracer's two techniques, s <= 1: the camera subpath hits an emitter (s = 0) or
@@ -44,8 +47,8 @@ class TechniqueSet {
   // Light tracing, t = 1: light subpaths connected to the camera and splatted on the film.
   static TechniqueSet lightTracing();
 
-  // SPEC: ';'-separated items "S,T", "s=S", "t=T", "k=K" (every connection of length K), "all"
-  // (every connection), "MS,T" (a merge), "m=K" (every merge of length K), "m=all"; their union. Throws std::invalid_argument naming the item on bad input or an empty SPEC.
+  // SPEC: ';'-separated items "S,T", "s=S", "t=T", "k=K" (every connection of length K and E(1,K)),
+  // "all" (every connection and equiangular technique), "E1,T" (an equiangular technique), "MS,T" (a merge), "m=K" (every merge of length K), "m=all"; their union. Throws std::invalid_argument naming the item on bad input or an empty SPEC.
   // Lengths are checked against a maximum only by checkFits.
   static TechniqueSet parse(const std::string& spec);
 
@@ -56,7 +59,9 @@ class TechniqueSet {
            test(tRule_, static_cast<size_t>(t));
   }
   bool contains(Technique x) const {
-    return x.isMerge() ? x.valid() && (allMerges_ || test(listed_, x.index())) : contains(x.s, x.t);
+    if (x.isMerge()) return x.valid() && (allMerges_ || test(listed_, x.index()));
+    if (x.isEquiangular()) return x.valid() && (coveredByRule(x) || test(listed_, x.index()));
+    return contains(x.s, x.t);
   }
 
   // Adds one technique; throws std::invalid_argument when it is not valid or longer than

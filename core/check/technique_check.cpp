@@ -8,7 +8,8 @@
 namespace pathlab {
 
 TechniqueCheck::TechniqueCheck(int width, int height, int maxLength, int blocks, TechniqueFamilies families)
-    : width_(width), height_(height), maxLength_(maxLength), blocks_(blocks), families_(families) {
+    : width_(width), height_(height), maxLength_(maxLength), blocks_(blocks),
+      families_(without(families, TechniqueFamilies::Equiangular)) {
   // sampleableBy has a bit per slot of a length: slots(maxLength) <= 63.
   if (width < 1 || height < 1 || maxLength < 1 || maxLength > 62 || slots(maxLength) > 63 || blocks < 1 || blocks > 64)
     throw std::invalid_argument("TechniqueCheck: bad size, length or blocks");

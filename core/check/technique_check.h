@@ -46,13 +46,14 @@ struct PairSums {
 
 class TechniqueCheck {
  public:
-  // `enabled(x)` decides which techniques of `families` are compared; lengths 1..maxLength (at
+  // `enabled(x)` decides which techniques of `families` are compared (connections and merges: the
+  // equiangular techniques are left out, their results ignored); lengths 1..maxLength (at
   // most 62 connections, 31 with merges: TechniqueResult::sampleableBy has a bit per slot of a length).
   template <class Enabled>
   TechniqueCheck(int width, int height, int maxLength, int blocks, Enabled enabled,
                  TechniqueFamilies families = TechniqueFamilies::Connections)
       : TechniqueCheck(width, height, maxLength, blocks, families) {
-    for (const Technique x : techniquesUpTo(maxLength, families)) enabled_[x.index()] = enabled(x) ? 1 : 0;
+    for (const Technique x : techniquesUpTo(maxLength, families_)) enabled_[x.index()] = enabled(x) ? 1 : 0;
   }
 
   // One render thread's sums over one pass (no sharing, no atomics).

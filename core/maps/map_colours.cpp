@@ -24,8 +24,9 @@ Vec3 techniqueColour(Technique x) {
       0xF3C300, 0x875692, 0xF38400, 0xA1CAF1, 0xBE0032, 0xC2B280, 0x848482, 0x008856, 0xE68FAC, 0x0067A5,
       0xF99379, 0x604E97, 0xF6A600, 0xB3446C, 0xDCD300, 0x882D17, 0x8DB600, 0x654522, 0xE25822, 0x2B3D26};
   // By the index within the family, so a connection's colour does not depend on whether merges
-  // exist; merges start half the palette away from the connections of the same number.
-  const size_t offset = x.isMerge() ? kKelly.size() / 2 : 0;
+  // exist; merges start half the palette away from the connections of the same number, the
+  // equiangular techniques a quarter (E(1, k) beside C(1, k) in a fog: distinct colours).
+  const size_t offset = x.isMerge() ? kKelly.size() / 2 : x.isEquiangular() ? kKelly.size() / 4 + 2 : 0;
   const uint32_t c = kKelly[(x.familyIndex() + offset) % kKelly.size()];
   return Vec3(static_cast<float>(c >> 16 & 255), static_cast<float>(c >> 8 & 255), static_cast<float>(c & 255)) / 255.f;
 }

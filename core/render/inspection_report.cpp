@@ -2,6 +2,7 @@
 #include "core/render/inspection_report.h"
 
 #include "core/bpt/bidir_tracer.h"
+#include "core/sampling/technique_label.h"
 
 #include <fmt/core.h>
 
@@ -11,7 +12,9 @@ namespace pathlab {
 
 namespace {
 
-const char* kindName(TechniqueKind k) { return k == TechniqueKind::Merge ? "merge" : "connection"; }
+const char* kindName(TechniqueKind k) {
+  return k == TechniqueKind::Merge ? "merge" : k == TechniqueKind::Equiangular ? "equiangular" : "connection";
+}
 
 const char* kindName(TracedVertexKind k) {
   switch (k) {
@@ -29,10 +32,8 @@ const char* kindName(VertexType t) {
 
 nlohmann::json vec(Vec3 v) { return {v.x, v.y, v.z}; }
 
-// C(s,t) is printed (s,t), as ever; a merge M(s,t).
-std::string techniqueName(TechniqueKind kind, int s, int t) {
-  return fmt::format("{}({},{})", kind == TechniqueKind::Merge ? "M" : "", s, t);
-}
+// C(s,t) is printed (s,t), as ever; a merge M(s,t), an equiangular technique E(1,t).
+std::string techniqueName(TechniqueKind kind, int s, int t) { return techniqueLabel(Technique{s, t, kind}); }
 nlohmann::json rgb(Spectrum s) { return {s.r, s.g, s.b}; }
 
 // The path a technique formed, under every technique of its length (the seed's "one path, every
@@ -44,7 +45,8 @@ void printTechniquesOnPath(std::ostream& out, const std::vector<TechniqueOnPath>
                      "balance", "power", "uniform",
                      varianceAware ? fmt::format(" {:>9} {:>9}", "factor", "var-aware") : std::string(), "connects");
   for (const TechniqueOnPath& x : every) {
-    const std::string name = x.equiangular ? fmt::format("E({},{}) equiangular", x.s, x.t) : techniqueName(x.kind, x.s, x.t);
+    const std::string name = x.kind == TechniqueKind::Equiangular ? fmt::format("E({},{}) equiangular", x.s, x.t)
+                                                                  : techniqueName(x.kind, x.s, x.t);
     const bool merge = x.kind == TechniqueKind::Merge;
     const std::string edge = merge                   ? fmt::format("merges at x{}", x.mergedVertex)
                              : x.connectionEdge < 0 ? std::string("nothing: hits the emitter")
@@ -243,7 +245,7 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
     nlohmann::json densities = nlohmann::json::array();
     if (i < trace.onPath.size())
       for (const TechniqueOnPath& x : trace.onPath[i])
-        densities.push_back({{"kind", x.equiangular ? "equiangular" : kindName(x.kind)},
+        densities.push_back({{"kind", kindName(x.kind)},
                              {"s", x.s},
                              {"t", x.t},
                              {"pdfA", x.pdfA},
@@ -260,8 +262,8 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
                                {"variance-aware", x.varianceAware}}}});
     t["densities"] = densities;
     // This technique's own weights under each heuristic (its entry of `densities`).
-    if (i < trace.onPath.size() && static_cast<size_t>(r.technique().slot()) < trace.onPath[i].size()) {
-      const TechniqueOnPath& own = trace.onPath[i][static_cast<size_t>(r.technique().slot())];
+    if (const TechniqueOnPath* found = i < trace.onPath.size() ? findOnPath(trace.onPath[i], r.technique()) : nullptr) {
+      const TechniqueOnPath& own = *found;
       t["weights"] = {{"balance", own.balance},
                       {"power", own.power},
                       {"uniform", own.uniform},

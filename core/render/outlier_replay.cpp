@@ -26,11 +26,10 @@ ReplayedOutlier replayOutlier(const RenderSession& session, const Outlier& o) {
   r.record = outlierRecord(r.inspection.trace, o);
   if (r.record >= 0 && static_cast<size_t>(r.record) < r.inspection.trace.onPath.size()) {
     const std::vector<TechniqueOnPath>& every = r.inspection.trace.onPath[static_cast<size_t>(r.record)];
-    const size_t slot = static_cast<size_t>(o.technique.slot());
     double best = 0.0;
     for (const TechniqueOnPath& x : every)
       if (x.counted && x.pdfA > best) best = x.pdfA, r.best = x.technique();
-    if (slot < every.size() && best > 0.0) r.densityRatio = every[slot].pdfA / best;
+    if (const TechniqueOnPath* own = findOnPath(every, o.technique); own && best > 0.0) r.densityRatio = own->pdfA / best;
   }
   return r;
 }

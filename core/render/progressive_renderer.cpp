@@ -191,7 +191,7 @@ void ProgressiveRenderer::State::run() {
       }
       std::vector<TechniqueThumbnail> thumbs = techniqueThumbnails(
           set.pyramidLength, side, [&](Technique x, bool unweighted) { return session->techniqueImage(x, unweighted); },
-          pyramidFamilies(set));
+          session->pyramidFamilies());
       std::lock_guard lock(mutex);
       if (generation == gen) {
         thumbnails = std::move(thumbs);

@@ -99,7 +99,8 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
     splatSums_ = std::make_unique<SplatSums>(settings.width, settings.height);
   if (bidirTracer_ && settings.pyramidLength > 0)
     pyramid_ = std::make_unique<TechniqueFilms>(settings.width, settings.height, settings.pyramidLength,
-                                                settings.techniqueMaps, pyramidFamilies(settings), settings.varianceMaps);
+                                                settings.techniqueMaps, pathlab::pyramidFamilies(settings, scene),
+                                                settings.varianceMaps);
   if (bidirTracer_ && !metropolis_ && settings.mis.heuristic == MisHeuristic::VarianceAware) {
     VarianceAwareRegions regions = varianceAwareRegions(settings.width, settings.height, tiles_,
                                                         varianceAwareCell(settings.width, settings.height, settings.maxLength));
@@ -111,7 +112,10 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
   if (bidirTracer_ && settings.checkTechniques) {
     const TechniqueSet enabled = enabledTechniques(settings);
     check_ = std::make_unique<TechniqueCheck>(settings.width, settings.height, settings.maxLength, settings.checkBlocks,
-                                              [&](Technique x) { return enabled.contains(x); }, enabled.families());
+                                              [&](Technique x) { return enabled.contains(x); },
+                                              // The check pairs connections and merges; the
+                                              // equiangular techniques are not among them yet.
+                                              without(enabled.families(), TechniqueFamilies::Equiangular));
     threadChecks_ = std::make_unique<ThreadChecks>(*check_);
   }
 }

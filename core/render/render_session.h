@@ -84,6 +84,8 @@ class RenderSession {
   Image image() const { return film_.readout(); }
   // Technique (s, t) of the pyramid (settings.pyramidLength > 0), weighted or unweighted.
   bool hasPyramid() const { return pyramid_ != nullptr; }
+  // The families the pyramid keeps (pyramidFamilies of the settings in this scene).
+  TechniqueFamilies pyramidFamilies() const { return pathlab::pyramidFamilies(settings_, scene_); }
   Image techniqueImage(Technique x, bool unweighted) const;
   // With settings.techniqueMaps: per pixel, the luminance of the length-(s+t-1) image that (s, t)
   // can sample (TechniqueFilms::readoutSampleable).

@@ -90,8 +90,15 @@ uint64_t mergeStoreBytes(const RenderSettings& s) {
          kPerVertex;
 }
 
-TechniqueFamilies pyramidFamilies(const RenderSettings& settings) {
-  return TechniqueFamilies::Connections | enabledTechniques(settings).families();
+TechniqueFamilies sampledFamilies(const RenderSettings& settings, const Scene& scene) {
+  const TechniqueFamilies f = enabledTechniques(settings).families();
+  const bool equiangular = settings.integrator == IntegratorKind::Bpt &&
+                           equiangularFamilySampled(scene, bidirOptions(settings));
+  return equiangular ? f : without(f, TechniqueFamilies::Equiangular);
+}
+
+TechniqueFamilies pyramidFamilies(const RenderSettings& settings, const Scene& scene) {
+  return TechniqueFamilies::Connections | sampledFamilies(settings, scene);
 }
 
 BidirOptions bidirOptions(const RenderSettings& s) {
@@ -107,7 +114,11 @@ PathTracerOptions pathTracerOptions(const RenderSettings& s) {
 
 MediumSampling mediumSampling(const RenderSettings& settings) {
   if (settings.mediumSampling) return *settings.mediumSampling;
-  return settings.integrator == IntegratorKind::Pt ? MediumSampling::Mis : MediumSampling::Distance;
+  if (settings.integrator == IntegratorKind::Pt) return MediumSampling::Mis;
+  // bpt with path reuse and no merge: its equiangular techniques E(1, k) beside the connections.
+  const bool equiangularBpt = settings.integrator == IntegratorKind::Bpt && settings.connect == ConnectStrategy::All &&
+                              !covers(enabledTechniques(settings).families(), TechniqueKind::Merge);
+  return equiangularBpt ? MediumSampling::Mis : MediumSampling::Distance;
 }
 
 std::string misOffWarning(const Scene& scene, const RenderSettings& s) {
@@ -272,9 +283,22 @@ void validateSettings(const RenderSettings& s) {
   if (s.isolate) {
     const Isolation& i = *s.isolate;
     const bool merge = i.kind == TechniqueKind::Merge;
-    const std::string option = fmt::format("--isolate {}{},{}: ", merge ? "M" : "", i.s, i.t);
+    const std::string option =
+        fmt::format("--isolate {}{},{}: ", merge ? "M" : i.kind == TechniqueKind::Equiangular ? "E" : "", i.s, i.t);
     if (!bidirectional) throw std::invalid_argument("isolating a technique needs the bpt or lt integrator");
-    if (merge) {
+    if (i.kind == TechniqueKind::Equiangular) {
+      const Technique x = i.technique();
+      if (!x.valid())
+        throw std::invalid_argument(fmt::format("{}{} does not exist (an equiangular technique is E(1,t), t >= 2)",
+                                                option, techniqueLabel(x)));
+      if (x.length() > s.maxLength)
+        throw std::invalid_argument(fmt::format("{}{} has length {}, more than the maximum length {}", option,
+                                                techniqueLabel(x), x.length(), s.maxLength));
+      if (s.integrator != IntegratorKind::Bpt || mediumSampling(s) == MediumSampling::Distance)
+        throw std::invalid_argument(fmt::format("{}the equiangular techniques are bpt's under --medium-sampling mis or "
+                                                "equiangular",
+                                                option));
+    } else if (merge) {
       const Technique x = i.technique();
       if (!x.valid())
         throw std::invalid_argument(fmt::format("{}merge {} does not exist (a merge needs s >= 2, t >= 2)", option,
@@ -301,7 +325,8 @@ void validateSettings(const RenderSettings& s) {
   if (s.injectBias) {
     const BiasInjection& b = *s.injectBias;
     const Technique x = b.technique();
-    const std::string option = fmt::format("--inject-bias {}{},{},{:g}: ", x.isMerge() ? "M" : "", b.s, b.t, b.factor);
+    const std::string option = fmt::format("--inject-bias {}{},{},{:g}: ",
+                                           x.isMerge() ? "M" : x.isEquiangular() ? "E" : "", b.s, b.t, b.factor);
     if (!bidirectional) throw std::invalid_argument("injecting a bias needs the bpt or lt integrator");
     if (!x.valid())
       throw std::invalid_argument(fmt::format("{}technique {} does not exist ({})", option, techniqueLabel(x),
@@ -335,8 +360,12 @@ void validateSettings(const RenderSettings& s) {
     if (s.pyramidLength > s.maxLength)
       throw std::invalid_argument(
           fmt::format("pyramid length {} is more than the maximum path length {}", s.pyramidLength, s.maxLength));
+    // The most the pyramid may keep in any scene (the equiangular family where bpt may sample it).
+    TechniqueFamilies families = TechniqueFamilies::Connections | enabledTechniques(s).families();
+    if (s.integrator != IntegratorKind::Bpt || mediumSampling(s) == MediumSampling::Distance)
+      families = without(families, TechniqueFamilies::Equiangular);
     const uint64_t bytes =
-        TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength, s.techniqueMaps, pyramidFamilies(s), s.varianceMaps);
+        TechniqueFilms::bytesFor(s.width, s.height, s.pyramidLength, s.techniqueMaps, families, s.varianceMaps);
     if (bytes > kMaxPyramidBytes)
       throw std::invalid_argument(fmt::format("a pyramid of length {} at {} x {} needs {:.1f} GiB (at most {} GiB)",
                                               s.pyramidLength, s.width, s.height, static_cast<double>(bytes) / (1ull << 30),

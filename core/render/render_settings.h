@@ -17,6 +17,8 @@
 
 namespace pathlab {
 
+class Scene;
+
 // Pt: the path tracer; Bpt: bidirectional; Lt: bidirectional restricted to t = 1 (light tracing);
 // Mlt: Metropolis light transport over the bidirectional techniques (core/mlt/metropolis.h).
 enum class IntegratorKind { Pt, Bpt, Lt, Mlt };
@@ -140,13 +142,18 @@ float mergeNonCaustic(const RenderSettings& settings);
 // look alike at any resolution; at a fixed radius a 256^2 image merged a quarter as many vertices
 // per disk as a 512^2 one (measured: docs/benchmarks.md, "Session 21").
 float firstMergeRadius(const RenderSettings& settings);
-// settings.mediumSampling when set, else MIS of distance and equiangular sampling for the path
-// tracer and distance sampling for the bidirectional integrators (whose equiangular technique is
-// not built yet: validateSettings refuses the others there).
+// settings.mediumSampling when set, else MIS of distance and equiangular sampling: the path
+// tracer's, and bpt's with path reuse and no merge (its equiangular techniques E(1, k) beside the
+// connections); distance sampling for lt, mlt, merges and naive BPT (validateSettings refuses the
+// others there).
 MediumSampling mediumSampling(const RenderSettings& settings);
-// The families the technique pyramid keeps: every connection up to its length, and the merges when
-// any is enabled (a family no technique uses costs no memory).
-TechniqueFamilies pyramidFamilies(const RenderSettings& settings);
+// The families the technique pyramid keeps: every connection up to its length, the merges when any
+// is enabled, the equiangular techniques E(1, k) when bpt samples them in this scene
+// (equiangularFamilySampled): a family no technique uses costs no memory and shows no tile.
+TechniqueFamilies pyramidFamilies(const RenderSettings& settings, const Scene& scene);
+// The families of settings.techniques the tracer samples in this scene: enabledTechniques' less
+// the equiangular family where it is not sampled. What the tables, grids and maps cover.
+TechniqueFamilies sampledFamilies(const RenderSettings& settings, const Scene& scene);
 // The most a pass's merge store (core/bpt/merge_pass.h) can take: every pixel's light subpath at
 // the maximum length.
 uint64_t mergeStoreBytes(const RenderSettings& settings);
@@ -158,8 +165,6 @@ inline constexpr uint64_t kMaxVarianceAwareBytes = 2ull << 30;
 // What each tracer needs of the settings.
 BidirOptions bidirOptions(const RenderSettings& settings);
 PathTracerOptions pathTracerOptions(const RenderSettings& settings);
-
-class Scene;
 
 // The one-line warning of MIS off (mis_off.h) for these settings in this scene: which lengths are
 // biased and why; "" for any other heuristic, the path tracer, or an unbiased scene.

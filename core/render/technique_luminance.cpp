@@ -10,7 +10,7 @@ TechniqueLuminance techniqueLuminance(const RenderSession& session, int length) 
   lum.width = s.width;
   lum.height = s.height;
   lum.length = length > 0 && length < s.pyramidLength ? length : s.pyramidLength;
-  lum.families = pyramidFamilies(s);
+  lum.families = session.pyramidFamilies();
   lum.weighted.resize(Technique::countUpTo(lum.length));
   if (s.techniqueMaps) lum.sampleable.resize(lum.weighted.size());
   if (s.varianceMaps) lum.variance.resize(lum.weighted.size());

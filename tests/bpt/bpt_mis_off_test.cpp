@@ -106,17 +106,19 @@ TEST(MisOff, BiasReportNamesTheLengthsAndTheReasons) {
     // s = 0 alone: nothing to split.
     EXPECT_FALSE(misOffBias(scene, TechniqueSet::withS(0), 5, true).biased());
   }
-  // bpt's equiangular techniques (issue 35): E(1, k) counts wherever C(1, k) is enabled, k >= 2,
-  // and samples only paths through a medium. The area-lit furnace is otherwise unbiased.
+  // bpt's equiangular techniques (issue 35): E(1, k) counts wherever it is enabled, k >= 2, and
+  // samples only paths through a medium. The area-lit furnace is otherwise unbiased.
   {
     Scene scene(test::furnace(0.5f, 1.f));
-    const MisOffBias b = misOffBias(scene, TechniqueSet::parse("s=0;s=2;1,3;1,4"), 5, true, false, MediumSampling::Mis);
+    const MisOffBias b = misOffBias(scene, TechniqueSet::parse("s=0;s=2;1,3;E1,3;1,4;E1,4"), 5, true, false, MediumSampling::Mis);
     EXPECT_EQ(b.lengths, (std::vector<int>{3, 4}));
     EXPECT_NE(misOffWarning(b).find("E(1,k) samples only paths whose vertex next to the light is in a homogeneous "
                                     "scattering medium: lengths 3-4"),
               std::string::npos)
         << misOffWarning(b);
     EXPECT_FALSE(misOffBias(scene, TechniqueSet::all(), 5, true, false, MediumSampling::Distance).biased());
+    // Without E(1, k) in the set nothing counts it, C(1, k) enabled or not.
+    EXPECT_FALSE(misOffBias(scene, TechniqueSet::parse("s=0;s=2;1,3;1,4"), 5, true, false, MediumSampling::Mis).biased());
   }
 }
 

@@ -143,8 +143,9 @@ std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled
                                   double minDistance, double pEquiangular = 0.0) {
   const int n = static_cast<int>(f.x.size());
   std::vector<double> p(static_cast<size_t>(n + 1), 0.0), w(static_cast<size_t>(n + 1), 0.0);
-  // E follows C(1, n-1)'s switch.
-  const bool equiangular = o.mediumSampling != MediumSampling::Distance && pEquiangular > 0.0 && enabled.contains(1, n - 1);
+  // E(1, n-1) has its own switch.
+  const bool equiangular = o.mediumSampling != MediumSampling::Distance && pEquiangular > 0.0 &&
+                           enabled.contains(Technique::equiangular(n - 1));
   const bool x0Hittable = !f.x[0].isDeltaPosition && !f.x[0].isDeltaDirection;
   // No lens point connects to the environment: (1, 1) cannot form the path environment -> camera.
   const bool lensToInfinity = n == 2 && f.x[0].isInfinite;

@@ -12,17 +12,23 @@ namespace pathlab {
 namespace {
 
 TEST(Technique, OneIndexOverConnectionsAndMergesInTheOrderOfTheGrid) {
-  // Length 1: C(0,2), C(1,1); length 2: C(0,3), C(1,2), C(2,1), M(2,2); length 3 from 6.
+  // Length 1: C(0,2), C(1,1); length 2: C(0,3), C(1,2), C(2,1), M(2,2), E(1,2); length 3 from 7.
   EXPECT_EQ((Technique{0, 2}.index()), 0u);
   EXPECT_EQ((Technique{1, 1}.index()), 1u);
   EXPECT_EQ((Technique{0, 3}.index()), 2u);
   EXPECT_EQ((Technique{2, 1}.index()), 4u);
   EXPECT_EQ(Technique::merge(2, 2).index(), 5u);
-  EXPECT_EQ((Technique{0, 4}.index()), 6u);
-  EXPECT_EQ(Technique::merge(3, 2).index(), 11u);
-  EXPECT_EQ(Technique::countUpTo(4), 2u + 4u + 6u + 8u);
+  EXPECT_EQ(Technique::equiangular(2).index(), 6u);
+  EXPECT_EQ((Technique{0, 4}.index()), 7u);
+  EXPECT_EQ(Technique::merge(3, 2).index(), 12u);
+  EXPECT_EQ(Technique::equiangular(3).index(), 13u);
+  EXPECT_EQ(Technique::countUpTo(4), 2u + 5u + 7u + 9u);
   EXPECT_EQ(Technique::countUpTo(4, TechniqueFamilies::Connections), 2u + 3u + 4u + 5u);
   EXPECT_EQ(Technique::countUpTo(4, TechniqueFamilies::Merges), 0u + 1u + 2u + 3u);
+  EXPECT_EQ(Technique::countUpTo(4, TechniqueFamilies::Equiangular), 0u + 1u + 1u + 1u);
+  EXPECT_EQ(Technique::equiangular(3).length(), 3);  // C(1,3)'s path: 1 + 3 - 1 edges
+  EXPECT_FALSE(Technique::equiangular(1).valid());  // its vertex is not the camera
+  EXPECT_FALSE((Technique{2, 3, TechniqueKind::Equiangular}.valid()));  // one light vertex only
   EXPECT_EQ((Technique{3, 3}.length()), 5);
   EXPECT_EQ(Technique::merge(3, 3).length(), 4);  // y_2 and z_2 are one vertex: 3 + 3 - 2 edges
   EXPECT_FALSE((Technique{0, 1}.valid()));
@@ -30,14 +36,14 @@ TEST(Technique, OneIndexOverConnectionsAndMergesInTheOrderOfTheGrid) {
   EXPECT_FALSE(Technique::merge(1, 3).valid());  // not on the light
   EXPECT_FALSE(Technique::merge(3, 1).valid());  // not at the camera
   EXPECT_NE(Technique::merge(2, 3), (Technique{2, 3}));
-  size_t i = 0, connections = 0, merges = 0;
+  size_t i = 0, connections = 0, merges = 0, equiangular = 0;
   for (const Technique x : techniquesUpTo(60, TechniqueFamilies::All)) {
     ASSERT_EQ(x.index(), i) << x.s << "," << x.t;
     ASSERT_EQ(Technique::fromIndex(i), x);
     ASSERT_TRUE(x.valid());
     ASSERT_EQ(Technique::atSlot(x.length(), x.slot()), x);
     // Each family keeps a dense numbering of its own (colours are keyed by it).
-    ASSERT_EQ(x.familyIndex(), x.isMerge() ? merges++ : connections++);
+    ASSERT_EQ(x.familyIndex(), x.isMerge() ? merges++ : x.isEquiangular() ? equiangular++ : connections++);
     ++i;
   }
   EXPECT_EQ(i, Technique::countUpTo(60));
@@ -55,11 +61,19 @@ TEST(Technique, OneIndexOverConnectionsAndMergesInTheOrderOfTheGrid) {
     ++m;
   }
   EXPECT_EQ(m, merges);
+  size_t e = 0;
+  for (const Technique x : techniquesUpTo(60, TechniqueFamilies::Equiangular)) {
+    ASSERT_TRUE(x.isEquiangular());
+    ++e;
+  }
+  EXPECT_EQ(e, equiangular);
+  EXPECT_EQ(e, Technique::countUpTo(60, TechniqueFamilies::Equiangular));
   std::vector<Technique> row(techniquesOfLength(3).begin(), techniquesOfLength(3).end());
   EXPECT_EQ(row, (std::vector<Technique>{{0, 4}, {1, 3}, {2, 2}, {3, 1}}));
   const TechniqueRange all3 = techniquesOfLength(3, TechniqueFamilies::All);
   std::vector<Technique> rowAll(all3.begin(), all3.end());
-  EXPECT_EQ(rowAll, (std::vector<Technique>{{0, 4}, {1, 3}, {2, 2}, {3, 1}, Technique::merge(2, 3), Technique::merge(3, 2)}));
+  EXPECT_EQ(rowAll, (std::vector<Technique>{{0, 4}, {1, 3}, {2, 2}, {3, 1}, Technique::merge(2, 3), Technique::merge(3, 2),
+                                            Technique::equiangular(3)}));
   EXPECT_EQ(techniquesUpTo(0).begin(), techniquesUpTo(0).end());
   const TechniqueRange noMergeOfLength1 = techniquesOfLength(1, TechniqueFamilies::Merges);
   EXPECT_EQ(noMergeOfLength1.begin(), noMergeOfLength1.end());
@@ -74,11 +88,12 @@ TEST(BptTechniqueSet, MergesAreListedParsedAndPrintedBesideConnections) {
   EXPECT_EQ(set.toString(), "all;M2,3;m=4");
   EXPECT_EQ(TechniqueSet::parse(set.toString()), set);
   EXPECT_EQ(set.families(), TechniqueFamilies::All);
-  EXPECT_EQ(TechniqueSet::all().families(), TechniqueFamilies::Connections);
+  // "all" is every connection and equiangular technique (bpt samples E where a fog allows).
+  EXPECT_EQ(TechniqueSet::all().families(), TechniqueFamilies::Connections | TechniqueFamilies::Equiangular);
   EXPECT_EQ(TechniqueSet::parse("M2,2").families(), TechniqueFamilies::Merges);
   // "all" is every connection and no merge; the counts and the completeness follow.
   EXPECT_FALSE(TechniqueSet::all().contains(Technique::merge(2, 2)));
-  EXPECT_EQ(set.count(4), 2 + 3 + 4 + 5 + 1 + 3);
+  EXPECT_EQ(set.count(4), 2 + 3 + 4 + 5 + 1 + 3 + 3);
   EXPECT_TRUE(set.containsAllUpTo(4));
   EXPECT_FALSE(set.containsAllUpTo(4, TechniqueFamilies::All));  // M(2,2) and M(3,2) missing
   EXPECT_FALSE((set | TechniqueSet::parse("M3,2")).containsAllUpTo(4, TechniqueFamilies::All));
@@ -110,7 +125,7 @@ TEST(BptTechniqueSet, EveryMergeAtEveryLengthIsOneRule) {
   EXPECT_FALSE(TechniqueSet::allMerges().contains(1, 1));
   EXPECT_EQ(vcm.families(), TechniqueFamilies::All);
   EXPECT_TRUE(vcm.containsAllUpTo(6, TechniqueFamilies::All));
-  EXPECT_EQ(vcm.count(3), 9 + 3);
+  EXPECT_EQ(vcm.count(3), 9 + 3 + 2);
   // A hole lists the merges up to the maximum; switching every merge off leaves the connections.
   TechniqueSet less = vcm;
   less.disable(Technique::merge(2, 2), 3);
@@ -165,9 +180,10 @@ TEST(BptTechniqueSet, ARendererTakesMergesWhereItCanSampleThem) {
 
 TEST(BptTechniqueSet, AllHasEveryTechniqueOfEveryLength) {
   const TechniqueSet set = TechniqueSet::all();
-  EXPECT_EQ(set.count(4), 2 + 3 + 4 + 5);
+  EXPECT_EQ(set.count(4), 2 + 3 + 4 + 5 + 3);  // and E(1,2), E(1,3), E(1,4)
   EXPECT_TRUE(set.contains(0, 2));
   EXPECT_TRUE(set.contains(4, 1));
+  EXPECT_TRUE(set.contains(Technique::equiangular(4)));
   EXPECT_TRUE(set.contains(300, 200));
   EXPECT_FALSE(set.contains(1, 0));  // t >= 1
   EXPECT_FALSE(set.contains(0, 1));  // length 0
@@ -196,13 +212,19 @@ TEST(BptTechniqueSet, ParsesEveryItemKind) {
 
 TEST(BptTechniqueSet, EqualSetsCompareEqualHoweverSpelled) {
   EXPECT_EQ(TechniqueSet::parse("k=1"), TechniqueSet::parse("0,2;1,1"));
-  EXPECT_EQ(TechniqueSet::parse("s=0;k=2"), TechniqueSet::parse("1,2; s=0 ;2,1"));
+  EXPECT_EQ(TechniqueSet::parse("s=0;k=2"), TechniqueSet::parse("1,2; s=0 ;2,1;E1,2"));
+  EXPECT_NE(TechniqueSet::parse("s=0;k=2"), TechniqueSet::parse("1,2; s=0 ;2,1"));
+  // E(1, t) stands beside C(1, t): s = 1 and t = T take it in.
+  EXPECT_EQ(TechniqueSet::parse("s=1"), TechniqueSet::parse("s=1;E1,5"));
+  EXPECT_EQ(TechniqueSet::parse("t=3"), TechniqueSet::parse("t=3;E1,3"));
+  EXPECT_FALSE(TechniqueSet::parse("s=0").contains(Technique::equiangular(3)));
+  EXPECT_EQ(TechniqueSet::parse("0,3;E1,2").toString(), "0,3;E1,2");
   EXPECT_EQ(TechniqueSet::parse("all;s=3;1,1"), TechniqueSet::all());
   EXPECT_EQ(TechniqueSet::parse("t=1;1,1;2,1"), TechniqueSet::lightTracing());
   EXPECT_EQ(TechniqueSet::parse("s=1;s=0"), TechniqueSet::parse("s=0;s=1;0,7"));
   // Equal up to length 3 is not equal: they differ once the maximum grows.
   EXPECT_NE(TechniqueSet::pathTracing().upTo(3), TechniqueSet::pathTracing());
-  EXPECT_EQ(TechniqueSet::pathTracing().upTo(3).count(3), 6);
+  EXPECT_EQ(TechniqueSet::pathTracing().upTo(3).count(3), 6 + 2);  // with E(1,2), E(1,3)
   // So RenderSettings with such sets are equal, and a renderer starts no new generation for them
   // (tests/render/progressive_renderer_test.cpp).
   RenderSettings a, b;
@@ -274,7 +296,8 @@ TEST(BptTechniqueSet, AHoleInARuleListsTheSetUpToTheMaximum) {
   TechniqueSet set = TechniqueSet::all();
   set.disable({1, 2}, 3);
   EXPECT_FALSE(set.contains(1, 2));
-  EXPECT_EQ(set.count(3), 8);
+  EXPECT_EQ(set.count(3), 8 + 2);
+  EXPECT_TRUE(set.contains(Technique::equiangular(2)));  // E(1,2) stays beside the hole at C(1,2)
   EXPECT_FALSE(set.contains(0, 5));  // length 4: no longer a rule
   set.enable({1, 2});
   EXPECT_EQ(set, TechniqueSet::all().upTo(3));
@@ -309,7 +332,7 @@ TEST(BptTechniqueSet, ListsUncoveredLengths) {
 
 TEST(BptTechniqueSet, RejectsBadInput) {
   for (const char* bad : {"", "x", "1,", "1;2", "s=", "-1,2", "1,0", "0,1", "all;;", "q=1", "1,2,3", "k=0", "t=0",
-                          "s=-1", "k=5000", "4000,4000"})
+                          "s=-1", "k=5000", "4000,4000", "E2,3", "E1,1", "E0,2"})
     EXPECT_THROW(TechniqueSet::parse(bad), std::invalid_argument) << bad;
   try {
     TechniqueSet::parse("1,2;zz");

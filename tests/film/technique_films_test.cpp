@@ -11,10 +11,12 @@ namespace {
 
 TEST(TechniqueFilms, AFamilyNotAskedForCostsNoMemory) {
   const uint64_t connections = TechniqueFilms::bytesFor(64, 32, 6, true);
-  const uint64_t both = TechniqueFilms::bytesFor(64, 32, 6, true, TechniqueFamilies::All);
-  // 27 connections and 15 merges up to length 6, 8 doubles a pixel each.
+  const uint64_t both = TechniqueFilms::bytesFor(64, 32, 6, true, TechniqueFamilies::Connections | TechniqueFamilies::Merges);
+  const uint64_t every = TechniqueFilms::bytesFor(64, 32, 6, true, TechniqueFamilies::All);
+  // 27 connections, 15 merges and 5 equiangular techniques up to length 6, 8 doubles a pixel each.
   EXPECT_EQ(connections, 27u * 8u * 8u * 64u * 32u);
   EXPECT_EQ(both, (27u + 15u) * 8u * 8u * 64u * 32u);
+  EXPECT_EQ(every, (27u + 15u + 5u) * 8u * 8u * 64u * 32u);
   TechniqueFilms films(4, 4, 3);
   const Technique m = Technique::merge(2, 2);
   EXPECT_FALSE(films.covers(m));

@@ -50,10 +50,11 @@ TEST(EquiangularRender, FogLampIsTheSameImageUnderEveryMediumSamplingPtAndBpt) {
       bptWith("bpt distance", MediumSampling::Distance, MisHeuristic::Balance, false, seed + 6, 512),
       bptWith("bpt mis", MediumSampling::Mis, MisHeuristic::Balance, false, seed + 7, 512),
       bptWith("bpt equiangular", MediumSampling::Equiangular, MisHeuristic::Power, false, seed + 8, 512),
-      // E(1, k) follows C(1, k)'s switch: here only E(1, 2) runs, and no weight counts E(1, 3) or E(1, 4).
+      // E(1, k) has its own switch: here E(1, 2) runs beside C(1, 2), E(1, 3) without C(1, 3), and
+      // neither C(1, 4) nor E(1, 4) runs (no weight counts them).
       [&] {
         test::EstimatorSpec e = bptWith("bpt some mis", MediumSampling::Mis, MisHeuristic::Balance, false, seed + 9, 512);
-        e.settings.techniques = TechniqueSet::parse("s=0;s=2;s=3;t=1;1,2");
+        e.settings.techniques = TechniqueSet::parse("s=0;s=2;s=3;t=1;1,2;E1,2;E1,3");
         return e;
       }()};
   const test::PixelLabels grid = test::gridLabels(base.width, base.height, 3, 3);
@@ -72,6 +73,77 @@ TEST(EquiangularRender, FogLampIsTheSameImageUnderEveryMediumSamplingPtAndBpt) {
                                       test::kFamilyAlpha);
   test::report(run, "fog lamp: medium sampling");
   test::expectAgreement(run, "fog lamp: medium sampling");
+}
+
+Image pyramidSum(const RenderSession& session, int length) {
+  const Image full = session.image();
+  Image sum{full.width, full.height, std::vector<float>(full.rgb.size(), 0.f)};
+  for (const Technique x : techniquesUpTo(length, TechniqueFamilies::Connections | TechniqueFamilies::Equiangular)) {
+    const Image share = session.techniqueImage(x, false);
+    for (size_t i = 0; i < sum.rgb.size(); ++i) sum.rgb[i] += share.rgb[i];
+  }
+  return sum;
+}
+
+double luminanceSum(const Image& img) {
+  double sum = 0.0;
+  for (float v : img.rgb) sum += v;
+  return sum;
+}
+
+// E(1, k) is a technique of the pyramid like any other: its own weighted and unweighted buffers,
+// the weighted shares of connections and equiangular techniques summing to the image (Veach's eq.
+// 10.9 with E among the techniques), and an isolated E(1, k) rendering exactly its buffer. A scene
+// without a medium E can sample keeps no buffer for it.
+TEST(EquiangularRender, TheEquiangularTechniquesArePyramidTechniques) {
+  const Scene fog(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/fog-lamp.gltf"));
+  RenderSettings s;
+  s.width = 20, s.height = 16, s.maxLength = 4, s.pyramidLength = 4, s.seed = 17;
+  s.integrator = IntegratorKind::Bpt;
+  s.mediumSampling = MediumSampling::Mis;
+  for (const auto& [heuristic, spec] : {std::pair{MisHeuristic::Balance, "all"}, std::pair{MisHeuristic::Power, "all"},
+                                        std::pair{MisHeuristic::Balance, "s=0;s=2;t=1;1,2;E1,3"}}) {
+    RenderSettings h = s;
+    h.mis.heuristic = heuristic;
+    h.techniques = TechniqueSet::parse(spec);
+    RenderSession session(fog, h);
+    ASSERT_TRUE(covers(session.pyramidFamilies(), TechniqueKind::Equiangular));
+    for (int i = 0; i < 3; ++i) session.renderPass();
+    SCOPED_TRACE(spec);
+    const Image full = session.image(), sum = pyramidSum(session, 4);
+    ASSERT_GT(luminanceSum(full), 0.0);
+    for (size_t i = 0; i < full.rgb.size(); ++i)
+      ASSERT_NEAR(full.rgb[i], sum.rgb[i], 1e-4 * std::max(std::abs(full.rgb[i]), std::abs(sum.rgb[i])) + 1e-7)
+          << "sum of weighted shares vs image at value " << i;
+    const Technique e3 = Technique::equiangular(3);
+    EXPECT_GT(luminanceSum(session.techniqueImage(e3, false)), 0.0) << "E(1,3) has a share";
+    EXPECT_GT(luminanceSum(session.techniqueImage(e3, true)), 0.0) << "E(1,3) has an estimate";
+  }
+  // Isolated, E(1, 2) and E(1, 3) are their buffers, weighted and unweighted.
+  RenderSession pyramid(fog, s);
+  for (int i = 0; i < 2; ++i) pyramid.renderPass();
+  for (const int t : {2, 3})
+    for (const bool unweighted : {false, true}) {
+      RenderSettings iso = s;
+      iso.pyramidLength = 0;
+      iso.isolate = Isolation{1, t, unweighted, TechniqueKind::Equiangular};
+      RenderSession session(fog, iso);
+      for (int i = 0; i < 2; ++i) session.renderPass();
+      SCOPED_TRACE(testing::Message() << "E(1," << t << ")" << (unweighted ? " unweighted" : " weighted"));
+      const Image expected = pyramid.techniqueImage(Technique::equiangular(t), unweighted);
+      const Image got = session.image();
+      ASSERT_GT(luminanceSum(expected), 0.0);
+      for (size_t i = 0; i < got.rgb.size(); ++i)
+        ASSERT_NEAR(got.rgb[i], expected.rgb[i], 1e-5 * std::max(std::abs(got.rgb[i]), std::abs(expected.rgb[i])) + 1e-7)
+            << "isolated render vs pyramid buffer at value " << i;
+    }
+  // The Cornell box has no medium: no E buffer, whatever --medium-sampling says.
+  const Scene box(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/cornell-box.gltf"));
+  EXPECT_FALSE(covers(RenderSession(box, s).pyramidFamilies(), TechniqueKind::Equiangular));
+  EXPECT_FALSE(covers(pyramidFamilies(s, box), TechniqueKind::Equiangular));
+  RenderSettings distance = s;
+  distance.mediumSampling = MediumSampling::Distance;
+  EXPECT_FALSE(covers(pyramidFamilies(distance, fog), TechniqueKind::Equiangular));
 }
 
 }  // namespace

@@ -129,7 +129,7 @@ TEST(EstimatorState, DescriptionNamesTheEstimator) {
   s.isolate.reset();
   s.mis.heuristic = MisHeuristic::Power;
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS power (beta 2)");
-  s.techniques = TechniqueSet::parse("1,2;s=0;2,1");
+  s.techniques = TechniqueSet::parse("1,2;s=0;2,1;E1,2");  // every technique of length 2
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques s=0;k=2, MIS power (beta 2)");
   s.injectBias = BiasInjection{1, 2, 1.05f};
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques s=0;k=2, MIS power (beta 2), BIAS INJECTED: (1,2) x 1.05");
@@ -145,6 +145,8 @@ TEST(EstimatorState, DescriptionNamesTheEquiangularTechniques) {
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS balance, equiangular E(1,k) beside C(1,k)");
   s.mediumSampling = MediumSampling::Equiangular;
   EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS balance, equiangular E(1,k) in place of C(1,k)");
+  s.mediumSampling = MediumSampling::Distance;
+  EXPECT_EQ(describe(s), "bpt, max length 5, techniques all, MIS balance, distance sampling alone in media (no E(1,k))");
 }
 
 // With merges the line names the radius, its schedule and where the camera subpath merges, so a
@@ -230,7 +232,7 @@ TEST(EstimatorState, MetropolisGetsTheConnectionsAndNoPerTechniqueOutputs) {
   e.settings.integrator = IntegratorKind::Mlt;
   const RenderSettings s = renderSettings(e);
   EXPECT_NO_THROW(validateSettings(s));
-  EXPECT_EQ(s.techniques.families(), TechniqueFamilies::Connections);
+  EXPECT_EQ(s.techniques.families(), TechniqueFamilies::Connections | TechniqueFamilies::Equiangular);  // "all"
   EXPECT_TRUE(s.techniques.containsAllUpTo(6));
   EXPECT_FALSE(s.isolate);
   EXPECT_EQ(s.pyramidLength, 0);

@@ -183,7 +183,7 @@ INSTANTIATE_TEST_SUITE_P(
                     BadCase{R"({"presets": [{"name": "x", "maxLength": 3, "isolate": [3, 3]}]})", "(3,3)"},
                     BadCase{R"({"presets": [{"name": "x", "isolate": [1]}]})", "[s, t]"},
                     BadCase{R"({"presets": [{"name": "x", "isolate": "M1,2"}]})", "M(1,2) is not a technique"},
-                    BadCase{R"({"presets": [{"name": "x", "isolate": "M2"}]})", "'M2' is not S,T or MS,T"},
+                    BadCase{R"({"presets": [{"name": "x", "isolate": "M2"}]})", "'M2' is not S,T, MS,T or E1,T"},
                     BadCase{R"({"presets": [{"name": "x", "isolate": "Mx,2"}]})", "'x' is not an integer"},
                     BadCase{R"({"presets": [{"name": "x", "integrator": "vcm", "techniques": "all"}]})",
                             "integrator \"vcm\" sets the techniques"},

@@ -142,9 +142,14 @@ std::string describe(const RenderSettings& s) {
                        s.mergeSite == MergeSite::FirstNonSpecular ? " at the first non-specular camera vertex (ppm)" : "",
                        s.mergeNonCaustic ? fmt::format(", non-caustic photons {:g}", *s.mergeNonCaustic) : "");
   if (s.connect != ConnectStrategy::All) out += fmt::format(", connect {}", connectStrategyName(s.connect));
-  // bpt's equiangular techniques E(1, k) (issue 35): the A | B lanes of the fog preset differ in this.
-  if (mediumSampling(s) != MediumSampling::Distance)
-    out += fmt::format(", equiangular E(1,k) {}", mediumSampling(s) == MediumSampling::Mis ? "beside C(1,k)" : "in place of C(1,k)");
+  // bpt's equiangular techniques E(1, k) (issue 35): the A | B lanes of the fog preset differ in
+  // this. Said when chosen (the default, E beside C where a fog allows, goes without saying).
+  if (s.mediumSampling && s.integrator == IntegratorKind::Bpt)
+    out += *s.mediumSampling == MediumSampling::Distance ? std::string(", distance sampling alone in media (no E(1,k))")
+                                                         : fmt::format(", equiangular E(1,k) {}",
+                                                                       *s.mediumSampling == MediumSampling::Mis
+                                                                           ? "beside C(1,k)"
+                                                                           : "in place of C(1,k)");
   if (s.lightPaths != 1.f) out += fmt::format(", light paths {:g}", s.lightPaths);
   if (s.integrator == IntegratorKind::Mlt) {
     // What decides the chains (the A | B lanes of two Metropolis settings differ in these).

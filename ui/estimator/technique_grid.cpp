@@ -36,10 +36,12 @@ TechniqueSet parseTypedSpec(const std::string& spec, int maxLength) {
 
 namespace {
 
-// Every connection up to the maximum: "all", so that it keeps growing with the maximum (with the
+// Every connection and equiangular technique up to the maximum: "all", so that it keeps growing
+// with the maximum (with the
 // set's merges still listed).
 TechniqueSet compact(TechniqueSet set, int maxLength) {
-  if (set.containsAllUpTo(maxLength)) set = TechniqueSet::all() | set;
+  if (set.containsAllUpTo(maxLength, TechniqueFamilies::Connections | TechniqueFamilies::Equiangular))
+    set = TechniqueSet::all() | set;
   // Likewise every merge up to the maximum: "m=all".
   if (maxLength >= 2 && covers(set.families(), TechniqueKind::Merge) &&
       set.containsAllUpTo(maxLength, TechniqueFamilies::Merges))
@@ -75,6 +77,13 @@ TechniqueSet toggleLightVertices(const TechniqueSet& set, int maxLength, int s) 
 
 TechniqueSet toggleMergesOfLength(const TechniqueSet& set, int maxLength, int k) {
   return toggleGroup(set, maxLength, TechniqueSet::mergesOfLength(std::max(k, 2)));
+}
+
+TechniqueSet toggleEquiangular(const TechniqueSet& set, int maxLength) {
+  TechniqueSet every;
+  for (const Technique x : techniquesUpTo(maxLength, TechniqueFamilies::Equiangular)) every.enable(x);
+  if (every.empty()) return set;
+  return toggleGroup(set, maxLength, every);
 }
 
 TechniqueSet toggleAllMerges(const TechniqueSet& set, int maxLength) {

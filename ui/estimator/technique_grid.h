@@ -31,6 +31,8 @@ TechniqueSet toggleMergesOfLength(const TechniqueSet& set, int maxLength, int k)
 // Every merge of every length on ("m=all" beside the connections: vertex connection and merging),
 // or off when all are on.
 TechniqueSet toggleAllMerges(const TechniqueSet& set, int maxLength);
+// Every equiangular technique E(1, k), k = 2..maxLength, off when all are on, else all on.
+TechniqueSet toggleEquiangular(const TechniqueSet& set, int maxLength);
 // True when the settings enable no technique up to their maximum length (Bpt and Lt): the
 // renderer cannot run them.
 bool noTechniqueEnabled(const RenderSettings& settings);

@@ -52,11 +52,12 @@ MapView parseMapView(const std::string& text) {
                                      std::pair{"variance:", MapKind::Variance}}) {
     const std::string p = prefix;
     if (text.compare(0, p.size(), p) != 0) continue;
-    // S,T a connection, MS,T a merge (as --techniques writes them).
+    // S,T a connection, MS,T a merge, E1,T an equiangular technique (as --techniques writes them).
     const bool merge = text.size() > p.size() && (text[p.size()] == 'M' || text[p.size()] == 'm');
-    const std::string rest = text.substr(p.size() + (merge ? 1 : 0));
+    const bool equiangular = text.size() > p.size() && (text[p.size()] == 'E' || text[p.size()] == 'e');
+    const std::string rest = text.substr(p.size() + (merge || equiangular ? 1 : 0));
     if (std::sscanf(rest.c_str(), "%d,%d%c", &a, &b, &extra) != 2) break;
-    const Technique x{a, b, merge ? TechniqueKind::Merge : TechniqueKind::Connection};
+    const Technique x{a, b, merge ? TechniqueKind::Merge : equiangular ? TechniqueKind::Equiangular : TechniqueKind::Connection};
     if (!x.valid()) break;
     v.kind = kind;
     v.technique = x;
@@ -64,8 +65,8 @@ MapView parseMapView(const std::string& text) {
     return v;
   }
   throw std::invalid_argument("--technique-map: '" + text +
-                              "' is not dominant, dominant:K, share:S,T, share:MS,T, cannot:S,T, cannot:MS,T, "
-                              "variance:S,T, variance:MS,T or variance-dominant");
+                              "' is not dominant, dominant:K, share:S,T, share:MS,T, share:E1,T, cannot:S,T, "
+                              "cannot:MS,T, cannot:E1,T, variance:S,T, variance:MS,T, variance:E1,T or variance-dominant");
 }
 
 std::string mapViewName(const MapView& v) {

@@ -3,6 +3,8 @@
 // every technique of its length) and its overlay over the image and the 3D view.
 #include "ui/panels/panels.h"
 
+#include "core/sampling/technique_label.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -149,7 +151,7 @@ void drawTechniqueRows(PathInspectorState& state) {
     const TechniqueResult& r = in.trace.records[i];
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    const std::string name = fmt::format("{}({},{})", r.kind == TechniqueKind::Merge ? "M" : "", r.s, r.t);
+    const std::string name = techniqueLabel(r.technique());
     if (ImGui::Selectable(name.c_str(), state.selected == static_cast<int>(i), ImGuiSelectableFlags_SpanAllColumns))
       state.selected = static_cast<int>(i);
     ImGui::TableNextColumn();
@@ -184,7 +186,7 @@ void drawEveryTechnique(PathInspectorState& state) {
       const float barWidth = ImGui::GetContentRegionAvail().x * 0.3f;
       for (const TechniqueOnPath& x : every) {
         const bool merge = x.kind == TechniqueKind::Merge;
-        const std::string name = fmt::format("{}({},{})", merge ? "M" : x.equiangular ? "E" : "", x.s, x.t);
+        const std::string name = techniqueLabel(x.technique());
         ImGui::TextUnformatted(name.c_str());
         ImGui::SameLine(ImGui::GetFontSize() * 4.5f);
         if (!x.possible) {

@@ -21,6 +21,11 @@ const Texture* PyramidImages::texture(Technique x, bool unweighted) const {
   return nullptr;
 }
 
+bool PyramidImages::hasEquiangular() const {
+  return std::any_of(thumbnails.begin(), thumbnails.end(),
+                     [](const TechniqueThumbnail& x) { return x.kind == TechniqueKind::Equiangular; });
+}
+
 bool PyramidImages::hasMerges() const {
   return std::any_of(thumbnails.begin(), thumbnails.end(), [](const TechniqueThumbnail& x) { return x.kind == TechniqueKind::Merge; });
 }
@@ -30,11 +35,11 @@ bool PyramidImages::hasMerges() const {
 constexpr float kMaxShare = 0.45f;
 
 float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale,
-                        std::optional<float> imageAspect, bool merges) {
+                        std::optional<float> imageAspect, bool merges, bool equiangular) {
   const ImGuiStyle& style = ImGui::GetStyle();
   const int lengths = std::max(1, std::min(view.length, maxLength));
   const int rows = merges ? 2 * lengths - 1 : lengths;  // a row of merges under each length >= 2
-  const float n = static_cast<float>(lengths + 1);  // thumbnails in the longest row
+  const float n = static_cast<float>(lengths + (equiangular ? 2 : 1));  // thumbnails in the longest row
   // Rows of thumbnails fill the height below the header, at most 100 pixels (x UI scale) tall.
   const float frame = 2.f * 2.f;  // image button padding
   // Both pyramids, weighted above unweighted, when each row can still be 48 pixels tall; else one
@@ -132,6 +137,11 @@ void drawPyramid(const PyramidView& view, const PyramidImages& images, Estimator
       if (x.s > 0) ImGui::SameLine();
       drawThumbnail(x, images, estimator, unweighted, size, uiScale);
     }
+    // E(1, k) at the end of its length's row, where bpt samples it.
+    if (k >= 2 && images.texture(Technique::equiangular(k), unweighted)) {
+      ImGui::SameLine();
+      drawThumbnail(Technique::equiangular(k), images, estimator, unweighted, size, uiScale);
+    }
     if (!merges || k < 2) continue;
     // Columns s = 0 and 1 hold no merge: keep them empty so M(s, .) sits under (s, .).
     ImGui::Dummy(ImVec2(size.x + 4.f, size.y + 4.f));
@@ -157,11 +167,7 @@ void drawPyramidWindow(PyramidView& view, const PyramidImages& images, Estimator
     ImGui::End();
     return;
   }
-  // bpt's equiangular techniques E(1, k) take a share of the weights but have no thumbnail yet.
-  const bool equiangular = estimator.settings.integrator == IntegratorKind::Bpt &&
-                           mediumSampling(estimator.settings) != MediumSampling::Distance;
-  const char* sharesSum = equiangular ? "the shares sum to the image less E(1,k)'s, not shown yet"
-                                      : "the shares sum to the image";
+  const char* sharesSum = "the shares sum to the image";
   if (!view.both) {
     ImGui::Checkbox("unweighted", &view.unweighted);
     if (ImGui::IsItemHovered())
@@ -175,7 +181,9 @@ void drawPyramidWindow(PyramidView& view, const PyramidImages& images, Estimator
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
   ImGui::TextWrapped("%s", images.thumbnails.empty() ? "waiting for the first full pass ..."
                                                 : images.hasMerges() ? "rows: length k, then its merges M; columns: s; click to isolate"
-                                                                     : "rows: length k; columns: s; click to isolate");
+                                                : images.hasEquiangular()
+                                                    ? "rows: length k; columns: s, then the equiangular E(1,k); click to isolate"
+                                                    : "rows: length k; columns: s; click to isolate");
   ImGui::PopStyleColor();
   if (view.both) {
     ImGui::TextWrapped("weighted: MIS shares, %s", sharesSum);

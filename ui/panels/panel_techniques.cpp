@@ -59,7 +59,7 @@ std::string verdictText(const TechniqueVerdict& v, int blocks) {
 }
 
 void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, const Counters& counters,
-                       const CheckReport* check) {
+                       const CheckReport* check, TechniqueFamilies sampled) {
   RenderSettings& edited = estimator.settings;
   const TechniqueSet& set = edited.techniques;
   const bool isolating = estimator.mode != EstimatorMode::Combine;
@@ -67,6 +67,9 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
   const bool lightTracing = edited.integrator == IntegratorKind::Lt;
   const int rows = std::min(edited.maxLength, kGridMaxLength);
   const bool showMerges = covers(set.families(), TechniqueKind::Merge);
+  // The equiangular techniques E(1, k) in a column of their own, where bpt samples them in this
+  // scene (sampledFamilies: a medium they can sample, --medium-sampling mis or equiangular).
+  const bool showEquiangular = covers(sampled, TechniqueKind::Equiangular);
 
   // Presets
   auto presetButton = [&](const char* label, TechniquePreset preset, const char* key) {
@@ -86,6 +89,13 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
     edited.techniques = toggleAllMerges(set, edited.maxLength);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("every merging technique M(s,t) on or off (vertex merging; --techniques \"all;m=all\" is VCM)");
+  if (showEquiangular) {
+    if (ImGui::SmallButton("E(1,k) on/off") && !isolating) edited.techniques = toggleEquiangular(set, edited.maxLength);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("every equiangular technique E(1,k) on/off (the green cells): C(1,k)'s path with its camera\n"
+                        "vertex next to the light placed in the medium toward a point on the light (Kulla and\n"
+                        "Fajardo 2012)");
+  }
   presetButton("only length", TechniquePreset::OneLength, "4");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
@@ -97,7 +107,8 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
 
   // The grid: one checkbox per (s,t); in the isolate modes a click picks the isolated technique.
   const ImGuiTableFlags flags = ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_NoHostExtendX;
-  if (ImGui::BeginTable("grid", rows + 2, flags)) {
+  // With E, one column more: E(1, k) sits at column s = k + 1 of its row.
+  if (ImGui::BeginTable("grid", rows + (showEquiangular ? 3 : 2), flags)) {
     ImGui::TableNextRow();
     ImGui::TableSetColumnIndex(0);
     ImGui::TextDisabled("k\\s");
@@ -110,6 +121,7 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("s = %d: every technique with %d light vertices on/off", s, s);
       ImGui::PopID();
     }
+
     for (int k = 1; k <= rows; ++k) {
       ImGui::TableNextRow();
       ImGui::TableSetColumnIndex(0);
@@ -148,6 +160,33 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
                             static_cast<unsigned long long>(c.blocked), static_cast<unsigned long long>(c.contributed),
                             static_cast<unsigned long long>(c.discarded.total()),
                             verdict ? ("\n" + verdictText(*verdict, check->blocks)).c_str() : "");
+        }
+        ImGui::PopID();
+      }
+      // E(1, k) just right of its length's last connection (k, 1), on a green cell: the E's run
+      // down beside the pyramid's diagonal, as in the pyramid window.
+      if (showEquiangular && k >= 2) {
+        const Technique x = Technique::equiangular(k);
+        ImGui::TableSetColumnIndex(k + 2);
+        ImGui::PushID(k * 100 + 99);
+        ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, isolating && estimator.isolated == x
+                                                              ? IM_COL32(230, 160, 40, 200)
+                                                              : IM_COL32(0, 136, 86, 110));
+        bool on = techniqueShownEnabled(edited, x);
+        if (ImGui::Checkbox("##e", &on)) {
+          if (isolating && !ImGui::GetIO().KeyCtrl) {
+            setIsolated(estimator, x);
+          } else {
+            edited.techniques = toggleTechnique(set, edited.maxLength, x);
+          }
+        }
+        if (ImGui::IsItemHovered()) {
+          const TechniqueCounters& c = counters.technique(x);
+          ImGui::SetTooltip("E(1,%d): the path of C(1,%d) with its camera vertex next to the light placed in the\n"
+                            "medium by equiangular sampling toward the light point\n"
+                            "this generation: %llu tried, %llu blocked, %llu contributed",
+                            k, k, static_cast<unsigned long long>(c.tried), static_cast<unsigned long long>(c.blocked),
+                            static_cast<unsigned long long>(c.contributed));
         }
         ImGui::PopID();
       }
@@ -442,7 +481,7 @@ void drawMetropolisControls(MltOptions& m, int maxLength, bool& showDensity, con
 
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
                           const Counters& counters, const CheckReport* check, const MltSummary* mlt,
-                          const MergeRadiusNow& radiusNow) {
+                          const MergeRadiusNow& radiusNow, TechniqueFamilies sampled) {
   RenderSettings& edited = estimator.settings;
   ImGui::PushID("estimator");
   // Integrator
@@ -497,7 +536,7 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
       ImGui::SetTooltip(pt ? "both, weighted by the power heuristic: the path tracer's default. Scenes with scattering\n"
                              "media only; the same image every way, the noise around lights differs"
                            : "the equiangular techniques E(1,k) beside the connections, in the same MIS weights.\n"
-                             "Scenes with homogeneous scattering media only; not yet in the pyramid or the maps");
+                             "Scenes with homogeneous scattering media only: the grid's E column switches each");
     if (m != static_cast<int>(now)) edited.mediumSampling = static_cast<MediumSampling>(m);
   } else if (edited.mediumSampling && *edited.mediumSampling != MediumSampling::Distance) {
     edited.mediumSampling.reset();  // lt, mlt, merges and naive BPT sample distances only, so far
@@ -581,7 +620,8 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   estimator.mode = static_cast<EstimatorMode>(mode);
   if (estimator.mode != EstimatorMode::Combine && !metropolis) {
     const Technique x = estimator.isolated;
-    ImGui::Text("isolated technique %s%s, length %d", x.isMerge() ? "" : "(s,t) = ", techniqueLabel(x).c_str(),
+    ImGui::Text("isolated technique %s%s, length %d", x.kind == TechniqueKind::Connection ? "(s,t) = " : "",
+                techniqueLabel(x).c_str(),
                 x.length());
     if (ImGui::IsItemHovered())
       ImGui::SetTooltip("click a cell of the grid or a pyramid thumbnail; arrow keys move it");
@@ -596,7 +636,7 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   drawMergeControls(edited, radiusNow);
 
   ImGui::Separator();
-  drawTechniqueGrid(estimator, grid, counters, check);
+  drawTechniqueGrid(estimator, grid, counters, check, sampled);
   ImGui::BeginDisabled(metropolis);
   drawCheckControls(estimator, grid, check);
   ImGui::EndDisabled();

@@ -56,7 +56,7 @@ struct MergeRadiusNow {
 };
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
                           const Counters& counters, const CheckReport* check, const MltSummary* mlt,
-                          const MergeRadiusNow& radiusNow);
+                          const MergeRadiusNow& radiusNow, TechniqueFamilies sampled);
 void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
 void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
 void drawPresetSection(const PresetState& presets, PanelRequests& requests);
@@ -107,9 +107,10 @@ void drawTechniqueTable(const RenderSnapshot& snapshot);
 // The technique pyramid on the right (panel_pyramid.cpp). pyramidPanelWidth sets view.thumbnail
 // and view.both for the space left of the window; a click on a thumbnail isolates its technique.
 // imageAspect: the image's width / height when it has one of its own (the camera's); none: the
-// image takes the room the panel leaves. merges: a row of merges below each length k >= 2.
+// image takes the room the panel leaves. merges: a row of merges below each length k >= 2;
+// equiangular: E(1, k) at the end of each row.
 float pyramidPanelWidth(PyramidView& view, int maxLength, float availableWidth, float height, float uiScale,
-                        std::optional<float> imageAspect, bool merges);
+                        std::optional<float> imageAspect, bool merges, bool equiangular = false);
 void drawPyramidWindow(PyramidView& view, const PyramidImages& images, EstimatorState& estimator, PanelRect rect,
                        float uiScale);
 
