@@ -185,12 +185,16 @@ void finishEstimatorOptions(EstimatorOptions& o) {
       throw std::invalid_argument(fmt::format("--inject-bias: '{}' is not a number", factorText));
     if (!(factor >= 0.0 && factor <= kMaxInjectedBias))
       throw std::invalid_argument(fmt::format("--inject-bias: factor {} is outside 0..{:g}", factorText, kMaxInjectedBias));
-    // "M2,2,2": the merge M(2,2) (its normalisation doubled, say).
+    // "M2,2,2": the merge M(2,2) (its normalisation doubled, say); "E1,2,1.1": the equiangular E(1,2).
     const bool merge = o.injectBias[0] == 'M' || o.injectBias[0] == 'm';
-    o.settings.injectBias = BiasInjection{parseInt(o.injectBias.substr(merge ? 1 : 0, a - (merge ? 1 : 0)), "--inject-bias"),
+    const bool equiangular = o.injectBias[0] == 'E' || o.injectBias[0] == 'e';
+    const size_t from = merge || equiangular ? 1 : 0;
+    o.settings.injectBias = BiasInjection{parseInt(o.injectBias.substr(from, a - from), "--inject-bias"),
                                           parseInt(o.injectBias.substr(a + 1, b - a - 1), "--inject-bias"),
                                           static_cast<float>(factor),
-                                          merge ? TechniqueKind::Merge : TechniqueKind::Connection};
+                                          merge         ? TechniqueKind::Merge
+                                          : equiangular ? TechniqueKind::Equiangular
+                                                        : TechniqueKind::Connection};
   }
   validateSettings(o.settings);
 }

@@ -81,9 +81,11 @@ CheckReport checkReport(const TechniqueCheck& check, const CheckOptions& options
   report.passes = check.passes();
   report.blocks = check.blocks();
   const int regions = check.regions(), whole = TechniqueCheck::wholeImage(check.blocks());
-  // The connections only: a merge is consistent, not unbiased, and is judged by its bias against
-  // the radius over several renders (merge_bias.h), never at one radius.
-  for (const Technique x : techniquesUpTo(check.maxLength(), TechniqueFamilies::Connections)) {
+  // The connections and the equiangular techniques E(1, k) only (unbiased techniques): a merge is
+  // consistent, not unbiased, and is judged by its bias against the radius over several renders
+  // (merge_bias.h), never at one radius.
+  constexpr TechniqueFamilies kUnbiased = TechniqueFamilies::Connections | TechniqueFamilies::Equiangular;
+  for (const Technique x : techniquesUpTo(check.maxLength(), kUnbiased)) {
     if (!check.enabled(x)) continue;
     TechniqueVerdict v;
     v.technique = x;
@@ -93,8 +95,8 @@ CheckReport checkReport(const TechniqueCheck& check, const CheckOptions& options
     // s = 0 nothing to share, and such a partner does not count toward the two comparisons a
     // region needs.
     int sharing = 0;
-    // Partners are the other connections of its length: merges never judge a connection.
-    for (const Technique j : techniquesOfLength(k, TechniqueFamilies::Connections)) {
+    // Partners are the other unbiased techniques of its length: merges never judge a connection.
+    for (const Technique j : techniquesOfLength(k, kUnbiased)) {
       if (j == x || !check.enabled(j)) continue;
       ++v.partners;
       const PairSums whole = check.pair(x, j, TechniqueCheck::wholeImage(check.blocks()));
@@ -104,7 +106,7 @@ CheckReport checkReport(const TechniqueCheck& check, const CheckOptions& options
     double worst = -1.0;
     for (int region = 0; region < regions; ++region) {
       std::vector<PairComparison> pairs;
-      for (const Technique j : techniquesOfLength(k, TechniqueFamilies::Connections)) {
+      for (const Technique j : techniquesOfLength(k, kUnbiased)) {
         if (j == x || !check.enabled(j)) continue;
         const PairSums p = check.pair(x, j, region);
         sharesPaths |= p.nonzeroA > 0 || p.nonzeroB > 0;

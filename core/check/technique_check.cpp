@@ -8,8 +8,7 @@
 namespace pathlab {
 
 TechniqueCheck::TechniqueCheck(int width, int height, int maxLength, int blocks, TechniqueFamilies families)
-    : width_(width), height_(height), maxLength_(maxLength), blocks_(blocks),
-      families_(without(families, TechniqueFamilies::Equiangular)) {
+    : width_(width), height_(height), maxLength_(maxLength), blocks_(blocks), families_(families) {
   // sampleableBy has a bit per slot of a length: slots(maxLength) <= 63.
   if (width < 1 || height < 1 || maxLength < 1 || maxLength > 62 || slots(maxLength) > 63 || blocks < 1 || blocks > 64)
     throw std::invalid_argument("TechniqueCheck: bad size, length or blocks");
@@ -63,8 +62,10 @@ void TechniqueCheck::PassSums::add(Technique x, Vec2 pRaster, float luminance, u
     a[0] += v;
     a[1] += v2;
     // p_i / p_j = 1 / (p_j / p_i); a partner able to sample the path has p_j > 0. The ratios are
-    // the connections' (one per connection slot): a merge's second moment is its own samples'.
-    const double ratio = densityRatios && !x.isMerge() && !partner.isMerge() ? densityRatios[sp] : 0.0;
+    // the connections' (one per connection slot): a merge's or an equiangular technique's second
+    // moment is its own samples'.
+    const bool connections = x.kind == TechniqueKind::Connection && partner.kind == TechniqueKind::Connection;
+    const double ratio = densityRatios && connections ? densityRatios[sp] : 0.0;
     if (ratio > 0.0 && std::isfinite(ratio)) a[2] += v2 / ratio;
   }
 }

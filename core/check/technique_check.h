@@ -46,8 +46,7 @@ struct PairSums {
 
 class TechniqueCheck {
  public:
-  // `enabled(x)` decides which techniques of `families` are compared (connections and merges: the
-  // equiangular techniques are left out, their results ignored); lengths 1..maxLength (at
+  // `enabled(x)` decides which techniques of `families` are compared; lengths 1..maxLength (at
   // most 62 connections, 31 with merges: TechniqueResult::sampleableBy has a bit per slot of a length).
   template <class Enabled>
   TechniqueCheck(int width, int height, int maxLength, int blocks, Enabled enabled,
@@ -96,7 +95,10 @@ class TechniqueCheck {
  private:
   TechniqueCheck(int width, int height, int maxLength, int blocks, TechniqueFamilies families);
   // Techniques of length k in the families checked: the pairs of a length are slots(k)^2.
-  int slots(int k) const { return covers(families_, TechniqueKind::Merge) ? 2 * k : k + 1; }
+  // (The equiangular technique E(1, k) is slot 2k.)
+  int slots(int k) const {
+    return covers(families_, TechniqueKind::Equiangular) ? 2 * k + 1 : covers(families_, TechniqueKind::Merge) ? 2 * k : k + 1;
+  }
   size_t pairIndex(Technique i, Technique j) const;  // over all lengths
   size_t passValues() const { return 3 * pairCount_ * static_cast<size_t>(blocks_ * blocks_); }
 

@@ -113,9 +113,7 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
     const TechniqueSet enabled = enabledTechniques(settings);
     check_ = std::make_unique<TechniqueCheck>(settings.width, settings.height, settings.maxLength, settings.checkBlocks,
                                               [&](Technique x) { return enabled.contains(x); },
-                                              // The check pairs connections and merges; the
-                                              // equiangular techniques are not among them yet.
-                                              without(enabled.families(), TechniqueFamilies::Equiangular));
+                                              sampledFamilies(settings, scene));
     threadChecks_ = std::make_unique<ThreadChecks>(*check_);
   }
 }

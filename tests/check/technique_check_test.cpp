@@ -7,6 +7,7 @@
 #include "core/check/check_report.h"
 #include "core/check/merge_bias.h"
 #include "core/render/render_session.h"
+#include "core/sampling/technique_label.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/bpt_scenes.h"
 #include "tests/support/random_connections.h"
@@ -119,10 +120,10 @@ TEST(TechniqueCheck, ComparesMergesWithTheConnectionsOfTheirLength) {
     std::vector<MergeBiasLevel> levels;
     Pcg32 rng(5, 5);
     const double ratios[4] = {1.0, 1.0, 1.0, 1.0};  // by slot
-    const TechniqueRange length2 = techniquesOfLength(2, TechniqueFamilies::All);
+    constexpr TechniqueFamilies kBoth = TechniqueFamilies::Connections | TechniqueFamilies::Merges;
+    const TechniqueRange length2 = techniquesOfLength(2, kBoth);
     for (const double radius : {0.1, 0.05}) {
-      checks.push_back(std::make_unique<TechniqueCheck>(8, 8, 2, 2, [](Technique x) { return x.length() == 2; },
-                                                        TechniqueFamilies::All));
+      checks.push_back(std::make_unique<TechniqueCheck>(8, 8, 2, 2, [](Technique x) { return x.length() == 2; }, kBoth));
       TechniqueCheck& check = *checks.back();
       TechniqueCheck::PassSums sums(check);
       const float mergeFactor = consistent ? 1.f + static_cast<float>(radius) : 1.05f;  // 10 %, 5 %, or 5 % twice
@@ -208,6 +209,33 @@ TEST(TechniqueCheckRender, NamesAnInjectedBiasOfFivePercent) {
           << "(" << v.technique.s << "," << v.technique.t << ") with (" << culprit.s << "," << culprit.t
           << ") biased\n" << describe(run.report);
   }
+}
+
+// In fog bpt's equiangular techniques E(1, k) are compared like the connections (issue 35): the
+// fog lamp passes with E(1, 2) and E(1, 3) among the compared techniques, and a 10 % bias in E(1, 2)
+// is named, and no other technique is.
+TEST(TechniqueCheckRender, ComparesTheEquiangularTechniquesInFog) {
+  const Scene scene = bundled("fog-lamp");
+  auto verdictOf = [](const CheckReport& r, Technique x) -> const TechniqueVerdict* {
+    for (const TechniqueVerdict& v : r.techniques)
+      if (v.technique == x) return &v;
+    return nullptr;
+  };
+  RenderSettings s = small(40, 30, 3, 21);
+  s.mediumSampling = MediumSampling::Mis;
+  const CheckRun clean = runCheck(scene, s, 400);
+  EXPECT_TRUE(clean.report.agrees()) << describe(clean.report);
+  for (const Technique e : {Technique::equiangular(2), Technique::equiangular(3)}) {
+    const TechniqueVerdict* v = verdictOf(clean.report, e);
+    ASSERT_NE(v, nullptr) << techniqueLabel(e) << " is not compared\n" << describe(clean.report);
+    EXPECT_EQ(v->status, CheckStatus::Agrees) << describe(clean.report);
+  }
+  const Technique culprit = Technique::equiangular(2);
+  s.injectBias = BiasInjection{culprit.s, culprit.t, 1.1f, TechniqueKind::Equiangular};
+  const CheckRun biased = runCheck(scene, s, 400);
+  for (const TechniqueVerdict& v : biased.report.techniques)
+    EXPECT_EQ(v.status == CheckStatus::Disagrees, v.technique == culprit)
+        << techniqueLabel(v.technique) << " with E(1,2) biased\n" << describe(biased.report);
 }
 
 TEST(TechniqueCheckRender, InjectedBiasMovesTheImageByTheTechniquesShare) {

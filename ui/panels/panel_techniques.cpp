@@ -172,6 +172,9 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
         ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, isolating && estimator.isolated == x
                                                               ? IM_COL32(230, 160, 40, 200)
                                                               : IM_COL32(0, 136, 86, 110));
+        const TechniqueVerdict* verdict = verdictOf(check, x);
+        if (verdict && verdict->status == CheckStatus::Disagrees)
+          ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, IM_COL32(220, 40, 40, 230));
         bool on = techniqueShownEnabled(edited, x);
         if (ImGui::Checkbox("##e", &on)) {
           if (isolating && !ImGui::GetIO().KeyCtrl) {
@@ -184,9 +187,10 @@ void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, cons
           const TechniqueCounters& c = counters.technique(x);
           ImGui::SetTooltip("E(1,%d): the path of C(1,%d) with its camera vertex next to the light placed in the\n"
                             "medium by equiangular sampling toward the light point\n"
-                            "this generation: %llu tried, %llu blocked, %llu contributed",
+                            "this generation: %llu tried, %llu blocked, %llu contributed%s",
                             k, k, static_cast<unsigned long long>(c.tried), static_cast<unsigned long long>(c.blocked),
-                            static_cast<unsigned long long>(c.contributed));
+                            static_cast<unsigned long long>(c.contributed),
+                            verdict ? ("\n" + verdictText(*verdict, check->blocks)).c_str() : "");
         }
         ImGui::PopID();
       }
