@@ -322,11 +322,12 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
   // with x0's next-event density for i + 1 = 1). E(1, n-1), one sample per camera sample, has
   // p_E = p_2 d.equiangular; its own weight walks from s = 2.
   // Variance-aware: the balance heuristic with each n_i times its factor c_i (variance_aware_mis.h;
-  // E's factor is one).
+  // E's at its own slot, 2(n - 1)).
   const double beta = options.heuristic == MisHeuristic::Power ? static_cast<double>(options.beta) : 1.0;
   auto count = [&](int sp) { return ((n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0) * d.factor(sp); };
   const int from = ofEquiangular ? 2 : s;
-  const double own = ofEquiangular ? d.equiangular : count(s);
+  const double equiangularCount = n >= 3 ? d.factor(Technique::equiangular(n - 1).slot()) : 1.0;
+  const double own = ofEquiangular ? d.equiangular * equiangularCount : count(s);
   auto term = [beta](double x) { return beta == 1.0 ? x : beta == 2.0 ? x * x : std::pow(x, beta); };
   double sum = ofEquiangular ? (usable(2) ? term(count(2) / own) : 0.0) : 1.0;  // the walk's start
   double r = 1.0, r2 = 1.0;  // r2 = p_2 / p_from
@@ -341,7 +342,7 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
     if (sp == 2) r2 = r;
     if (usable(sp)) sum += term(r * count(sp) / own);
   }
-  if (equiangular) sum += term(r2 * d.equiangular / own);  // one for E itself
+  if (equiangular) sum += term(r2 * d.equiangular * equiangularCount / own);  // one for E itself
   return 1.0 / sum;
 }
 

@@ -76,6 +76,7 @@ std::vector<TechniqueOnPath> techniquesOnDensities(const PathDensities& d, const
     x.power = weightFromDensities(withCounts, 1, techniques, power, lightTracingRatio, minDistance, true);
     x.uniform = weightFromDensities(withCounts, 1, techniques, uniform, lightTracingRatio, minDistance, true);
     x.varianceAware = weightFromDensities(withFactors, 1, techniques, varianceAware, lightTracingRatio, minDistance, true);
+    x.factor = factors ? withFactors.factor(x.technique().slot()) : 1.0;
     out.push_back(x);
   }
   if (!merges) return out;

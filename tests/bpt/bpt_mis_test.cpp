@@ -139,8 +139,10 @@ double oracleEquiangularDensity(const Scene& scene, const FullPath& f) {
 // x(s'-1) -- x(s') is shorter than minDistance while a technique without a short one remains.
 // With o.mediumSampling not Distance, weight n (the last) is E(1, n-1)'s (pEquiangular, 0 where it
 // cannot sample the path), which joins x0 and x1 as C(1, n-1) does and under Equiangular replaces it.
+// factors: variance-aware MIS's per slot of the length (connections at s', E(1, n-1) at 2(n-1)),
+// multiplying each technique's density (o.heuristic VarianceAware: the balance heuristic).
 std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled, const MisOptions& o,
-                                  double minDistance, double pEquiangular = 0.0) {
+                                  double minDistance, double pEquiangular = 0.0, const float* factors = nullptr) {
   const int n = static_cast<int>(f.x.size());
   std::vector<double> p(static_cast<size_t>(n + 1), 0.0), w(static_cast<size_t>(n + 1), 0.0);
   // E(1, n-1) has its own switch.
@@ -171,6 +173,7 @@ std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled
     else
       for (int i = 0; i < n - 1; ++i)
         prod *= i == 0 && sp == 1 ? f.pLNee : i < sp ? f.pL[static_cast<size_t>(i)] : f.pE[static_cast<size_t>(i)];
+    if (factors) prod *= static_cast<double>(factors[sp == n ? 2 * (n - 1) : sp]);
     const double b = o.heuristic == MisHeuristic::Power ? o.beta : 1.0;
     p[static_cast<size_t>(sp)] = std::pow(prod, b);
     sum += p[static_cast<size_t>(sp)];
@@ -185,9 +188,9 @@ std::vector<double> oracleWeights(const FullPath& f, const TechniqueSet& enabled
 // Technique s' of the full path, in the form the walks would have stored it; `equiangular`: also
 // E(1, n-1)'s weight as that view sees it.
 double equiangularWeightSeenBy(const Scene& scene, const Camera& camera, const MisPath& view, const TechniqueSet& enabled,
-                               const MisOptions& o);
+                               const MisOptions& o, const float* factors = nullptr);
 float fastWeight(const Scene& scene, const Camera& camera, const FullPath& f, int sp, const TechniqueSet& enabled,
-                 const MisOptions& o, double* equiangular = nullptr) {
+                 const MisOptions& o, double* equiangular = nullptr, const float* factors = nullptr) {
   const int n = static_cast<int>(f.x.size());
   std::vector<PathVertex> light, cam;
   for (int i = 0; i < sp; ++i) {
@@ -204,15 +207,16 @@ float fastWeight(const Scene& scene, const Camera& camera, const FullPath& f, in
     cam.push_back(v);
   }
   const MisPath view{light.data(), sp, cam.data(), n - sp, nullptr};
-  if (equiangular) *equiangular = equiangularWeightSeenBy(scene, camera, view, enabled, o);
-  return misWeight(scene, camera, view, enabled, o, lightTracingRatio());
+  if (equiangular) *equiangular = equiangularWeightSeenBy(scene, camera, view, enabled, o, factors);
+  return misWeight(scene, camera, view, enabled, o, lightTracingRatio(), factors);
 }
 
 // E(1, n-1)'s weight as the view of technique s' of the same path sees it (its densities), which
 // must not depend on s'.
 double equiangularWeightSeenBy(const Scene& scene, const Camera& camera, const MisPath& view, const TechniqueSet& enabled,
-                               const MisOptions& o) {
-  const PathDensities d = pathDensities(scene, camera, view);
+                               const MisOptions& o, const float* factors) {
+  PathDensities d = pathDensities(scene, camera, view);
+  d.factors = factors;
   return weightFromDensities(d, 1, enabled, o, lightTracingRatio(), minConnectionDistance(scene, o), true);
 }
 
@@ -311,8 +315,12 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
                                                           const CameraSubpath& cp) {
     const int n = s + t;
     const FullPath f = densities(scene, camera, x);
-    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform}) {
+    // Variance-aware: a factor per slot of the length (E(1, n-1)'s at 2(n-1)), log-uniform over 1e-2..1e2.
+    std::vector<float> slotFactors(static_cast<size_t>(2 * (n - 1) + 1), 1.f);
+    for (MisHeuristic h : {MisHeuristic::Balance, MisHeuristic::Power, MisHeuristic::Uniform, MisHeuristic::VarianceAware}) {
       const MisOptions o{h, h == MisHeuristic::Power ? 1.f + 2.f * rng.next1D() : 2.f, minConnection, mediumSampling};
+      for (float& c : slotFactors) c = std::pow(10.f, -2.f + 4.f * rng.next1D());
+      const float* factors = h == MisHeuristic::VarianceAware ? slotFactors.data() : nullptr;
       const double pEquiangular = mediumSampling != MediumSampling::Distance ? oracleEquiangularDensity(scene, f) : 0.0;
       equiangularPaths += pEquiangular > 0.0;
       TechniqueSet enabled = TechniqueSet::all();
@@ -320,7 +328,7 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
         for (int sp = 0; sp < n; ++sp)
           if (sp != s && rng.next1D() < 0.4f) enabled.disable({sp, n - sp}, maxLength);
       const std::vector<double> oracle =
-          oracleWeights(f, enabled, o, minConnection * scene.bounds().radius, pEquiangular);
+          oracleWeights(f, enabled, o, minConnection * scene.bounds().radius, pEquiangular, factors);
       shortExcluded += [&] {
         int excluded = 0;
         for (int sp = 0; sp < n; ++sp)
@@ -331,7 +339,7 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
       }();
       // The weight the tracer computes from the walks' own densities and the connection's.
       const MisPath real{lp.data(), s, cp.data(), t, c.hasSampled ? &c.sampled : nullptr, &c.pdfs};
-      const float wReal = misWeight(scene, camera, real, enabled, o, lightTracingRatio());
+      const float wReal = misWeight(scene, camera, real, enabled, o, lightTracingRatio(), factors);
       EXPECT_NEAR(wReal, oracle[static_cast<size_t>(s)], 1e-4)
           << name << " (" << s << "," << t << ") " << misHeuristicName(h) << [&] {
                const PathDensities d = pathDensities(scene, camera, real);
@@ -343,12 +351,12 @@ void checkPartition(const Scene& scene, int maxLength, const char* name, float m
                return out;
              }();
       // E's weight, from the real view and below from every technique's.
-      EXPECT_NEAR(equiangularWeightSeenBy(scene, camera, real, enabled, o), oracle[static_cast<size_t>(n)], 1e-4)
+      EXPECT_NEAR(equiangularWeightSeenBy(scene, camera, real, enabled, o, factors), oracle[static_cast<size_t>(n)], 1e-4)
           << name << " E(1," << n - 1 << ") seen by (" << s << "," << t << ") " << misHeuristicName(h);
       double sum = oracle[static_cast<size_t>(n)];
       for (int sp = 0; sp < n; ++sp) {
         double wE = 0.0;
-        const float w = fastWeight(scene, camera, f, sp, enabled, o, &wE);
+        const float w = fastWeight(scene, camera, f, sp, enabled, o, &wE, factors);
         EXPECT_NEAR(wE, oracle[static_cast<size_t>(n)], 1e-4) << name << " E(1," << n - 1 << ") seen by s'=" << sp;
         EXPECT_NEAR(w, oracle[static_cast<size_t>(sp)], 1e-4) << name << " s'=" << sp << " of (" << s << "," << t << ")"
             << " light " << static_cast<int>(scene.lights()[static_cast<size_t>(f.x[0].light)].type()) << " pL0 " << f.pL[0]
