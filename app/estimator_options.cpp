@@ -106,9 +106,9 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
            s.mediumSampling = m;
          },
          "In media, how the scattering vertex that connects to a light is placed: distance (along the "
-         "transmittance), equiangular (toward the light point, Kulla and Fajardo 2012) or mis (both; the path tracer's "
-         "default). bpt: its equiangular techniques E(1,k) beside the connections (mis) or in place of C(1,k) "
-         "(equiangular); distance is its default")
+         "transmittance), equiangular (toward the light point, Kulla and Fajardo 2012) or mis (both; the default of pt "
+         "and bpt). bpt: its equiangular techniques E(1,k) beside the connections (mis) or in place of C(1,k) "
+         "(equiangular), or left out (distance); lt, mlt, merges and naive BPT sample distances")
       ->type_name("distance|equiangular|mis");
   auto* isolate = cmd->add_option("--isolate", o.isolate,
                                   "Show technique S,T (or merge MS,T, equiangular E1,T) alone: its MIS-weighted share (or with --unweighted its own estimate)");

@@ -9,7 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 Image = npt.NDArray[np.float32]  # (height, width, 3), linear radiance
-Technique = Union[Tuple[int, int], Tuple[str, int, int]]  # (s, t) or ("M", s, t)
+Technique = Union[Tuple[int, int], Tuple[str, int, int]]  # (s, t), ("M", s, t) or ("E", 1, t)
 
 class Error(Exception):
     """A refused argument or a failed call, with the one-line message the command line prints."""
@@ -194,7 +194,7 @@ class Renderer:
         bestTechnique, record)."""
     def counters(self) -> dict:
         """spp, seconds, camera_samples, rays, shadow_rays, discarded {nan, inf, negative}, and per
-        technique (key (s, t) or ("M", s, t)) and walk: tried, zero, blocked, contributed, discarded, rays."""
+        technique (key (s, t), ("M", s, t) or ("E", 1, t)) and walk: tried, zero, blocked, contributed, discarded, rays."""
     @property
     def spp(self) -> int: ...
     @property

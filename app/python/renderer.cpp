@@ -235,7 +235,7 @@ py::dict countersOf(const Renderer& r) {
     d["discarded"] = row.discarded;
     d["rays"] = row.rays;
     if (row.walk || row.s < 0) walks[py::str(row.name)] = d;
-    else techniques[techniqueKey(row.kind == TechniqueKind::Merge ? Technique::merge(row.s, row.t) : Technique{row.s, row.t})] = d;
+    else techniques[techniqueKey(Technique{row.s, row.t, row.kind})] = d;
   }
   out["techniques"] = techniques;
   out["walks"] = walks;

@@ -134,7 +134,10 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
     cameraVerticesNeeded_ = std::max(cameraVerticesNeeded_, t);
     if (lightWalkNeeded(s, t)) lightVerticesNeeded_ = std::max(lightVerticesNeeded_, s);
   };
-  for (const Technique x : techniquesUpTo(options_.maxLength))
+  // E(1, t) needs C(1, t)'s walk: the ray z(t-2) shot toward z(t-1).
+  const TechniqueFamilies walked =
+      equiangular_ ? TechniqueFamilies::Connections | TechniqueFamilies::Equiangular : TechniqueFamilies::Connections;
+  for (const Technique x : techniquesUpTo(options_.maxLength, walked))
     if (options_.techniques.contains(x) || x.length() <= options_.pyramidLength) need(x.s, x.t);
   // A merge M(s, t) uses t camera vertices and s light vertices.
   if (merges_)

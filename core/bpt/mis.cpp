@@ -326,7 +326,8 @@ double weightFromDensities(const PathDensities& d, int s, const TechniqueSet& te
   const double beta = options.heuristic == MisHeuristic::Power ? static_cast<double>(options.beta) : 1.0;
   auto count = [&](int sp) { return ((n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0) * d.factor(sp); };
   const int from = ofEquiangular ? 2 : s;
-  const double equiangularCount = n >= 3 ? d.factor(Technique::equiangular(n - 1).slot()) : 1.0;
+  // Read only where E is weighed (n >= 3 then): factors of a length without E may stop at slot 2k - 1.
+  const double equiangularCount = ofEquiangular || equiangular ? d.factor(Technique::equiangular(n - 1).slot()) : 1.0;
   const double own = ofEquiangular ? d.equiangular * equiangularCount : count(s);
   auto term = [beta](double x) { return beta == 1.0 ? x : beta == 2.0 ? x * x : std::pow(x, beta); };
   double sum = ofEquiangular ? (usable(2) ? term(count(2) / own) : 0.0) : 1.0;  // the walk's start

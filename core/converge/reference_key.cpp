@@ -91,11 +91,18 @@ std::string describe(const RenderSettings& s) {
       s.width, s.height, s.maxLength, s.russianRoulette, s.seed, integratorName(s.integrator), s.techniques.toString(),
       misHeuristicName(s.mis.heuristic), s.mis.beta, s.mis.minConnection, s.lens.apertureRadius, s.lens.focusDistance,
       s.pyramidLength);
-  // A merge's isolation is marked M (connections' keys keep their text, so their cached
-  // references stay valid).
-  if (s.isolate)
-    text += fmt::format(" isolate={}{},{},{}", s.isolate->kind == TechniqueKind::Merge ? "M" : "", s.isolate->s,
-                        s.isolate->t, s.isolate->unweighted);
+  // A merge's isolation is marked M, an equiangular technique's E (connections' keys keep their
+  // text, so their cached references stay valid). An isolated weighted share depends on whether
+  // the equiangular techniques E(1, k) are among the weights: the medium sampling joins the key
+  // when it is not distance.
+  if (s.isolate) {
+    text += fmt::format(" isolate={}{},{},{}",
+                        s.isolate->kind == TechniqueKind::Merge         ? "M"
+                        : s.isolate->kind == TechniqueKind::Equiangular ? "E"
+                                                                        : "",
+                        s.isolate->s, s.isolate->t, s.isolate->unweighted);
+    if (mediumSampling(s) != MediumSampling::Distance) text += fmt::format(" media={}", mediumSamplingName(mediumSampling(s)));
+  }
   // Only when not the default, so the keys of existing caches stay what they were.
   if (s.connect != ConnectStrategy::All) text += fmt::format(" connect={}", connectStrategyName(s.connect));
   if (covers(s.techniques.families(), TechniqueKind::Merge)) {

@@ -44,7 +44,7 @@ double outlierShareOfPixel(const Outlier& o, const Image& image, uint64_t spp) {
 
 namespace {
 nlohmann::json techniqueJson(Technique x) {
-  return {{"kind", x.isMerge() ? "merge" : "connection"}, {"s", x.s}, {"t", x.t}};
+  return {{"kind", x.isMerge() ? "merge" : x.isEquiangular() ? "equiangular" : "connection"}, {"s", x.s}, {"t", x.t}};
 }
 }  // namespace
 

@@ -146,5 +146,21 @@ TEST(EquiangularRender, TheEquiangularTechniquesArePyramidTechniques) {
   EXPECT_FALSE(covers(pyramidFamilies(distance, fog), TechniqueKind::Equiangular));
 }
 
+// E(1, t) runs on the camera walk's ray z(t-2) -> z(t-1): enabled alone at its length, with no
+// connection asking for t camera vertices, it still makes the walk that long (it once did not,
+// and the weights of (2,2) and (3,1), which count E(1,3), left its share out of the image).
+TEST(EquiangularRender, AnEquiangularTechniqueAloneGetsTheWalkItNeeds) {
+  const Scene fog(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/fog-lamp.gltf"));
+  RenderSettings s;
+  s.width = 16, s.height = 12, s.maxLength = 3, s.seed = 5;
+  s.integrator = IntegratorKind::Bpt;
+  s.mediumSampling = MediumSampling::Mis;
+  s.techniques = TechniqueSet::parse("1,1;1,2;2,1;2,2;3,1;E1,3");  // no connection with t = 3
+  RenderSession session(fog, s);
+  session.renderPass();
+  EXPECT_GT(session.counters().technique(Technique::equiangular(3)).contributed, 0u);
+  EXPECT_EQ(session.counters().technique(Technique::equiangular(2)).tried, 0u);  // not enabled
+}
+
 }  // namespace
 }  // namespace pathlab

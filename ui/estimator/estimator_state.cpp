@@ -78,6 +78,8 @@ void setMaxLength(EstimatorState& state, int maxLength) {
     // A merge of the longest length left: M(s, k + 2 - s), s >= 2.
     state.isolated.s = std::clamp(state.isolated.s, 2, maxLength);
     state.isolated.t = maxLength + 2 - state.isolated.s;
+  } else if (state.isolated.length() > maxLength && state.isolated.isEquiangular() && maxLength >= 2) {
+    state.isolated = Technique::equiangular(maxLength);  // the longest E(1, k) left
   } else if (state.isolated.length() > maxLength) {
     state.isolated = Technique{std::min(state.isolated.s, maxLength), maxLength + 1 - std::min(state.isolated.s, maxLength)};
   }
@@ -159,7 +161,7 @@ std::string describe(const RenderSettings& s) {
     if (m.directLength > 0) out += fmt::format(", up to {} edges by BPT", m.directLength);
   }
   if (s.injectBias)
-    out += fmt::format(", BIAS INJECTED: ({},{}) x {:g}", s.injectBias->s, s.injectBias->t, s.injectBias->factor);
+    out += fmt::format(", BIAS INJECTED: {} x {:g}", techniqueLabel(s.injectBias->technique()), s.injectBias->factor);
   return out;
 }
 

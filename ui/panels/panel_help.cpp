@@ -1,6 +1,7 @@
 // The help window (every shortcut, from the shortcut table) and the caption drawn over the image.
 #include "ui/panels/panels.h"
 
+#include "core/sampling/technique_label.h"
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -61,7 +62,7 @@ void drawZMap(const CheckReport& check, Technique x, ImVec2 origin, ImVec2 size)
     draw->AddText(ImVec2(0.5f * (a.x + c.x - extent.x), 0.5f * (a.y + c.y - extent.y)), IM_COL32(255, 255, 255, 230),
                   label.c_str());
   }
-  const std::string title = fmt::format("|z| of ({},{}) per block: {} (whole image z = {:+.2f})", x.s, x.t,
+  const std::string title = fmt::format("|z| of {} per block: {} (whole image z = {:+.2f})", techniqueLabel(x),
                                         checkStatusName(verdict->status), verdict->wholeImageZ);
   const ImVec2 at(origin.x + 10.f, origin.y + 10.f), extent = ImGui::CalcTextSize(title.c_str());
   draw->AddRectFilled(ImVec2(at.x - 6.f, at.y - 3.f), ImVec2(at.x + extent.x + 6.f, at.y + extent.y + 3.f),
@@ -86,7 +87,7 @@ void drawImageOverlay(const ImageOverlay& o) {
   };
   if (o.idleForNoTechnique) centred("No technique enabled: switch one on in the grid (or press 1 for all)");
   if (!o.idleForNoTechnique && isolatedTechniqueDisabled(o.edited))
-    centred(fmt::format("({},{}) is not enabled: its weighted share is zero", o.edited.isolate->s, o.edited.isolate->t));
+    centred(fmt::format("{} is not enabled: its weighted share is zero", techniqueLabel(o.edited.isolate->technique())));
   if (!o.errorViewProblem.empty())
     caption("error view: " + o.errorViewProblem, ImVec2(o.origin.x + 10.f, o.origin.y + 10.f), IM_COL32(255, 200, 80, 255));
   if (o.display.errorView) drawErrorBarOverlay(o.display, o.origin, o.size, o.uiScale);

@@ -36,15 +36,21 @@ void swatch(const Vec3& c, const std::string& label, bool hatched = false, bool 
 
 void techniqueChooser(MapView& view, TechniqueFamilies families) {
   int st[2] = {view.technique.s, view.technique.t};
-  bool merge = view.technique.isMerge();
+  bool merge = view.technique.isMerge(), equiangular = view.technique.isEquiangular();
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.f);
   bool changed = ImGui::InputInt2("(s,t)##mapTechnique", st);
   if (covers(families, TechniqueKind::Merge)) {
     ImGui::SameLine();
     changed |= ImGui::Checkbox("merge M(s,t)", &merge);
   }
+  // bpt's equiangular techniques in fog: E(1,t), s = 1.
+  if (covers(families, TechniqueKind::Equiangular)) {
+    ImGui::SameLine();
+    changed |= ImGui::Checkbox("equiangular E(1,t)", &equiangular);
+  }
   if (changed) {
-    const Technique x{std::max(st[0], 0), std::max(st[1], 1), merge ? TechniqueKind::Merge : TechniqueKind::Connection};
+    const Technique x{std::max(st[0], 0), std::max(st[1], 1),
+                      merge ? TechniqueKind::Merge : equiangular ? TechniqueKind::Equiangular : TechniqueKind::Connection};
     if (x.valid() && x.length() <= view.length) view.technique = x;
   }
 }

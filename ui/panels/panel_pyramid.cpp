@@ -117,6 +117,10 @@ void drawThumbnail(Technique x, const PyramidImages& images, EstimatorState& est
       ImGui::SetTooltip("M(%d,%d), length %d, %s: light subpath vertex %d merged with camera subpath vertex %d\n"
                         "within the pass's radius; click to isolate it",
                         x.s, x.t, x.length(), shown, x.s - 1, x.t - 1);
+    else if (x.isEquiangular())
+      ImGui::SetTooltip("E(1,%d), length %d, %s: C(1,%d)'s path with its camera vertex next to the light placed in\n"
+                        "the medium toward the light point (equiangular sampling); click to isolate it",
+                        x.t, x.length(), shown, x.t);
     else
       ImGui::SetTooltip("(s,t) = (%d,%d), length %d, %s: click to isolate it", x.s, x.t, x.length(), shown);
   }

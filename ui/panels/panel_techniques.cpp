@@ -54,8 +54,8 @@ std::string verdictText(const TechniqueVerdict& v, int blocks) {
   const std::string region = v.worstRegion == TechniqueCheck::wholeImage(blocks)
                                  ? std::string("the whole image")
                                  : fmt::format("block ({},{})", v.worstRegion % blocks, v.worstRegion / blocks);
-  return fmt::format("check: {} (z = {:+.2f} against ({},{}) in {}, whole image z = {:+.2f})", checkStatusName(v.status),
-                     v.z, v.worst.partner.s, v.worst.partner.t, region, v.wholeImageZ);
+  return fmt::format("check: {} (z = {:+.2f} against {} in {}, whole image z = {:+.2f})", checkStatusName(v.status),
+                     v.z, techniqueLabel(v.worst.partner), region, v.wholeImageZ);
 }
 
 void drawTechniqueGrid(EstimatorState& estimator, TechniqueGridState& grid, const Counters& counters,
@@ -296,14 +296,14 @@ void drawCheckControls(EstimatorState& estimator, TechniqueGridState& grid, cons
     } else {
       ImGui::TextColored(kError, "%d disagree", check->disagreeing());
     }
-    std::string current = grid.zMap ? fmt::format("({},{})", grid.zMap->s, grid.zMap->t) : std::string("off");
+    std::string current = grid.zMap ? techniqueLabel(*grid.zMap) : std::string("off");
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
     if (ImGui::BeginCombo("|z| map", current.c_str())) {
       if (ImGui::Selectable("off", !grid.zMap)) grid.zMap.reset();
       if (check)
         for (const TechniqueVerdict& v : check->techniques) {
-          const std::string label = fmt::format("({},{}){}", v.technique.s, v.technique.t,
-                                                v.status == CheckStatus::Disagrees ? "  disagrees" : "");
+          const std::string label =
+              techniqueLabel(v.technique) + (v.status == CheckStatus::Disagrees ? "  disagrees" : "");
           if (ImGui::Selectable(label.c_str(), grid.zMap == v.technique)) grid.zMap = v.technique;
         }
       ImGui::EndCombo();
