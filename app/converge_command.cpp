@@ -237,6 +237,10 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
       throw std::runtime_error(fmt::format("configuration '{}': variance-aware MIS estimates its factors from one "
                                            "process's passes; run this convergence as one process, without mpirun",
                                            c.label));
+    else if (c.settings.lightPathsAuto && job.size() > 1)
+      throw std::runtime_error(fmt::format("configuration '{}': --light-paths auto chooses from one process's "
+                                           "passes; run this convergence as one process, without mpirun",
+                                           c.label));
   for (const ConvergenceConfig& c : p.configs)
     if (c.settings.integrator != IntegratorKind::Pt)
       for (int k : enabledTechniques(c.settings).uncoveredLengths(c.settings.maxLength))

@@ -79,11 +79,29 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "Connections shorter than this fraction of the scene's bounding radius are left to the techniques "
                   "that sample that edge, when one is enabled (0: off)")
       ->check(CLI::Range(0.f, kMaxMinConnection));
-  cmd->add_option("--light-paths", s.lightPaths,
-                  "bpt: light subpaths per pass as a fraction of the camera samples (each camera sample walks one "
-                  "with this probability; light tracing and the connections beyond next-event estimation count it "
-                  "in every MIS weight)")
-      ->check(CLI::Range(kMinLightPaths, 1.f));
+  cmd->add_option_function<std::string>(
+         "--light-paths",
+         [&s](const std::string& value) {
+           if (value == "auto") {
+             s.lightPathsAuto = true, s.lightPaths = 1.f;
+             return;
+           }
+           float f = 0.f;
+           size_t used = 0;
+           try {
+             f = std::stof(value, &used);
+           } catch (const std::exception&) {
+             used = 0;
+           }
+           if (used != value.size() || !(f >= kMinLightPaths && f <= 1.f))
+             throw CLI::ValidationError("--light-paths",
+                                        fmt::format("'{}' is neither auto nor a number in [{}, 1]", value, kMinLightPaths));
+           s.lightPathsAuto = false, s.lightPaths = f;
+         },
+         "bpt: light subpaths per pass as a fraction of the camera samples, or auto (each camera sample walks one "
+         "with this probability; light tracing and the connections beyond next-event estimation count it in every MIS "
+         "weight; auto chooses it per image from the passes' second moments and ray counts, Grittmann et al. 2022)")
+      ->type_name("auto|F");
   cmd->add_option("--techniques", o.techniques,
                   "Enabled techniques of bpt: ';'-separated S,T | s=S | t=T | k=K | all (connections and the equiangular "
                   "E(1,t) in fog), E1,T, MS,T | m=K | m=all (merges; 'all;m=all' is vertex connection and merging)");

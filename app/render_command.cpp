@@ -275,6 +275,9 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   if (settings.mis.heuristic == MisHeuristic::VarianceAware && job.size() > 1)
     throw std::runtime_error("--mis variance-aware estimates its factors from one process's passes: run it as one "
                              "process, without mpirun");
+  if (settings.lightPathsAuto && job.size() > 1)
+    throw std::runtime_error("--light-paths auto chooses from one process's passes: run it as one process, without "
+                             "mpirun");
   // A too large --width x --height is refused before any work.
   checkRequestedPixels(o);
   if (settings.integrator != IntegratorKind::Pt) {
@@ -390,6 +393,7 @@ int runRender(RenderOptions o, Job& job) {
                              job.size(), totals.reduceSeconds);
   if (settings.integrator != IntegratorKind::Pt) printTechniqueCounters(c, settings.maxLength, seconds, o.stats);
   if (const Metropolis* m = session.metropolis()) std::cerr << metropolisSummary(*m, settings);
+  if (const LightPathChoice* choice = session.lightPathChoice()) std::cerr << choice->summary();
   if (settings.checkMis)
     std::cerr << fmt::format("MIS check: {} of {} paths whose weights do not sum to one\n", c.misPartitionFailures,
                              c.misPartitionChecks);

@@ -22,6 +22,7 @@ namespace {
 enum class Kind {
   Int,
   Float,
+  FloatOrWord,  // a number, or a word the option takes ("auto")
   String,
   Flag,         // True: the option given
   NegatedFlag,  // False: the option given (rr=False is --no-rr)
@@ -45,7 +46,7 @@ constexpr Argument kSettingsArguments[] = {
     {"beta", "--beta", Kind::Float},
     {"connect", "--connect", Kind::String},
     {"min_connection", "--min-connection", Kind::Float},
-    {"light_paths", "--light-paths", Kind::Float},
+    {"light_paths", "--light-paths", Kind::FloatOrWord},
     {"techniques", "--techniques", Kind::Techniques},
     {"isolate", "--isolate", Kind::Isolation},
     {"unweighted", "--unweighted", Kind::Flag},
@@ -114,6 +115,10 @@ std::vector<std::string> words(const Argument& a, const py::handle& v) {
       return {a.option, py::str(v).cast<std::string>()};
     case Kind::Float:
       if (!isNumber(v)) wrongType(a, "a number", v);
+      return {a.option, number(a, v)};
+    case Kind::FloatOrWord:
+      if (py::isinstance<py::str>(v)) return {a.option, v.cast<std::string>()};
+      if (!isNumber(v)) wrongType(a, "a number or a str", v);
       return {a.option, number(a, v)};
     case Kind::String:
       if (!py::isinstance<py::str>(v)) wrongType(a, "a str", v);

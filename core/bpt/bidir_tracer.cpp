@@ -119,10 +119,7 @@ BidirTracer::BidirTracer(const Scene& scene, const Camera& camera, const BidirOp
                            : MisEvaluation::Explicit;
   }
   minConnectionDistance_ = minConnectionDistance(scene, options_.mis);
-  if (options_.lightPaths < 1.f) {
-    lightPathCounts_ = lightPathCounts(options_.maxLength, options_.lightPaths);
-    lightPathScale_ = 1.f / options_.lightPaths;
-  }
+  setLightPaths(options_.lightPaths);
   // The image-only route's preconditions that settings decide: the partial sums, no media, and nothing that
   // changes a result's weight or contribution (isolation, the MIS check, an injected bias).
   imageOnlyPath_ = misEvaluation_ == MisEvaluation::PartialSums && !merges_ && !scene.hasMedia() && !options_.checkMis &&
@@ -361,6 +358,8 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
       techniqueDensityRatios(scene_, camera_, path, walks.densityRatios.data());
       r.densityRatios = walks.densityRatios.data();
     }
+    if (demand.lightWalkWeight)
+      r.lightWalkWeight = lightWalkWeight(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(), factors);
     sink.record(r);
   }
   if (!use.inImage) return;
@@ -508,6 +507,17 @@ void BidirTracer::sample(Vec2 pRaster, Vec2 uLens, Rng& cameraRng, Rng& lightRng
   if (mergePass_) evaluateMerges(timed, nt, pRaster, pyramidLength, walks, sink, counters);
 }
 
+void BidirTracer::setLightPaths(float lightPaths) {
+  options_.lightPaths = lightPaths;
+  if (lightPaths < 1.f) {
+    lightPathCounts_ = lightPathCounts(options_.maxLength, lightPaths);
+    lightPathScale_ = 1.f / lightPaths;
+  } else {
+    lightPathCounts_.clear();
+    lightPathScale_ = 1.f;
+  }
+}
+
 void BidirTracer::evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, int pyramidLength, Walks& walks,
                                       SampleSink& sink, Counters& counters) const {
   const CameraSubpath& camera = walks.camera;
@@ -579,6 +589,9 @@ void BidirTracer::evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, int 
       r.unweighted = L, r.weight = w, r.imageWeight = imageWeight;
       // The connections able to sample E's path, and E itself (its slot 2t).
       if (demand.sampleable) r.sampleableBy = sampleableTechniques(path) | equiangularSlotBit(t);
+      if (demand.lightWalkWeight)
+        r.lightWalkWeight =
+            lightWalkWeight(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(), factors);
       sink.record(r);
     }
     if (!use.inImage) continue;

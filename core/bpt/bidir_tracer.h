@@ -92,6 +92,11 @@ class BidirTracer {
   // Variance-aware MIS (MisHeuristic::VarianceAware): the factors every weight reads from now on
   // (null: all 1, the balance heuristic); set between passes, never during one.
   void setVarianceAwareFactors(const VarianceAwareFactors* factors) { varianceAware_ = factors; }
+  // --light-paths auto (light_path_choice.h): light subpaths per camera sample from now on, in the
+  // walks, the contributions' scale and every weight's counts (light_paths.h); set between passes,
+  // never during one.
+  void setLightPaths(float lightPaths);
+  float lightPaths() const { return options_.lightPaths; }
 
   // Time the walks and every technique's connection and weight into the counters, on one camera
   // sample in kTimedSampleStride (Counters::timedSamples counts them). Off by default: when off it

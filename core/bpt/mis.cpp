@@ -3,6 +3,7 @@
 #include "core/bpt/mis.h"
 
 #include "core/bpt/equiangular_technique.h"
+#include "core/bpt/light_paths.h"
 #include "core/bsdf/bsdf.h"
 #include "core/media/phase_function.h"
 
@@ -384,6 +385,19 @@ float equiangularMisWeight(const Scene& scene, const Camera& camera, const MisPa
   const double w = weightFromDensities(d, 1, techniques, options, lightTracingRatio,
                                        minConnectionDistance(scene, options), true);
   return std::isfinite(w) ? static_cast<float>(w) : 0.f;
+}
+
+double lightWalkWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
+                       const MisOptions& options, float lightTracingRatio, const float* factors) {
+  thread_local PathDensities d;
+  pathDensities(scene, camera, path, d);
+  d.factors = factors;
+  const float minDistance = minConnectionDistance(scene, options);
+  double sum = 0.0;
+  for (int sp = 1; sp < d.n; ++sp)
+    if (usesLightSubpath(sp, d.n - sp) && !(sp == d.n - 1 && camera.isOrthographic()))
+      sum += weightFromDensities(d, sp, techniques, options, lightTracingRatio, minDistance);
+  return std::isfinite(sum) ? sum : 0.0;
 }
 
 }  // namespace pathlab

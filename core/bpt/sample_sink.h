@@ -24,6 +24,7 @@ struct SinkDemand {
   bool onPath = false;         // TechniqueResult::traced and ::onPath (the replay trace)
   bool densityRatios = false;  // TechniqueResult::densityRatios (the consistency check)
   bool sampleable = false;     // TechniqueResult::sampleableBy (the check, the technique maps)
+  bool lightWalkWeight = false;  // TechniqueResult::lightWalkWeight (--light-paths auto)
   // Records of techniques outside the pyramid's lengths.
   bool records() const { return everyTechnique || everyContribution; }
 };

@@ -104,6 +104,9 @@ struct TechniqueResult {
   // With sampleableBy: p_{r} / p_{own} of this path for every slot r of its length
   // (techniqueDensityRatios, mis.h), in the kernel's scratch; valid only while the outputs consume it.
   const double* densityRatios = nullptr;
+  // Contributed results, when an output asks: the sum of the weights of the path's techniques that
+  // walk a light subpath (lightWalkWeight, mis.h; --light-paths auto's w_L).
+  double lightWalkWeight = 0.0;
   // For the replay trace: this path under every technique of its length (techniquesOnPath), by
   // slot, in the kernel's scratch; valid only while the outputs consume the result.
   const std::vector<TechniqueOnPath>* onPath = nullptr;

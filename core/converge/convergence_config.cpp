@@ -145,7 +145,9 @@ ConvergenceConfig parseOne(std::string_view config, const RenderSettings& base) 
       } else if (key == "mlt-direct") {
         s.mlt.directLength = parseNumber<int>(config, key, value);
       } else if (key == "light-paths") {
-        s.lightPaths = parseNumber<float>(config, key, value);  // validateSettings checks the range and integrator
+        // validateSettings checks the range and integrator
+        if (value == "auto") s.lightPathsAuto = true, s.lightPaths = 1.f;
+        else s.lightPathsAuto = false, s.lightPaths = parseNumber<float>(config, key, value);
       } else if (key == "max-length") {
         s.maxLength = parseNumber<int>(config, key, value);
         if (s.maxLength < 1 || s.maxLength > 100000) fail(config, "max-length is outside 1..100000");

@@ -109,6 +109,8 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
                                                             settings.maxLength);
     bidirTracer_->setVarianceAwareFactors(varianceAware_.get());
   }
+  if (bidirTracer_ && !metropolis_ && settings.lightPathsAuto)
+    lightPathChoice_ = std::make_unique<LightPathChoice>(settings.width, settings.height, settings.lightPaths);
   if (bidirTracer_ && settings.checkTechniques) {
     const TechniqueSet enabled = enabledTechniques(settings);
     check_ = std::make_unique<TechniqueCheck>(settings.width, settings.height, settings.maxLength, settings.checkBlocks,
@@ -216,10 +218,12 @@ Spectrum RenderSession::sampleAt(const BidirTracer* tracer, int x, int y, uint64
 }
 
 void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats,
-                               std::vector<VarianceAwareFactors::Splat>* factorSplats, Counters& c) {
+                               std::vector<VarianceAwareFactors::Splat>* factorSplats,
+                               std::vector<LightPathChoice::Splat>* lightPathSplats, Counters& c) {
   SampleTargets targets{&film_, pyramid_.get(), nullptr, {}};
   targets.splats = splats;
   if (varianceAware_ && factorSplats) targets.varianceAware = varianceAware_.get(), targets.varianceAwareSplats = factorSplats;
+  if (lightPathChoice_ && lightPathSplats) targets.lightPaths = lightPathChoice_.get(), targets.lightPathSplats = lightPathSplats;
   targets.check = threadChecks_ ? &threadChecks_->sums.local() : nullptr;
   if (outlierTally_) targets.outlierTally = outlierTally_.get(), targets.outliers = &outlierTally_->local();
   for (int y = tile.y0; y < tile.y1; ++y)
@@ -333,6 +337,9 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   if (varianceAware_ && factorSplats_.size() < inFlight) factorSplats_.resize(inFlight);
   // Variance-aware MIS: whether this pass's contributions go into the factors' sums.
   const bool learning = varianceAware_ && varianceAwareLearnsFrom(passes_.load(std::memory_order_relaxed));
+  // --light-paths auto: whether this pass's contributions go into the second moments.
+  if (lightPathChoice_ && lightPathSplats_.size() < inFlight) lightPathSplats_.resize(inFlight);
+  const bool learningLightPaths = lightPathChoice_ && lightPathsLearnFrom(passes_.load(std::memory_order_relaxed));
   size_t next = 0;
   bool cancelled = false;  // both only touched by the pipeline's first stage, one item at a time
   tbb::parallel_pipeline(
@@ -352,6 +359,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
                                              SplatBuffer* splats = bidirTracer_ ? &tileSplats_[i % inFlight] : nullptr;
                                              renderTile(tiles_[i], pass, splats,
                                                         learning ? &factorSplats_[i % inFlight] : nullptr,
+                                                        learningLightPaths ? &lightPathSplats_[i % inFlight] : nullptr,
                                                         local.local());
                                              return i;
                                            }) &
@@ -360,6 +368,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
                                          [&](size_t i) {
                                            if (bidirTracer_) tileSplats_[i % inFlight].addTo(splatSums_.get(), film_, pyramid_.get());
                                            if (learning) varianceAware_->addSplats(factorSplats_[i % inFlight]);
+                                           if (learningLightPaths) lightPathChoice_->addSplats(lightPathSplats_[i % inFlight]);
                                          }));
   Counters passCounters;
   for (const Counters& c : local) passCounters += c;
@@ -397,9 +406,24 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
       varianceAware_->finishPass(1.0);
     }
   }
+  if (lightPathChoice_ && cancelled && learningLightPaths) {
+    lightPathChoice_->discardPass();
+    for (std::vector<LightPathChoice::Splat>& list : lightPathSplats_) list.clear();
+  }
   if (cancelled) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
-  passes_.fetch_add(1, std::memory_order_relaxed);
+  const uint64_t done = passes_.fetch_add(1, std::memory_order_relaxed);
+  if (lightPathChoice_) {
+    // The pass's ray counts at its F into the cost model, its moments into the sums; after passes
+    // 4, 8, 16, ... the next passes' F chosen anew (light_path_choice.h), from this session's
+    // passes only (renderPass runs them in order: the choice is the same at any thread count).
+    lightPathChoice_->countPass(passCounters);
+    if (learningLightPaths) lightPathChoice_->finishPass();
+    if (lightPathsChooseAfter(done)) {
+      lightPathChoice_->choose(film_.readout());
+      bidirTracer_->setLightPaths(lightPathChoice_->lightPaths());
+    }
+  }
   return true;
 }
 

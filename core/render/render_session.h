@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/bpt/bidir_tracer.h"
+#include "core/bpt/light_path_choice.h"
 #include "core/check/technique_check.h"
 #include "core/film/film.h"
 #include "core/film/splat_buffer.h"
@@ -96,6 +97,8 @@ class RenderSession {
   std::vector<float> techniqueVariance(Technique x) const;
   // Variance-aware MIS: the factors the next pass weighs with, else null.
   const VarianceAwareFactors* varianceAwareFactors() const { return varianceAware_.get(); }
+  // --light-paths auto: the choice so far (its F, candidates' estimates), or null.
+  const LightPathChoice* lightPathChoice() const { return lightPathChoice_.get(); }
   // The consistency check's sums (settings.checkTechniques), else null.
   const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }
@@ -136,8 +139,10 @@ class RenderSession {
                     Counters& counters) const;
   // Renders one work item's samples: camera estimates into film_, splats into `splats` (Bpt, Lt).
   // `factorSplats`: the item's list of variance-aware MIS splats (or null).
+  // `lightPathSplats`: the item's list of --light-paths auto's splats (or null).
   void renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats,
-                  std::vector<VarianceAwareFactors::Splat>* factorSplats, Counters& counters);
+                  std::vector<VarianceAwareFactors::Splat>* factorSplats,
+                  std::vector<LightPathChoice::Splat>* lightPathSplats, Counters& counters);
   // Vertex merging: every pixel's light subpath of `pass` (the very one its camera sample walks:
   // same stream, same length), stored and indexed for the merges, before the pass's camera samples.
   void traceMergePass(uint64_t pass, Counters& counters);
@@ -158,6 +163,10 @@ class RenderSession {
   // from the passes so far, and each item in flight's splats for their sums (as tileSplats_).
   std::unique_ptr<VarianceAwareFactors> varianceAware_;
   std::vector<std::vector<VarianceAwareFactors::Splat>> factorSplats_;
+  // --light-paths auto: the light subpaths per camera sample chosen from the passes so far, and
+  // each item in flight's splats for its second moments.
+  std::unique_ptr<LightPathChoice> lightPathChoice_;
+  std::vector<std::vector<LightPathChoice::Splat>> lightPathSplats_;
   std::unique_ptr<SplatSums> splatSums_;
   std::unique_ptr<TechniqueFilms> pyramid_;
   std::unique_ptr<TechniqueCheck> check_;

@@ -218,7 +218,13 @@ void validateSettings(const RenderSettings& s) {
           "--max-length or the image size",
           s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxVarianceAwareBytes >> 30));
   }
-  if (s.lightPaths != 1.f) {
+  if (s.lightPathsAuto) {
+    if (s.mis.heuristic != MisHeuristic::Balance)
+      throw std::invalid_argument(fmt::format("--light-paths auto estimates the balance heuristic's second moments: "
+                                              "use --mis balance, not {}",
+                                              misHeuristicName(s.mis.heuristic)));
+  }
+  if (s.lightPaths != 1.f || s.lightPathsAuto) {
     if (!(s.lightPaths >= kMinLightPaths && s.lightPaths <= 1.f))
       throw std::invalid_argument(fmt::format("--light-paths {} is outside [{}, 1]", s.lightPaths, kMinLightPaths));
     if (s.integrator != IntegratorKind::Bpt)

@@ -71,6 +71,10 @@ struct RenderSettings {
   // probability; the techniques that need one (t = 1, and s >= 2) then count this many samples in
   // every MIS weight and their contributions are divided by it (core/bpt/light_paths.h).
   float lightPaths = 1.f;
+  // --light-paths auto: lightPaths chosen per image from the passes' own second moments and ray
+  // counts (core/bpt/light_path_choice.h); lightPaths is then the F of the passes before the first
+  // choice (1 from the command line).
+  bool lightPathsAuto = false;
   // Mlt only: the chains (core/mlt/mlt_options.h). A pass is one mutation per pixel on average.
   MltOptions mlt;
   // Check on every path that the MIS weights of the enabled techniques able to produce it sum to

@@ -14,9 +14,11 @@ SinkDemand SampleOutputs::demandOf(const SampleTargets& targets) {
   // The outlier finder sees every contribution the image receives, through its record.
   // Variance-aware MIS estimates each technique's own variance from every contribution.
   d.everyContribution = targets.trace != nullptr || targets.check != nullptr || targets.outliers != nullptr ||
-                        targets.varianceAware != nullptr;
+                        targets.varianceAware != nullptr || targets.lightPaths != nullptr;
   d.onPath = targets.trace != nullptr;
   d.densityRatios = targets.check != nullptr;
+  // The replay trace too: the inspector shows it (and the tests compare it with the path's weights).
+  d.lightWalkWeight = targets.lightPaths != nullptr || targets.trace != nullptr;
   d.sampleable = targets.check != nullptr || (targets.pyramid != nullptr && targets.pyramid->keepsSampleable());
   return d;
 }
@@ -65,6 +67,10 @@ void SampleOutputs::record(const TechniqueResult& r) {
     const float y = luminance(v);
     if (y > 0.f) targets_.outlierTally->add(*targets_.outliers, Outlier{y, v, id(), r.technique(), r.pRaster});
   }
+  // --light-paths auto: the contribution as the image received it (its 1 / F included).
+  if (targets_.lightPaths && r.inImage && r.imageWeight > 0.f)
+    targets_.lightPaths->add(r.t, r.pRaster, luminance(r.unweighted * r.imageWeight), r.lightWalkWeight,
+                             *targets_.lightPathSplats);
   if (targets_.varianceAware)
     targets_.varianceAware->add(r.technique(), r.pRaster, luminance(r.unweighted), *targets_.varianceAwareSplats);
   // The check compares every enabled technique's unweighted estimate, whatever its weight.

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/bpt/sample_sink.h"
+#include "core/bpt/light_path_choice.h"
 #include "core/bpt/variance_aware_mis.h"
 #include "core/check/technique_check.h"
 #include "core/film/film.h"
@@ -29,6 +30,10 @@ struct SampleTargets {
   // (camera contributions at once, splats into the work item's list, added in the items' order).
   VarianceAwareFactors* varianceAware = nullptr;
   std::vector<VarianceAwareFactors::Splat>* varianceAwareSplats = nullptr;
+  // --light-paths auto: every weighted contribution's luminance and light-walk weight into the
+  // second moments (camera contributions at once, splats into the work item's list).
+  LightPathChoice* lightPaths = nullptr;
+  std::vector<LightPathChoice::Splat>* lightPathSplats = nullptr;
 };
 
 class SampleOutputs final : public SampleSink {

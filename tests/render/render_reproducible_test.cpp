@@ -107,6 +107,18 @@ TEST(RenderSessionReproducible, VarianceAwareMis) {
   expectSameAtAnyThreadCount(bundled("caustic"), s, "caustic vcm variance-aware", passes);
 }
 
+// --light-paths auto chooses F after 4 and 8 passes from moments whose splats are summed in the
+// work items' order and from ray counts: the choices, so the images, are the same at any thread
+// count.
+TEST(RenderSessionReproducible, LightPathsAuto) {
+  RenderSettings s = settings(IntegratorKind::Bpt);
+  s.lightPathsAuto = true;
+  LoadOptions load;
+  load.defaultLight = true;  // as `pathlab render` lights it: F moves to 1/16 after 4 passes
+  const Scene scene(loadGltf(std::string(PATHLAB_SOURCE_DIR) + "/assets/environment.gltf", load));
+  expectSameAtAnyThreadCount(scene, s, "environment bpt light-paths auto", 10);
+}
+
 // The work items cover the film once, in bands of at most the asked-for pixels (a row at least).
 TEST(RenderSessionReproducible, PassTilesCoverTheFilmOnce) {
   for (const auto& [w, h] : {std::pair{64, 48}, std::pair{1, 1}, std::pair{17, 300}, std::pair{1920, 1080}}) {

@@ -152,7 +152,8 @@ std::string describe(const RenderSettings& s) {
                                                                        *s.mediumSampling == MediumSampling::Mis
                                                                            ? "beside C(1,k)"
                                                                            : "in place of C(1,k)");
-  if (s.lightPaths != 1.f) out += fmt::format(", light paths {:g}", s.lightPaths);
+  if (s.lightPathsAuto) out += ", light paths auto";
+  else if (s.lightPaths != 1.f) out += fmt::format(", light paths {:g}", s.lightPaths);
   if (s.integrator == IntegratorKind::Mlt) {
     // What decides the chains (the A | B lanes of two Metropolis settings differ in these).
     const MltOptions& m = s.mlt;
