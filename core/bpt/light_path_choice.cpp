@@ -1,15 +1,14 @@
-// LightPathChoice: --light-paths auto's moments, cost model and choice
-// (light_path_choice.h).
+// LightPathChoice: --light-paths auto's moments, cost model and choice (light_path_choice.h).
 #include "core/bpt/light_path_choice.h"
-
-#include "core/bpt/light_paths.h"
-#include "core/metrics/error_metrics.h"
-#include "core/sampling/technique.h"
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
+
+#include "core/bpt/light_paths.h"
+#include "core/metrics/error_metrics.h"
+#include "core/sampling/technique.h"
 
 namespace pathlab {
 
@@ -18,112 +17,86 @@ constexpr size_t kCandidates = kLightPathCandidates.size();
 }
 
 LightPathChoice::LightPathChoice(int width, int height, float lightPaths)
-    : width_(width), height_(height), current_(lightPaths),
-      passMoments_(static_cast<size_t>(width) * static_cast<size_t>(height) *
-                       kCandidates,
-                   0.0),
+    : width_(width),
+      height_(height),
+      current_(lightPaths),
+      passMoments_(static_cast<size_t>(width) * static_cast<size_t>(height) * kCandidates, 0.0),
       moments_(passMoments_.size(), 0.0) {}
 
 void LightPathChoice::addAt(size_t pixel, float x, double lightWalkWeight) {
-  // X^2 sum_t n_t p_t / sum_t c_t p_t = X^2 / (w_N + (F_c / F_n) w_L), w_L
-  // clamped to [0, 1]: the weights' sums are a partition of unity up to
-  // rounding.
+  // X^2 sum_t n_t p_t / sum_t c_t p_t = X^2 / (w_N + (F_c / F_n) w_L), w_L clamped to [0, 1]: the weights'
+  // sums are a partition of unity up to rounding.
   const double wL = std::clamp(lightWalkWeight, 0.0, 1.0), wN = 1.0 - wL;
   const double x2 = static_cast<double>(x) * static_cast<double>(x);
-  double *m = passMoments_.data() + pixel * kCandidates;
+  double* m = passMoments_.data() + pixel * kCandidates;
   for (size_t c = 0; c < kCandidates; ++c) {
-    const double denominator =
-        wN + static_cast<double>(kLightPathCandidates[c] / current_) * wL;
-    // A path only light-walk techniques can sample has no estimate at F_c = 0;
-    // every candidate is positive, so the denominator is too unless w_L = 1 and
-    // F_c underflows.
+    const double denominator = wN + static_cast<double>(kLightPathCandidates[c] / current_) * wL;
+    // A path only light-walk techniques can sample has no estimate at F_c = 0; every candidate is positive,
+    // so the denominator is too unless w_L = 1 and F_c underflows.
     m[c] += denominator > 0.0 ? x2 / denominator : 0.0;
   }
 }
 
-void LightPathChoice::add(int t, Vec2 pRaster, float x, double lightWalkWeight,
-                          std::vector<Splat> &splats) {
-  if (!(x > 0.f) || !std::isfinite(x))
-    return;
-  const int px = static_cast<int>(std::floor(pRaster.x)),
-            py = static_cast<int>(std::floor(pRaster.y));
-  if (px < 0 || py < 0 || px >= width_ || py >= height_)
-    return;
-  const size_t pixel = static_cast<size_t>(py) * static_cast<size_t>(width_) +
-                       static_cast<size_t>(px);
+void LightPathChoice::add(int t, Vec2 pRaster, float x, double lightWalkWeight, std::vector<Splat>& splats) {
+  if (!(x > 0.f) || !std::isfinite(x)) return;
+  const int px = static_cast<int>(std::floor(pRaster.x)), py = static_cast<int>(std::floor(pRaster.y));
+  if (px < 0 || py < 0 || px >= width_ || py >= height_) return;
+  const size_t pixel = static_cast<size_t>(py) * static_cast<size_t>(width_) + static_cast<size_t>(px);
   if (t == 1) {
-    splats.push_back(Splat{static_cast<uint32_t>(pixel), x,
-                           static_cast<float>(lightWalkWeight)});
+    splats.push_back(Splat{static_cast<uint32_t>(pixel), x, static_cast<float>(lightWalkWeight)});
     return;
   }
   addAt(pixel, x, lightWalkWeight);
 }
 
-void LightPathChoice::addSplats(std::vector<Splat> &splats) {
-  for (const Splat &s : splats)
-    addAt(s.pixel, s.x, s.lightWalkWeight);
+void LightPathChoice::addSplats(std::vector<Splat>& splats) {
+  for (const Splat& s : splats) addAt(s.pixel, s.x, s.lightWalkWeight);
   splats.clear();
 }
 
 void LightPathChoice::finishPass() {
-  for (size_t i = 0; i < moments_.size(); ++i)
-    moments_[i] += passMoments_[i];
+  for (size_t i = 0; i < moments_.size(); ++i) moments_[i] += passMoments_[i];
   std::fill(passMoments_.begin(), passMoments_.end(), 0.0);
   ++passes_;
 }
 
-void LightPathChoice::discardPass() {
-  std::fill(passMoments_.begin(), passMoments_.end(), 0.0);
-}
+void LightPathChoice::discardPass() { std::fill(passMoments_.begin(), passMoments_.end(), 0.0); }
 
-void LightPathChoice::countPass(const Counters &pass) {
-  // Walk rays count 1, shadow rays kShadowRayCost; a technique's shadow rays go
-  // to the side whose walk it needs (light_paths.h usesLightSubpath). The
-  // counters' last slot (lengths beyond kCountedLength) goes to the light side:
-  // its techniques are mostly connections from it.
-  double camera = static_cast<double>(pass.cameraWalk.rays),
-         light = static_cast<double>(pass.lightWalk.rays);
+void LightPathChoice::countPass(const Counters& pass) {
+  // Walk rays count 1, shadow rays kShadowRayCost; a technique's shadow rays go to the side whose walk it
+  // needs (light_paths.h usesLightSubpath). The counters' last slot (lengths beyond kCountedLength) goes to
+  // the light side: its techniques are mostly connections from it.
+  double camera = static_cast<double>(pass.cameraWalk.rays), light = static_cast<double>(pass.lightWalk.rays);
   for (size_t i = 0; i < pass.techniques.size(); ++i) {
-    const double shadow =
-        kShadowRayCost * static_cast<double>(pass.techniques[i].shadowRays);
-    if (shadow == 0.0)
-      continue;
+    const double shadow = kShadowRayCost * static_cast<double>(pass.techniques[i].shadowRays);
+    if (shadow == 0.0) continue;
     bool lightSide = true;
     if (i < kCountedTechniques) {
       const Technique x = Technique::fromIndex(i);
-      lightSide = x.isMerge() || (x.kind == TechniqueKind::Connection &&
-                                  usesLightSubpath(x.s, x.t));
+      lightSide = x.isMerge() || (x.kind == TechniqueKind::Connection && usesLightSubpath(x.s, x.t));
     }
     (lightSide ? light : camera) += shadow;
   }
   cameraCost_ += camera;
   lightCost_ += light;
   samples_ += static_cast<double>(pass.cameraSamples);
-  lightWalks_ +=
-      static_cast<double>(pass.cameraSamples) * static_cast<double>(current_);
+  lightWalks_ += static_cast<double>(pass.cameraSamples) * static_cast<double>(current_);
 }
 
 double LightPathChoice::cost(float lightPaths) const {
-  if (samples_ <= 0.0)
-    return 1.0;
-  const double a = kCameraSampleCost + cameraCost_ / samples_,
-               b = lightWalks_ > 0.0 ? lightCost_ / lightWalks_ : 0.0;
+  if (samples_ <= 0.0) return 1.0;
+  const double a = kCameraSampleCost + cameraCost_ / samples_, b = lightWalks_ > 0.0 ? lightCost_ / lightWalks_ : 0.0;
   return a + static_cast<double>(lightPaths) * b;
 }
 
 double LightPathChoice::moment(size_t pixel, size_t candidate) const {
-  return passes_ > 0 ? moments_[pixel * kCandidates + candidate] /
-                           static_cast<double>(passes_)
-                     : 0.0;
+  return passes_ > 0 ? moments_[pixel * kCandidates + candidate] / static_cast<double>(passes_) : 0.0;
 }
 
-void LightPathChoice::choose(const Image &image) {
-  if (passes_ == 0)
-    return;
-  const size_t pixels =
-      static_cast<size_t>(width_) * static_cast<size_t>(height_);
-  // 1 / (I_p^2 + eps), I_p the luminance of the image so far in a 3 x 3 box
-  // around p.
+void LightPathChoice::choose(const Image& image) {
+  if (passes_ == 0) return;
+  const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
+  // 1 / (I_p^2 + eps), I_p the luminance of the image so far in a 3 x 3 box around p.
   std::vector<double> inverseSquare(pixels);
   for (int y = 0; y < height_; ++y)
     for (int x = 0; x < width_; ++x) {
@@ -132,49 +105,39 @@ void LightPathChoice::choose(const Image &image) {
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int qx = x + dx, qy = y + dy;
-          if (qx < 0 || qy < 0 || qx >= width_ || qy >= height_)
-            continue;
+          if (qx < 0 || qy < 0 || qx >= width_ || qy >= height_) continue;
           sum += static_cast<double>(luminance(image.at(qx, qy)));
           ++n;
         }
       const double mean = std::isfinite(sum) ? sum / n : 0.0;
-      inverseSquare[static_cast<size_t>(y) * static_cast<size_t>(width_) +
-                    static_cast<size_t>(x)] =
+      inverseSquare[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)] =
           1.0 / (mean * mean + kRelMseEpsilon);
     }
-  const size_t outliers =
-      static_cast<size_t>(kOutlierFraction * static_cast<double>(pixels));
+  const size_t outliers = static_cast<size_t>(kOutlierFraction * static_cast<double>(pixels));
   std::vector<double> relative(pixels);
   estimates_.assign(kCandidates, Estimate{});
   size_t best = 0;
   double bestWork = 0.0;
   for (size_t c = 0; c < kCandidates; ++c) {
-    for (size_t p = 0; p < pixels; ++p)
-      relative[p] = moment(p, c) * inverseSquare[p];
+    for (size_t p = 0; p < pixels; ++p) relative[p] = moment(p, c) * inverseSquare[p];
     double sum = 0.0;
     if (outliers > 0) {
       // The brightest `outliers` pixels left out: partition them to the end.
-      std::nth_element(relative.begin(),
-                       relative.end() - static_cast<std::ptrdiff_t>(outliers),
-                       relative.end());
-      for (size_t p = 0; p + outliers < pixels; ++p)
-        sum += relative[p];
+      std::nth_element(relative.begin(), relative.end() - static_cast<std::ptrdiff_t>(outliers), relative.end());
+      for (size_t p = 0; p + outliers < pixels; ++p) sum += relative[p];
     } else {
-      for (double r : relative)
-        sum += r;
+      for (double r : relative) sum += r;
     }
-    Estimate &e = estimates_[c];
+    Estimate& e = estimates_[c];
     e.lightPaths = kLightPathCandidates[c];
     e.relativeMoment = sum / static_cast<double>(pixels);
     e.cost = cost(e.lightPaths);
     const double work = e.relativeMoment * e.cost;
-    // Ties (a black image: every moment zero) keep the larger F: the candidates
-    // run from 1 down.
-    if (c == 0 || work < bestWork)
-      best = c, bestWork = work;
+    // Ties (a black image: every moment zero) keep the larger F: the candidates run from 1 down.
+    if (c == 0 || work < bestWork) best = c, bestWork = work;
   }
   const double reference = estimates_[0].relativeMoment * estimates_[0].cost;
-  for (Estimate &e : estimates_) {
+  for (Estimate& e : estimates_) {
     const double work = e.relativeMoment * e.cost;
     e.efficiency = work > 0.0 ? reference / work : 1.0;
   }
@@ -184,21 +147,19 @@ void LightPathChoice::choose(const Image &image) {
 
 std::string LightPathChoice::summary() const {
   if (estimates_.empty())
-    return fmt::format("light paths auto: F = {:g} (no choice yet: the first "
-                       "after {} passes)\n",
-                       current_, kLightPathPilotPasses);
-  std::string text =
-      fmt::format("light paths auto: F = {:g} light subpaths per camera sample "
-                  "(chosen {} time{} from {} learning pass{})\n",
-                  current_, choices_, choices_ == 1 ? "" : "s", passes_,
-                  passes_ == 1 ? "" : "es");
-  text +=
-      "  F        rel. 2nd moment   rays/sample   est. efficiency vs F = 1\n";
-  for (const Estimate &e : estimates_)
-    text += fmt::format("  {:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n",
-                        e.lightPaths, e.relativeMoment, e.cost, e.efficiency,
-                        e.lightPaths == current_ ? "  <" : "");
+    return fmt::format(
+        "light paths auto: F = {:g} (no choice yet: the first "
+        "after {} passes)\n",
+        current_, kLightPathPilotPasses);
+  std::string text = fmt::format(
+      "light paths auto: F = {:g} light subpaths per camera sample "
+      "(chosen {} time{} from {} learning pass{})\n",
+      current_, choices_, choices_ == 1 ? "" : "s", passes_, passes_ == 1 ? "" : "es");
+  text += "  F        rel. 2nd moment   rays/sample   est. efficiency vs F = 1\n";
+  for (const Estimate& e : estimates_)
+    text += fmt::format("  {:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeMoment, e.cost,
+                        e.efficiency, e.lightPaths == current_ ? "  <" : "");
   return text;
 }
 
-} // namespace pathlab
+}  // namespace pathlab
