@@ -275,7 +275,7 @@ void Viewer::drawSidePanel(float width, float height, PanelRequests& requests) {
     drawEstimatorSection(estimator_, grid_, a().refused(), a().snapshot().counters, a().snapshot().check.get(),
                          a().snapshot().mlt.get(),
                          MergeRadiusNow{&a().snapshot().settings, a().snapshot().samplesPerPixel, scene().bounds().radius},
-                         sampledFamilies(renderSettings(estimator_), scene()));
+                         sampledFamilies(renderSettings(estimator_), scene()), a().snapshot().lightPaths.get());
   if (ImGui::CollapsingHeader("Path inspector and 3D view",
                               inspect_.inspector.on || inspect_.view3d.on ? ImGuiTreeNodeFlags_DefaultOpen : 0))
     drawInspectorSection(inspect_.inspector, inspect_.view3d, requests);

@@ -115,7 +115,7 @@ void LightPathChoice::choose(const Image& image) {
     }
   const size_t outliers = static_cast<size_t>(kOutlierFraction * static_cast<double>(pixels));
   std::vector<double> relative(pixels);
-  estimates_.assign(kCandidates, Estimate{});
+  estimates_.assign(kCandidates, LightPathEstimate{});
   size_t best = 0;
   double bestWork = 0.0;
   for (size_t c = 0; c < kCandidates; ++c) {
@@ -128,7 +128,7 @@ void LightPathChoice::choose(const Image& image) {
     } else {
       for (double r : relative) sum += r;
     }
-    Estimate& e = estimates_[c];
+    LightPathEstimate& e = estimates_[c];
     e.lightPaths = kLightPathCandidates[c];
     e.relativeMoment = sum / static_cast<double>(pixels);
     e.cost = cost(e.lightPaths);
@@ -137,7 +137,7 @@ void LightPathChoice::choose(const Image& image) {
     if (c == 0 || work < bestWork) best = c, bestWork = work;
   }
   const double reference = estimates_[0].relativeMoment * estimates_[0].cost;
-  for (Estimate& e : estimates_) {
+  for (LightPathEstimate& e : estimates_) {
     const double work = e.relativeMoment * e.cost;
     e.efficiency = work > 0.0 ? reference / work : 1.0;
   }
@@ -156,7 +156,7 @@ std::string LightPathChoice::summary() const {
       "(chosen {} time{} from {} learning pass{})\n",
       current_, choices_, choices_ == 1 ? "" : "s", passes_, passes_ == 1 ? "" : "es");
   text += "  F        rel. 2nd moment   rays/sample   est. efficiency vs F = 1\n";
-  for (const Estimate& e : estimates_)
+  for (const LightPathEstimate& e : estimates_)
     text += fmt::format("  {:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeMoment, e.cost,
                         e.efficiency, e.lightPaths == current_ ? "  <" : "");
   return text;

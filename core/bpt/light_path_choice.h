@@ -66,6 +66,19 @@ inline constexpr double kShadowRayCost = 0.5;
 inline constexpr double kCameraSampleCost = 0.5;
 inline constexpr double kOutlierFraction = 2e-5;
 
+// One candidate's estimates at a choice.
+struct LightPathEstimate {
+  float lightPaths = 1.f;
+  double relativeMoment = 0.0;  // mean over the pixels of m_p(c)
+  double cost = 0.0;            // rays a camera sample, a + F b
+  double efficiency = 0.0;      // 1 / (relativeMoment * cost), relative to F = 1's
+};
+struct LightPathStatus {
+  float lightPaths = 1.f;  // F of the next pass
+  uint64_t passes = 0, choices = 0;
+  std::vector<LightPathEstimate> estimates;
+};
+
 class LightPathChoice {
  public:
   // `lightPaths`: F of the passes before the first choice.
@@ -97,13 +110,9 @@ class LightPathChoice {
   void choose(const Image& image);
 
   // Each candidate's estimates at the last choice (empty before it), for the viewer and the stats.
-  struct Estimate {
-    float lightPaths = 1.f;
-    double relativeMoment = 0.0;  // mean over the pixels of m_p(c)
-    double cost = 0.0;            // rays a camera sample, a + F b
-    double efficiency = 0.0;      // 1 / (relativeMoment * cost), relative to F = 1's
-  };
-  const std::vector<Estimate>& estimates() const { return estimates_; }
+  const std::vector<LightPathEstimate>& estimates() const { return estimates_; }
+  // What the viewer shows: F, the passes and choices, the estimates.
+  LightPathStatus status() const { return LightPathStatus{current_, passes_, choices_, estimates_}; }
   // "light paths auto: F = 0.35 (chosen 3 times from 16 learning passes; ...)" and one line per candidate:
   // its relative second moment, cost and estimated efficiency.
   std::string summary() const;
@@ -124,7 +133,7 @@ class LightPathChoice {
   // Cost sums: camera-side and light-side ray costs, camera samples, and light walks expected (F_n per
   // sample).
   double cameraCost_ = 0.0, lightCost_ = 0.0, samples_ = 0.0, lightWalks_ = 0.0;
-  std::vector<Estimate> estimates_;
+  std::vector<LightPathEstimate> estimates_;
 };
 
 }  // namespace pathlab

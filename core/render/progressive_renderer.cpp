@@ -100,7 +100,8 @@ void ProgressiveRenderer::State::run() {
   };
 
   auto publish = [&](Image image, bool preview, int factor, const Counters& counters, uint64_t spp,
-                     std::shared_ptr<const CheckReport> check, std::shared_ptr<const MltSummary> mlt = nullptr) {
+                     std::shared_ptr<const CheckReport> check, std::shared_ptr<const MltSummary> mlt = nullptr,
+                     std::shared_ptr<const LightPathStatus> lightPaths = nullptr) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     std::lock_guard lock(mutex);
     if (generation != gen) return;  // superseded while finishing: never shown
@@ -116,6 +117,7 @@ void ProgressiveRenderer::State::run() {
     front.settings = set;
     front.check = std::move(check);
     front.mlt = std::move(mlt);
+    front.lightPaths = std::move(lightPaths);
     published.notify_all();
   };
 
@@ -182,7 +184,10 @@ void ProgressiveRenderer::State::run() {
     if (const TechniqueCheck* c = session->techniqueCheck()) check = std::make_shared<const CheckReport>(checkReport(*c));
     std::shared_ptr<const MltSummary> mlt;
     if (const Metropolis* m = session->metropolis()) mlt = std::make_shared<const MltSummary>(m->summary());
-    publish(std::move(image), false, 1, counters, session->passes(), std::move(check), std::move(mlt));
+    std::shared_ptr<const LightPathStatus> lightPaths;
+    if (const LightPathChoice* l = session->lightPathChoice()) lightPaths = std::make_shared<const LightPathStatus>(l->status());
+    publish(std::move(image), false, 1, counters, session->passes(), std::move(check), std::move(mlt),
+            std::move(lightPaths));
 
     if (session->hasPyramid()) {
       {

@@ -8,6 +8,7 @@
 // within a few tens of milliseconds; full-resolution passes then accumulate.
 #pragma once
 
+#include "core/bpt/light_path_choice.h"
 #include "core/check/check_report.h"
 #include "core/film/downsample.h"
 #include "core/film/film.h"
@@ -41,6 +42,8 @@ struct RenderSnapshot {
   std::shared_ptr<const CheckReport> check;
   // The Metropolis chains' normalisation and acceptance after the last full pass (Mlt), else null.
   std::shared_ptr<const MltSummary> mlt;
+  // --light-paths auto: the F chosen so far and the candidates' estimates after the last full pass, else null.
+  std::shared_ptr<const LightPathStatus> lightPaths;
 };
 
 // The outlier finder's list over the current generation's full passes (ProgressiveRenderer::outliers).

@@ -485,7 +485,8 @@ void drawMetropolisControls(MltOptions& m, int maxLength, bool& showDensity, con
 
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
                           const Counters& counters, const CheckReport* check, const MltSummary* mlt,
-                          const MergeRadiusNow& radiusNow, TechniqueFamilies sampled) {
+                          const MergeRadiusNow& radiusNow, TechniqueFamilies sampled,
+                          const LightPathStatus* lightPaths) {
   RenderSettings& edited = estimator.settings;
   ImGui::PushID("estimator");
   // Integrator
@@ -606,14 +607,49 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
   const bool lightPathsApply = edited.integrator == IntegratorKind::Bpt && edited.connect == ConnectStrategy::All &&
                                edited.mis.heuristic != MisHeuristic::VarianceAware &&
                                !covers(enabledTechniques(edited).families(), TechniqueKind::Merge);
-  ImGui::BeginDisabled(!lightPathsApply);
-  ImGui::SliderFloat("light paths", &edited.lightPaths, 0.01f, 1.f, "%.3f", ImGuiSliderFlags_Logarithmic);
+  // --light-paths auto (core/bpt/light_path_choice.h): balance heuristic only; the slider then
+  // shows the F the renderer chose.
+  const bool autoApplies = lightPathsApply && edited.mis.heuristic == MisHeuristic::Balance;
+  ImGui::BeginDisabled(!lightPathsApply || edited.lightPathsAuto);
+  float shown = edited.lightPathsAuto && lightPaths ? lightPaths->lightPaths : edited.lightPaths;
+  ImGui::SliderFloat("light paths", &shown, 0.01f, 1.f, "%.3f", ImGuiSliderFlags_Logarithmic);
+  if (!edited.lightPathsAuto) edited.lightPaths = shown;
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("light subpaths per camera sample: each camera sample walks one with this probability.\n"
                       "Light tracing and the connections beyond next-event estimation count it in every MIS\n"
                       "weight and are divided by it: unbiased at any value, cheaper below 1 where they help little.\n"
                       "bpt with path reuse only (not merges, naive BPT or variance-aware MIS).");
+  ImGui::BeginDisabled(!autoApplies);
+  ImGui::Checkbox("light paths: auto", &edited.lightPathsAuto);
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("choose the light subpaths per camera sample from the passes themselves (Grittmann et al. 2022):\n"
+                      "each candidate's second moment estimated from the samples of the current one, times its\n"
+                      "cost in rays; chosen after 4, 8, 16, 32, ... passes. Balance heuristic only.");
+  if (!autoApplies) edited.lightPathsAuto = false;
+  if (edited.lightPathsAuto) {
+    edited.lightPaths = 1.f;  // the pilot passes' F
+    if (lightPaths && !lightPaths->estimates.empty()) {
+      const auto chosen = std::find_if(lightPaths->estimates.begin(), lightPaths->estimates.end(),
+                                       [&](const LightPathEstimate& e) { return e.lightPaths == lightPaths->lightPaths; });
+      ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+      ImGui::TextWrapped("F = %.3g chosen from %llu learning passes: est. %.2fx the efficiency of F = 1 (hover: every "
+                         "candidate)",
+                         lightPaths->lightPaths, static_cast<unsigned long long>(lightPaths->passes),
+                         chosen != lightPaths->estimates.end() ? chosen->efficiency : 1.0);
+      ImGui::PopStyleColor();
+      if (ImGui::IsItemHovered()) {
+        std::string table = "F        rel. 2nd moment   rays/sample   est. efficiency\n";
+        for (const LightPathEstimate& e : lightPaths->estimates)
+          table += fmt::format("{:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeMoment, e.cost,
+                               e.efficiency, e.lightPaths == lightPaths->lightPaths ? "  <" : "");
+        ImGui::SetTooltip("%s", table.c_str());
+      }
+    } else {
+      ImGui::TextDisabled("F = 1 until the first choice, after %d passes", kLightPathPilotPasses);
+    }
+  }
   edited.lightPaths = lightPathsApply ? std::clamp(edited.lightPaths, kMinLightPaths, 1.f) : 1.f;
 
   // Mode

@@ -12,6 +12,7 @@
 #include "ui/inspect/view3d.h"
 #include "ui/lane/compare.h"
 #include "ui/viewer_state.h"
+#include "core/bpt/light_path_choice.h"
 #include "core/mlt/metropolis.h"
 
 #include <imgui.h>
@@ -56,7 +57,8 @@ struct MergeRadiusNow {
 };
 void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, const std::string& settingsError,
                           const Counters& counters, const CheckReport* check, const MltSummary* mlt,
-                          const MergeRadiusNow& radiusNow, TechniqueFamilies sampled);
+                          const MergeRadiusNow& radiusNow, TechniqueFamilies sampled,
+                          const LightPathStatus* lightPaths = nullptr);
 void drawDisplaySection(DisplaySettings& display, RunState& run, PyramidView& pyramid, const Image& shown);
 void drawSceneSection(SceneState& scene, bool cameraMoved, PanelRequests& requests);
 void drawPresetSection(const PresetState& presets, PanelRequests& requests);
