@@ -122,3 +122,19 @@ def test_technique_sets():
     spec = pathlab.TechniqueSet("s=0;2,2")
     assert (0, 5) in spec and (1, 2) not in spec
     assert str(pathlab.Settings(techniques=spec).techniques) == str(spec)
+
+
+def test_automatic_light_paths_equal_the_command_line_past_their_choices(tmp_path):
+    # 10 passes of the default-lit environment scene: F leaves 1 after the 4th (and is chosen again
+    # after the 8th); the module takes "auto" as the command line does.
+    out = tmp_path / "auto.pfm"
+    scene = scene_path("environment.gltf")
+    done = run_cli("render", scene, "--spp", "10", "-o", str(out), "--force", "--width", "64", "--height", "48",
+                   "--light-paths", "auto")
+    assert done.returncode == 0, done.stderr
+    assert "light paths auto: F = 0.0625" in done.stderr
+    settings = pathlab.Settings(width=64, height=48, light_paths="auto")
+    image = pathlab.Renderer(pathlab.load(scene), settings).render(spp=10)
+    assert np.array_equal(image, read_pfm(out))
+    fixed = pathlab.Renderer(pathlab.load(scene), pathlab.Settings(width=64, height=48)).render(spp=10)
+    assert not np.array_equal(image, fixed)
