@@ -20,47 +20,65 @@ LightPathChoice::LightPathChoice(int width, int height, float lightPaths)
     : width_(width),
       height_(height),
       current_(lightPaths),
-      passMoments_(static_cast<size_t>(width) * static_cast<size_t>(height) * kCandidates, 0.0),
-      moments_(passMoments_.size(), 0.0) {}
+      second_(static_cast<size_t>(width) * static_cast<size_t>(height) * kCandidates, 0.f),
+      first_(second_.size(), 0.f) {}
 
-void LightPathChoice::addAt(size_t pixel, float x, double lightWalkWeight) {
-  // X^2 sum_t n_t p_t / sum_t c_t p_t = X^2 / (w_N + (F_c / F_n) w_L), w_L clamped to [0, 1]: the weights'
-  // sums are a partition of unity up to rounding.
+std::array<double, kCandidates> LightPathChoice::ratios(double lightWalkWeight) const {
+  // w_L clamped to [0, 1]: the weights' sums are a partition of unity up to rounding. Every candidate is
+  // positive, so the denominator is too.
   const double wL = std::clamp(lightWalkWeight, 0.0, 1.0), wN = 1.0 - wL;
-  const double x2 = static_cast<double>(x) * static_cast<double>(x);
-  double* m = passMoments_.data() + pixel * kCandidates;
-  for (size_t c = 0; c < kCandidates; ++c) {
-    const double denominator = wN + static_cast<double>(kLightPathCandidates[c] / current_) * wL;
-    // A path only light-walk techniques can sample has no estimate at F_c = 0; every candidate is positive,
-    // so the denominator is too unless w_L = 1 and F_c underflows.
-    m[c] += denominator > 0.0 ? x2 / denominator : 0.0;
-  }
+  std::array<double, kCandidates> r{};
+  for (size_t c = 0; c < kCandidates; ++c) r[c] = 1.0 / (wN + static_cast<double>(kLightPathCandidates[c] / current_) * wL);
+  return r;
 }
 
-void LightPathChoice::add(int t, Vec2 pRaster, float x, double lightWalkWeight, std::vector<Splat>& splats) {
+void LightPathChoice::add(int t, bool lightWalkTechnique, Vec2 pRaster, float x, double lightWalkWeight,
+                          SampleSums& sample, std::vector<Splat>& splats) const {
   if (!(x > 0.f) || !std::isfinite(x)) return;
-  const int px = static_cast<int>(std::floor(pRaster.x)), py = static_cast<int>(std::floor(pRaster.y));
-  if (px < 0 || py < 0 || px >= width_ || py >= height_) return;
-  const size_t pixel = static_cast<size_t>(py) * static_cast<size_t>(width_) + static_cast<size_t>(px);
   if (t == 1) {
+    const int px = static_cast<int>(std::floor(pRaster.x)), py = static_cast<int>(std::floor(pRaster.y));
+    if (px < 0 || py < 0 || px >= width_ || py >= height_) return;
+    const size_t pixel = static_cast<size_t>(py) * static_cast<size_t>(width_) + static_cast<size_t>(px);
     splats.push_back(Splat{static_cast<uint32_t>(pixel), x, static_cast<float>(lightWalkWeight)});
     return;
   }
-  addAt(pixel, x, lightWalkWeight);
+  const std::array<double, kCandidates> r = ratios(lightWalkWeight);
+  sample.any = true;
+  for (size_t c = 0; c < kCandidates; ++c) {
+    // A light-walk technique's weight also scales by F_c / F_n; its contribution without the walk's 1 / F_n
+    // is X F_n: L_c gathers X F_c r.
+    if (lightWalkTechnique) sample.lightSide[c] += static_cast<double>(x) * static_cast<double>(kLightPathCandidates[c]) * r[c];
+    else sample.cameraSide[c] += static_cast<double>(x) * r[c];
+  }
+}
+
+void LightPathChoice::addCameraSample(int px, int py, const SampleSums& sample) {
+  if (!sample.any || px < 0 || py < 0 || px >= width_ || py >= height_) return;
+  const size_t pixel = static_cast<size_t>(py) * static_cast<size_t>(width_) + static_cast<size_t>(px);
+  float* second = second_.data() + pixel * kCandidates;
+  float* first = first_.data() + pixel * kCandidates;
+  const double fn = static_cast<double>(current_);
+  for (size_t c = 0; c < kCandidates; ++c) {
+    const double a = sample.cameraSide[c], l = sample.walked ? sample.lightSide[c] : 0.0;
+    const double fc = static_cast<double>(kLightPathCandidates[c]);
+    second[c] += static_cast<float>(a * a + (2.0 * a * l + l * l / fc) / fn);
+    first[c] += static_cast<float>(a + l / fn);
+  }
 }
 
 void LightPathChoice::addSplats(std::vector<Splat>& splats) {
-  for (const Splat& s : splats) addAt(s.pixel, s.x, s.lightWalkWeight);
+  for (const Splat& s : splats) {
+    // A splat's square at F_c from the pass's sample: given the walk its contribution is X F_n times the
+    // weight's change (F_c / F_n) r, and it happens with probability F_c instead of F_n, so E_c[X_c^2] =
+    // E_n[X^2 (F_c / F_n) r^2].
+    const std::array<double, kCandidates> r = ratios(s.lightWalkWeight);
+    const double x2 = static_cast<double>(s.x) * static_cast<double>(s.x);
+    float* second = second_.data() + static_cast<size_t>(s.pixel) * kCandidates;
+    for (size_t c = 0; c < kCandidates; ++c)
+      second[c] += static_cast<float>(x2 * r[c] * r[c] * static_cast<double>(kLightPathCandidates[c] / current_));
+  }
   splats.clear();
 }
-
-void LightPathChoice::finishPass() {
-  for (size_t i = 0; i < moments_.size(); ++i) moments_[i] += passMoments_[i];
-  std::fill(passMoments_.begin(), passMoments_.end(), 0.0);
-  ++passes_;
-}
-
-void LightPathChoice::discardPass() { std::fill(passMoments_.begin(), passMoments_.end(), 0.0); }
 
 void LightPathChoice::countPass(const Counters& pass) {
   // Walk rays count 1, shadow rays kShadowRayCost; a technique's shadow rays go to the side whose walk it
@@ -90,7 +108,11 @@ double LightPathChoice::cost(float lightPaths) const {
 }
 
 double LightPathChoice::moment(size_t pixel, size_t candidate) const {
-  return passes_ > 0 ? moments_[pixel * kCandidates + candidate] / static_cast<double>(passes_) : 0.0;
+  return passes_ > 0 ? static_cast<double>(second_[pixel * kCandidates + candidate]) / static_cast<double>(passes_) : 0.0;
+}
+
+double LightPathChoice::mean(size_t pixel, size_t candidate) const {
+  return passes_ > 0 ? static_cast<double>(first_[pixel * kCandidates + candidate]) / static_cast<double>(passes_) : 0.0;
 }
 
 void LightPathChoice::choose(const Image& image) {
@@ -119,7 +141,11 @@ void LightPathChoice::choose(const Image& image) {
   size_t best = 0;
   double bestWork = 0.0;
   for (size_t c = 0; c < kCandidates; ++c) {
-    for (size_t p = 0; p < pixels; ++p) relative[p] = moment(p, c) * inverseSquare[p];
+    // V_p(c) = E[Y_c^2] - E[Y_c]^2 (the splats' variance in the first).
+    for (size_t p = 0; p < pixels; ++p) {
+      const double m = mean(p, c), variance = moment(p, c) - m * m;
+      relative[p] = std::isfinite(variance) ? variance * inverseSquare[p] : 0.0;
+    }
     double sum = 0.0;
     if (outliers > 0) {
       // The brightest `outliers` pixels left out: partition them to the end.
@@ -130,15 +156,15 @@ void LightPathChoice::choose(const Image& image) {
     }
     LightPathEstimate& e = estimates_[c];
     e.lightPaths = kLightPathCandidates[c];
-    e.relativeMoment = sum / static_cast<double>(pixels);
+    e.relativeVariance = std::max(sum / static_cast<double>(pixels), 0.0);
     e.cost = cost(e.lightPaths);
-    const double work = e.relativeMoment * e.cost;
-    // Ties (a black image: every moment zero) keep the larger F: the candidates run from 1 down.
+    const double work = e.relativeVariance * e.cost;
+    // Ties (a black image: every variance zero) keep the larger F: the candidates run from 1 down.
     if (c == 0 || work < bestWork) best = c, bestWork = work;
   }
-  const double reference = estimates_[0].relativeMoment * estimates_[0].cost;
+  const double reference = estimates_[0].relativeVariance * estimates_[0].cost;
   for (LightPathEstimate& e : estimates_) {
-    const double work = e.relativeMoment * e.cost;
+    const double work = e.relativeVariance * e.cost;
     e.efficiency = work > 0.0 ? reference / work : 1.0;
   }
   current_ = kLightPathCandidates[best];
@@ -155,9 +181,9 @@ std::string LightPathChoice::summary() const {
       "light paths auto: F = {:g} light subpaths per camera sample "
       "(chosen {} time{} from {} learning pass{})\n",
       current_, choices_, choices_ == 1 ? "" : "s", passes_, passes_ == 1 ? "" : "es");
-  text += "  F        rel. 2nd moment   rays/sample   est. efficiency vs F = 1\n";
+  text += "  F        rel. variance     rays/sample   est. efficiency vs F = 1\n";
   for (const LightPathEstimate& e : estimates_)
-    text += fmt::format("  {:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeMoment, e.cost,
+    text += fmt::format("  {:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeVariance, e.cost,
                         e.efficiency, e.lightPaths == current_ ? "  <" : "");
   return text;
 }

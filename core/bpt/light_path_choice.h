@@ -3,35 +3,43 @@
 // for bidirectional rendering algorithms", sec. 4-5), among the candidates kLightPathCandidates, for the
 // fixed-F sampling of light_paths.h.
 //
-// The second moment of a candidate from the samples of the current one. Under the balance heuristic with
-// sample counts n_t, the combined estimator's second moment (one camera sample a pixel, the techniques taken
-// as independent) is
-//     M(n) = int f(x)^2 / sum_t n_t p_t(x) dx.
-// The pass's samples (counts n: F_n for the techniques that walk a light subpath, 1 for the rest) estimate
-// any integral by the balance estimator, sum over samples g(x) / sum_t n_t p_t(x), so a candidate c (F_c for
-// the light-walk techniques) has the unbiased estimate
-//     M(c) ~ sum over contributions X^2 * sum_t n_t p_t / sum_t c_t p_t
-//          = sum over contributions X^2 / (w_N + (F_c / F_n) w_L),
-// X = f / sum_t n_t p_t the weighted contribution the image received (its 1 / F_n included), w_L the sum of
-// the current balance weights of the path's light-walk techniques (lightWalkWeight, mis.h) and w_N = 1 - w_L.
-// F_c = F_n gives back the sum of X^2. Covariances between the techniques of one sample (path reuse) are left
-// out, as in the paper: the second moment is its proxy for the variance.
+// The variance of a candidate from the samples of the current one. Which paths the techniques sample does not
+// depend on F: a candidate F_c changes only the MIS weights (the counts n_t: F for the techniques that walk a
+// light subpath, light tracing and s >= 2, 1 for the others) and how often the light walk happens. Under the
+// balance heuristic a technique's weight at F_c is its weight at the pass's F_n times r = sum_t n_t p_t /
+// sum_t c_t p_t = 1 / (w_N + (F_c / F_n) w_L) (times F_c / F_n for the light-walk techniques), w_L the sum of
+// the path's light-walk techniques' weights (lightWalkWeight, mis.h), w_N = 1 - w_L. So each camera sample's
+// estimate of its pixel at F_c is known exactly from the same subpaths:
+//     Y_c = A_c + (B_c / F_c) L_c,   A_c = sum over its camera-side contributions of X r,
+//                                     L_c = sum over its light-walk contributions of X F_n (F_c / F_n) r,
+// X the weighted contribution as rendered (1 / F_n included), B_c the walk (probability F_c). The pass
+// observes L only where it walked (probability F_n, independent of the camera walk), so per sample
+//     E[Y_c^2] ~ A_c^2 + [walked] (2 A_c L_c + L_c^2 / F_c) / F_n,   E[Y_c] ~ A_c + [walked] L_c / F_n,
+// unbiased, covariances between the techniques of a sample (path reuse) included; F_c = F_n gives back Y^2
+// and Y. Light tracing's splats come from other samples' independent light walks: each adds X^2 (F_c / F_n)
+// r^2, its square at F_c, to the pixel it lands in (its variance: the square of its mean is O(1 / pixels)).
+// The pixel's variance per camera sample at F_c is the mean of the first less the square of the mean of the
+// second, plus the splats'.
 //
-// The choice. Per pixel p, the relative second moment m_p(c) = M_p(c) / (I_p^2 + eps), I_p the image so far
+// The choice. Per pixel p, the relative variance v_p(c) = V_p(c) / (I_p^2 + eps), I_p the image so far
 // (luminance, a 3 x 3 box mean) and eps converge's relMSE epsilon (error_metrics.h): the error that
 // `converge` measures. The cost of a camera sample is a + F b in rays: a the camera walk's rays,
 // kCameraSampleCost, and the shadow rays of the techniques that do not walk a light subpath (s = 0,
 // next-event estimation, E(1, t)), b the light walk's rays and the shadow rays of the techniques that do, per
 // light subpath; a shadow ray counts kShadowRayCost of a walk's ray (measured: docs/benchmarks.md). Rays, not
 // seconds, so that the same seed gives the same choice, and the same image, at any load and thread count. The
-// chosen F minimises cost(c) * sum_p m_p(c) (the paper's "work-normalised relative second moment"); the
-// brightest kOutlierFraction of the pixels are left out of each candidate's sum (one firefly of the pilot
-// would otherwise decide).
+// chosen F minimises cost(c) * sum_p v_p(c), the relMSE of one sample a pixel times its cost (the paper
+// weighs the second moment alone, leaving the covariances of path reuse out; on pathlab's scenes that
+// misjudged bidir-lamp and veach-mis: docs/benchmarks.md); the brightest kOutlierFraction of the pixels are
+// left out of each candidate's sum (one firefly of the pilot would otherwise decide).
 //
 // When. The first kLightPathPilotPasses passes render at F = 1 (or the F they are given) and learn; the
 // choice is made after them and again after passes 8, 16, 32, ... from every learning pass so far (every pass
 // up to kLightPathsEveryPassUpTo, then one in kLightPathsStride). Each pass's F depends on earlier passes
 // only, and each pass is unbiased at its own F (light_paths.h): the image stays unbiased.
+//
+// The sums take 2 floats a candidate a pixel (kLightPathChoiceBytesPerPixel). A cancelled pass leaves part of
+// its sums: its session is discarded (RenderSession::renderPass).
 //
 // Every sum is deterministic: camera contributions come from the one work item that holds the pixel, in its
 // samples' order; splats are added by the render session in the items' order.
@@ -65,13 +73,14 @@ inline constexpr double kShadowRayCost = 0.5;
 // A camera sample's own work beside its rays (the camera ray's set-up, the film), in walk rays.
 inline constexpr double kCameraSampleCost = 0.5;
 inline constexpr double kOutlierFraction = 2e-5;
+inline constexpr uint64_t kLightPathChoiceBytesPerPixel = 2 * sizeof(float) * kLightPathCandidates.size();
 
 // One candidate's estimates at a choice.
 struct LightPathEstimate {
   float lightPaths = 1.f;
-  double relativeMoment = 0.0;  // mean over the pixels of m_p(c)
-  double cost = 0.0;            // rays a camera sample, a + F b
-  double efficiency = 0.0;      // 1 / (relativeMoment * cost), relative to F = 1's
+  double relativeVariance = 0.0;  // mean over the pixels of v_p(c): relMSE at one sample a pixel
+  double cost = 0.0;              // rays a camera sample, a + F b
+  double efficiency = 0.0;        // 1 / (relativeVariance * cost), relative to F = 1's
 };
 struct LightPathStatus {
   float lightPaths = 1.f;  // F of the next pass
@@ -90,20 +99,28 @@ class LightPathChoice {
   uint64_t passes() const { return passes_; }
   uint64_t choices() const { return choices_; }
 
+  // A camera sample's own sums over its contributions (t >= 2), per candidate: A_c and L_c.
+  struct SampleSums {
+    std::array<double, kLightPathCandidates.size()> cameraSide{}, lightSide{};
+    bool walked = false;  // the sample walked a light subpath
+    bool any = false;     // a contribution was added
+  };
   // One weighted contribution of a learning pass: its luminance X as the image received it, where it lands,
-  // and the light-walk techniques' share of its balance weights (w_L). A camera contribution (t >= 2) is
-  // added at once by the thread of the work item that holds its pixel; a splat (t = 1) is kept in `splats`
-  // (the work item's), which the session adds in the items' order.
+  // the light-walk techniques' share of its balance weights (w_L) and whether it is one of them. A camera
+  // contribution (t >= 2) goes into its sample's `sample` sums, added by addCameraSample; a splat (t = 1) is
+  // kept in `splats` (the work item's), which the session adds in the items' order.
   struct Splat {
     uint32_t pixel;
     float x;
     float lightWalkWeight;
   };
-  void add(int t, Vec2 pRaster, float x, double lightWalkWeight, std::vector<Splat>& splats);
+  void add(int t, bool lightWalkTechnique, Vec2 pRaster, float x, double lightWalkWeight, SampleSums& sample,
+           std::vector<Splat>& splats) const;
+  // The end of a camera sample of pixel (px, py): its sums into the pixel's (the work item's thread).
+  void addCameraSample(int px, int py, const SampleSums& sample);
   void addSplats(std::vector<Splat>& splats);  // then cleared
-  // The end of a learning pass (one camera sample a pixel): its sums into the moments.
-  void finishPass();
-  void discardPass();
+  // The end of a learning pass (one camera sample a pixel).
+  void finishPass() { ++passes_; }
   // Every finished pass's counters, rendered at F = lightPaths(): the cost model's sums.
   void countPass(const Counters& pass);
   // Choose F for the passes after this one, from `image` (the render so far).
@@ -113,23 +130,26 @@ class LightPathChoice {
   const std::vector<LightPathEstimate>& estimates() const { return estimates_; }
   // What the viewer shows: F, the passes and choices, the estimates.
   LightPathStatus status() const { return LightPathStatus{current_, passes_, choices_, estimates_}; }
-  // "light paths auto: F = 0.35 (chosen 3 times from 16 learning passes; ...)" and one line per candidate:
-  // its relative second moment, cost and estimated efficiency.
+  // "light paths auto: F = 0.35 (chosen 3 times from 16 learning passes)" and one line per candidate: its
+  // relative variance, cost and estimated efficiency.
   std::string summary() const;
 
   // The cost of a camera sample at F from the counters' sums (exposed for the tests).
   double cost(float lightPaths) const;
-  // M_p(c) per learning pass, pixel-major (exposed for the tests).
+  // E[Y_c^2] of a camera sample (the splats' X^2 included) and E[Y_c] of its camera part, from the learning
+  // passes, pixel-major (exposed for the tests).
   double moment(size_t pixel, size_t candidate) const;
+  double mean(size_t pixel, size_t candidate) const;
 
  private:
-  void addAt(size_t pixel, float x, double lightWalkWeight);
+  // r_c = 1 / (w_N + (F_c / F_n) w_L) for every candidate.
+  std::array<double, kLightPathCandidates.size()> ratios(double lightWalkWeight) const;
   int width_, height_;
   float current_ = 1.f;
   uint64_t passes_ = 0, choices_ = 0;
-  // sum X^2 / (w_N + F_c / F_n w_L), pixel-major, kLightPathCandidates.size() a pixel: this pass's (dropped
-  // if it is cancelled) and over the learning passes.
-  std::vector<double> passMoments_, moments_;
+  // Over the learning passes, pixel-major, kLightPathCandidates.size() a pixel: the sums of the samples'
+  // E[Y_c^2] estimates (and the splats' X^2 r), and of their E[Y_c] estimates.
+  std::vector<float> second_, first_;
   // Cost sums: camera-side and light-side ray costs, camera samples, and light walks expected (F_n per
   // sample).
   double cameraCost_ = 0.0, lightCost_ = 0.0, samples_ = 0.0, lightWalks_ = 0.0;

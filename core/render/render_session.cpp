@@ -211,6 +211,7 @@ Spectrum RenderSession::sampleAt(const BidirTracer* tracer, int x, int y, uint64
     Pcg32 lightRng = sampleStream(settings_, x, y, pass, RngStream::Light);
     SampleOutputs outputs(targets);
     tracer->sample(pRaster, uLens, rng, lightRng, outputs, counters);
+    outputs.finishSample();
     return outputs.cameraEstimate();
   }
   const Ray ray = camera_.generateRay(pRaster, uLens);
@@ -406,10 +407,9 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
       varianceAware_->finishPass(1.0);
     }
   }
-  if (lightPathChoice_ && cancelled && learningLightPaths) {
-    lightPathChoice_->discardPass();
+  // A cancelled pass leaves part of its --light-paths auto sums: the session is discarded.
+  if (lightPathChoice_ && cancelled)
     for (std::vector<LightPathChoice::Splat>& list : lightPathSplats_) list.clear();
-  }
   if (cancelled) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
   const uint64_t done = passes_.fetch_add(1, std::memory_order_relaxed);

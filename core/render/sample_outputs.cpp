@@ -2,6 +2,8 @@
 // and, through the kernel's image route, the film.
 #include "core/render/sample_outputs.h"
 
+#include "core/bpt/light_paths.h"
+
 #include <algorithm>
 
 namespace pathlab {
@@ -26,6 +28,7 @@ SinkDemand SampleOutputs::demandOf(const SampleTargets& targets) {
 SampleOutputs::SampleOutputs(const SampleTargets& targets) : SampleSink(demandOf(targets), targets.id), targets_(targets) {}
 
 void SampleOutputs::beginSample(std::span<const PathVertex> cameraSubpath, std::span<const PathVertex> lightSubpath) {
+  lightPathSums_.walked = !lightSubpath.empty();
   SampleTrace* trace = targets_.trace;
   if (!trace) return;
   trace->cameraVertices = static_cast<int>(cameraSubpath.size());
@@ -69,7 +72,8 @@ void SampleOutputs::record(const TechniqueResult& r) {
   }
   // --light-paths auto: the contribution as the image received it (its 1 / F included).
   if (targets_.lightPaths && r.inImage && r.imageWeight > 0.f)
-    targets_.lightPaths->add(r.t, r.pRaster, luminance(r.unweighted * r.imageWeight), r.lightWalkWeight,
+    targets_.lightPaths->add(r.t, r.kind == TechniqueKind::Connection && usesLightSubpath(r.s, r.t), r.pRaster,
+                             luminance(r.unweighted * r.imageWeight), r.lightWalkWeight, lightPathSums_,
                              *targets_.lightPathSplats);
   if (targets_.varianceAware)
     targets_.varianceAware->add(r.technique(), r.pRaster, luminance(r.unweighted), *targets_.varianceAwareSplats);
@@ -90,6 +94,10 @@ void SampleOutputs::record(const TechniqueResult& r) {
         targets_.pyramid->addSampleable(r.technique().length(), r.sampleableBy, r.pRaster, r.t == 1, luminance(weighted));
     }
   }
+}
+
+void SampleOutputs::finishSample() {
+  if (targets_.lightPaths) targets_.lightPaths->addCameraSample(id().x, id().y, lightPathSums_);
 }
 
 }  // namespace pathlab

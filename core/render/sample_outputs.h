@@ -43,12 +43,15 @@ class SampleOutputs final : public SampleSink {
   void beginSample(std::span<const PathVertex> cameraSubpath, std::span<const PathVertex> lightSubpath) override;
   void walked(int nt, int ns) override;
   void record(const TechniqueResult& result) override;
+  // The sample is done: its --light-paths auto sums into its pixel's (nothing without that target).
+  void finishSample();
 
  private:
   bool splat(Vec2 pRaster, const Spectrum& contribution) override;
   void trace(const TechniqueResult& result);
   static SinkDemand demandOf(const SampleTargets& targets);
   const SampleTargets& targets_;
+  LightPathChoice::SampleSums lightPathSums_;
 };
 
 }  // namespace pathlab

@@ -640,9 +640,9 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
                          chosen != lightPaths->estimates.end() ? chosen->efficiency : 1.0);
       ImGui::PopStyleColor();
       if (ImGui::IsItemHovered()) {
-        std::string table = "F        rel. 2nd moment   rays/sample   est. efficiency\n";
+        std::string table = "F        rel. variance     rays/sample   est. efficiency\n";
         for (const LightPathEstimate& e : lightPaths->estimates)
-          table += fmt::format("{:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeMoment, e.cost,
+          table += fmt::format("{:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeVariance, e.cost,
                                e.efficiency, e.lightPaths == lightPaths->lightPaths ? "  <" : "");
         ImGui::SetTooltip("%s", table.c_str());
       }
