@@ -2,6 +2,8 @@
 // every front end runs before any work.
 #include "core/render/render_settings.h"
 
+#include "core/bpt/light_path_choice.h"
+
 #include "core/bpt/equiangular_technique.h"
 
 #include "core/bpt/merge_pass.h"
@@ -219,6 +221,12 @@ void validateSettings(const RenderSettings& s) {
           s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxVarianceAwareBytes >> 30));
   }
   if (s.lightPathsAuto) {
+    const uint64_t bytes = static_cast<uint64_t>(s.width) * static_cast<uint64_t>(s.height) * kLightPathChoiceBytesPerPixel;
+    if (bytes > kMaxLightPathChoiceBytes)
+      throw std::invalid_argument(fmt::format("--light-paths auto at {} x {} keeps {:.1f} GiB of sums (at most {} GiB): "
+                                              "lower the image size or give --light-paths a number",
+                                              s.width, s.height, static_cast<double>(bytes) / (1ull << 30),
+                                              kMaxLightPathChoiceBytes >> 30));
     if (s.mis.heuristic != MisHeuristic::Balance)
       throw std::invalid_argument(fmt::format("--light-paths auto estimates the balance heuristic's second moments: "
                                               "use --mis balance, not {}",

@@ -174,5 +174,20 @@ expect_error "sample past the limit" "past the last sample" inspect "$BOX" --pix
 expect_error "missing scene" "nope.gltf" inspect "$TMP/nope.gltf" --pixel 1,1
 expect_error "path tracer" "bpt, lt or mlt" inspect "$BOX" --pixel 1,1 --integrator pt
 
+# --light-paths auto: a word or a number, the balance heuristic, one process; inspect replays the
+# passes before the sample (their choices) as for variance-aware MIS.
+expect_error "light-paths word" "--light-paths.*'banana' is neither auto nor a number" render "$BOX" --light-paths banana -o "$TMP/x.exr"
+expect_error "light-paths nan" "--light-paths.*'nan' is neither auto nor a number" render "$BOX" --light-paths nan -o "$TMP/x.exr"
+expect_error "light-paths auto, power" "--light-paths auto estimates the balance heuristic's" render "$BOX" --light-paths auto \
+  --mis power -o "$TMP/x.exr"
+expect_error "light-paths auto, pt" "use bpt, not pt" render "$BOX" --light-paths auto --integrator pt -o "$TMP/x.exr"
+expect_error "light-paths auto, sample too far" "--sample 5000 under --light-paths auto.*at most 4096" inspect "$BOX" \
+  --light-paths auto --pixel 1,1 --sample 5000
+expect_error "converge light-paths=auto, power" "--light-paths auto estimates" converge "$BOX" -o "$TMP/conv-lp" \
+  --configs "bpt:light-paths=auto,mis=power"
+if "$PATHLAB" render "$BOX" --light-paths auto --width 32 --height 32 --spp 8 -o "$TMP/auto.exr" --force 2>"$TMP/err" &&
+   grep -q "light paths auto: F = .* (chosen 2 times from 8 learning passes)" "$TMP/err"
+then ok; else fail "render --light-paths auto: $(tail -3 "$TMP/err")"; fi
+
 echo "inspect_cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]
