@@ -591,7 +591,7 @@ void BidirTracer::evaluateEquiangular(Vec2 pRaster, uint64_t connectionKey, int 
       if (demand.sampleable) r.sampleableBy = sampleableTechniques(path) | equiangularSlotBit(t);
       if (demand.lightWalkWeight)
         r.lightWalkWeight =
-            lightWalkWeight(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(), factors);
+            lightWalkWeight(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(), factors, true);
       sink.record(r);
     }
     if (!use.inImage) continue;

@@ -59,7 +59,7 @@ namespace pathlab {
 inline constexpr std::array<float, 9> kLightPathCandidates{1.f,     0.7071f, 0.5f,    0.3536f, 0.25f,
                                                            0.1768f, 0.125f,  0.0884f, 0.0625f};
 inline constexpr int kLightPathPilotPasses = 4;
-inline constexpr uint64_t kLightPathsEveryPassUpTo = 16;
+inline constexpr uint64_t kLightPathsEveryPassUpTo = kLightPathPilotPasses;
 inline constexpr uint64_t kLightPathsStride = 8;
 inline constexpr bool lightPathsLearnFrom(uint64_t pass) {
   return pass < kLightPathsEveryPassUpTo || pass % kLightPathsStride == 0;

@@ -388,16 +388,42 @@ float equiangularMisWeight(const Scene& scene, const Camera& camera, const MisPa
 }
 
 double lightWalkWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
-                       const MisOptions& options, float lightTracingRatio, const float* factors) {
+                       const MisOptions& options, float lightTracingRatio, const float* factors, bool ofEquiangular) {
   thread_local PathDensities d;
   pathDensities(scene, camera, path, d);
   d.factors = factors;
-  const float minDistance = minConnectionDistance(scene, options);
-  double sum = 0.0;
-  for (int sp = 1; sp < d.n; ++sp)
-    if (usesLightSubpath(sp, d.n - sp) && !(sp == d.n - 1 && camera.isOrthographic()))
-      sum += weightFromDensities(d, sp, techniques, options, lightTracingRatio, minDistance);
-  return std::isfinite(sum) ? sum : 0.0;
+  const int n = d.n;
+  const UsableTechniques usable(d, techniques, minConnectionDistance(scene, options), options.mediumSampling);
+  // The balance weights' terms n_i p_i relative to the sampling technique's density, walked outward
+  // from a reference technique as weightFromDensities walks them (one walk, O(n)): the sum over the
+  // usable techniques, and over those that walk a light subpath (never E(1, n-1) nor s' <= 1 with
+  // t' >= 2). The reference is s = 2 for E's own sample (its density is p_2 d.equiangular).
+  const int from = ofEquiangular ? 2 : path.s;
+  auto count = [&](int sp) { return ((n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0) * d.factor(sp); };
+  auto walks = [&](int sp) { return usesLightSubpath(sp, n - sp) && !(sp == n - 1 && camera.isOrthographic()); };
+  double total = 0.0, light = 0.0, r = 1.0, r2 = 1.0;
+  auto addTerm = [&](int sp, double ratio) {
+    if (!usable(sp)) return;
+    const double term = ratio * count(sp);
+    total += term;
+    if (walks(sp)) light += term;
+  };
+  addTerm(from, 1.0);
+  for (int sp = from + 1; sp < n; ++sp) {
+    r *= ratioToLight(d, sp);
+    if (sp == 2) r2 = r;
+    addTerm(sp, r);
+  }
+  r = 1.0;
+  for (int sp = from - 1; sp >= 0; --sp) {
+    r *= ratioToCamera(d, sp);
+    if (sp == 2) r2 = r;
+    addTerm(sp, r);
+  }
+  if (usable.equiangular())
+    total += r2 * d.equiangular * d.factor(Technique::equiangular(n - 1).slot());  // E: camera side
+  const double w = total > 0.0 ? light / total : 0.0;
+  return std::isfinite(w) ? w : 0.0;
 }
 
 }  // namespace pathlab

@@ -112,9 +112,11 @@ float equiangularMisWeight(const Scene& scene, const Camera& camera, const MisPa
 
 // The sum of the weights misWeight gives the path's techniques that walk a light subpath (light
 // tracing and s >= 2: light_paths.h usesLightSubpath), whichever technique sampled it: w_L of
-// --light-paths auto's second moments (light_path_choice.h). `factors` as for misWeight.
+// --light-paths auto's variances (light_path_choice.h). `factors` as for misWeight; ofEquiangular: `path`
+// is E(1, t)'s own sample (equiangularMisWeight's). One walk over the densities, O(s + t).
 double lightWalkWeight(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
-                       const MisOptions& options, float lightTracingRatio = 1.f, const float* factors = nullptr);
+                       const MisOptions& options, float lightTracingRatio = 1.f, const float* factors = nullptr,
+                       bool ofEquiangular = false);
 
 // The densities of the whole path x0 .. x(n-1) (n = s + t, x0 on the light, x(n-1) the camera)
 // after the connection: pFromLight[i] / pFromCamera[i] are the area densities of x_i sampled from
