@@ -44,11 +44,19 @@ void LightPathChoice::add(int t, bool lightWalkTechnique, Vec2 pRaster, float x,
   }
   const std::array<double, kCandidates> r = ratios(lightWalkWeight);
   sample.any = true;
+  const double x1 = static_cast<double>(x), x2 = x1 * x1;
   for (size_t c = 0; c < kCandidates; ++c) {
     // A light-walk technique's weight also scales by F_c / F_n; its contribution without the walk's 1 / F_n
-    // is X F_n: L_c gathers X F_c r.
-    if (lightWalkTechnique) sample.lightSide[c] += static_cast<double>(x) * static_cast<double>(kLightPathCandidates[c]) * r[c];
-    else sample.cameraSide[c] += static_cast<double>(x) * r[c];
+    // is X F_n: L_c gathers X F_c r, and its square in Y_c^2 is X^2 r^2 F_c / F_n.
+    const double fc = static_cast<double>(kLightPathCandidates[c]);
+    if (lightWalkTechnique) {
+      sample.lightSide[c] += x1 * fc * r[c];
+      sample.diagonal[c] += x2 * r[c] * r[c] * fc / static_cast<double>(current_);
+    } else {
+      sample.cameraSide[c] += x1 * r[c];
+      sample.diagonal[c] += x2 * r[c] * r[c];
+    }
+    sample.balance[c] += x2 * r[c];
   }
 }
 
@@ -61,21 +69,24 @@ void LightPathChoice::addCameraSample(int px, int py, const SampleSums& sample) 
   for (size_t c = 0; c < kCandidates; ++c) {
     const double a = sample.cameraSide[c], l = sample.walked ? sample.lightSide[c] : 0.0;
     const double fc = static_cast<double>(kLightPathCandidates[c]);
-    second[c] += static_cast<float>(a * a + (2.0 * a * l + l * l / fc) / fn);
+    // Y_c^2 with its diagonal (each contribution's own square at F_c) replaced by the balance form X^2 r:
+    // both estimate the sum over the path's techniques of E_c[X_t^2] without bias, but the balance form reads
+    // it from whichever technique sampled the path, where the own squares wait for the technique that will
+    // carry it at F_c to sample it (rarely, when F_c is small: paths that light tracing samples well and s =
+    // 0 poorly).
+    second[c] += static_cast<float>(a * a + (2.0 * a * l + l * l / fc) / fn - sample.diagonal[c] + sample.balance[c]);
     first[c] += static_cast<float>(a + l / fn);
   }
 }
 
 void LightPathChoice::addSplats(std::vector<Splat>& splats) {
   for (const Splat& s : splats) {
-    // A splat's square at F_c from the pass's sample: given the walk its contribution is X F_n times the
-    // weight's change (F_c / F_n) r, and it happens with probability F_c instead of F_n, so E_c[X_c^2] =
-    // E_n[X^2 (F_c / F_n) r^2].
+    // A splat's square at F_c in the balance form X^2 r, as the camera samples' diagonal (its own square at
+    // F_c would be X^2 (F_c / F_n) r^2: its walk's weight change and probability).
     const std::array<double, kCandidates> r = ratios(s.lightWalkWeight);
     const double x2 = static_cast<double>(s.x) * static_cast<double>(s.x);
     float* second = second_.data() + static_cast<size_t>(s.pixel) * kCandidates;
-    for (size_t c = 0; c < kCandidates; ++c)
-      second[c] += static_cast<float>(x2 * r[c] * r[c] * static_cast<double>(kLightPathCandidates[c] / current_));
+    for (size_t c = 0; c < kCandidates; ++c) second[c] += static_cast<float>(x2 * r[c]);
   }
   splats.clear();
 }

@@ -102,6 +102,8 @@ class LightPathChoice {
   // A camera sample's own sums over its contributions (t >= 2), per candidate: A_c and L_c.
   struct SampleSums {
     std::array<double, kLightPathCandidates.size()> cameraSide{}, lightSide{};
+    // Its contributions' own squares at F_c (the diagonal of Y_c^2), and their balance form X^2 r.
+    std::array<double, kLightPathCandidates.size()> diagonal{}, balance{};
     bool walked = false;  // the sample walked a light subpath
     bool any = false;     // a contribution was added
   };
