@@ -78,6 +78,12 @@ ReplayRequest parseReplay(const std::string& text, const RenderSettings& setting
   if (x < 0 || y < 0 || x >= settings.width || y >= settings.height || sample < 0)
     throw std::invalid_argument(fmt::format("--replay: pixel {},{} sample {} is outside the {} x {} image", x, y, sample,
                                             settings.width, settings.height));
+  // Sample N of --light-paths auto ran at the F that passes 0 .. N-1 chose (inspect renders them).
+  if (settings.lightPathsAuto && sample >= kLightPathPilotPasses)
+    throw std::invalid_argument(fmt::format("--replay sample {} under --light-paths auto ran at the light subpaths the "
+                                            "passes before it chose: use `pathlab inspect --light-paths auto --pixel "
+                                            "{},{} --sample {}`, which renders them first",
+                                            sample, x, y, sample));
   r.x = static_cast<int>(x);
   r.y = static_cast<int>(y);
   r.sample = static_cast<uint64_t>(sample);

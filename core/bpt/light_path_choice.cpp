@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "core/bpt/light_paths.h"
-#include "core/metrics/error_metrics.h"
 #include "core/sampling/technique.h"
 
 namespace pathlab {
@@ -144,7 +143,7 @@ void LightPathChoice::choose(const Image& image) {
         }
       const double mean = std::isfinite(sum) ? sum / n : 0.0;
       inverseSquare[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)] =
-          1.0 / (mean * mean + kRelMseEpsilon);
+          1.0 / (mean * mean + kRelativeErrorEpsilon);
     }
   const size_t outliers = static_cast<size_t>(kOutlierFraction * static_cast<double>(pixels));
   std::vector<double> relative(pixels);

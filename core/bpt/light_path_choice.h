@@ -16,13 +16,17 @@
 // observes L only where it walked (probability F_n, independent of the camera walk), so per sample
 //     E[Y_c^2] ~ A_c^2 + [walked] (2 A_c L_c + L_c^2 / F_c) / F_n,   E[Y_c] ~ A_c + [walked] L_c / F_n,
 // unbiased, covariances between the techniques of a sample (path reuse) included; F_c = F_n gives back Y^2
-// and Y. Light tracing's splats come from other samples' independent light walks: each adds X^2 (F_c / F_n)
-// r^2, its square at F_c, to the pixel it lands in (its variance: the square of its mean is O(1 / pixels)).
-// The pixel's variance per camera sample at F_c is the mean of the first less the square of the mean of the
-// second, plus the splats'.
+// and Y. The diagonal of Y_c^2 (each contribution's own square at F_c: (X r)^2 on the camera side,
+// X^2 r^2 F_c / F_n for a light-walk one) is replaced by the balance form X^2 r: summed over the path's
+// techniques both estimate sum_t E_c[X_t^2] = int f^2 / sum_t c_t p_t without bias, but the balance form
+// reads it from whichever technique sampled the path, where the own squares wait for the technique that
+// carries the path at F_c to sample it. Light tracing's splats come from other samples' independent light
+// walks: each adds its X^2 r to the pixel it lands in (its variance: the square of its mean is
+// O(1 / pixels)). The pixel's variance per camera sample at F_c is the mean of the first less the square
+// of the mean of the second, plus the splats'.
 //
 // The choice. Per pixel p, the relative variance v_p(c) = V_p(c) / (I_p^2 + eps), I_p the image so far
-// (luminance, a 3 x 3 box mean) and eps converge's relMSE epsilon (error_metrics.h): the error that
+// (luminance, a 3 x 3 box mean) and eps converge's relMSE epsilon (kRelativeErrorEpsilon): the error that
 // `converge` measures. The cost of a camera sample is a + F b in rays: a the camera walk's rays,
 // kCameraSampleCost, and the shadow rays of the techniques that do not walk a light subpath (s = 0,
 // next-event estimation, E(1, t)), b the light walk's rays and the shadow rays of the techniques that do, per
@@ -34,8 +38,9 @@
 // left out of each candidate's sum (one firefly of the pilot would otherwise decide).
 //
 // When. The first kLightPathPilotPasses passes render at F = 1 (or the F they are given) and learn; the
-// choice is made after them and again after passes 8, 16, 32, ... from every learning pass so far (every pass
-// up to kLightPathsEveryPassUpTo, then one in kLightPathsStride). Each pass's F depends on earlier passes
+// choice is made after them and again after passes 8, 16, 32, ... from every learning pass so far (the
+// pilot passes, then one in kLightPathsStride: pass 8 is the first of those, so the choice after 8 passes
+// differs from the first only by the cost sums and the image). Each pass's F depends on earlier passes
 // only, and each pass is unbiased at its own F (light_paths.h): the image stays unbiased.
 //
 // The sums take 2 floats a candidate a pixel (kLightPathChoiceBytesPerPixel). A cancelled pass leaves part of
@@ -73,6 +78,9 @@ inline constexpr double kShadowRayCost = 0.5;
 // A camera sample's own work beside its rays (the camera ray's set-up, the film), in walk rays.
 inline constexpr double kCameraSampleCost = 0.5;
 inline constexpr double kOutlierFraction = 2e-5;
+// converge's relMSE epsilon (core/metrics/error_metrics.h kRelMseEpsilon, which the kernel may not
+// include; a test keeps them equal): the relative variance is the error `converge` measures.
+inline constexpr double kRelativeErrorEpsilon = 1e-2;
 inline constexpr uint64_t kLightPathChoiceBytesPerPixel = 2 * sizeof(float) * kLightPathCandidates.size();
 
 // One candidate's estimates at a choice.

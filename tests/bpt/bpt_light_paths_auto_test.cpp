@@ -12,6 +12,7 @@
 
 #include "core/bpt/light_path_choice.h"
 #include "core/bpt/light_paths.h"
+#include "core/metrics/error_metrics.h"
 #include "core/render/render_session.h"
 #include "core/render/sample_inspection.h"
 #include "core/scene/gltf_loader.h"
@@ -69,8 +70,8 @@ TEST(LightPathsAuto, TheLightWalkWeightSumsTheLightWalkTechniques) {
 // = 0.25 predicted from passes at F = 1, against the one measured at F = 0.25 (whose own candidate sums Y^2
 // as rendered), and likewise the camera samples' mean, summed over the image, each estimated by `sessions`
 // independent sessions of 3 passes (before any choice): they agree within 4 standard errors, and F = 1's own
-// moment is further than that from F = 0.25's. (The splats' square taken as X^2 r, the form of the sum over
-// every technique, fails here: 27.8 against 25.9.)
+// moment is further than that from F = 0.25's. (A first version that
+// took X^2 r for the splats alone, the camera samples' diagonals their own, failed here: 27.8 against 25.9.)
 TEST(LightPathsAuto, PredictsTheSecondMomentOfAnotherLightPathCount) {
   const Scene scene = test::bundledScene("bidir-lamp");
   const size_t quarter = candidateIndex(0.25f), one = candidateIndex(1.f);
@@ -120,6 +121,9 @@ TEST(LightPathsAuto, PredictsTheSecondMomentOfAnotherLightPathCount) {
             4.0 * std::hypot(atOne.standardError(sessions), measured.standardError(sessions)))
       << "F = 1 " << atOne.mean(sessions) << " F = 0.25 " << measured.mean(sessions);
 }
+
+// The relative variance is converge's relMSE: the same epsilon.
+static_assert(kRelativeErrorEpsilon == kRelMseEpsilon);
 
 // The cost model: a camera sample costs kCameraSampleCost, its camera walk's rays and the shadow rays
 // (kShadowRayCost each) of s = 0 and next-event estimation; F times a light walk's rays and the shadow rays

@@ -185,8 +185,10 @@ expect_error "light-paths auto, sample too far" "--sample 5000 under --light-pat
   --light-paths auto --pixel 1,1 --sample 5000
 expect_error "converge light-paths=auto, power" "--light-paths auto estimates" converge "$BOX" -o "$TMP/conv-lp" \
   --configs "bpt:light-paths=auto,mis=power"
+expect_error "light-paths auto, replay" "--replay sample 9 under --light-paths auto.*pathlab inspect" render "$BOX" \
+  --light-paths auto --replay 3,4,9
 if "$PATHLAB" render "$BOX" --light-paths auto --width 32 --height 32 --spp 8 -o "$TMP/auto.exr" --force 2>"$TMP/err" &&
-   grep -q "light paths auto: F = .* (chosen 2 times from 8 learning passes)" "$TMP/err"
+   grep -q "light paths auto: F = .* (chosen 2 times from 4 learning passes)" "$TMP/err"
 then ok; else fail "render --light-paths auto: $(tail -3 "$TMP/err")"; fi
 
 echo "inspect_cli: $passes passed, $failures failed"

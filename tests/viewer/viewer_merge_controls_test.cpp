@@ -25,7 +25,7 @@ TEST(ViewerMergeControls, TickingPpmMergesOnlyAtTheFirstNonSpecularVertex) {
   // PPM's technique set merging everywhere, then the box ticked; Tab hides the panels so that
   // the image has a --hide-ui run's size.
   pathlab::test::CommandRun r = runMergeControlsView(
-      "--techniques 's=0;m=all' --script '4:wait=2;5:click=18,560;12:key=Tab' --screenshot " + ticked);
+      "--techniques 's=0;m=all' --script '4:wait=2;5:click=18,585;12:key=Tab' --screenshot " + ticked);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   r = runMergeControlsView("--hide-ui --integrator ppm --screenshot " + ppm);
   ASSERT_EQ(r.exitCode, 0) << r.err;

@@ -32,6 +32,9 @@ std::string outlierRatioProblem(const OutlierList& list, const Outlier& o) {
     return "with merges a replay traces its pass's every light subpath again: open the row to see its densities";
   if (list.settings.mis.heuristic == MisHeuristic::VarianceAware && o.id.sample >= kVarianceAwarePilotPasses)
     return fmt::format("variance-aware MIS weighs sample {} with factors a replay here does not have", o.id.sample);
+  if (list.settings.lightPathsAuto && o.id.sample >= static_cast<uint64_t>(kLightPathPilotPasses))
+    return fmt::format("--light-paths auto rendered sample {} at a light subpath count a replay here does not have",
+                       o.id.sample);
   return "";
 }
 

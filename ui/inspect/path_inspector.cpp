@@ -98,6 +98,15 @@ bool refreshInspection(PathInspectorState& state, const Scene& scene, const Rend
         state.sample, kVarianceAwarePilotPasses - 1, state.sample);
     return false;
   }
+  if (settings.lightPathsAuto && state.sample >= static_cast<uint64_t>(kLightPathPilotPasses)) {
+    // Pass N ran at the light subpath count that passes 0 .. N-1 chose, which a replay here does not know.
+    state.error = fmt::format(
+        "--light-paths auto renders sample {} at the light subpaths the passes before it chose, which a replay "
+        "here does not have: inspect samples 0-{} (the pilot passes, F = 1) here, or this one with `pathlab "
+        "inspect --light-paths auto --sample {}`",
+        state.sample, kLightPathPilotPasses - 1, state.sample);
+    return false;
+  }
   const Vec2i p = *state.pixel;
   state.error.clear();
   const RenderSession session(scene, settings);
