@@ -70,7 +70,7 @@ class Settings:
         beta: Optional[float] = None,
         connect: Optional[str] = None,
         min_connection: Optional[float] = None,
-        light_paths: Optional[float] = None,
+        light_paths: Optional[Union[float, str]] = None,  # a number in (0, 1] or "auto"
         techniques: Optional[Union[str, TechniqueSet]] = None,
         isolate: Optional[Union[str, Tuple[int, int]]] = None,
         unweighted: bool = False,
