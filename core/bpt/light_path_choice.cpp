@@ -191,10 +191,14 @@ std::string LightPathChoice::summary() const {
       "light paths auto: F = {:g} light subpaths per camera sample "
       "(chosen {} time{} from {} learning pass{})\n",
       current_, choices_, choices_ == 1 ? "" : "s", passes_, passes_ == 1 ? "" : "es");
-  text += "  F        rel. variance     rays/sample   est. efficiency vs F = 1\n";
-  for (const LightPathEstimate& e : estimates_)
-    text += fmt::format("  {:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeVariance, e.cost,
-                        e.efficiency, e.lightPaths == current_ ? "  <" : "");
+  return text + lightPathTable(status(), "  ");
+}
+
+std::string lightPathTable(const LightPathStatus& status, const std::string& indent) {
+  std::string text = indent + "F        rel. variance     rays/sample   est. efficiency vs F = 1\n";
+  for (const LightPathEstimate& e : status.estimates)
+    text += fmt::format("{}{:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", indent, e.lightPaths, e.relativeVariance,
+                        e.cost, e.efficiency, e.lightPaths == status.lightPaths ? "  <" : "");
   return text;
 }
 

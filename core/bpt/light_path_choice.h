@@ -96,6 +96,10 @@ struct LightPathStatus {
   std::vector<LightPathEstimate> estimates;
 };
 
+// The candidates' estimates as a table, a line each, the chosen one marked (render's summary, the
+// viewer's tooltip).
+std::string lightPathTable(const LightPathStatus& status, const std::string& indent = "");
+
 class LightPathChoice {
  public:
   // `lightPaths`: F of the passes before the first choice.

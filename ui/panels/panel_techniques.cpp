@@ -639,13 +639,7 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
                          lightPaths->lightPaths, static_cast<unsigned long long>(lightPaths->passes),
                          chosen != lightPaths->estimates.end() ? chosen->efficiency : 1.0);
       ImGui::PopStyleColor();
-      if (ImGui::IsItemHovered()) {
-        std::string table = "F        rel. variance     rays/sample   est. efficiency\n";
-        for (const LightPathEstimate& e : lightPaths->estimates)
-          table += fmt::format("{:<7.4g}  {:>15.4g}   {:>11.3f}   {:>8.3f}{}\n", e.lightPaths, e.relativeVariance, e.cost,
-                               e.efficiency, e.lightPaths == lightPaths->lightPaths ? "  <" : "");
-        ImGui::SetTooltip("%s", table.c_str());
-      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", lightPathTable(*lightPaths).c_str());
     } else {
       ImGui::TextDisabled("F = 1 until the first choice, after %d passes", kLightPathPilotPasses);
     }
