@@ -237,6 +237,10 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
       throw std::runtime_error(fmt::format("configuration '{}': variance-aware MIS estimates its factors from one "
                                            "process's passes; run this convergence as one process, without mpirun",
                                            c.label));
+    else if (c.settings.mis.heuristic == MisHeuristic::Optimal && job.size() > 1)
+      throw std::runtime_error(fmt::format("configuration '{}': optimal MIS estimates its coefficients from one "
+                                           "process's passes; run this convergence as one process, without mpirun",
+                                           c.label));
     else if (c.settings.lightPathsAuto && job.size() > 1)
       throw std::runtime_error(fmt::format("configuration '{}': --light-paths auto chooses from one process's "
                                            "passes; run this convergence as one process, without mpirun",

@@ -60,13 +60,15 @@ void addEstimatorOptions(CLI::App* cmd, EstimatorOptions& o) {
                   "MIS heuristic of bpt: balance, power, uniform, off (1/n_k per technique of length k: biased "
                   "with delta lights or BSDFs), or variance-aware (balance with each technique's count scaled by "
                   "its second moment over its variance, estimated per region from the earlier passes; Grittmann et "
-                  "al. 2019)")
+                  "al. 2019), or optimal (the balance weights corrected to the weights of least variance, "
+                  "coefficients per region and length from the earlier passes; Kondapaneni et al. 2019)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, MisHeuristic>{{"balance", MisHeuristic::Balance},
                                               {"power", MisHeuristic::Power},
                                               {"uniform", MisHeuristic::Uniform},
                                               {"off", MisHeuristic::Off},
-                                              {"variance-aware", MisHeuristic::VarianceAware}},
+                                              {"variance-aware", MisHeuristic::VarianceAware},
+                                              {"optimal", MisHeuristic::Optimal}},
           CLI::ignore_case));
   cmd->add_option("--connect", s.connect,
                   "Subpaths of bpt: all (one pair per sample, every prefix pair connected) or endpoints (naive BPT: "

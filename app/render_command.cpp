@@ -281,6 +281,9 @@ PreparedRender prepareRender(RenderOptions& o, const Job& job) {
   if (settings.mis.heuristic == MisHeuristic::VarianceAware && job.size() > 1)
     throw std::runtime_error("--mis variance-aware estimates its factors from one process's passes: run it as one "
                              "process, without mpirun");
+  if (settings.mis.heuristic == MisHeuristic::Optimal && job.size() > 1)
+    throw std::runtime_error("--mis optimal estimates its coefficients from one process's passes: run it as one "
+                             "process, without mpirun");
   if (settings.lightPathsAuto && job.size() > 1)
     throw std::runtime_error("--light-paths auto chooses from one process's passes: run it as one process, without "
                              "mpirun");

@@ -66,6 +66,9 @@ void Viewer::perform(Action action) {
       // Metropolis has no passes of independent samples to estimate variance-aware factors from.
       if (e.settings.integrator == IntegratorKind::Mlt && e.settings.mis.heuristic == MisHeuristic::VarianceAware)
         e.settings.mis.heuristic = MisHeuristic::Balance;
+      // Optimal MIS corrects the bidirectional path tracer's connections only.
+      if (e.settings.integrator != IntegratorKind::Bpt && e.settings.mis.heuristic == MisHeuristic::Optimal)
+        e.settings.mis.heuristic = MisHeuristic::Balance;
       break;
     case Action::CycleIntegrator: {
       constexpr IntegratorKind order[] = {IntegratorKind::Bpt, IntegratorKind::Pt, IntegratorKind::Lt, IntegratorKind::Mlt};
@@ -75,6 +78,8 @@ void Viewer::perform(Action action) {
         e.mode = EstimatorMode::Combine;  // it isolates nothing
         if (e.settings.mis.heuristic == MisHeuristic::VarianceAware) e.settings.mis.heuristic = MisHeuristic::Balance;
       }
+      if (e.settings.integrator != IntegratorKind::Bpt && e.settings.mis.heuristic == MisHeuristic::Optimal)
+        e.settings.mis.heuristic = MisHeuristic::Balance;
       break;
     }
     case Action::LongerPaths: setMaxLength(e, std::min(e.settings.maxLength + 1, 64)); break;

@@ -95,7 +95,7 @@ class Settings:
         threads: Optional[int] = None,
     ) -> None:
         """integrator: 'bpt' (default), 'pt', 'lt', 'vcm', 'bpm', 'ppm', 'mlt' (mlt_variant 'mmlt' or 'pss'); mis: 'balance', 'power',
-        'uniform', 'off', 'variance-aware'; connect: 'all' or 'endpoints' (naive BPT); isolate: "S,T" or "MS,T";
+        'uniform', 'off', 'variance-aware', 'optimal'; connect: 'all' or 'endpoints' (naive BPT); isolate: "S,T" or "MS,T";
         width/height: neither given, the camera's shape with the longest side 512.
         Raises pathlab.Error naming the argument."""
     @property

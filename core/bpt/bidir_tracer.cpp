@@ -24,6 +24,7 @@ struct BidirTracer::Walks {
   Connection connection;                 // scratch reused by every technique
   std::vector<PathVertex> equiangularCamera;  // E(1, t)'s camera prefix, its own vertex last
   std::vector<double> densityRatios;     // TechniqueResult::densityRatios, when an output wants them
+  std::vector<double> balanceWeights;    // TechniqueResult::balanceWeights, when an output wants them
   std::vector<TechniqueOnPath> onPath;   // TechniqueResult::onPath (replay)
   TracedPath traced;                     // TechniqueResult::traced (replay)
 };
@@ -360,6 +361,12 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
     }
     if (demand.lightWalkWeight)
       r.lightWalkWeight = lightWalkWeight(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(), factors);
+    if (demand.balanceWeights) {
+      walks.balanceWeights.resize(static_cast<size_t>(s + t));
+      balanceWeights(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(), factors,
+                     walks.balanceWeights.data());
+      r.balanceWeights = walks.balanceWeights.data();
+    }
     sink.record(r);
   }
   if (!use.inImage) return;

@@ -79,6 +79,7 @@ const char* misHeuristicName(MisHeuristic h) {
     case MisHeuristic::Uniform: return "uniform";
     case MisHeuristic::Off: return "off";
     case MisHeuristic::VarianceAware: return "variance-aware";
+    case MisHeuristic::Optimal: return "optimal";
   }
   return "?";
 }
@@ -424,6 +425,36 @@ double lightWalkWeight(const Scene& scene, const Camera& camera, const MisPath& 
     total += r2 * d.equiangular * d.factor(Technique::equiangular(n - 1).slot());  // E: camera side
   const double w = total > 0.0 ? light / total : 0.0;
   return std::isfinite(w) ? w : 0.0;
+}
+
+int balanceWeights(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
+                   const MisOptions& options, float lightTracingRatio, const float* factors, double* weights) {
+  thread_local PathDensities d;
+  pathDensities(scene, camera, path, d);
+  d.factors = factors;
+  const int n = d.n;
+  const UsableTechniques usable(d, techniques, minConnectionDistance(scene, options), options.mediumSampling);
+  // n_i p_i / (n_s p_s) walked outward from the sampling technique s as weightFromDensities walks
+  // them (Veach 1997 eq. 10.10), then normalised: w_i = n_i p_i / sum_j n_j p_j.
+  auto count = [&](int sp) { return ((n - sp == 1) ? static_cast<double>(lightTracingRatio) : 1.0) * d.factor(sp); };
+  const int from = path.s;
+  for (int sp = 0; sp < n; ++sp) weights[sp] = 0.0;
+  double total = 0.0, r = 1.0;
+  auto put = [&](int sp, double ratio) {
+    if (!usable(sp)) return;
+    weights[sp] = ratio * count(sp);
+    total += weights[sp];
+  };
+  put(from, 1.0);
+  for (int sp = from + 1; sp < n; ++sp) put(sp, r *= ratioToLight(d, sp));
+  r = 1.0;
+  for (int sp = from - 1; sp >= 0; --sp) put(sp, r *= ratioToCamera(d, sp));
+  if (!(total > 0.0) || !std::isfinite(total)) {
+    for (int sp = 0; sp < n; ++sp) weights[sp] = 0.0;
+    return n;
+  }
+  for (int sp = 0; sp < n; ++sp) weights[sp] /= total;
+  return n;
 }
 
 }  // namespace pathlab

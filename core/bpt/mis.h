@@ -118,6 +118,14 @@ double lightWalkWeight(const Scene& scene, const Camera& camera, const MisPath& 
                        const MisOptions& options, float lightTracingRatio = 1.f, const float* factors = nullptr,
                        bool ofEquiangular = false);
 
+// The balance heuristic's weight of every technique of the path's length, whichever sampled it:
+// weights[s'] = n_s' p_s' / sum_j n_j p_j for s' in 0 .. n-1 (n = s + t, returned; zero for the
+// techniques misWeight does not weigh), one walk over the densities, O(n). Connections only: the
+// callers (optimal MIS, core/bpt/optimal_mis.h) run without merges and the equiangular family.
+// `factors` as for misWeight (--light-paths F's counts).
+int balanceWeights(const Scene& scene, const Camera& camera, const MisPath& path, const TechniqueSet& techniques,
+                   const MisOptions& options, float lightTracingRatio, const float* factors, double* weights);
+
 // The densities of the whole path x0 .. x(n-1) (n = s + t, x0 on the light, x(n-1) the camera)
 // after the connection: pFromLight[i] / pFromCamera[i] are the area densities of x_i sampled from
 // the light / camera side, as misWeight sees them. Exposed for the tests' brute-force oracle.

@@ -14,8 +14,11 @@ namespace pathlab {
 // sample some path of its length (mis_off.h says where).
 // VarianceAware: the balance heuristic with each technique's sample count scaled by a factor
 // estimated from the earlier passes (Grittmann et al. 2019; core/bpt/variance_aware_mis.h).
-enum class MisHeuristic { Balance, Power, Uniform, Off, VarianceAware };
-inline constexpr int kMisHeuristicCount = 5;
+// Optimal: the balance heuristic's weights plus the correction that makes them the weights of least
+// variance (Kondapaneni et al. 2019), with coefficients estimated from the earlier passes
+// (core/bpt/optimal_mis.h); the kernel weighs as under Balance, the render adds the correction.
+enum class MisHeuristic { Balance, Power, Uniform, Off, VarianceAware, Optimal };
+inline constexpr int kMisHeuristicCount = 6;
 
 // Default of MisOptions::minConnection (fraction of the scene's bounding radius).
 inline constexpr float kDefaultMinConnection = 1e-3f;
@@ -41,7 +44,7 @@ struct MisOptions {
 const char* misHeuristicName(MisHeuristic h);
 // The heuristic misHeuristicName names, or nullopt.
 std::optional<MisHeuristic> misHeuristicFromName(std::string_view name);
-// "balance, power, uniform, off or variance-aware", for messages.
-inline constexpr const char* kMisHeuristicNames = "balance, power, uniform, off or variance-aware";
+// "balance, power, uniform, off, variance-aware or optimal", for messages.
+inline constexpr const char* kMisHeuristicNames = "balance, power, uniform, off, variance-aware or optimal";
 
 }  // namespace pathlab

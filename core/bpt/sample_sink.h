@@ -25,6 +25,7 @@ struct SinkDemand {
   bool densityRatios = false;  // TechniqueResult::densityRatios (the consistency check)
   bool sampleable = false;     // TechniqueResult::sampleableBy (the check, the technique maps)
   bool lightWalkWeight = false;  // TechniqueResult::lightWalkWeight (--light-paths auto)
+  bool balanceWeights = false;   // TechniqueResult::balanceWeights (--mis optimal)
   // Records of techniques outside the pyramid's lengths.
   bool records() const { return everyTechnique || everyContribution; }
 };

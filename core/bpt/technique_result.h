@@ -107,6 +107,10 @@ struct TechniqueResult {
   // Contributed results, when an output asks: the sum of the weights of the path's techniques that
   // walk a light subpath (lightWalkWeight, mis.h; --light-paths auto's w_L).
   double lightWalkWeight = 0.0;
+  // Contributed connections, when an output asks: the balance heuristic's weight of every technique
+  // of the path's length by slot (balanceWeights, mis.h; optimal MIS), in the kernel's scratch;
+  // valid only while the outputs consume the result.
+  const double* balanceWeights = nullptr;
   // For the replay trace: this path under every technique of its length (techniquesOnPath), by
   // slot, in the kernel's scratch; valid only while the outputs consume the result.
   const std::vector<TechniqueOnPath>* onPath = nullptr;

@@ -12,6 +12,19 @@ bool Film::addSample(int x, int y, const Spectrum& L) {
   return true;
 }
 
+bool Film::addCorrection(int x, int y, const Spectrum& c) {
+  if (!isFinite(c)) return false;
+  cameraSum_[static_cast<size_t>(y) * static_cast<size_t>(width_) + static_cast<size_t>(x)] += DVec3(c);
+  return true;
+}
+
+void Film::addCorrections(std::vector<DVec3>& perPixel) {
+  for (size_t p = 0; p < perPixel.size() && p < cameraSum_.size(); ++p) {
+    if (std::isfinite(perPixel[p].x) && std::isfinite(perPixel[p].y) && std::isfinite(perPixel[p].z)) cameraSum_[p] += perPixel[p];
+    perPixel[p] = DVec3(0.0);
+  }
+}
+
 bool Film::splat(Vec2 pRaster, const Spectrum& v) {
   if (!isValidContribution(v)) return false;
   const std::optional<size_t> pixel = filmPixel(pRaster, width_, height_);

@@ -42,6 +42,11 @@ class Film {
   // the caller counts as discarded samples.
   bool addSample(int x, int y, const Spectrum& L);
   bool splat(Vec2 pRaster, const Spectrum& v);
+  // Optimal MIS's corrections (core/bpt/optimal_mis.h), per camera sample, into the camera sums:
+  // signed, so not through addSample's door (which refuses negative values); a non-finite one is
+  // refused (false). The pixel's own thread during a pass; addCorrections once its samples are in.
+  bool addCorrection(int x, int y, const Spectrum& c);
+  void addCorrections(std::vector<DVec3>& perPixel);  // then zeroed
   // Adds a whole buffer of splat sums (3 floats a pixel, this film's size): SplatSums's merge.
   // Not concurrent with splat() or another merge.
   void addSplatSums(const std::vector<float>& rgb);

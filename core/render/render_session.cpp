@@ -109,6 +109,14 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
                                                             settings.maxLength);
     bidirTracer_->setVarianceAwareFactors(varianceAware_.get());
   }
+  if (bidirTracer_ && !metropolis_ && settings.mis.heuristic == MisHeuristic::Optimal) {
+    VarianceAwareRegions regions = varianceAwareRegions(settings.width, settings.height, tiles_,
+                                                        optimalMisCell(settings.width, settings.height, settings.maxLength));
+    optimal_ = std::make_unique<OptimalMis>(
+        settings.width, settings.height, std::move(regions.regionOfPixel), regions.count, settings.maxLength,
+        settings.lightPaths,
+        static_cast<double>(film_.pixelCount()) / static_cast<double>(lightSubpathsPerPass(film_.pixelCount())));
+  }
   if (bidirTracer_ && !metropolis_ && settings.lightPathsAuto)
     lightPathChoice_ = std::make_unique<LightPathChoice>(settings.width, settings.height, settings.lightPaths);
   if (bidirTracer_ && settings.checkTechniques) {
@@ -220,11 +228,14 @@ Spectrum RenderSession::sampleAt(const BidirTracer* tracer, int x, int y, uint64
 
 void RenderSession::renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats,
                                std::vector<VarianceAwareFactors::Splat>* factorSplats,
-                               std::vector<LightPathChoice::Splat>* lightPathSplats, Counters& c) {
+                               std::vector<LightPathChoice::Splat>* lightPathSplats,
+                               OptimalMis::Splats* optimalSplats, bool optimalLearns, Counters& c) {
   SampleTargets targets{&film_, pyramid_.get(), nullptr, {}};
   targets.splats = splats;
   if (varianceAware_ && factorSplats) targets.varianceAware = varianceAware_.get(), targets.varianceAwareSplats = factorSplats;
   if (lightPathChoice_ && lightPathSplats) targets.lightPaths = lightPathChoice_.get(), targets.lightPathSplats = lightPathSplats;
+  if (optimal_ && optimalSplats)
+    targets.optimal = optimal_.get(), targets.optimalSplats = optimalSplats, targets.optimalLearns = optimalLearns;
   targets.check = threadChecks_ ? &threadChecks_->sums.local() : nullptr;
   if (outlierTally_) targets.outlierTally = outlierTally_.get(), targets.outliers = &outlierTally_->local();
   for (int y = tile.y0; y < tile.y1; ++y)
@@ -341,6 +352,9 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   // --light-paths auto: whether this pass's contributions go into the second moments.
   if (lightPathChoice_ && lightPathSplats_.size() < inFlight) lightPathSplats_.resize(inFlight);
   const bool learningLightPaths = lightPathChoice_ && lightPathsLearnFrom(passes_.load(std::memory_order_relaxed));
+  // --mis optimal learns from every pass (each contribution needs its balance weights anyway).
+  if (optimal_ && optimalSplats_.size() < inFlight) optimalSplats_.resize(inFlight);
+  const bool learningOptimal = optimal_ != nullptr;
   size_t next = 0;
   bool cancelled = false;  // both only touched by the pipeline's first stage, one item at a time
   tbb::parallel_pipeline(
@@ -361,7 +375,8 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
                                              renderTile(tiles_[i], pass, splats,
                                                         learning ? &factorSplats_[i % inFlight] : nullptr,
                                                         learningLightPaths ? &lightPathSplats_[i % inFlight] : nullptr,
-                                                        local.local());
+                                                        optimal_ ? &optimalSplats_[i % inFlight] : nullptr,
+                                                        learningOptimal, local.local());
                                              return i;
                                            }) &
           // The splats in the items' order (the path tracer has none: any order).
@@ -370,6 +385,7 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
                                            if (bidirTracer_) tileSplats_[i % inFlight].addTo(splatSums_.get(), film_, pyramid_.get());
                                            if (learning) varianceAware_->addSplats(factorSplats_[i % inFlight]);
                                            if (learningLightPaths) lightPathChoice_->addSplats(lightPathSplats_[i % inFlight]);
+                                           if (optimal_) optimal_->addSplats(optimalSplats_[i % inFlight], learningOptimal);
                                          }));
   Counters passCounters;
   for (const Counters& c : local) passCounters += c;
@@ -410,6 +426,13 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
   // A cancelled pass leaves part of its --light-paths auto sums: the session is discarded.
   if (lightPathChoice_ && cancelled)
     for (std::vector<LightPathChoice::Splat>& list : lightPathSplats_) list.clear();
+  if (optimal_) {
+    // The splats' corrections once every camera sample of the pass is in; then the coefficients
+    // the next pass uses, from this one and those before (a cancelled pass's session is discarded).
+    for (OptimalMis::Splats& list : optimalSplats_) list.clear();
+    film_.addCorrections(optimal_->splatCorrections());
+    if (!cancelled) optimal_->finishPass(learningOptimal);
+  }
   if (cancelled) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);
   const uint64_t done = passes_.fetch_add(1, std::memory_order_relaxed);

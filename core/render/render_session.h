@@ -99,6 +99,8 @@ class RenderSession {
   const VarianceAwareFactors* varianceAwareFactors() const { return varianceAware_.get(); }
   // --light-paths auto: the choice so far (its F, candidates' estimates), or null.
   const LightPathChoice* lightPathChoice() const { return lightPathChoice_.get(); }
+  // --mis optimal's coefficients (null under the other heuristics).
+  const OptimalMis* optimalMis() const { return optimal_.get(); }
   // The consistency check's sums (settings.checkTechniques), else null.
   const TechniqueCheck* techniqueCheck() const { return check_.get(); }
   const Counters& counters() const { return counters_; }
@@ -142,7 +144,8 @@ class RenderSession {
   // `lightPathSplats`: the item's list of --light-paths auto's splats (or null).
   void renderTile(const PassTile& tile, uint64_t pass, SplatBuffer* splats,
                   std::vector<VarianceAwareFactors::Splat>* factorSplats,
-                  std::vector<LightPathChoice::Splat>* lightPathSplats, Counters& counters);
+                  std::vector<LightPathChoice::Splat>* lightPathSplats, OptimalMis::Splats* optimalSplats,
+                  bool optimalLearns, Counters& counters);
   // Vertex merging: every pixel's light subpath of `pass` (the very one its camera sample walks:
   // same stream, same length), stored and indexed for the merges, before the pass's camera samples.
   void traceMergePass(uint64_t pass, Counters& counters);
@@ -167,6 +170,9 @@ class RenderSession {
   // each item in flight's splats for its second moments.
   std::unique_ptr<LightPathChoice> lightPathChoice_;
   std::vector<std::vector<LightPathChoice::Splat>> lightPathSplats_;
+  // --mis optimal: the regions' sums and coefficients, and each item in flight's splats.
+  std::unique_ptr<OptimalMis> optimal_;
+  std::vector<OptimalMis::Splats> optimalSplats_;
   std::unique_ptr<SplatSums> splatSums_;
   std::unique_ptr<TechniqueFilms> pyramid_;
   std::unique_ptr<TechniqueCheck> check_;

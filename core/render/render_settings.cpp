@@ -117,8 +117,10 @@ PathTracerOptions pathTracerOptions(const RenderSettings& s) {
 MediumSampling mediumSampling(const RenderSettings& settings) {
   if (settings.mediumSampling) return *settings.mediumSampling;
   if (settings.integrator == IntegratorKind::Pt) return MediumSampling::Mis;
-  // bpt with path reuse and no merge: its equiangular techniques E(1, k) beside the connections.
+  // bpt with path reuse and no merge: its equiangular techniques E(1, k) beside the connections
+  // (not under optimal MIS, which corrects the connections' weights alone).
   const bool equiangularBpt = settings.integrator == IntegratorKind::Bpt && settings.connect == ConnectStrategy::All &&
+                              settings.mis.heuristic != MisHeuristic::Optimal &&
                               !covers(enabledTechniques(settings).families(), TechniqueKind::Merge);
   return equiangularBpt ? MediumSampling::Mis : MediumSampling::Distance;
 }
@@ -219,6 +221,28 @@ void validateSettings(const RenderSettings& s) {
           "--mis variance-aware at {} x {} with maximum length {} keeps {:.1f} GiB of factors (at most {} GiB): lower "
           "--max-length or the image size",
           s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxVarianceAwareBytes >> 30));
+  }
+  if (s.mis.heuristic == MisHeuristic::Optimal) {
+    // Optimal MIS corrects the balance weights of the connections (core/bpt/optimal_mis.h).
+    if (s.integrator != IntegratorKind::Bpt)
+      throw std::invalid_argument(fmt::format(
+          "--mis optimal corrects the connections' balance weights: use bpt, not {}", integratorName(s.integrator)));
+    if (covers(enabledTechniques(s).families(), TechniqueKind::Merge))
+      throw std::invalid_argument("--mis optimal weighs connections only: merging techniques (m=...) are not among them");
+    if (s.connect == ConnectStrategy::Endpoints)
+      throw std::invalid_argument("--mis optimal needs path reuse (--connect all), not naive BPT");
+    if (s.mediumSampling && *s.mediumSampling != MediumSampling::Distance)
+      throw std::invalid_argument(fmt::format("--mis optimal weighs the connections only: use --medium-sampling "
+                                              "distance, not {}",
+                                              mediumSamplingName(mediumSampling(s))));
+    if (s.isolate)
+      throw std::invalid_argument("--isolate shows one technique unweighted: it takes no --mis optimal");
+    const uint64_t bytes = optimalMisBytes(s.width, s.height, s.maxLength);
+    if (bytes > kMaxOptimalMisBytes)
+      throw std::invalid_argument(fmt::format(
+          "--mis optimal at {} x {} with maximum length {} keeps {:.1f} GiB of sums (at most {} GiB): lower "
+          "--max-length or the image size",
+          s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxOptimalMisBytes >> 30));
   }
   if (s.lightPathsAuto) {
     const uint64_t bytes = static_cast<uint64_t>(s.width) * static_cast<uint64_t>(s.height) * kLightPathChoiceBytesPerPixel;

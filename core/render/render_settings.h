@@ -166,6 +166,8 @@ uint64_t mltHistogramBytes(const RenderSettings& settings);
 inline constexpr uint64_t kMaxMltHistogramBytes = 8ull << 30;
 // Variance-aware MIS: the factors' tables (VarianceAwareFactors::bytesFor) at most this much.
 inline constexpr uint64_t kMaxVarianceAwareBytes = 2ull << 30;
+// --mis optimal: its regions' sums (OptimalMis::bytesFor) at most this much.
+inline constexpr uint64_t kMaxOptimalMisBytes = 2ull << 30;
 // --light-paths auto: its per-pixel sums (kLightPathChoiceBytesPerPixel) at most this much.
 inline constexpr uint64_t kMaxLightPathChoiceBytes = uint64_t{1} << 30;
 // What each tracer needs of the settings.

@@ -16,11 +16,12 @@ SinkDemand SampleOutputs::demandOf(const SampleTargets& targets) {
   // The outlier finder sees every contribution the image receives, through its record.
   // Variance-aware MIS estimates each technique's own variance from every contribution.
   d.everyContribution = targets.trace != nullptr || targets.check != nullptr || targets.outliers != nullptr ||
-                        targets.varianceAware != nullptr || targets.lightPaths != nullptr;
+                        targets.varianceAware != nullptr || targets.lightPaths != nullptr || targets.optimal != nullptr;
   d.onPath = targets.trace != nullptr;
   d.densityRatios = targets.check != nullptr;
   // The replay trace too: the inspector shows it (and the tests compare it with the path's weights).
   d.lightWalkWeight = targets.lightPaths != nullptr || targets.trace != nullptr;
+  d.balanceWeights = targets.optimal != nullptr;
   d.sampleable = targets.check != nullptr || (targets.pyramid != nullptr && targets.pyramid->keepsSampleable());
   return d;
 }
@@ -75,6 +76,18 @@ void SampleOutputs::record(const TechniqueResult& r) {
     targets_.lightPaths->add(r.t, r.kind == TechniqueKind::Connection && usesLightSubpath(r.s, r.t), r.pRaster,
                              luminance(r.unweighted * r.imageWeight), r.lightWalkWeight, lightPathSums_,
                              *targets_.lightPathSplats);
+  // --mis optimal: the balance contribution's correction (optimal_mis.h), in the image's units.
+  if (targets_.optimal && r.inImage && r.imageWeight > 0.f && r.balanceWeights && r.kind == TechniqueKind::Connection) {
+    const Spectrum C = r.unweighted * r.imageWeight;
+    const int n = r.s + r.t;
+    if (r.t == 1) {
+      targets_.optimal->addSplat(r.s, n, r.pRaster, C, r.balanceWeights, *targets_.optimalSplats);
+    } else {
+      const Spectrum correction = targets_.optimal->addCamera(r.s, n, r.pRaster, C, r.balanceWeights, targets_.optimalLearns);
+      if (targets_.film && !isBlack(correction))
+        targets_.film->addCorrection(static_cast<int>(r.pRaster.x), static_cast<int>(r.pRaster.y), correction);
+    }
+  }
   if (targets_.varianceAware)
     targets_.varianceAware->add(r.technique(), r.pRaster, luminance(r.unweighted), *targets_.varianceAwareSplats);
   // The check compares every enabled technique's unweighted estimate, whatever its weight.

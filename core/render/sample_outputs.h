@@ -6,6 +6,7 @@
 
 #include "core/bpt/sample_sink.h"
 #include "core/bpt/light_path_choice.h"
+#include "core/bpt/optimal_mis.h"
 #include "core/bpt/variance_aware_mis.h"
 #include "core/check/technique_check.h"
 #include "core/film/film.h"
@@ -34,6 +35,11 @@ struct SampleTargets {
   // second moments (camera contributions at once, splats into the work item's list).
   LightPathChoice* lightPaths = nullptr;
   std::vector<LightPathChoice::Splat>* lightPathSplats = nullptr;
+  // --mis optimal: every contribution's correction into `film` (camera contributions, at once) or
+  // the work item's list (splats, added in the items' order), and into the sums when learning.
+  OptimalMis* optimal = nullptr;
+  OptimalMis::Splats* optimalSplats = nullptr;
+  bool optimalLearns = false;
 };
 
 class SampleOutputs final : public SampleSink {

@@ -1,6 +1,7 @@
 // The regions of variance-aware MIS: cells cut along the work items (variance_aware_regions.h).
 #include "core/render/variance_aware_regions.h"
 
+#include "core/bpt/optimal_mis.h"
 #include "core/bpt/variance_aware_mis.h"
 
 #include <algorithm>
@@ -21,8 +22,11 @@ uint64_t countRegions(const std::vector<PassTile>& tiles, int cell) {
   return n;
 }
 
-uint64_t bytesAt(int width, int height, int maxLength, const std::vector<PassTile>& tiles, int cell) {
-  return VarianceAwareFactors::bytesFor(width, height, countRegions(tiles, cell), maxLength);
+using TableBytes = uint64_t (*)(int width, int height, uint64_t regions, int maxLength);
+
+uint64_t bytesAt(int width, int height, int maxLength, const std::vector<PassTile>& tiles, int cell,
+                 TableBytes bytesFor = &VarianceAwareFactors::bytesFor) {
+  return bytesFor(width, height, countRegions(tiles, cell), maxLength);
 }
 
 }  // namespace
@@ -54,6 +58,20 @@ int varianceAwareCell(int width, int height, int maxLength) {
 
 uint64_t varianceAwareBytes(int width, int height, int maxLength) {
   return bytesAt(width, height, maxLength, passTiles(width, height), varianceAwareCell(width, height, maxLength));
+}
+
+int optimalMisCell(int width, int height, int maxLength) {
+  const std::vector<PassTile> tiles = passTiles(width, height);
+  int cell = kOptimalMisCell;
+  while (cell < std::max(width, height) &&
+         bytesAt(width, height, maxLength, tiles, cell, &OptimalMis::bytesFor) > kOptimalMisBytes)
+    cell *= 2;
+  return cell;
+}
+
+uint64_t optimalMisBytes(int width, int height, int maxLength) {
+  return bytesAt(width, height, maxLength, passTiles(width, height), optimalMisCell(width, height, maxLength),
+                 &OptimalMis::bytesFor);
 }
 
 }  // namespace pathlab

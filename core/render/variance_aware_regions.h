@@ -24,5 +24,9 @@ VarianceAwareRegions varianceAwareRegions(int width, int height, const std::vect
 int varianceAwareCell(int width, int height, int maxLength);
 // The bytes of the factors' tables for this image and length (RenderSession's work items).
 uint64_t varianceAwareBytes(int width, int height, int maxLength);
+// The same for optimal MIS's sums (core/bpt/optimal_mis.h): kOptimalMisCell doubled while
+// OptimalMis::bytesFor would pass kOptimalMisBytes, and the bytes at that cell.
+int optimalMisCell(int width, int height, int maxLength);
+uint64_t optimalMisBytes(int width, int height, int maxLength);
 
 }  // namespace pathlab

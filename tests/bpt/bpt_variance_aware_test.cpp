@@ -130,30 +130,16 @@ TEST(VarianceAwareMis, FavoursThePixelStratifiedTechniquesOnTheCornellBox) {
 // short render (the scenes' comments in bpt_agreement_test.cpp say where it does not: caustics,
 // fog's spot, the door's gap, the point lamp of many-lights). Pixels that see an emitter or a delta
 // surface directly are left out as there.
-void expectAgreement(const test::BundledCase& c) {
-  test::expectBundledAgreement(
-      c, "variance-aware", [](RenderSettings& s) { s.mis.heuristic = MisHeuristic::VarianceAware; }, 701);
+void expectAgreement(test::BundledGroup group) {
+  test::expectBundledGroupAgreement(
+      group, "variance-aware", [](RenderSettings& s) { s.mis.heuristic = MisHeuristic::VarianceAware; }, 701);
 }
 
-TEST(VarianceAwareMis, AgreesOnTheDiffuseScenes) {
-  expectAgreement({"cornell-box", 16, 16, 8, 256, 768});
-  expectAgreement({"bidir-lamp", 15, 15, 8, 192, 768});
-  expectAgreement({"environment", 16, 12, 6, 256, 2048});
-  expectAgreement({"isometric", 16, 16, 6, 256, 512});
-}
+TEST(VarianceAwareMis, AgreesOnTheDiffuseScenes) { expectAgreement(test::BundledGroup::Diffuse); }
 
-TEST(VarianceAwareMis, AgreesOnTheGlossyAndSpecularScenes) {
-  expectAgreement({"cornell-spheres", 16, 16, 8, 512, 3072});
-  expectAgreement({"veach-mis", 24, 16, 8, 512, 0});
-  expectAgreement({"caustic", 16, 16, 8, 768, 0, 2});
-}
+TEST(VarianceAwareMis, AgreesOnTheGlossyAndSpecularScenes) { expectAgreement(test::BundledGroup::GlossyAndSpecular); }
 
-TEST(VarianceAwareMis, AgreesInMediaAndHardVisibility) {
-  expectAgreement({"fog", 16, 16, 6, 256, 0});
-  expectAgreement({"fog-lamp", 16, 12, 6, 256, 0});
-  expectAgreement({"door-ajar", 16, 12, 8, 2048, 0, 2});
-  expectAgreement({"many-lights", 15, 10, 6, 1024, 0, 2});
-}
+TEST(VarianceAwareMis, AgreesInMediaAndHardVisibility) { expectAgreement(test::BundledGroup::MediaAndHardVisibility); }
 
 }  // namespace variance_aware_test
 }  // namespace pathlab

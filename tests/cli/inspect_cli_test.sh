@@ -191,5 +191,21 @@ if "$PATHLAB" render "$BOX" --light-paths auto --width 32 --height 32 --spp 8 -o
    grep -q "light paths auto: F = .* (chosen 2 times from 4 learning passes)" "$TMP/err"
 then ok; else fail "render --light-paths auto: $(tail -3 "$TMP/err")"; fi
 
+# --mis optimal: bpt's connections, one process; its image differs from balance's past the pilot passes.
+expect_error "optimal with lt" "--mis optimal corrects the connections' balance weights: use bpt, not lt" render "$BOX" \
+  --integrator lt --mis optimal -o "$TMP/x.exr"
+expect_error "optimal with merges" "--mis optimal weighs connections only" render "$BOX" --techniques "all;m=all" \
+  --mis optimal -o "$TMP/x.exr"
+expect_error "optimal, naive" "--mis optimal needs path reuse" render "$BOX" --connect endpoints --mis optimal -o "$TMP/x.exr"
+expect_error "optimal, equiangular" "use --medium-sampling distance, not mis" render "$BOX" --medium-sampling mis \
+  --mis optimal -o "$TMP/x.exr"
+expect_error "optimal, isolate" "--isolate shows one technique unweighted: it takes no --mis optimal" render "$BOX" \
+  --isolate 1,2 --mis optimal -o "$TMP/x.exr"
+expect_error "converge optimal, vcm" "use bpt, not vcm" converge "$BOX" -o "$TMP/conv-opt" --configs "vcm:mis=optimal"
+if "$PATHLAB" render "$BOX" --mis optimal --width 32 --height 32 --spp 9 --seed 3 -o "$TMP/optimal.pfm" --force 2>"$TMP/err" &&
+   "$PATHLAB" render "$BOX" --width 32 --height 32 --spp 9 --seed 3 -o "$TMP/balance.pfm" --force 2>>"$TMP/err" &&
+   ! cmp -s "$TMP/optimal.pfm" "$TMP/balance.pfm"
+then ok; else fail "render --mis optimal: $(tail -3 "$TMP/err")"; fi
+
 echo "inspect_cli: $passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -55,6 +55,19 @@ def test_variance_aware_mis_equals_the_command_line_past_its_pilot_passes(tmp_pa
     assert not np.array_equal(image, balance)
 
 
+def test_optimal_mis_equals_the_command_line_past_its_pilot_passes(tmp_path):
+    # 9 passes: the last 5 corrected with coefficients solved after pass 4 (and 8).
+    out = tmp_path / "optimal.pfm"
+    scene = scene_path("cornell-box.gltf")
+    done = run_cli("render", scene, "--spp", "9", "-o", str(out), "--force", "--width", "32", "--height", "32",
+                   "--mis", "optimal")
+    assert done.returncode == 0, done.stderr
+    image = pathlab.Renderer(pathlab.load(scene), pathlab.Settings(width=32, height=32, mis="optimal")).render(spp=9)
+    assert np.array_equal(image, read_pfm(out))
+    balance = pathlab.Renderer(pathlab.load(scene), pathlab.Settings(width=32, height=32)).render(spp=9)
+    assert not np.array_equal(image, balance)
+
+
 def test_passes_accumulate_as_one_render(box):
     # 2 passes then 3 more: the image of a 5-pass render, and the array owns its pixels.
     settings = pathlab.Settings(width=24, height=24, seed=2)

@@ -107,6 +107,14 @@ TEST(RenderSessionReproducible, VarianceAwareMis) {
   expectSameAtAnyThreadCount(bundled("caustic"), s, "caustic vcm variance-aware", passes);
 }
 
+// Optimal MIS solves its coefficients after 4 and 8 passes from sums whose splats are added in the
+// work items' order: the corrected images are the same bits at any thread count.
+TEST(RenderSessionReproducible, OptimalMis) {
+  RenderSettings s = settings(IntegratorKind::Bpt);
+  s.mis.heuristic = MisHeuristic::Optimal;
+  expectSameAtAnyThreadCount(bundled("cornell-box"), s, "cornell-box bpt optimal", 10);
+}
+
 // --light-paths auto chooses F after 4 and 8 passes from moments whose splats are summed in the
 // work items' order and from ray counts: the choices, so the images, are the same at any thread
 // count.

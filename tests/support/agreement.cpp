@@ -144,4 +144,29 @@ void expectBundledAgreement(const BundledCase& c, const std::string& name,
   expectAgreement(run, std::string(c.name) + ", " + name);
 }
 
+void expectBundledGroupAgreement(BundledGroup group, const std::string& name,
+                                 const std::function<void(RenderSettings&)>& configure, uint64_t seedSalt) {
+  std::vector<BundledCase> cases;
+  switch (group) {
+    case BundledGroup::Diffuse:
+      cases = {{"cornell-box", 16, 16, 8, 256, 768},
+               {"bidir-lamp", 15, 15, 8, 192, 768},
+               {"environment", 16, 12, 6, 256, 2048},
+               {"isometric", 16, 16, 6, 256, 512}};
+      break;
+    case BundledGroup::GlossyAndSpecular:
+      cases = {{"cornell-spheres", 16, 16, 8, 512, 3072},
+               {"veach-mis", 24, 16, 8, 512, 0},
+               {"caustic", 16, 16, 8, 768, 0, 2}};
+      break;
+    case BundledGroup::MediaAndHardVisibility:
+      cases = {{"fog", 16, 16, 6, 256, 0},
+               {"fog-lamp", 16, 12, 6, 256, 0},
+               {"door-ajar", 16, 12, 8, 2048, 0, 2},
+               {"many-lights", 15, 10, 6, 1024, 0, 2}};
+      break;
+  }
+  for (const BundledCase& c : cases) expectBundledAgreement(c, name, configure, seedSalt);
+}
+
 }  // namespace pathlab::test

@@ -82,5 +82,10 @@ struct BundledCase {
 // each test's seeds its own.
 void expectBundledAgreement(const BundledCase& c, const std::string& name,
                             const std::function<void(RenderSettings&)>& configure, uint64_t seedSalt);
+// Every bundled scene in three groups, with the passes a heuristic fixed pass by pass from the passes
+// before (variance-aware and optimal MIS) needs to agree: expectBundledAgreement over each group.
+enum class BundledGroup { Diffuse, GlossyAndSpecular, MediaAndHardVisibility };
+void expectBundledGroupAgreement(BundledGroup group, const std::string& name,
+                                 const std::function<void(RenderSettings&)>& configure, uint64_t seedSalt);
 
 }  // namespace pathlab::test

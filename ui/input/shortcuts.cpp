@@ -20,7 +20,7 @@ constexpr Shortcut kShortcuts[] = {
     {GLFW_KEY_4, false, "4", Action::TechniquesOneLength, "techniques: only the selected length"},
     {GLFW_KEY_0, false, "0", Action::TechniquesClear, "techniques: clear"},
     {GLFW_KEY_M, false, "M", Action::CycleMode, "mode: combine with MIS / isolate weighted / isolate unweighted"},
-    {GLFW_KEY_U, false, "U", Action::CycleHeuristic, "MIS heuristic: balance / power / uniform / off / variance-aware"},
+    {GLFW_KEY_U, false, "U", Action::CycleHeuristic, "MIS heuristic: balance / power / uniform / off / variance-aware / optimal"},
     {GLFW_KEY_I, false, "I", Action::CycleIntegrator, "integrator: bpt / pt / lt"},
     {GLFW_KEY_RIGHT_BRACKET, false, "]", Action::LongerPaths, "maximum path length + 1"},
     {GLFW_KEY_LEFT_BRACKET, false, "[", Action::ShorterPaths, "maximum path length - 1"},

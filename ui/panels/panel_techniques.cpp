@@ -4,6 +4,7 @@
 #include "ui/panels/panels.h"
 
 #include "core/bpt/merge_pass.h"
+#include "core/bpt/optimal_mis.h"
 #include "core/bpt/variance_aware_mis.h"
 #include "core/sampling/technique_label.h"
 #include "ui/estimator/technique_grid.h"
@@ -584,6 +585,16 @@ void drawEstimatorSection(EstimatorState& estimator, TechniqueGridState& grid, c
                         "per 8x8 region from the passes so far (Grittmann et al. 2019): balance for the first %d\n"
                         "passes; unbiased, as each pass weighs with the passes before it. Not with mlt.",
                         kVarianceAwarePilotPasses);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(edited.integrator != IntegratorKind::Bpt);
+    ImGui::RadioButton("optimal", &heuristic, static_cast<int>(MisHeuristic::Optimal));
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("the balance weights plus the correction that makes them the weights of least variance\n"
+                        "(Kondapaneni et al. 2019): coefficients per pixel and length solved from the passes so far,\n"
+                        "balance for the first %d passes; unbiased, as each pass uses the passes before it. A pixel\n"
+                        "may go slightly negative early on. bpt only, connections only (no merges, no equiangular).",
+                        kOptimalMisPilotPasses);
   }
   edited.mis.heuristic = static_cast<MisHeuristic>(heuristic);
   const bool metropolis = edited.integrator == IntegratorKind::Mlt;
