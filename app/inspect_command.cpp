@@ -96,14 +96,19 @@ int runInspect(InspectOptions o) {
     throw std::invalid_argument(
         fmt::format("--pixel {},{} is outside the {} x {} image", x, y, settings.width, settings.height));
   RenderSession session(scene, settings);
-  if (!metropolis && (settings.mis.heuristic == MisHeuristic::VarianceAware || settings.lightPathsAuto)) {
-    // Pass N was weighed with the factors (or rendered at the light subpath count) that passes
-    // 0 .. N-1 chose: render them first, so the replay weighs as the render did.
+  if (!metropolis && (settings.mis.heuristic == MisHeuristic::VarianceAware || settings.lightPathsAuto ||
+                     settings.mis.heuristic == MisHeuristic::Optimal)) {
+    // Pass N was weighed with the factors (or rendered at the light subpath count, or corrected
+    // with the coefficients) that passes 0 .. N-1 chose: render them first, so the replay weighs as
+    // the render did.
     if (sample > kMaxVarianceAwareReplay)
       throw std::invalid_argument(fmt::format("--sample {} under {} would render the {} passes before it to find "
                                               "what they chose: at most {}",
                                               sample,
-                                              settings.lightPathsAuto ? "--light-paths auto" : "--mis variance-aware",
+                                              settings.lightPathsAuto ? "--light-paths auto"
+                                              : settings.mis.heuristic == MisHeuristic::Optimal
+                                                  ? "--mis optimal"
+                                                  : "--mis variance-aware",
                                               sample, kMaxVarianceAwareReplay));
     for (uint64_t p = 0; p < sample; ++p) session.renderPass();
   }

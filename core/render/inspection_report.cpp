@@ -156,6 +156,14 @@ void printInspection(std::ostream& out, const RenderSettings& settings, const Sa
     if (t.kind == TechniqueKind::Merge) printMerged(out, t.merged);
     if (paths && i < trace.paths.size()) printPath(out, trace.paths[i]);
     if (i < trace.onPath.size() && (paths || !t.blocked())) printTechniquesOnPath(out, trace.onPath[i], settings.mis.heuristic == MisHeuristic::VarianceAware);
+    if (i < in.optimalBeta.size() && !in.optimalBeta[i].empty()) {
+      // --mis optimal: what the image added to this contribution, and the coefficients it came from.
+      const Spectrum c = in.optimalCorrection[i];
+      out << fmt::format("         optimal MIS correction ({:.4g}, {:.4g}, {:.4g}) = beta_s - sum_k beta_k w_k; beta by s':",
+                         c.r, c.g, c.b);
+      for (const Spectrum& b : in.optimalBeta[i]) out << fmt::format(" {:.4g}", luminance(b));
+      out << " (luminance)\n";
+    }
   }
 }
 
@@ -269,6 +277,12 @@ nlohmann::json inspectionJson(const RenderSettings& settings, const SampleInspec
                       {"uniform", own.uniform},
                       {"variance-aware", own.varianceAware}};
       t["factor"] = own.factor;
+    }
+    // --mis optimal: the correction the image added and the coefficients of the length by s'.
+    if (i < in.optimalBeta.size() && !in.optimalBeta[i].empty()) {
+      nlohmann::json beta = nlohmann::json::array();
+      for (const Spectrum& b : in.optimalBeta[i]) beta.push_back(rgb(b));
+      t["optimal"] = {{"correction", rgb(in.optimalCorrection[i])}, {"beta", beta}};
     }
     techniques.push_back(t);
   }

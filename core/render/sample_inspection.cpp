@@ -19,6 +19,20 @@ SampleInspection inspectSample(const RenderSession& session, int x, int y, uint6
   Counters counters;
   Film splats(session.settings().width, session.settings().height);
   r.cameraEstimate = session.replaySample(x, y, sample, counters, &splats, &r.trace);
+  if (const OptimalMis* optimal = session.optimalMis(); optimal && optimal->active()) {
+    r.optimalBeta.resize(r.trace.records.size());
+    r.optimalCorrection.assign(r.trace.records.size(), Spectrum(0.f));
+    for (size_t i = 0; i < r.trace.records.size() && i < r.trace.onPath.size(); ++i) {
+      const TechniqueResult& t = r.trace.records[i];
+      if (t.outcome != TechniqueOutcome::Contributed || t.kind != TechniqueKind::Connection || !t.inImage) continue;
+      const int n = t.s + t.t, region = optimal->regionOf(t.pRaster);
+      std::vector<double> w(static_cast<size_t>(n), 0.0);
+      for (const TechniqueOnPath& y : r.trace.onPath[i])
+        if (y.kind == TechniqueKind::Connection && y.counted && y.s >= 0 && y.s < n) w[static_cast<size_t>(y.s)] = y.balance;
+      for (int sp = 0; sp < n; ++sp) r.optimalBeta[i].push_back(optimal->beta(region, sp, n));
+      r.optimalCorrection[i] = optimal->correction(region, t.s, n, w.data());
+    }
+  }
   return r;
 }
 

@@ -22,6 +22,12 @@ struct SampleInspection {
   // `sample` the passes the chain had run.
   std::optional<MltChainState> chain;
   int chains = 0;  // the render's chain count
+  // --mis optimal (core/bpt/optimal_mis.h), when the session has rendered the passes before the
+  // sample: per record, the coefficients beta of its length's techniques at its pixel by slot s'
+  // (empty for a record that did not contribute) and the correction beta_s - sum beta_k w_k its
+  // contribution received (w the path's balance weights, its trace's onPath).
+  std::vector<std::vector<Spectrum>> optimalBeta;
+  std::vector<Spectrum> optimalCorrection;
 };
 
 // Replays sample (pass) `sample` of pixel (x, y) with `session`'s settings.

@@ -159,6 +159,31 @@ assert weighed >= 3, weighed
 assert any(abs(f - 1) > 0.05 for f in factors), factors
 PY
 then ok; else fail "inspect --mis variance-aware: $(cat "$TMP/err" "$TMP/py" 2>/dev/null | tail -5)"; fi
+# Optimal MIS: sample 20 is replayed after passes 0..19 (coefficients solved after 4, 8 and 16), so each
+# contributed connection shows its correction, which is beta_s - sum_k beta_k w_k over the balance weights
+# of its path, and the coefficients are not all zero.
+if "$PATHLAB" inspect "$BOX" --mis optimal --pixel 30,40 --sample 20 --width 64 --height 64 --max-length 4 \
+     --json "$TMP/optimal.json" --force >"$TMP/out" 2>"$TMP/err" </dev/null && grep -q "optimal MIS correction" "$TMP/out" &&
+   python3 - "$TMP/optimal.json" >"$TMP/py" 2>&1 <<'PY'
+import json, math, sys
+j = json.load(open(sys.argv[1]))
+checked, nonzero = 0, 0
+for r in j["techniques"]:
+    if "optimal" not in r:
+        continue
+    beta = r["optimal"]["beta"]
+    w = [0.0] * len(beta)
+    for x in r["densities"]:
+        if x["kind"] == "connection" and x["counted"]:
+            w[x["s"]] = x["weights"]["balance"]
+    for c in range(3):
+        expected = beta[r["s"]][c] - sum(b[c] * wk for b, wk in zip(beta, w))
+        assert math.isclose(r["optimal"]["correction"][c], expected, rel_tol=1e-4, abs_tol=1e-6), (r, expected)
+    nonzero += any(abs(b[c]) > 0 for b in beta for c in range(3))
+    checked += 1
+assert checked >= 3 and nonzero >= 1, (checked, nonzero)
+PY
+then ok; else fail "inspect --mis optimal: $(cat "$TMP/err" "$TMP/py" 2>/dev/null | tail -5)"; fi
 expect_error "variance-aware sample too far" "at most 4096" inspect "$BOX" --mis variance-aware --pixel 1,1 --sample 5000
 expect_error "variance-aware with mlt" "--mis variance-aware needs the bpt or lt integrator" render "$BOX" \
   --integrator mlt --mis variance-aware -o "$TMP/x.exr"
@@ -201,7 +226,7 @@ expect_error "optimal, equiangular" "use --medium-sampling distance, not mis" re
   --mis optimal -o "$TMP/x.exr"
 expect_error "optimal, isolate" "--isolate shows one technique unweighted: it takes no --mis optimal" render "$BOX" \
   --isolate 1,2 --mis optimal -o "$TMP/x.exr"
-expect_error "converge optimal, vcm" "use bpt, not vcm" converge "$BOX" -o "$TMP/conv-opt" --configs "vcm:mis=optimal"
+expect_error "converge optimal, vcm" "--mis optimal weighs connections only" converge "$BOX" -o "$TMP/conv-opt" --configs "vcm:mis=optimal"
 if "$PATHLAB" render "$BOX" --mis optimal --width 32 --height 32 --spp 9 --seed 3 -o "$TMP/optimal.pfm" --force 2>"$TMP/err" &&
    "$PATHLAB" render "$BOX" --width 32 --height 32 --spp 9 --seed 3 -o "$TMP/balance.pfm" --force 2>>"$TMP/err" &&
    ! cmp -s "$TMP/optimal.pfm" "$TMP/balance.pfm"
