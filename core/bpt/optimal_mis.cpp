@@ -168,31 +168,40 @@ Spectrum OptimalMis::beta(int region, int s, int n) const {
   return Spectrum(b[s], b[m + static_cast<size_t>(s)], b[2 * m + static_cast<size_t>(s)]);
 }
 
-Spectrum OptimalMis::addCamera(int s, int n, Vec2 pRaster, const Spectrum& C, const double* w, bool learn) {
+Spectrum OptimalMis::addCamera(int s, int n, Vec2 pRaster, const Spectrum& C, const double* w, bool learn,
+                               float roulette) {
   const int region = regionOf(pRaster);
   if (region < 0) return Spectrum(0.f);
   if (learn) learnFrom(region, s, n, C, w);
-  return correction(region, s, n, w);
+  return correction(region, s, n, w) * roulette;
 }
 
-void OptimalMis::addSplat(int s, int n, Vec2 pRaster, const Spectrum& splat, const double* w, Splats& splats) const {
+void OptimalMis::addSplat(int s, int n, Vec2 pRaster, const Spectrum& splat, const double* w, Splats& splats,
+                          float roulette) const {
   const int region = regionOf(pRaster);
   if (region < 0 || n - 1 > maxLength_) return;
   splats.entries.push_back(
-      Splats::Entry{pixelOf(pRaster), region, s, n, splat * static_cast<float>(splatScale_), splats.weights.size()});
+      Splats::Entry{pixelOf(pRaster), region, s, n, splat * static_cast<float>(splatScale_), roulette, splats.weights.size()});
   splats.weights.insert(splats.weights.end(), w, w + n);
 }
 
 void OptimalMis::addSplats(Splats& splats, bool learn) {
-  for (const Splats::Entry& e : splats.entries) {
+  for (Splats::Entry e : splats.entries) {
     const double* w = splats.weights.data() + e.weightsAt;
-    if (learn) learnFrom(e.region, e.s, e.n, e.C, w);
-    splatCorrections_[e.pixel] += DVec3(correction(e.region, e.s, e.n, w));
+    splatCorrections_[e.pixel] += DVec3(correction(e.region, e.s, e.n, w) * e.roulette);
+    if (!learn) continue;
+    e.weightsAt = passSplats_.weights.size();
+    passSplats_.entries.push_back(e);
+    passSplats_.weights.insert(passSplats_.weights.end(), w, w + e.n);
   }
   splats.clear();
 }
 
 void OptimalMis::finishPass(bool learnt) {
+  // The pass's splats into the sums, in the work items' order (after its camera contributions).
+  for (const Splats::Entry& e : passSplats_.entries)
+    learnFrom(e.region, e.s, e.n, e.C, passSplats_.weights.data() + e.weightsAt);
+  passSplats_.clear();
   ++passes_;
   if (learnt) ++learntPasses_;
   if (!learnt || !optimalMisSolvesAfter(learntPasses_)) return;

@@ -35,6 +35,15 @@
 // optimum, and a poor estimate of it adds variance instead of removing it. Any beta fixed before
 // the pass keeps the estimate unbiased, shrunk or not.
 //
+// Russian roulette and media. The densities of the weights leave out roulette's continuation
+// probabilities (as pbrt's BDPT does), so technique i delivers a path with density p_i Q_i, Q_i its
+// prefixes' survival probability, and weighs f / (p_i Q_i). Added as is, the correction's two terms
+// would have the expectations sum_k beta_k n_k int p_k Q_k and sum_k beta_k n_k int p_k sum_i w_i Q_i,
+// unequal where the techniques' prefixes met different roulettes; scaled by 1 / Q_i like the
+// contribution (TechniqueResult::rouletteWeight) both are sum_k beta_k n_k int p_k again. Media's
+// distance sampling and ratio tracking put factors of the same kind into the throughput that no
+// sample knows exactly: --mis optimal is refused in scenes with media (validateSettingsForScene).
+//
 // Samples per pass (a_i / P): a camera sample per pixel, so the region's pixels for the
 // techniques with t >= 2, times F (--light-paths) for those that walk the light subpath; light
 // tracing (t = 1) draws F x pixels light subpaths over the whole image, which land where they may.
@@ -89,13 +98,16 @@ class OptimalMis {
   // splat's value, for t = 1), w its path's balance weights by s' (n of them), where it lands.
   // A camera contribution (t >= 2) is learnt from at once (`learn`) and its correction, the beta of
   // the passes before, returned for the caller to add to its pixel. A splat is kept in `splats`
-  // (the work item's); addSplats learns from it and adds its correction to splatCorrections().
+  // (the work item's); addSplats adds its correction to splatCorrections() and keeps it for
+  // finishPass to learn from (not at once: the pixel's sums may be its own work item's, being
+  // rendered by another thread).
   struct Splats {
     struct Entry {
       uint32_t pixel;
       int32_t region;
       int s, n;
       Spectrum C;
+      float roulette;
       size_t weightsAt;
     };
     std::vector<Entry> entries;
@@ -105,8 +117,11 @@ class OptimalMis {
       weights.clear();
     }
   };
-  Spectrum addCamera(int s, int n, Vec2 pRaster, const Spectrum& C, const double* w, bool learn);
-  void addSplat(int s, int n, Vec2 pRaster, const Spectrum& splat, const double* w, Splats& splats) const;
+  // `roulette`: the sample's Russian roulette factor (TechniqueResult::rouletteWeight), which scales
+  // its correction (the class comment says why).
+  Spectrum addCamera(int s, int n, Vec2 pRaster, const Spectrum& C, const double* w, bool learn, float roulette = 1.f);
+  void addSplat(int s, int n, Vec2 pRaster, const Spectrum& splat, const double* w, Splats& splats,
+                float roulette = 1.f) const;
   void addSplats(Splats& splats, bool learn);  // then cleared
   // The splats' corrections of the pass, per pixel per camera sample (3 doubles a pixel), which the
   // session adds to the film once the pass's camera samples are in; then zeroed.
@@ -120,6 +135,7 @@ class OptimalMis {
   // The end of a pass (`learnt`: its contributions are in the sums): on the solving passes
   // (optimalMisSolvesAfter) every region's systems solved anew.
   void finishPass(bool learnt);
+  void discardPass() { passSplats_.clear(); }  // a cancelled pass's splats
 
  private:
   struct Block {  // offsets of one length's sums within a region's, and of its beta
@@ -146,6 +162,7 @@ class OptimalMis {
   std::vector<double> sums_;
   std::vector<float> beta_;
   std::vector<DVec3> splatCorrections_;
+  Splats passSplats_;  // the pass's splats in the work items' order, learnt from by finishPass
   uint64_t passes_ = 0, learntPasses_ = 0;
   bool active_ = false;
 };

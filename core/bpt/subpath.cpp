@@ -79,6 +79,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     if (!hit && !inMedium) {
       setEnvironmentVertex(scene, ray, prev, environment, v);
       v.beta = beta;
+      v.rouletteWeight = roulette.weight();
       BsdfDensities ev;
       if (prevDensities(prev, ray.d, ev)) {
         pdfFwdW = ev.pdfFwdW;
@@ -113,6 +114,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     const Vec3 back = prev.p - v.p;
     v.wo = glm::dot(back, back) > 0.f && !prev.isInfinite ? glm::normalize(back) : -ray.d;
     v.beta = beta;
+    v.rouletteWeight = roulette.weight();
     const Vec3 dirGeom = -v.wo;
     BsdfDensities ev;
     if (prevDensities(prev, dirGeom, ev)) {

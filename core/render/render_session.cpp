@@ -43,6 +43,7 @@ int activeThreads() {
 const RenderSettings& validated(const RenderSettings& settings, const Scene& scene) {
   validateSettings(settings);
   validateSettingsForCamera(settings, scene.cameraDesc());
+  validateSettingsForScene(settings, scene);
   return settings;
 }
 
@@ -431,7 +432,8 @@ bool RenderSession::renderPass(const std::atomic<bool>* cancel) {
     // the next pass uses, from this one and those before (a cancelled pass's session is discarded).
     for (OptimalMis::Splats& list : optimalSplats_) list.clear();
     film_.addCorrections(optimal_->splatCorrections());
-    if (!cancelled) optimal_->finishPass(learningOptimal);
+    if (cancelled) optimal_->discardPass();
+    else optimal_->finishPass(learningOptimal);
   }
   if (cancelled) return false;
   film_.finishPass(1, bidirTracer_ ? lightSubpathsPerPass(film_.pixelCount()) : 0);

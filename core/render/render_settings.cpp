@@ -152,6 +152,13 @@ std::string mediumSamplingWarning(const Scene& scene, const RenderSettings& s) {
                      mediumSamplingName(*s.mediumSampling));
 }
 
+void validateSettingsForScene(const RenderSettings& s, const Scene& scene) {
+  if (s.mis.heuristic == MisHeuristic::Optimal && scene.hasMedia())
+    throw std::invalid_argument(
+        "--mis optimal is not available in a scene with media: its correction needs each sample's path throughput "
+        "over the true one, which distance sampling and ratio tracking leave unknown (use balance)");
+}
+
 void validateSettingsForCamera(const RenderSettings& s, const CameraDesc& sceneCamera) {
   if (!s.camera.value_or(sceneCamera).orthographic) return;
   if (s.integrator == IntegratorKind::Lt)

@@ -194,5 +194,10 @@ void validateSettings(const RenderSettings& settings);
 // an orthographic camera has no lens and no light subpath can connect to it, so it refuses an
 // aperture and the light tracer. Throws std::invalid_argument naming the problem.
 void validateSettingsForCamera(const RenderSettings& settings, const CameraDesc& sceneCamera);
+// The refusals that depend on the scene's content: throws std::invalid_argument naming the
+// problem. --mis optimal in a scene with media (its correction needs each sample's estimated path
+// throughput over the true one, which the walks' distance sampling and ratio tracking leave
+// stochastic and unknown; core/bpt/optimal_mis.h).
+void validateSettingsForScene(const RenderSettings& settings, const Scene& scene);
 
 }  // namespace pathlab

@@ -30,7 +30,7 @@ SampleInspection inspectSample(const RenderSession& session, int x, int y, uint6
       for (const TechniqueOnPath& y : r.trace.onPath[i])
         if (y.kind == TechniqueKind::Connection && y.counted && y.s >= 0 && y.s < n) w[static_cast<size_t>(y.s)] = y.balance;
       for (int sp = 0; sp < n; ++sp) r.optimalBeta[i].push_back(optimal->beta(region, sp, n));
-      r.optimalCorrection[i] = optimal->correction(region, t.s, n, w.data());
+      r.optimalCorrection[i] = optimal->correction(region, t.s, n, w.data()) * t.rouletteWeight;
     }
   }
   return r;

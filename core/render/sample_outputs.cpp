@@ -21,7 +21,8 @@ SinkDemand SampleOutputs::demandOf(const SampleTargets& targets) {
   d.densityRatios = targets.check != nullptr;
   // The replay trace too: the inspector shows it (and the tests compare it with the path's weights).
   d.lightWalkWeight = targets.lightPaths != nullptr || targets.trace != nullptr;
-  d.balanceWeights = targets.optimal != nullptr;
+  // The trace too: the inspector recomputes a record's optimal MIS correction with its roulette factor.
+  d.balanceWeights = targets.optimal != nullptr || targets.trace != nullptr;
   d.sampleable = targets.check != nullptr || (targets.pyramid != nullptr && targets.pyramid->keepsSampleable());
   return d;
 }
@@ -57,6 +58,7 @@ void SampleOutputs::trace(const TechniqueResult& r) {
   TechniqueResult record = r;
   record.densityRatios = nullptr;
   record.onPath = nullptr;
+  record.balanceWeights = nullptr;
   record.traced = nullptr;
   targets_.trace->records.push_back(record);
   targets_.trace->onPath.push_back(r.onPath ? *r.onPath : std::vector<TechniqueOnPath>{});
@@ -81,9 +83,10 @@ void SampleOutputs::record(const TechniqueResult& r) {
     const Spectrum C = r.unweighted * r.imageWeight;
     const int n = r.s + r.t;
     if (r.t == 1) {
-      targets_.optimal->addSplat(r.s, n, r.pRaster, C, r.balanceWeights, *targets_.optimalSplats);
+      targets_.optimal->addSplat(r.s, n, r.pRaster, C, r.balanceWeights, *targets_.optimalSplats, r.rouletteWeight);
     } else {
-      const Spectrum correction = targets_.optimal->addCamera(r.s, n, r.pRaster, C, r.balanceWeights, targets_.optimalLearns);
+      const Spectrum correction =
+          targets_.optimal->addCamera(r.s, n, r.pRaster, C, r.balanceWeights, targets_.optimalLearns, r.rouletteWeight);
       if (targets_.film && !isBlack(correction))
         targets_.film->addCorrection(static_cast<int>(r.pRaster.x), static_cast<int>(r.pRaster.y), correction);
     }

@@ -55,15 +55,20 @@ class RussianRoulette {
     if (q < 1.f) {
       if (!(q > 0.f) || rng.next1D() >= q) return false;
       beta /= q;
+      weight_ /= q;
     }
     last_ = beta;
     return true;
   }
+  // The product of 1 / q over the walk's decisions so far: the factor its throughput carries beyond
+  // the path's contribution over its density (which leaves roulette out).
+  float weight() const { return weight_; }
 
  private:
   Spectrum last_;  // the throughput at the last decision
   RouletteCount count_;
   int scatterings_ = 0;  // those counted so far
+  float weight_ = 1.f;
 };
 
 }  // namespace pathlab
