@@ -277,6 +277,7 @@ PreparedConverge prepareConverge(ConvergeOptions& o, const Job& job) {
   for (const ConvergenceConfig& c : p.configs) {
     try {
       validateSettingsForCamera(c.settings, p.scene->cameraDesc());
+      validateSettingsForScene(c.settings, *p.scene);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(fmt::format("configuration '{}': {}", c.label, e.what()));
     }

@@ -226,6 +226,7 @@ std::string biasInjectionWarning(const RenderSettings& s) {
 }
 
 void printWarnings(std::ostream& log, const Scene& scene, const RenderSettings& settings) {
+  validateSettingsForScene(settings, scene);  // a refusal, before any rendering
   for (const std::string& w : scene.warnings()) log << "pathlab: warning: " << w << "\n";
   if (const std::string w = misOffWarning(scene, settings); !w.empty()) log << "pathlab: warning: " << w << "\n";
   if (const std::string w = mediumSamplingWarning(scene, settings); !w.empty()) log << "pathlab: warning: " << w << "\n";

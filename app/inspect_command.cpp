@@ -95,6 +95,7 @@ int runInspect(InspectOptions o) {
   if (!metropolis && (x < 0 || y < 0 || x >= settings.width || y >= settings.height))
     throw std::invalid_argument(
         fmt::format("--pixel {},{} is outside the {} x {} image", x, y, settings.width, settings.height));
+  validateSettingsForScene(settings, scene);
   RenderSession session(scene, settings);
   if (!metropolis && (settings.mis.heuristic == MisHeuristic::VarianceAware || settings.lightPathsAuto ||
                      settings.mis.heuristic == MisHeuristic::Optimal)) {

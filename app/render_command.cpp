@@ -8,6 +8,7 @@
 #include "app/pyramid_output.h"
 #include "app/technique_maps_output.h"
 #include "app/variance_maps_output.h"
+#include "core/bpt/optimal_mis.h"
 #include "core/maps/map_colours.h"
 #include "core/camera/image_size.h"
 #include "core/film/image_io.h"
@@ -83,6 +84,12 @@ ReplayRequest parseReplay(const std::string& text, const RenderSettings& setting
     throw std::invalid_argument(fmt::format("--replay sample {} under --light-paths auto ran at the light subpaths the "
                                             "passes before it chose: use `pathlab inspect --light-paths auto --pixel "
                                             "{},{} --sample {}`, which renders them first",
+                                            sample, x, y, sample));
+  // Sample N of --mis optimal was corrected with coefficients of passes 0 .. N-1 (inspect renders them).
+  if (settings.mis.heuristic == MisHeuristic::Optimal && sample >= kOptimalMisPilotPasses)
+    throw std::invalid_argument(fmt::format("--replay sample {} under --mis optimal was corrected with coefficients of "
+                                            "the passes before it: use `pathlab inspect --mis optimal --pixel {},{} "
+                                            "--sample {}`, which renders them first",
                                             sample, x, y, sample));
   r.x = static_cast<int>(x);
   r.y = static_cast<int>(y);

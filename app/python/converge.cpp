@@ -159,6 +159,7 @@ py::dict converge(const LoadedScene& scene, const py::object& configs, std::opti
     try {
       app::sizeRenderForScene(o, scene.scene->cameraDesc());
       validateSettingsForCamera(o.estimator.settings, scene.scene->cameraDesc());
+      validateSettingsForScene(o.estimator.settings, *scene.scene);
     } catch (const std::exception& e) {
       throw Error(fmt::format("converge: '{}': {}", label, withArgumentNames(e.what())));
     }

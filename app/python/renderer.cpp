@@ -113,6 +113,7 @@ void warnAbout(const Scene& scene, const RenderSettings& settings) {
       lines.push_back(fmt::format("no enabled technique samples paths of length {}", k));
   if (std::string w = misOffWarning(scene, settings); !w.empty()) lines.push_back(std::move(w));
   if (std::string w = mediumSamplingWarning(scene, settings); !w.empty()) lines.push_back(std::move(w));
+  if (std::string w = optimalMisWarning(scene, settings); !w.empty()) lines.push_back(std::move(w));
   if (std::string w = app::biasInjectionWarning(settings); !w.empty()) lines.push_back(std::move(w));
   for (const std::string& line : lines)
     if (PyErr_WarnEx(PyExc_UserWarning, withArgumentNames(line).c_str(), 2) != 0) throw py::error_already_set();

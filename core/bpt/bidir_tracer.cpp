@@ -366,8 +366,8 @@ template <bool kRecords, bool kTimed, class ConnectionRng>
       balanceWeights(scene_, camera_, path, options_.techniques, options_.mis, lightTracingRatio(), factors,
                      walks.balanceWeights.data());
       r.balanceWeights = walks.balanceWeights.data();
-      r.rouletteWeight = (s >= 1 ? lightVertex(path, s - 1).rouletteWeight : 1.f) *
-                         (t >= 2 ? cameraVertex(path, t - 1).rouletteWeight : 1.f);
+      r.omittedFactor = (s >= 1 ? lightVertex(path, s - 1).omittedFactor : 1.f) *
+                         (t >= 2 ? cameraVertex(path, t - 1).omittedFactor : 1.f);
     }
     sink.record(r);
   }

@@ -35,14 +35,17 @@
 // optimum, and a poor estimate of it adds variance instead of removing it. Any beta fixed before
 // the pass keeps the estimate unbiased, shrunk or not.
 //
-// Russian roulette and media. The densities of the weights leave out roulette's continuation
-// probabilities (as pbrt's BDPT does), so technique i delivers a path with density p_i Q_i, Q_i its
-// prefixes' survival probability, and weighs f / (p_i Q_i). Added as is, the correction's two terms
+// Russian roulette, delta lobes and media. The densities of the weights leave out roulette's
+// continuation probabilities (as pbrt's BDPT does) and a delta vertex's lobe choice (its densities
+// count one), so technique i delivers a path with density p_i Q_i, Q_i the product of those
+// probabilities over its prefixes' decisions, and weighs f / (p_i Q_i). Added as is, the correction's two terms
 // would have the expectations sum_k beta_k n_k int p_k Q_k and sum_k beta_k n_k int p_k sum_i w_i Q_i,
 // unequal where the techniques' prefixes met different roulettes; scaled by 1 / Q_i like the
-// contribution (TechniqueResult::rouletteWeight) both are sum_k beta_k n_k int p_k again. Media's
+// contribution (TechniqueResult::omittedFactor) both are sum_k beta_k n_k int p_k again. Media's
 // distance sampling and ratio tracking put factors of the same kind into the throughput that no
-// sample knows exactly: --mis optimal is refused in scenes with media (validateSettingsForScene).
+// sample knows exactly: --mis optimal is refused in scenes with media (validateSettingsForScene;
+// a session given it there renders the balance heuristic). The learning sums ignore Q_i (beta is
+// fitted to unscaled corrections): unbiased still, perhaps not the optimum on long paths.
 //
 // Samples per pass (a_i / P): a camera sample per pixel, so the region's pixels for the
 // techniques with t >= 2, times F (--light-paths) for those that walk the light subpath; light
@@ -72,7 +75,7 @@ inline constexpr bool optimalMisSolvesAfter(uint64_t learnt) {
 inline constexpr double kOptimalMisShrink = 2.0;
 // The regions' cells (pixels a side), doubled while the tables would pass kOptimalMisBytes.
 inline constexpr int kOptimalMisCell = 1;
-inline constexpr uint64_t kOptimalMisBytes = uint64_t{256} << 20;
+inline constexpr uint64_t kOptimalMisBytes = uint64_t{1} << 30;
 
 // Solves (M + diag(d)) beta = v for m unknowns and three right-hand sides (Cholesky): M row-major
 // m x m, symmetric positive semi-definite, read from its upper triangle (j >= i) only; d >= 0; v and beta channel-major
@@ -117,7 +120,7 @@ class OptimalMis {
       weights.clear();
     }
   };
-  // `roulette`: the sample's Russian roulette factor (TechniqueResult::rouletteWeight), which scales
+  // `roulette`: the sample's omitted factor (TechniqueResult::omittedFactor), which scales
   // its correction (the class comment says why).
   Spectrum addCamera(int s, int n, Vec2 pRaster, const Spectrum& C, const double* w, bool learn, float roulette = 1.f);
   void addSplat(int s, int n, Vec2 pRaster, const Spectrum& splat, const double* w, Splats& splats,

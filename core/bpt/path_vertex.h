@@ -46,10 +46,12 @@ struct PathVertex {
   // before it on its own subpath, times this, is an area density there. Set by the walks; the
   // O(1) MIS weight uses it for the predecessor of each connection end (mis.cpp).
   float areaToPrev = 0.f;
-  // Russian roulette's 1 / q over the walk's decisions before this vertex (RussianRoulette::weight):
-  // the factor by which beta exceeds the prefix's contribution over its MIS density, which leaves
-  // roulette out. Optimal MIS scales its correction by it (optimal_mis.h). 1 for fresh endpoints.
-  float rouletteWeight = 1.f;
+  // The factor by which beta exceeds the prefix's contribution over its MIS density: the product of
+  // what the densities leave out over the walk's decisions before this vertex, Russian roulette's
+  // 1 / q (RussianRoulette::weight) and a delta lobe's 1 / (its choice probability) (a delta vertex's
+  // densities count one). Optimal MIS scales its correction by it (optimal_mis.h). 1 for fresh
+  // endpoints.
+  float omittedFactor = 1.f;
   bool isDelta = false;          // a delta BSDF lobe was sampled here: cannot be connected
   bool isDeltaPosition = false;  // point / spot light, pinhole: cannot be hit by a ray
   // Directional or environment light, at infinity: the density of the next vertex from it is

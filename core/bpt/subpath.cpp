@@ -38,6 +38,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
   RussianRoulette roulette(beta, mode == TransportMode::Radiance ? RouletteCount::NonDeltaScatterings
                                                                 : RouletteCount::Scatterings);
   bool delta = false;  // the last scattering was a delta lobe
+  float deltaFactor = 1.f;  // 1 / the delta lobes' choice probabilities so far (PathVertex::omittedFactor)
   const Bsdf* prevBsdf = nullptr;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
   float prevPhaseG = 0.f;          // the anisotropy of the phase function that chose `ray`...
   bool prevPhase = false;          // ...when a medium vertex did
@@ -79,7 +80,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     if (!hit && !inMedium) {
       setEnvironmentVertex(scene, ray, prev, environment, v);
       v.beta = beta;
-      v.rouletteWeight = roulette.weight();
+      v.omittedFactor = roulette.weight() * deltaFactor;
       BsdfDensities ev;
       if (prevDensities(prev, ray.d, ev)) {
         pdfFwdW = ev.pdfFwdW;
@@ -114,7 +115,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
     const Vec3 back = prev.p - v.p;
     v.wo = glm::dot(back, back) > 0.f && !prev.isInfinite ? glm::normalize(back) : -ray.d;
     v.beta = beta;
-    v.rouletteWeight = roulette.weight();
+    v.omittedFactor = roulette.weight() * deltaFactor;
     const Vec3 dirGeom = -v.wo;
     BsdfDensities ev;
     if (prevDensities(prev, dirGeom, ev)) {
@@ -163,7 +164,9 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       prevPhase = false;
       delta = bs->isDelta;
       if (bs->isDelta) {
-        // pbrt: a delta vertex stores zero densities, remapped to one where ratios are formed.
+        // pbrt: a delta vertex stores zero densities, remapped to one where ratios are formed; the
+        // lobe's choice probability, in beta, is then left out of them (PathVertex::omittedFactor).
+        deltaFactor /= bs->pdfFwdW;
         v.isDelta = true;
         pdfFwdW = pdfRevW = 0.f;
       } else {

@@ -226,7 +226,7 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const Scene> scene, con
                                          int threads)
     : state_(std::make_unique<State>(threads)) {
   validateSettings(settings);
-  if (scene) validateSettingsForCamera(settings, scene->cameraDesc()), validateSettingsForScene(settings, *scene);
+  if (scene) validateSettingsForCamera(settings, scene->cameraDesc());
   state_->scene = std::move(scene);
   state_->settings = settings;
   state_->worker = std::thread([s = state_.get()] { s->run(); });
@@ -247,7 +247,7 @@ bool ProgressiveRenderer::setSettings(const RenderSettings& settings) {
   {
     std::lock_guard lock(state_->mutex);
     if (state_->scene)
-      validateSettingsForCamera(settings, state_->scene->cameraDesc()), validateSettingsForScene(settings, *state_->scene);
+      validateSettingsForCamera(settings, state_->scene->cameraDesc());
     if (settings == state_->settings) return false;
     state_->settings = settings;
     ++state_->generation;
@@ -259,7 +259,7 @@ bool ProgressiveRenderer::setSettings(const RenderSettings& settings) {
 
 void ProgressiveRenderer::setScene(std::shared_ptr<const Scene> scene, const RenderSettings& settings) {
   validateSettings(settings);
-  if (scene) validateSettingsForCamera(settings, scene->cameraDesc()), validateSettingsForScene(settings, *scene);
+  if (scene) validateSettingsForCamera(settings, scene->cameraDesc());
   {
     std::lock_guard lock(state_->mutex);
     state_->scene = std::move(scene);

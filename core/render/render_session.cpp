@@ -43,7 +43,6 @@ int activeThreads() {
 const RenderSettings& validated(const RenderSettings& settings, const Scene& scene) {
   validateSettings(settings);
   validateSettingsForCamera(settings, scene.cameraDesc());
-  validateSettingsForScene(settings, scene);
   return settings;
 }
 
@@ -110,7 +109,10 @@ RenderSession::RenderSession(const Scene& scene, const RenderSettings& settings,
                                                             settings.maxLength);
     bidirTracer_->setVarianceAwareFactors(varianceAware_.get());
   }
-  if (bidirTracer_ && !metropolis_ && settings.mis.heuristic == MisHeuristic::Optimal) {
+  // In a scene with media the correction would be biased (validateSettingsForScene): the commands
+  // refuse it before they get here; the viewer's sessions render the balance heuristic and its
+  // status says so (optimalMisWarning).
+  if (bidirTracer_ && !metropolis_ && settings.mis.heuristic == MisHeuristic::Optimal && !scene.hasMedia()) {
     VarianceAwareRegions regions = varianceAwareRegions(settings.width, settings.height, tiles_,
                                                         optimalMisCell(settings.width, settings.height, settings.maxLength));
     optimal_ = std::make_unique<OptimalMis>(

@@ -152,11 +152,16 @@ std::string mediumSamplingWarning(const Scene& scene, const RenderSettings& s) {
                      mediumSamplingName(*s.mediumSampling));
 }
 
+std::string optimalMisWarning(const Scene& scene, const RenderSettings& s) {
+  if (s.mis.heuristic != MisHeuristic::Optimal || !scene.hasMedia()) return "";
+  return "--mis optimal is not available in a scene with media: its correction needs each sample's path throughput "
+         "over the true one, which distance sampling and ratio tracking leave unknown (this renders the balance "
+         "heuristic)";
+}
+
 void validateSettingsForScene(const RenderSettings& s, const Scene& scene) {
-  if (s.mis.heuristic == MisHeuristic::Optimal && scene.hasMedia())
-    throw std::invalid_argument(
-        "--mis optimal is not available in a scene with media: its correction needs each sample's path throughput "
-        "over the true one, which distance sampling and ratio tracking leave unknown (use balance)");
+  if (const std::string w = optimalMisWarning(scene, s); !w.empty())
+    throw std::invalid_argument(w.substr(0, w.find(" (this renders")) + " (use --mis balance)");
 }
 
 void validateSettingsForCamera(const RenderSettings& s, const CameraDesc& sceneCamera) {

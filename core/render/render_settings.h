@@ -197,7 +197,10 @@ void validateSettingsForCamera(const RenderSettings& settings, const CameraDesc&
 // The refusals that depend on the scene's content: throws std::invalid_argument naming the
 // problem. --mis optimal in a scene with media (its correction needs each sample's estimated path
 // throughput over the true one, which the walks' distance sampling and ratio tracking leave
-// stochastic and unknown; core/bpt/optimal_mis.h).
+// stochastic and unknown; core/bpt/optimal_mis.h). The commands call it before rendering; a
+// RenderSession given such settings renders the balance heuristic (no correction), which the
+// viewer's status reports (optimalMisWarning: the same text, or "").
 void validateSettingsForScene(const RenderSettings& settings, const Scene& scene);
+std::string optimalMisWarning(const Scene& scene, const RenderSettings& settings);
 
 }  // namespace pathlab

@@ -25,12 +25,13 @@ SampleInspection inspectSample(const RenderSession& session, int x, int y, uint6
     for (size_t i = 0; i < r.trace.records.size() && i < r.trace.onPath.size(); ++i) {
       const TechniqueResult& t = r.trace.records[i];
       if (t.outcome != TechniqueOutcome::Contributed || t.kind != TechniqueKind::Connection || !t.inImage) continue;
-      const int n = t.s + t.t, region = optimal->regionOf(t.pRaster);
+      const Vec2 at = t.t == 1 ? t.pRaster : Vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      const int n = t.s + t.t, region = optimal->regionOf(at);
       std::vector<double> w(static_cast<size_t>(n), 0.0);
       for (const TechniqueOnPath& y : r.trace.onPath[i])
         if (y.kind == TechniqueKind::Connection && y.counted && y.s >= 0 && y.s < n) w[static_cast<size_t>(y.s)] = y.balance;
       for (int sp = 0; sp < n; ++sp) r.optimalBeta[i].push_back(optimal->beta(region, sp, n));
-      r.optimalCorrection[i] = optimal->correction(region, t.s, n, w.data()) * t.rouletteWeight;
+      r.optimalCorrection[i] = optimal->correction(region, t.s, n, w.data()) * t.omittedFactor;
     }
   }
   return r;

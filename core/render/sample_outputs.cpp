@@ -83,12 +83,14 @@ void SampleOutputs::record(const TechniqueResult& r) {
     const Spectrum C = r.unweighted * r.imageWeight;
     const int n = r.s + r.t;
     if (r.t == 1) {
-      targets_.optimal->addSplat(r.s, n, r.pRaster, C, r.balanceWeights, *targets_.optimalSplats, r.rouletteWeight);
+      targets_.optimal->addSplat(r.s, n, r.pRaster, C, r.balanceWeights, *targets_.optimalSplats, r.omittedFactor);
     } else {
+      // At the sample's own pixel: pRaster, a float, may round up onto the next pixel, which another
+      // work item (another thread) may be rendering.
+      const Vec2 pixel(static_cast<float>(id().x) + 0.5f, static_cast<float>(id().y) + 0.5f);
       const Spectrum correction =
-          targets_.optimal->addCamera(r.s, n, r.pRaster, C, r.balanceWeights, targets_.optimalLearns, r.rouletteWeight);
-      if (targets_.film && !isBlack(correction))
-        targets_.film->addCorrection(static_cast<int>(r.pRaster.x), static_cast<int>(r.pRaster.y), correction);
+          targets_.optimal->addCamera(r.s, n, pixel, C, r.balanceWeights, targets_.optimalLearns, r.omittedFactor);
+      if (targets_.film && !isBlack(correction)) targets_.film->addCorrection(id().x, id().y, correction);
     }
   }
   if (targets_.varianceAware)

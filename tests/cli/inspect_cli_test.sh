@@ -226,6 +226,10 @@ expect_error "optimal, equiangular" "use --medium-sampling distance, not mis" re
   --mis optimal -o "$TMP/x.exr"
 expect_error "optimal, isolate" "--isolate shows one technique unweighted: it takes no --mis optimal" render "$BOX" \
   --isolate 1,2 --mis optimal -o "$TMP/x.exr"
+expect_error "optimal, replay" "--replay sample 9 under --mis optimal.*pathlab inspect" render "$BOX" --mis optimal \
+  --replay 3,4,9
+expect_error "optimal, fog" "--mis optimal is not available in a scene with media" render "$SRC/assets/fog.gltf" \
+  --mis optimal -o "$TMP/x.exr"
 expect_error "converge optimal, vcm" "--mis optimal weighs connections only" converge "$BOX" -o "$TMP/conv-opt" --configs "vcm:mis=optimal"
 if "$PATHLAB" render "$BOX" --mis optimal --width 32 --height 32 --spp 9 --seed 3 -o "$TMP/optimal.pfm" --force 2>"$TMP/err" &&
    "$PATHLAB" render "$BOX" --width 32 --height 32 --spp 9 --seed 3 -o "$TMP/balance.pfm" --force 2>>"$TMP/err" &&

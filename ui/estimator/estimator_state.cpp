@@ -171,6 +171,8 @@ const std::string& estimatorWarning(EstimatorWarning& cache, const Scene* scene,
     cache.scene = scene;
     cache.settings = settings;
     cache.text = scene ? misOffWarning(*scene, settings) : std::string();
+    if (const std::string w = scene ? optimalMisWarning(*scene, settings) : std::string(); !w.empty())
+      cache.text += (cache.text.empty() ? "" : "\n") + w;
     if (settings.injectBias && settings.integrator != IntegratorKind::Pt) {
       if (!cache.text.empty()) cache.text += "\n";
       cache.text += fmt::format("technique {} is multiplied by {:g} (inject bias): this image is deliberately wrong",
