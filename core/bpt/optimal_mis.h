@@ -40,8 +40,13 @@
 // count one), so technique i delivers a path with density p_i Q_i, Q_i the product of those
 // probabilities over its prefixes' decisions, and weighs f / (p_i Q_i). Added as is, the correction's two terms
 // would have the expectations sum_k beta_k n_k int p_k Q_k and sum_k beta_k n_k int p_k sum_i w_i Q_i,
-// unequal where the techniques' prefixes met different roulettes; scaled by 1 / Q_i like the
-// contribution (TechniqueResult::omittedFactor) both are sum_k beta_k n_k int p_k again. Media's
+// unequal where the techniques' prefixes met different roulettes; scaled by c(x) / Q_i, c any
+// function of the path alone, both are sum_k beta_k n_k int p_k c again (the correction then sums
+// to zero path by path: sum_i n_i p_i c (beta_i - sum_k beta_k w_k) = 0). Here c is the product of
+// the camera side's lobe choices at the delta vertices, so a sample's factor
+// (TechniqueResult::omittedFactor) is its roulette's 1 / q times, for each delta vertex its light
+// walk crossed, the camera side's choice probability over the light side's: one where the lobes
+// are chosen alike both ways (a dielectric's Fresnel), rather than 1 / 0.04 for a glass reflection. Media's
 // distance sampling and ratio tracking put factors of the same kind into the throughput that no
 // sample knows exactly: --mis optimal is refused in scenes with media (validateSettingsForScene;
 // a session given it there renders the balance heuristic). The learning sums ignore Q_i (beta is

@@ -46,11 +46,11 @@ struct PathVertex {
   // before it on its own subpath, times this, is an area density there. Set by the walks; the
   // O(1) MIS weight uses it for the predecessor of each connection end (mis.cpp).
   float areaToPrev = 0.f;
-  // The factor by which beta exceeds the prefix's contribution over its MIS density: the product of
-  // what the densities leave out over the walk's decisions before this vertex, Russian roulette's
-  // 1 / q (RussianRoulette::weight) and a delta lobe's 1 / (its choice probability) (a delta vertex's
-  // densities count one). Optimal MIS scales its correction by it (optimal_mis.h). 1 for fresh
-  // endpoints.
+  // What the MIS densities leave out of the walk's decisions before this vertex, relative to a
+  // function of the path alone (optimal_mis.h): Russian roulette's 1 / q (RussianRoulette::weight),
+  // and at each delta vertex of a light walk the camera side's probability of choosing the same lobe
+  // over the light side's (a delta vertex's densities count one; one where the lobe is chosen alike
+  // from both sides). Optimal MIS scales its correction by it. 1 for fresh endpoints.
   float omittedFactor = 1.f;
   bool isDelta = false;          // a delta BSDF lobe was sampled here: cannot be connected
   bool isDeltaPosition = false;  // point / spot light, pinhole: cannot be hit by a ray

@@ -38,7 +38,7 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
   RussianRoulette roulette(beta, mode == TransportMode::Radiance ? RouletteCount::NonDeltaScatterings
                                                                 : RouletteCount::Scatterings);
   bool delta = false;  // the last scattering was a delta lobe
-  float deltaFactor = 1.f;  // 1 / the delta lobes' choice probabilities so far (PathVertex::omittedFactor)
+  float deltaFactor = 1.f;  // the delta lobes' choice factor so far (PathVertex::omittedFactor)
   const Bsdf* prevBsdf = nullptr;  // the BSDF that chose `ray`, when a surface vertex did (non-delta)
   float prevPhaseG = 0.f;          // the anisotropy of the phase function that chose `ray`...
   bool prevPhase = false;          // ...when a medium vertex did
@@ -165,8 +165,10 @@ void randomWalk(const Scene& scene, Ray ray, Spectrum beta, float pdfFwdW, Trans
       delta = bs->isDelta;
       if (bs->isDelta) {
         // pbrt: a delta vertex stores zero densities, remapped to one where ratios are formed; the
-        // lobe's choice probability, in beta, is then left out of them (PathVertex::omittedFactor).
-        deltaFactor /= bs->pdfFwdW;
+        // lobe's choice probability, in beta, is then left out of them. Relative to the camera
+        // side's choice of the same lobe (PathVertex::omittedFactor): a light walk's factor is the
+        // camera side's probability over its own, one where the lobes are chosen alike both ways.
+        if (mode == TransportMode::Importance) deltaFactor *= bs->pdfRevW / bs->pdfFwdW;
         v.isDelta = true;
         pdfFwdW = pdfRevW = 0.f;
       } else {

@@ -112,9 +112,8 @@ struct TechniqueResult {
   // valid only while the outputs consume the result.
   const double* balanceWeights = nullptr;
   // With balanceWeights: what the MIS densities leave out of the decisions that made the path's two
-  // prefixes, Russian roulette's 1 / q and the delta lobes' 1 / choice probability (PathVertex::
-  // omittedFactor of x(s-1) and z(t-1)): the contribution's factor beyond f / p, by which optimal MIS
-  // scales its correction.
+  // prefixes, relative to a function of the path alone (PathVertex::omittedFactor of x(s-1) and
+  // z(t-1)), by which optimal MIS scales its correction.
   float omittedFactor = 1.f;
   // For the replay trace: this path under every technique of its length (techniquesOnPath), by
   // slot, in the kernel's scratch; valid only while the outputs consume the result.
