@@ -7,6 +7,7 @@
 // image at any thread count is in render_reproducible_test.cpp, the refusals in render_settings_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -225,8 +226,12 @@ class BalanceWeightsSink final : public SampleSink {
     }
     EXPECT_NEAR(sum, 1.0, 1e-6);
     ++checked;
+    EXPECT_GT(r.omittedFactor, 0.f);
+    maxOmitted = std::max(maxOmitted, r.omittedFactor);
+    minOmitted = std::min(minOmitted, r.omittedFactor);
   }
   int checked = 0, between = 0;
+  float maxOmitted = 0.f, minOmitted = 1e30f;
 
  private:
   bool splat(Vec2, const Spectrum&) override { return true; }
@@ -253,7 +258,37 @@ TEST(OptimalMis, TheKernelsBalanceWeightsAreTheInspectorsOnEveryTechniqueOfThePa
     }
     EXPECT_GT(sink.checked, 300) << name;
     EXPECT_GT(sink.between, sink.checked / 2) << name << ": weights strictly between 0 and 1, so the test can fail";
+    // Russian roulette's 1 / q reaches the records (the correction's factor): some paths survived
+    // a decision with q < 1.
+    EXPECT_GT(sink.maxOmitted, 1.f) << name;
+    EXPECT_GE(sink.minOmitted, 1.f) << name;
   }
+}
+
+// Without Russian roulette (and without delta vertices: cornell-box) no factor is left out of the
+// densities: every record's factor is one.
+TEST(OptimalMis, NothingIsLeftOutOfTheDensitiesWithoutRoulette) {
+  const Scene scene = test::bundledScene("cornell-box");
+  RenderSettings s;
+  s.width = 16;
+  s.height = 12;
+  s.maxLength = 6;
+  s.integrator = IntegratorKind::Bpt;
+  s.mis.heuristic = MisHeuristic::Optimal;
+  s.russianRoulette = false;
+  const Camera camera(scene.cameraDesc(), s.width, s.height);
+  const BidirTracer tracer(scene, camera, bidirOptions(s));
+  BalanceWeightsSink sink;
+  Counters counters;
+  Pcg32 pixels(5, 9);
+  for (int i = 0; i < 200; ++i) {
+    const Vec2 pRaster(pixels.next1D() * static_cast<float>(s.width), pixels.next1D() * static_cast<float>(s.height));
+    Pcg32 cameraRng(static_cast<uint64_t>(i), 1), lightRng(static_cast<uint64_t>(i), 2);
+    tracer.sample(pRaster, pixels.next2D(), cameraRng, lightRng, sink, counters);
+  }
+  EXPECT_GT(sink.checked, 100);
+  EXPECT_EQ(sink.maxOmitted, 1.f);
+  EXPECT_EQ(sink.minOmitted, 1.f);
 }
 
 // Unbiased on the bundled scenes: the optimal estimate agrees region by region with the balance
