@@ -237,25 +237,30 @@ class BalanceWeightsSink final : public SampleSink {
   bool splat(Vec2, const Spectrum&) override { return true; }
 };
 
+// `samples` camera samples of a 16 x 12 bpt render under optimal MIS of `scene` into a BalanceWeightsSink.
+void sampleInto(BalanceWeightsSink& sink, const Scene& scene, bool roulette, int samples) {
+  RenderSettings s;
+  s.width = 16;
+  s.height = 12;
+  s.maxLength = 6;
+  s.integrator = IntegratorKind::Bpt;
+  s.mis.heuristic = MisHeuristic::Optimal;
+  s.russianRoulette = roulette;
+  const Camera camera(scene.cameraDesc(), s.width, s.height);
+  const BidirTracer tracer(scene, camera, bidirOptions(s));
+  Counters counters;
+  Pcg32 pixels(5, 9);
+  for (int i = 0; i < samples; ++i) {
+    const Vec2 pRaster(pixels.next1D() * static_cast<float>(s.width), pixels.next1D() * static_cast<float>(s.height));
+    Pcg32 cameraRng(static_cast<uint64_t>(i), 1), lightRng(static_cast<uint64_t>(i), 2);
+    tracer.sample(pRaster, pixels.next2D(), cameraRng, lightRng, sink, counters);
+  }
+}
+
 TEST(OptimalMis, TheKernelsBalanceWeightsAreTheInspectorsOnEveryTechniqueOfThePath) {
   for (const char* name : {"cornell-box", "veach-mis", "fog"}) {
-    const Scene scene = test::bundledScene(name);
-    RenderSettings s;
-    s.width = 16;
-    s.height = 12;
-    s.maxLength = 6;
-    s.integrator = IntegratorKind::Bpt;
-    s.mis.heuristic = MisHeuristic::Optimal;
-    const Camera camera(scene.cameraDesc(), s.width, s.height);
-    const BidirTracer tracer(scene, camera, bidirOptions(s));
     BalanceWeightsSink sink;
-    Counters counters;
-    Pcg32 pixels(5, 9);
-    for (int i = 0; i < 400; ++i) {
-      const Vec2 pRaster(pixels.next1D() * static_cast<float>(s.width), pixels.next1D() * static_cast<float>(s.height));
-      Pcg32 cameraRng(static_cast<uint64_t>(i), 1), lightRng(static_cast<uint64_t>(i), 2);
-      tracer.sample(pRaster, pixels.next2D(), cameraRng, lightRng, sink, counters);
-    }
+    sampleInto(sink, test::bundledScene(name), true, 400);
     EXPECT_GT(sink.checked, 300) << name;
     EXPECT_GT(sink.between, sink.checked / 2) << name << ": weights strictly between 0 and 1, so the test can fail";
     // Russian roulette's 1 / q reaches the records (the correction's factor): some paths survived
@@ -268,24 +273,8 @@ TEST(OptimalMis, TheKernelsBalanceWeightsAreTheInspectorsOnEveryTechniqueOfThePa
 // Without Russian roulette (and without delta vertices: cornell-box) no factor is left out of the
 // densities: every record's factor is one.
 TEST(OptimalMis, NothingIsLeftOutOfTheDensitiesWithoutRoulette) {
-  const Scene scene = test::bundledScene("cornell-box");
-  RenderSettings s;
-  s.width = 16;
-  s.height = 12;
-  s.maxLength = 6;
-  s.integrator = IntegratorKind::Bpt;
-  s.mis.heuristic = MisHeuristic::Optimal;
-  s.russianRoulette = false;
-  const Camera camera(scene.cameraDesc(), s.width, s.height);
-  const BidirTracer tracer(scene, camera, bidirOptions(s));
   BalanceWeightsSink sink;
-  Counters counters;
-  Pcg32 pixels(5, 9);
-  for (int i = 0; i < 200; ++i) {
-    const Vec2 pRaster(pixels.next1D() * static_cast<float>(s.width), pixels.next1D() * static_cast<float>(s.height));
-    Pcg32 cameraRng(static_cast<uint64_t>(i), 1), lightRng(static_cast<uint64_t>(i), 2);
-    tracer.sample(pRaster, pixels.next2D(), cameraRng, lightRng, sink, counters);
-  }
+  sampleInto(sink, test::bundledScene("cornell-box"), false, 200);
   EXPECT_GT(sink.checked, 100);
   EXPECT_EQ(sink.maxOmitted, 1.f);
   EXPECT_EQ(sink.minOmitted, 1.f);
