@@ -174,6 +174,17 @@ void validateSettingsForCamera(const RenderSettings& s, const CameraDesc& sceneC
     throw std::invalid_argument("an orthographic camera has no lens (its rays are parallel): set no aperture");
 }
 
+namespace {
+// A heuristic's per-region tables past their budget: one line naming the option, the size and the way out.
+void refuseLargeTables(const RenderSettings& s, const char* option, const char* what, uint64_t bytes, uint64_t max) {
+  if (bytes <= max) return;
+  throw std::invalid_argument(fmt::format(
+      "{} at {} x {} with maximum length {} keeps {:.1f} GiB of {} (at most {} GiB): lower --max-length or the "
+      "image size",
+      option, s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), what, max >> 30));
+}
+}  // namespace
+
 void validateSettings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1)
     throw std::invalid_argument(fmt::format("image size {} x {} is not positive", s.width, s.height));
@@ -227,12 +238,8 @@ void validateSettings(const RenderSettings& s) {
   if (s.mis.heuristic == MisHeuristic::VarianceAware) {
     if (!bidirectional)
       throw std::invalid_argument("--mis variance-aware weighs the bidirectional techniques: use bpt, lt, vcm, bpm or ppm");
-    const uint64_t bytes = varianceAwareBytes(s.width, s.height, s.maxLength);
-    if (bytes > kMaxVarianceAwareBytes)
-      throw std::invalid_argument(fmt::format(
-          "--mis variance-aware at {} x {} with maximum length {} keeps {:.1f} GiB of factors (at most {} GiB): lower "
-          "--max-length or the image size",
-          s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxVarianceAwareBytes >> 30));
+    refuseLargeTables(s, "--mis variance-aware", "factors", varianceAwareBytes(s.width, s.height, s.maxLength),
+                      kMaxVarianceAwareBytes);
   }
   if (s.mis.heuristic == MisHeuristic::Optimal) {
     // Optimal MIS corrects the balance weights of the connections (core/bpt/optimal_mis.h).
@@ -249,12 +256,7 @@ void validateSettings(const RenderSettings& s) {
                                               mediumSamplingName(mediumSampling(s))));
     if (s.isolate)
       throw std::invalid_argument("--isolate shows one technique unweighted: it takes no --mis optimal");
-    const uint64_t bytes = optimalMisBytes(s.width, s.height, s.maxLength);
-    if (bytes > kMaxOptimalMisBytes)
-      throw std::invalid_argument(fmt::format(
-          "--mis optimal at {} x {} with maximum length {} keeps {:.1f} GiB of sums (at most {} GiB): lower "
-          "--max-length or the image size",
-          s.width, s.height, s.maxLength, static_cast<double>(bytes) / (1ull << 30), kMaxOptimalMisBytes >> 30));
+    refuseLargeTables(s, "--mis optimal", "sums", optimalMisBytes(s.width, s.height, s.maxLength), kMaxOptimalMisBytes);
   }
   if (s.lightPathsAuto) {
     const uint64_t bytes = static_cast<uint64_t>(s.width) * static_cast<uint64_t>(s.height) * kLightPathChoiceBytesPerPixel;
